@@ -1,0 +1,58 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+
+#include <semnav/scan/SweepAssembler.h>
+
+#include <memory>
+#include <string>
+
+namespace mrpt::io
+{
+class CFileGZInputStream;
+}
+
+namespace semnav
+{
+/** Reads the sweeps of a rawlog file, one at a time.
+ *
+ * Accepts observation-only rawlogs (semnav-sim's, rawlog-grabber's) and the
+ * older sensory-frame format (CSensoryFrame + CActionCollection; odometry
+ * increments are accumulated). When the file is corrupt or truncated, next()
+ * first returns every sweep that could be read (the last one flagged
+ * incomplete) and then throws RawlogError naming the file and how far it
+ * got. */
+class RawlogSweepReader
+{
+   public:
+	/** Throws RawlogError when the file cannot be opened. */
+	explicit RawlogSweepReader(
+		const std::string& path,
+		const SweepAssembler::TOptions& options = SweepAssembler::TOptions());
+	~RawlogSweepReader();
+
+	/** Next sweep; false at the end of the file. */
+	bool next(Sweep& out);
+
+	/** Objects read from the file so far. */
+	std::size_t objectsRead() const { return m_objects; }
+	const SweepAssembler& assembler() const { return m_assembler; }
+	const std::string& path() const { return m_path; }
+
+   private:
+	void readMore();
+
+	std::string m_path;
+	std::unique_ptr<mrpt::io::CFileGZInputStream> m_in;
+	SweepAssembler m_assembler;
+	std::size_t m_objects = 0;
+	bool m_eof = false;
+	std::string m_error;
+	mrpt::poses::CPose2D m_actionOdometry;
+};
+
+/** Reads all sweeps of a rawlog; throws RawlogError on a corrupt file. */
+std::vector<Sweep> readRawlogSweeps(
+	const std::string& path,
+	const SweepAssembler::TOptions& options = SweepAssembler::TOptions());
+
+}  // namespace semnav

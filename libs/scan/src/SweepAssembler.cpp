@@ -1,0 +1,281 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/core/bits_math.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <semnav/common/ConfigChecks.h>
+#include <semnav/scan/SweepAssembler.h>
+#include <semnav/scan/TiltGeometry.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace semnav
+{
+using mrpt::DEG2RAD;
+using mrpt::RAD2DEG;
+
+void SweepAssembler::TOptions::loadFromConfigFile(
+	const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+	checkKnownKeys(
+		c, s,
+		{"sensor_label", "same_tilt_tolerance_deg", "min_valid_range_m",
+		 "nominal_span_deg", "complete_span_fraction", "split_on_motion",
+		 "motion_tolerance_m", "motion_tolerance_deg"});
+	sensorLabel = c.read_string(s, "sensor_label", sensorLabel);
+	sameTiltTolerance = DEG2RAD(readChecked(
+		c, s, "same_tilt_tolerance_deg", RAD2DEG(sameTiltTolerance), 0, 5));
+	minValidRange =
+		readChecked(c, s, "min_valid_range_m", minValidRange, 0, 10);
+	nominalSpan = DEG2RAD(
+		readChecked(c, s, "nominal_span_deg", RAD2DEG(nominalSpan), 0, 180));
+	completeSpanFraction = readChecked(
+		c, s, "complete_span_fraction", completeSpanFraction, 0, 1);
+	splitOnMotion = readCheckedBool(c, s, "split_on_motion", splitOnMotion);
+	motionTolerance =
+		readChecked(c, s, "motion_tolerance_m", motionTolerance, 0, 10);
+	motionToleranceYaw = DEG2RAD(readChecked(
+		c, s, "motion_tolerance_deg", RAD2DEG(motionToleranceYaw), 0, 180));
+}
+
+void SweepAssembler::TOptions::saveToConfigFile(
+	mrpt::config::CConfigFileBase& c, const std::string& s) const
+{
+	c.write(s, "sensor_label", sensorLabel);
+	c.write(s, "same_tilt_tolerance_deg", RAD2DEG(sameTiltTolerance));
+	c.write(s, "min_valid_range_m", minValidRange);
+	c.write(s, "nominal_span_deg", RAD2DEG(nominalSpan));
+	c.write(s, "complete_span_fraction", completeSpanFraction);
+	c.write(s, "split_on_motion", splitOnMotion ? "true" : "false");
+	c.write(s, "motion_tolerance_m", motionTolerance);
+	c.write(s, "motion_tolerance_deg", RAD2DEG(motionToleranceYaw));
+}
+
+SweepAssembler::SweepAssembler() : SweepAssembler(TOptions()) {}
+
+SweepAssembler::SweepAssembler(const TOptions& options)
+	: mrpt::system::COutputLogger("SweepAssembler"),
+	  m_options(options),
+	  m_label(options.sensorLabel)
+{
+}
+
+void SweepAssembler::push(const mrpt::obs::CObservation::Ptr& obs)
+{
+	if (!obs) return;
+	if (auto scan =
+			std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(obs))
+	{
+		if (m_label.empty()) m_label = scan->sensorLabel;
+		if (scan->sensorLabel != m_label)
+		{
+			m_linesIgnored++;
+			return;
+		}
+		pushLine(scan);
+	}
+	else if (
+		auto odo =
+			std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs))
+	{
+		pushOdometry(odo->odometry);
+	}
+}
+
+void SweepAssembler::pushOdometry(const mrpt::poses::CPose2D& odometry)
+{
+	if (m_options.splitOnMotion && m_odometry && !m_lines.empty())
+	{
+		const auto d = odometry - *m_odometry;
+		if (d.norm() > m_options.motionTolerance ||
+			std::abs(mrpt::math::wrapToPi(d.phi())) >
+				m_options.motionToleranceYaw)
+			closeSweep(EndReason::Motion);
+	}
+	m_odometry = odometry;
+}
+
+void SweepAssembler::pushLine(
+	const mrpt::obs::CObservation2DRangeScan::Ptr& scan)
+{
+	const Line line{
+		tiltOfSensorPose(scan->sensorPose), scan};
+	if (m_lines.empty())
+	{
+		startSweep({line});
+		return;
+	}
+	if (scan->getScanSize() != m_lines.front().scan->getScanSize())
+	{
+		MRPT_LOG_WARN_FMT(
+			"scan line with %u beams in a sweep of %u beams: sweep ended",
+			static_cast<unsigned>(scan->getScanSize()),
+			static_cast<unsigned>(m_lines.front().scan->getScanSize()));
+		closeSweep(EndReason::Other);
+		startSweep({line});
+		return;
+	}
+	const double d = line.theta - m_lines.back().theta;
+	if (std::abs(d) <= m_options.sameTiltTolerance)
+	{
+		if (m_pending) m_repeated++;
+		m_pending = line;
+		return;
+	}
+	const int dir = d > 0 ? 1 : -1;
+	if (m_direction == 0 || dir == m_direction)
+	{
+		if (m_pending)
+		{
+			m_repeated++;
+			m_pending.reset();
+		}
+		m_direction = dir;
+		m_lines.push_back(line);
+		return;
+	}
+	// Reversal: the pending repeat of the end tilt opens the new sweep.
+	std::vector<Line> next;
+	if (m_pending) next.push_back(*m_pending);
+	m_pending.reset();
+	next.push_back(line);
+	closeSweep(EndReason::Reversal);
+	startSweep(std::move(next));
+}
+
+void SweepAssembler::startSweep(std::vector<Line> lines)
+{
+	m_lines = std::move(lines);
+	m_direction = 0;
+	if (m_lines.size() >= 2)
+		m_direction = m_lines.back().theta > m_lines.front().theta ? 1 : -1;
+	m_repeated = 0;
+	m_sweepOdometry = m_odometry;
+}
+
+void SweepAssembler::finish() { closeSweep(EndReason::Other); }
+
+void SweepAssembler::closeSweep(EndReason why)
+{
+	if (m_pending)
+	{
+		m_repeated++;
+		m_pending.reset();
+	}
+	if (m_lines.empty()) return;
+	m_ready.push_back(build(m_lines, why));
+	m_lines.clear();
+	m_direction = 0;
+	m_repeated = 0;
+}
+
+Sweep SweepAssembler::pop()
+{
+	Sweep s = std::move(m_ready.front());
+	m_ready.pop_front();
+	return s;
+}
+
+Sweep SweepAssembler::build(const std::vector<Line>& lines, EndReason why)
+{
+	std::vector<Line> sorted = lines;
+	std::sort(sorted.begin(), sorted.end(), [](const Line& a, const Line& b) {
+		return a.theta < b.theta;
+	});
+	const double span = sorted.back().theta - sorted.front().theta;
+
+	// Nominal tilt step: median gap between consecutive lines.
+	double step = 0;
+	if (sorted.size() >= 2)
+	{
+		std::vector<double> gaps;
+		for (std::size_t i = 1; i < sorted.size(); i++)
+			gaps.push_back(sorted[i].theta - sorted[i - 1].theta);
+		std::nth_element(
+			gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+		step = gaps[gaps.size() / 2];
+	}
+	const std::size_t rows =
+		step > 0 ? static_cast<std::size_t>(std::lround(span / step)) + 1 : 1;
+
+	const auto& first = *lines.front().scan;
+	const std::size_t cols = first.getScanSize();
+	Sweep sw(rows, cols);
+	std::vector<double> phi(cols);
+	for (std::size_t c = 0; c < cols; c++)
+	{
+		const double k = cols > 1 ? static_cast<double>(c) / (cols - 1) : 0.5;
+		phi[c] = -0.5 * first.aperture + k * first.aperture;
+	}
+	sw.setPhis(phi);
+	sw.setSensorLabel(first.sensorLabel);
+	sw.setTimestamp(first.timestamp);
+	sw.setMaxRange(first.maxRange);
+	sw.setIndex(m_emitted);
+	if (m_sweepOdometry) sw.setOdometry(*m_sweepOdometry);
+
+	std::vector<bool> filled(rows, false);
+	std::size_t repeated = m_repeated;
+	for (const Line& l : sorted)
+	{
+		const std::size_t r =
+			step > 0 ? static_cast<std::size_t>(std::lround(
+						   (l.theta - sorted.front().theta) / step))
+					 : 0;
+		if (r >= rows || filled[r])
+		{
+			repeated++;
+			continue;
+		}
+		filled[r] = true;
+		sw.setRow(r, l.theta, l.scan->sensorPose);
+		const auto& s = *l.scan;
+		for (std::size_t c = 0; c < cols; c++)
+		{
+			// Column 0 is the rightmost bearing whatever the beam order.
+			const std::size_t b = s.rightToLeft ? c : cols - 1 - c;
+			const float rg = s.getScanRange(b);
+			const bool ok = s.getScanRangeValidity(b) && rg > 0 &&
+				rg < s.maxRange && rg >= m_options.minValidRange;
+			sw.setRange(r, c, rg, ok);
+		}
+	}
+	// Rows without a line keep the interpolated tilt so geometry stays
+	// monotonic; their pixels stay invalid.
+	std::size_t missing = 0;
+	for (std::size_t r = 0; r < rows; r++)
+	{
+		if (filled[r]) continue;
+		missing++;
+		const double theta = sorted.front().theta + r * step;
+		sw.setRow(
+			r, theta,
+			tiltedSensorPose(
+				sorted.front().scan->sensorPose.translation(), theta));
+	}
+
+	m_largestSpan = std::max(m_largestSpan, span);
+	const double reference =
+		m_options.nominalSpan > 0 ? m_options.nominalSpan : m_largestSpan;
+	auto& q = sw.quality();
+	q.ascending = lines.back().theta >= lines.front().theta;
+	q.missingLines = missing;
+	q.repeatedLines = repeated;
+	q.complete = span >= m_options.completeSpanFraction * reference - 1e-9;
+	if (!q.complete)
+		MRPT_LOG_WARN_FMT(
+			"sweep %u incomplete: tilt span %.1f deg of %.1f deg (%s)",
+			static_cast<unsigned>(m_emitted), RAD2DEG(span),
+			RAD2DEG(reference),
+			why == EndReason::Motion	   ? "robot moved"
+				: why == EndReason::Reversal ? "head reversed early"
+											 : "stream ended");
+	if (missing > 0)
+		MRPT_LOG_WARN_FMT(
+			"sweep %u: %u missing scan lines", static_cast<unsigned>(m_emitted),
+			static_cast<unsigned>(missing));
+	m_emitted++;
+	return sw;
+}
+
+}  // namespace semnav

@@ -1,0 +1,114 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <gtest/gtest.h>
+#include <semnav/common/Error.h>
+#include <semnav/scan/RawlogSweepReader.h>
+#include <semnav/scan/RawlogWriter.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "ScanTestUtils.h"
+
+using namespace semnav;
+using semnav::test::makeLine;
+using semnav::test::makeOdometry;
+using semnav::test::syntheticRange;
+namespace fs = std::filesystem;
+
+namespace
+{
+fs::path tempDir(const std::string& name)
+{
+	const fs::path d = fs::temp_directory_path() /
+		("semnav_" + name + "_" + std::to_string(::getpid()));
+	fs::remove_all(d);
+	fs::create_directories(d);
+	return d;
+}
+
+/** Writes `sweeps` nodding sweeps of 211 lines, odometry before each. */
+std::string writeLog(const fs::path& dir, int sweeps, int compress = 1)
+{
+	const std::string path = (dir / "log.rawlog").string();
+	RawlogWriter w(path, compress);
+	for (int n = 0; n < sweeps; n++)
+	{
+		w.write(*makeOdometry(n, 0, 0));
+		for (int i = 0; i < 211; i++) w.write(*makeLine(n % 2 == 0 ? i : 210 - i));
+	}
+	w.commit();
+	return path;
+}
+}  // namespace
+
+TEST(RawlogSweepReader, ReadsBackWhatWasWritten)
+{
+	const auto dir = tempDir("rawlog_rt");
+	const auto path = writeLog(dir, 3);
+	RawlogSweepReader reader(path);
+	Sweep s;
+	int n = 0;
+	while (reader.next(s))
+	{
+		ASSERT_EQ(s.rows(), 211u);
+		EXPECT_TRUE(s.quality().complete);
+		EXPECT_DOUBLE_EQ(s.odometry().x(), n);
+		EXPECT_FLOAT_EQ(s.range(17, 3), syntheticRange(17, 3));
+		EXPECT_NEAR(s.theta(17), (-15 + 0.5 * 17) * M_PI / 180, 1e-6);
+		n++;
+	}
+	EXPECT_EQ(n, 3);
+	EXPECT_EQ(reader.objectsRead(), 3u * 212u);
+	fs::remove_all(dir);
+}
+
+TEST(RawlogSweepReader, TruncatedLogGivesGoodSweepsThenAClearError)
+{
+	const auto dir = tempDir("rawlog_trunc");
+	const auto path = writeLog(dir, 3, 0);  // uncompressed: cut is exact
+	const auto size = fs::file_size(path);
+	fs::resize_file(path, size * 5 / 6);  // inside sweep 2
+	RawlogSweepReader reader(path);
+	Sweep s;
+	std::vector<Sweep> got;
+	try
+	{
+		while (reader.next(s)) got.push_back(s);
+		FAIL() << "truncated rawlog read without error";
+	}
+	catch (const RawlogError& e)
+	{
+		const std::string msg = e.what();
+		EXPECT_NE(msg.find(path), std::string::npos) << msg;
+		EXPECT_NE(msg.find("corrupt or truncated"), std::string::npos) << msg;
+		EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+	}
+	ASSERT_EQ(got.size(), 3u);
+	EXPECT_TRUE(got[0].quality().complete);
+	EXPECT_TRUE(got[1].quality().complete);
+	EXPECT_FALSE(got[2].quality().complete);
+	fs::remove_all(dir);
+}
+
+TEST(RawlogSweepReader, GarbageAndMissingFilesAreRawlogErrors)
+{
+	const auto dir = tempDir("rawlog_bad");
+	const auto garbage = (dir / "garbage.rawlog").string();
+	std::ofstream(garbage) << "this is not a rawlog at all, just text\n";
+	EXPECT_THROW(readRawlogSweeps(garbage), RawlogError);
+	EXPECT_THROW(readRawlogSweeps((dir / "missing.rawlog").string()), RawlogError);
+	fs::remove_all(dir);
+}
+
+TEST(RawlogWriter, UncommittedWriterLeavesNoFile)
+{
+	const auto dir = tempDir("rawlog_atomic");
+	const auto path = (dir / "a.rawlog").string();
+	{
+		RawlogWriter w(path);
+		w.write(*makeLine(0));
+	}
+	EXPECT_FALSE(fs::exists(path));
+	EXPECT_TRUE(fs::is_empty(dir)) << "temporary file left behind";
+	fs::remove_all(dir);
+}
