@@ -112,7 +112,8 @@ struct CylPrim
 };
 
 /** Crossing-number point-in-polygon test. */
-bool insidePolygon(const std::vector<mrpt::math::TPoint2D>& poly, double x, double y)
+bool insidePolygon(
+    const std::vector<mrpt::math::TPoint2D>& poly, double x, double y)
 {
 	bool in = false;
 	const std::size_t n = poly.size();
@@ -130,7 +131,7 @@ bool insidePolygon(const std::vector<mrpt::math::TPoint2D>& poly, double x, doub
 }
 
 double distToPolygon(
-	const std::vector<mrpt::math::TPoint2D>& poly, double x, double y)
+    const std::vector<mrpt::math::TPoint2D>& poly, double x, double y)
 {
 	double best = kInf;
 	const std::size_t n = poly.size();
@@ -158,9 +159,9 @@ enum CellKind : uint8_t
 struct TerrainPrim
 {
 	std::vector<mrpt::math::TPoint2D> poly;
-	double pxmin, pymin, pxmax, pymax;	// polygon bounding box
+	double pxmin, pymin, pxmax, pymax;  // polygon bounding box
 	double x0, y0, cell, taper;
-	int cx, cy;	 // cells; nodes are (cx + 1) x (cy + 1)
+	int cx, cy;  // cells; nodes are (cx + 1) x (cy + 1)
 	std::vector<double> node;
 	std::vector<uint8_t> kind;
 	std::vector<double> cellLo, cellHi;
@@ -186,8 +187,9 @@ struct TerrainPrim
 		const uint8_t k = kind[j * cx + i];
 		if (k == kExterior) return 0;
 		const double u = fx - i, v = fy - j;
-		const double g = (1 - v) * ((1 - u) * nodeAt(i, j) + u * nodeAt(i + 1, j)) +
-			v * ((1 - u) * nodeAt(i, j + 1) + u * nodeAt(i + 1, j + 1));
+		const double g =
+		    (1 - v) * ((1 - u) * nodeAt(i, j) + u * nodeAt(i + 1, j)) +
+		    v * ((1 - u) * nodeAt(i, j + 1) + u * nodeAt(i + 1, j + 1));
 		if (k == kInterior) return g;
 		if (!insidePolygon(poly, x, y)) return 0;
 		return g * std::min(1.0, distToPolygon(poly, x, y) / taper);
@@ -212,8 +214,8 @@ struct Prim
 struct BvhNode
 {
 	Aabb box;
-	int left = -1, right = -1;	// children (internal nodes)
-	int first = 0, count = 0;  // primitive range (leaves)
+	int left = -1, right = -1;  // children (internal nodes)
+	int first = 0, count = 0;   // primitive range (leaves)
 };
 
 /** Nearest hit so far; ties go to the lowest `order`. */
@@ -279,7 +281,8 @@ bool intersectCyl(const CylPrim& c, const Ray& r, double& t)
 /** First crossing of the terrain surface with t in [0, r.maxRange];
  * cells starting beyond `stopAt` are not visited (they cannot win). The
  * arithmetic does not depend on `stopAt`, so both caster modes agree. */
-bool intersectTerrain(const TerrainPrim& T, const Ray& r, double stopAt, double& tHit)
+bool intersectTerrain(
+    const TerrainPrim& T, const Ray& r, double stopAt, double& tHit)
 {
 	// Clip to the grid area and the z band the surface can occupy.
 	double t0 = 0, t1 = r.maxRange;
@@ -289,8 +292,26 @@ bool intersectTerrain(const TerrainPrim& T, const Ray& r, double stopAt, double&
 	if (!slab(r.o[2], r.d[2], T.hmin - eps, T.hmax + eps, t0, t1)) return false;
 	if (t0 > stopAt) return false;
 
-	auto f = [&](double t) {
-		return r.o[2] + t * r.d[2] - T.height(r.o[0] + t * r.d[0], r.o[1] + t * r.d[1]);
+	auto f = [&](double t)
+	{
+		return r.o[2] + t * r.d[2] -
+		       T.height(r.o[0] + t * r.d[0], r.o[1] + t * r.d[1]);
+	};
+	// Bisection on a bracket whose ends lie on different sides of the
+	// surface; accepts the root if it lies on the patch.
+	auto tryRoot = [&](double lo, double hi, bool loAbove, double& t)
+	{
+		while (hi - lo > kBisectTol)
+		{
+			const double mid = 0.5 * (lo + hi);
+			if ((f(mid) > 0) == loAbove)
+				lo = mid;
+			else
+				hi = mid;
+		}
+		t = 0.5 * (lo + hi);
+		const double x = r.o[0] + t * r.d[0], y = r.o[1] + t * r.d[1];
+		return T.inside(x, y) || distToPolygon(T.poly, x, y) < kTerrainEdgeTol;
 	};
 	const double dxy = std::hypot(r.d[0], r.d[1]);
 	// March step: a quarter cell horizontally.
@@ -298,16 +319,20 @@ bool intersectTerrain(const TerrainPrim& T, const Ray& r, double stopAt, double&
 
 	// 2D DDA over the grid cells.
 	const double sx = r.o[0] + t0 * r.d[0], sy = r.o[1] + t0 * r.d[1];
-	int i = std::clamp(static_cast<int>(std::floor((sx - T.x0) / T.cell)), 0, T.cx - 1);
-	int j = std::clamp(static_cast<int>(std::floor((sy - T.y0) / T.cell)), 0, T.cy - 1);
+	int i = std::clamp(
+	    static_cast<int>(std::floor((sx - T.x0) / T.cell)), 0, T.cx - 1);
+	int j = std::clamp(
+	    static_cast<int>(std::floor((sy - T.y0) / T.cell)), 0, T.cy - 1);
 	const int di = r.d[0] > 0 ? 1 : (r.d[0] < 0 ? -1 : 0);
 	const int dj = r.d[1] > 0 ? 1 : (r.d[1] < 0 ? -1 : 0);
-	auto nextX = [&](int ii) {
+	auto nextX = [&](int ii)
+	{
 		if (di == 0) return kInf;
 		const double xb = T.x0 + (di > 0 ? ii + 1 : ii) * T.cell;
 		return (xb - r.o[0]) / r.d[0];
 	};
-	auto nextY = [&](int jj) {
+	auto nextY = [&](int jj)
+	{
 		if (dj == 0) return kInf;
 		const double yb = T.y0 + (dj > 0 ? jj + 1 : jj) * T.cell;
 		return (yb - r.o[1]) / r.d[1];
@@ -324,38 +349,50 @@ bool intersectTerrain(const TerrainPrim& T, const Ray& r, double stopAt, double&
 		{
 			const double za = r.o[2] + ta * r.d[2], zb = r.o[2] + tb * r.d[2];
 			const double zlo = std::min(za, zb), zhi = std::max(za, zb);
-			if (zhi >= T.cellLo[j * T.cx + i] - eps && zlo <= T.cellHi[j * T.cx + i] + eps)
+			if (zhi >= T.cellLo[j * T.cx + i] - eps &&
+			    zlo <= T.cellHi[j * T.cx + i] + eps)
 			{
-				const int n = std::max(1, static_cast<int>(std::ceil((tb - ta) / step)));
-				double tp = ta, fp = f(ta);
-				for (int k = 1; k <= n; k++)
+				if (kind == kInterior)
 				{
-					const double tc = (k == n) ? tb : ta + (tb - ta) * k / n;
-					const double fc = f(tc);
-					if ((fp > 0) != (fc > 0))
+					// Inside a cell the surface is bilinear, so f is a
+					// quadratic in t: fit it through 3 samples and bracket its
+					// first root, also when the ray dips under a bump and out
+					// again.
+					const double fa = f(ta), fb = f(tb),
+					             fm = f(0.5 * (ta + tb));
+					const double B = -3 * fa + 4 * fm - fb,
+					             C = 2 * fa - 4 * fm + 2 * fb;
+					double hi = -1;
+					if ((fa > 0) != (fb > 0))
+						hi = tb;
+					else if (C != 0)
 					{
-						// Bisection: keep the bracket [lo, hi] with f(lo), f(hi)
-						// of different signs.
-						double lo = tp, hi = tc;
-						const bool loAbove = fp > 0;
-						while (hi - lo > kBisectTol)
-						{
-							const double mid = 0.5 * (lo + hi);
-							if ((f(mid) > 0) == loAbove)
-								lo = mid;
-							else
-								hi = mid;
-						}
-						const double tr = 0.5 * (lo + hi);
-						const double x = r.o[0] + tr * r.d[0], y = r.o[1] + tr * r.d[1];
-						if (T.inside(x, y) || distToPolygon(T.poly, x, y) < kTerrainEdgeTol)
-						{
-							tHit = tr;
-							return true;
-						}
+						const double sv = -B / (2 * C);
+						if (sv > 0 && sv < 1 &&
+						    ((fa - B * B / (4 * C)) > 0) != (fa > 0))
+							hi = ta + sv * (tb - ta);
 					}
-					tp = tc;
-					fp = fc;
+					if (hi >= 0 && (f(hi) > 0) != (fa > 0) &&
+					    tryRoot(ta, hi, fa > 0, tHit))
+						return true;
+				}
+				else
+				{
+					// Boundary cell (tapered): march a quarter cell at a time.
+					const int n = std::max(
+					    1, static_cast<int>(std::ceil((tb - ta) / step)));
+					double tp = ta, fp = f(ta);
+					for (int k = 1; k <= n; k++)
+					{
+						const double tc =
+						    (k == n) ? tb : ta + (tb - ta) * k / n;
+						const double fc = f(tc);
+						if ((fp > 0) != (fc > 0) &&
+						    tryRoot(tp, tc, fp > 0, tHit))
+							return true;
+						tp = tc;
+						fp = fc;
+					}
 				}
 			}
 		}
@@ -378,8 +415,10 @@ bool intersectTerrain(const TerrainPrim& T, const Ray& r, double stopAt, double&
 
 std::string what(const SceneObject& o, std::size_t idx)
 {
-	return "scene object " + std::to_string(idx + 1) + " (" + labelName(o.label) +
-		(o.line > 0 ? ", line " + std::to_string(o.line) : std::string()) + ")";
+	return "scene object " + std::to_string(idx + 1) + " (" +
+	       labelName(o.label) +
+	       (o.line > 0 ? ", line " + std::to_string(o.line) : std::string()) +
+	       ")";
 }
 
 }  // namespace
@@ -393,21 +432,26 @@ struct RayCaster::Impl
 	std::vector<BoxPrim> boxes;
 	std::vector<CylPrim> cyls;
 	std::vector<TerrainPrim> terrains;
-	std::vector<Prim> prims;  // scene order; index = tie-break order
-	std::vector<int> bvhPrims;	// primitive indices ordered by leaves
+	std::vector<Prim> prims;    // scene order; index = tie-break order
+	std::vector<int> bvhPrims;  // primitive indices ordered by leaves
 	std::vector<BvhNode> bvh;
 
 	void addBox(const BoxShape& b, Label l, int inst)
 	{
-		BoxPrim p{b.center.x, b.center.y, b.center.z, std::cos(b.yaw), std::sin(b.yaw),
-			0.5 * b.size.x, 0.5 * b.size.y, 0.5 * b.size.z};
+		BoxPrim p{b.center.x,      b.center.y,      b.center.z,
+		          std::cos(b.yaw), std::sin(b.yaw), 0.5 * b.size.x,
+		          0.5 * b.size.y,  0.5 * b.size.z};
 		Prim pr{Prim::kBox, static_cast<int>(boxes.size()), l, inst, {}};
 		for (int sx = -1; sx <= 1; sx += 2)
 			for (int sy = -1; sy <= 1; sy += 2)
 			{
 				const double lx = sx * p.hx, ly = sy * p.hy;
-				pr.box.add(p.cx + p.c * lx - p.s * ly, p.cy + p.s * lx + p.c * ly, p.cz - p.hz);
-				pr.box.add(p.cx + p.c * lx - p.s * ly, p.cy + p.s * lx + p.c * ly, p.cz + p.hz);
+				pr.box.add(
+				    p.cx + p.c * lx - p.s * ly, p.cy + p.s * lx + p.c * ly,
+				    p.cz - p.hz);
+				pr.box.add(
+				    p.cx + p.c * lx - p.s * ly, p.cy + p.s * lx + p.c * ly,
+				    p.cz + p.hz);
 			}
 		pr.box.pad(kPad);
 		boxes.push_back(p);
@@ -416,8 +460,9 @@ struct RayCaster::Impl
 
 	void addCyl(const CylinderShape& c, Label l, int inst)
 	{
-		CylPrim p{c.center.x, c.center.y, c.center.z - 0.5 * c.height,
-			c.center.z + 0.5 * c.height, c.radius};
+		CylPrim p{
+		    c.center.x, c.center.y, c.center.z - 0.5 * c.height,
+		    c.center.z + 0.5 * c.height, c.radius};
 		Prim pr{Prim::kCyl, static_cast<int>(cyls.size()), l, inst, {}};
 		pr.box.add(p.cx - p.r, p.cy - p.r, p.zlo);
 		pr.box.add(p.cx + p.r, p.cy + p.r, p.zhi);
@@ -426,7 +471,8 @@ struct RayCaster::Impl
 		prims.push_back(pr);
 	}
 
-	void addTerrain(const TerrainShape& t, Label l, int inst, double cell, uint64_t seed)
+	void addTerrain(
+	    const TerrainShape& t, Label l, int inst, double cell, uint64_t seed)
 	{
 		TerrainPrim T;
 		T.poly = t.polygon;
@@ -443,10 +489,14 @@ struct RayCaster::Impl
 		T.taper = kTerrainTaperCells * cell;
 		T.x0 = T.pxmin;
 		T.y0 = T.pymin;
-		T.cx = std::max(1, static_cast<int>(std::ceil((T.pxmax - T.pxmin) / cell)));
-		T.cy = std::max(1, static_cast<int>(std::ceil((T.pymax - T.pymin) / cell)));
+		T.cx = std::max(
+		    1, static_cast<int>(std::ceil((T.pxmax - T.pxmin) / cell)));
+		T.cy = std::max(
+		    1, static_cast<int>(std::ceil((T.pymax - T.pymin) / cell)));
 		if (static_cast<double>(T.cx) * T.cy > 2e8)
-			throw Error("terrain patch too large for a grid of " + std::to_string(cell) + " m");
+			throw Error(
+			    "terrain patch too large for a grid of " +
+			    std::to_string(cell) + " m");
 
 		// Node heights: i.i.d. Gaussian, std 1.5 * roughness (see header).
 		std::mt19937_64 rng(seed);
@@ -462,7 +512,8 @@ struct RayCaster::Impl
 		for (int j = 0; j < T.cy; j++)
 			for (int i = 0; i < T.cx; i++)
 			{
-				const double x = T.x0 + (i + 0.5) * cell, y = T.y0 + (j + 0.5) * cell;
+				const double x = T.x0 + (i + 0.5) * cell,
+				             y = T.y0 + (j + 0.5) * cell;
 				const bool in = insidePolygon(T.poly, x, y);
 				const double d = distToPolygon(T.poly, x, y);
 				uint8_t k = kBoundary;
@@ -498,7 +549,8 @@ struct RayCaster::Impl
 	int buildBvh(int first, int count)
 	{
 		BvhNode node;
-		for (int k = first; k < first + count; k++) node.box.add(prims[bvhPrims[k]].box);
+		for (int k = first; k < first + count; k++)
+			node.box.add(prims[bvhPrims[k]].box);
 		const int idx = static_cast<int>(bvh.size());
 		bvh.push_back(node);
 		if (count <= 2)
@@ -518,11 +570,14 @@ struct RayCaster::Impl
 			if (cb.hi[a] - cb.lo[a] > cb.hi[axis] - cb.lo[axis]) axis = a;
 		const int mid = first + count / 2;
 		std::nth_element(
-			bvhPrims.begin() + first, bvhPrims.begin() + mid, bvhPrims.begin() + first + count,
-			[&](int a, int b) {
-				const double ca = prims[a].box.centre(axis), cbv = prims[b].box.centre(axis);
-				return ca < cbv || (ca == cbv && a < b);
-			});
+		    bvhPrims.begin() + first, bvhPrims.begin() + mid,
+		    bvhPrims.begin() + first + count,
+		    [&](int a, int b)
+		    {
+			    const double ca = prims[a].box.centre(axis),
+			                 cbv = prims[b].box.centre(axis);
+			    return ca < cbv || (ca == cbv && a < b);
+		    });
 		const int l = buildBvh(first, mid - first);
 		const int r = buildBvh(mid, first + count - mid);
 		bvh[idx].left = l;
@@ -537,8 +592,12 @@ struct RayCaster::Impl
 		bool h = false;
 		switch (p.type)
 		{
-			case Prim::kBox: h = intersectBox(boxes[p.index], r, t); break;
-			case Prim::kCyl: h = intersectCyl(cyls[p.index], r, t); break;
+			case Prim::kBox:
+				h = intersectBox(boxes[p.index], r, t);
+				break;
+			case Prim::kCyl:
+				h = intersectCyl(cyls[p.index], r, t);
+				break;
 			case Prim::kTerrain:
 				h = intersectTerrain(terrains[p.index], r, best.t, t);
 				break;
@@ -574,12 +633,14 @@ struct RayCaster::Impl
 };
 
 RayCaster::RayCaster(const Scene& scene, uint64_t seed, double terrainCell)
-	: m_impl(std::make_unique<Impl>())
+    : m_impl(std::make_unique<Impl>())
 {
-	if (!(terrainCell > 0)) throw Error("RayCaster: terrain cell size must be > 0");
+	if (!(terrainCell > 0))
+		throw Error("RayCaster: terrain cell size must be > 0");
 	Impl& I = *m_impl;
 	I.bounds = scene.bounds;
-	I.hasFloor = scene.bounds.xmax > scene.bounds.xmin && scene.bounds.ymax > scene.bounds.ymin;
+	I.hasFloor = scene.bounds.xmax > scene.bounds.xmin &&
+	             scene.bounds.ymax > scene.bounds.ymin;
 	I.hasCeiling = I.hasFloor && scene.ceilingHeight.has_value();
 	I.ceiling = scene.ceilingHeight.value_or(0);
 
@@ -599,13 +660,18 @@ RayCaster::RayCaster(const Scene& scene, uint64_t seed, double terrainCell)
 			else if (const auto* c = std::get_if<CylinderShape>(&part))
 			{
 				if (!(c->radius > 0 && c->height > 0))
-					throw SceneError(what(o, oi) + ": cylinder radius and height must be > 0");
+					throw SceneError(
+					    what(o, oi) +
+					    ": cylinder radius and height must be > 0");
 				I.addCyl(*c, o.label, o.id);
 			}
 			else if (const auto* s = std::get_if<StairsShape>(&part))
 			{
-				if (!(s->steps > 0 && s->rise > 0 && s->run > 0 && s->width > 0))
-					throw SceneError(what(o, oi) + ": stairs need steps, rise, run, width > 0");
+				if (!(s->steps > 0 && s->rise > 0 && s->run > 0 &&
+				      s->width > 0))
+					throw SceneError(
+					    what(o, oi) +
+					    ": stairs need steps, rise, run, width > 0");
 				// Step k: solid block [k run, (k+1) run] along the climb,
 				// full width, from the floor to (k+1) rise.
 				const double c = std::cos(s->yaw), sn = std::sin(s->yaw);
@@ -613,7 +679,9 @@ RayCaster::RayCaster(const Scene& scene, uint64_t seed, double terrainCell)
 				{
 					const double u = (k + 0.5) * s->run;
 					BoxShape b;
-					b.center = {s->origin.x + c * u, s->origin.y + sn * u, 0.5 * (k + 1) * s->rise};
+					b.center = {
+					    s->origin.x + c * u, s->origin.y + sn * u,
+					    0.5 * (k + 1) * s->rise};
 					b.size = {s->run, s->width, (k + 1) * s->rise};
 					b.yaw = s->yaw;
 					I.addBox(b, o.label, o.id);
@@ -622,10 +690,13 @@ RayCaster::RayCaster(const Scene& scene, uint64_t seed, double terrainCell)
 			else if (const auto* t = std::get_if<TerrainShape>(&part))
 			{
 				if (t->polygon.size() < 3)
-					throw SceneError(what(o, oi) + ": terrain polygon needs >= 3 vertices");
+					throw SceneError(
+					    what(o, oi) + ": terrain polygon needs >= 3 vertices");
 				if (!(t->roughness >= 0))
-					throw SceneError(what(o, oi) + ": terrain roughness must be >= 0");
-				const uint64_t s = splitMix64(splitMix64(splitMix64(seed) ^ oi) ^ pi);
+					throw SceneError(
+					    what(o, oi) + ": terrain roughness must be >= 0");
+				const uint64_t s =
+				    splitMix64(splitMix64(splitMix64(seed) ^ oi) ^ pi);
 				I.addTerrain(*t, o.label, o.id, terrainCell, s);
 			}
 		}
@@ -640,7 +711,10 @@ RayCaster::~RayCaster() = default;
 RayCaster::RayCaster(RayCaster&&) noexcept = default;
 RayCaster& RayCaster::operator=(RayCaster&&) noexcept = default;
 
-std::size_t RayCaster::primitiveCount() const { return m_impl->prims.size(); }
+std::size_t RayCaster::primitiveCount() const
+{
+	return m_impl->prims.size();
+}
 
 double RayCaster::groundHeight(double x, double y) const
 {
@@ -650,8 +724,8 @@ double RayCaster::groundHeight(double x, double y) const
 }
 
 RayHit RayCaster::cast(
-	const mrpt::math::TPoint3D& origin, const mrpt::math::TPoint3D& unitDir,
-	double maxRange) const
+    const mrpt::math::TPoint3D& origin, const mrpt::math::TPoint3D& unitDir,
+    double maxRange) const
 {
 	const Impl& I = *m_impl;
 	Ray r;
@@ -666,7 +740,8 @@ RayHit RayCaster::cast(
 
 	if (m_mode == Mode::BruteForce)
 	{
-		for (int pi = 0; pi < static_cast<int>(I.prims.size()); pi++) I.testPrim(pi, r, best);
+		for (int pi = 0; pi < static_cast<int>(I.prims.size()); pi++)
+			I.testPrim(pi, r, best);
 	}
 	else if (!I.bvh.empty())
 	{
@@ -692,7 +767,8 @@ RayHit RayCaster::cast(
 				{
 					const int pi = I.bvhPrims[k];
 					double te = 0;
-					if (hitAabb(I.prims[pi].box, r, best.t, te)) I.testPrim(pi, r, best);
+					if (hitAabb(I.prims[pi].box, r, best.t, te))
+						I.testPrim(pi, r, best);
 				}
 				continue;
 			}

@@ -93,6 +93,17 @@ double polygonArea(const std::vector<mrpt::math::TPoint2D>& p)
 	return 0.5 * std::abs(a);
 }
 
+/** A value in the tree: the node (undefined if absent), its key path and
+ * the line to report when the node has none of its own (null values). */
+struct Field
+{
+	YAML::Node node;
+	std::string path;
+	int line = 0;
+
+	bool present() const { return node.IsDefined(); }
+};
+
 /** Walks the YAML tree. Every error names the source, the 1-based line and
  * the key path (list indices 0-based), on one line. */
 class Parser
@@ -110,167 +121,178 @@ class Parser
 		throw SceneError(msg + what);
 	}
 
+	[[noreturn]] void fail(const Field& f, const std::string& what) const
+	{
+		fail(lineOf(f), f.path, what);
+	}
+
+	static int lineOf(const YAML::Node& n, int fallback)
+	{
+		// A null value's mark points past it (often the next line).
+		if (!n.IsDefined() || n.IsNull()) return fallback;
+		const YAML::Mark m = n.Mark();
+		return m.is_null() ? fallback : m.line + 1;
+	}
+
+	static int lineOf(const Field& f) { return lineOf(f.node, f.line); }
+
 	Scene scene(const YAML::Node& root) const;
 
    private:
 	std::string m_source;
 
-	static int lineOf(const YAML::Node& n, int fallback)
+	/** Child `key` of the map `f`; its line is the key's line. */
+	static Field field(const Field& f, const std::string& key)
 	{
-		if (!n.IsDefined()) return fallback;
-		const YAML::Mark m = n.Mark();
-		return m.is_null() ? fallback : m.line + 1;
+		Field c{f.node[key], child(f.path, key), lineOf(f)};
+		for (const auto& kv : f.node)
+			if (kv.first.IsScalar() && kv.first.Scalar() == key)
+				c.line = lineOf(kv.first, c.line);
+		return c;
 	}
 
-	void expectMap(
-		const YAML::Node& n, const std::string& path, int line) const
+	/** Element i of the list `f`. */
+	static Field element(const Field& f, std::size_t i)
 	{
-		if (!n.IsDefined() || !n.IsMap())
-			fail(lineOf(n, line), path, "expected a map, got " + describe(n));
+		return {f.node[i], item(f.path, i), lineOf(f)};
 	}
 
-	void expectList(
-		const YAML::Node& n, const std::string& path, int line) const
+	Field required(const Field& f, const std::string& key) const
 	{
-		if (!n.IsDefined() || !n.IsSequence())
-			fail(lineOf(n, line), path, "expected a list, got " + describe(n));
+		Field c = field(f, key);
+		if (!c.present()) fail(c, "missing required key");
+		return c;
 	}
 
-	/** Rejects unknown and duplicate keys. */
-	void checkKeys(
-		const YAML::Node& map, const std::string& path,
-		const std::vector<std::string>& allowed) const
+	void expectMap(const Field& f) const
+	{
+		if (!f.present() || !f.node.IsMap())
+			fail(f, "expected a map, got " + describe(f.node));
+	}
+
+	void expectList(const Field& f) const
+	{
+		if (!f.present() || !f.node.IsSequence())
+			fail(f, "expected a list, got " + describe(f.node));
+	}
+
+	/** Rejects unknown and duplicate keys of the map `f`. */
+	void checkKeys(const Field& f, const std::vector<std::string>& allowed) const
 	{
 		std::set<std::string> seen;
-		for (const auto& kv : map)
+		for (const auto& kv : f.node)
 		{
-			const int line = lineOf(kv.first, lineOf(map, 0));
+			const int line = lineOf(kv.first, lineOf(f));
 			if (!kv.first.IsScalar())
-				fail(line, path, "expected a key name, got " + describe(kv.first));
+				fail(line, f.path, "expected a key name, got " + describe(kv.first));
 			const std::string key = kv.first.Scalar();
 			if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
 				fail(
-					line, child(path, key),
+					line, child(f.path, key),
 					"unknown key (allowed: " + joined(allowed, ", ") + ")");
 			if (!seen.insert(key).second)
-				fail(line, child(path, key), "duplicate key");
+				fail(line, child(f.path, key), "duplicate key");
 		}
 	}
 
-	YAML::Node required(
-		const YAML::Node& map, const std::string& path, int line,
-		const std::string& key) const
+	std::string text(const Field& f) const
 	{
-		const YAML::Node n = map[key];
-		if (!n.IsDefined())
-			fail(lineOf(map, line), child(path, key), "missing required key");
-		return n;
+		if (!f.present() || !f.node.IsScalar())
+			fail(f, "expected a name, got " + describe(f.node));
+		return f.node.Scalar();
 	}
 
-	std::string text(
-		const YAML::Node& n, const std::string& path, int line) const
+	double number(const Field& f) const
 	{
-		if (!n.IsDefined() || !n.IsScalar())
-			fail(lineOf(n, line), path, "expected a name, got " + describe(n));
-		return n.Scalar();
-	}
-
-	double number(
-		const YAML::Node& n, const std::string& path, int line) const
-	{
-		const int l = lineOf(n, line);
-		if (!n.IsDefined() || !n.IsScalar() || n.Tag() == "!")
-			fail(l, path, "expected a number, got " + describe(n));
+		// Quoted scalars (tag "!") are strings, not numbers.
+		if (!f.present() || !f.node.IsScalar() || f.node.Tag() == "!")
+			fail(f, "expected a number, got " + describe(f.node));
 		double v = 0;
-		if (!YAML::convert<double>::decode(n, v) || !std::isfinite(v))
-			fail(l, path, "expected a number, got " + describe(n));
+		if (!YAML::convert<double>::decode(f.node, v) || !std::isfinite(v))
+			fail(f, "expected a number, got " + describe(f.node));
 		return v;
 	}
 
-	double positive(
-		const YAML::Node& n, const std::string& path, int line) const
+	double positive(const Field& f) const
 	{
-		const double v = number(n, path, line);
-		if (!(v > 0)) fail(lineOf(n, line), path, "must be > 0, got " + fmt(v));
+		const double v = number(f);
+		if (!(v > 0)) fail(f, "must be > 0, got " + fmt(v));
 		return v;
 	}
 
-	double nonNegative(
-		const YAML::Node& n, const std::string& path, int line) const
+	double nonNegative(const Field& f) const
 	{
-		const double v = number(n, path, line);
-		if (!(v >= 0))
-			fail(lineOf(n, line), path, "must be >= 0, got " + fmt(v));
+		const double v = number(f);
+		if (!(v >= 0)) fail(f, "must be >= 0, got " + fmt(v));
 		return v;
 	}
 
-	int integer(
-		const YAML::Node& n, const std::string& path, int line) const
+	int integer(const Field& f) const
 	{
-		const double v = number(n, path, line);
+		const double v = number(f);
 		if (v != std::floor(v) || std::abs(v) > 1e9)
-			fail(lineOf(n, line), path, "expected an integer, got " + fmt(v));
+			fail(f, "expected an integer, got " + fmt(v));
 		return static_cast<int>(v);
 	}
 
-	std::vector<double> numbers(
-		const YAML::Node& n, const std::string& path, int line,
-		std::size_t count) const
+	std::vector<double> numbers(const Field& f, std::size_t count) const
 	{
-		const int l = lineOf(n, line);
 		const std::string expected = std::to_string(count) + " numbers";
-		if (!n.IsDefined() || !n.IsSequence())
-			fail(l, path, "expected a list of " + expected + ", got " + describe(n));
-		if (n.size() != count)
+		if (!f.present() || !f.node.IsSequence())
+			fail(f, "expected a list of " + expected + ", got " + describe(f.node));
+		if (f.node.size() != count)
 			fail(
-				l, path,
-				"expected " + expected + ", got " + std::to_string(n.size()));
+				f, "expected " + expected + ", got " +
+					   std::to_string(f.node.size()));
 		std::vector<double> v;
 		for (std::size_t i = 0; i < count; i++)
-			v.push_back(number(n[i], item(path, i), l));
+			v.push_back(number(element(f, i)));
 		return v;
 	}
 
-	mrpt::math::TPoint3D point3(
-		const YAML::Node& n, const std::string& path, int line) const
+	mrpt::math::TPoint3D point3(const Field& f) const
 	{
-		const auto v = numbers(n, path, line, 3);
+		const auto v = numbers(f, 3);
 		return {v[0], v[1], v[2]};
 	}
 
-	mrpt::math::TPoint2D point2(
-		const YAML::Node& n, const std::string& path, int line) const
+	mrpt::math::TPoint2D point2(const Field& f) const
 	{
-		const auto v = numbers(n, path, line, 2);
+		const auto v = numbers(f, 2);
 		return {v[0], v[1]};
+	}
+
+	/** Optional yaw in degrees (default 0), returned in radians. */
+	double yaw(const Field& map) const
+	{
+		const Field y = field(map, "yaw");
+		return y.present() ? number(y) * kDegToRad : 0.0;
 	}
 
 	/** Reads [min, max, step] in degrees, within [-limit, limit]. */
 	void angleRange(
-		const YAML::Node& n, const std::string& path, int line, double limitDeg,
-		double& lo, double& hi, double& step) const
+		const Field& f, double limitDeg, double& lo, double& hi,
+		double& step) const
 	{
-		const auto v = numbers(n, path, line, 3);
-		const int l = lineOf(n, line);
+		const auto v = numbers(f, 3);
 		if (!(v[0] < v[1]))
 			fail(
-				l, path,
-				"min must be < max, got min " + fmt(v[0]) + ", max " + fmt(v[1]));
-		if (!(v[2] > 0)) fail(l, path, "step must be > 0, got " + fmt(v[2]));
+				f, "min must be < max, got min " + fmt(v[0]) + ", max " +
+					   fmt(v[1]));
+		if (!(v[2] > 0)) fail(f, "step must be > 0, got " + fmt(v[2]));
 		if (v[0] < -limitDeg || v[1] > limitDeg)
 			fail(
-				l, path,
-				"must lie within [" + fmt(-limitDeg) + ", " + fmt(limitDeg) +
-					"] deg, got [" + fmt(v[0]) + ", " + fmt(v[1]) + "]");
+				f, "must lie within [" + fmt(-limitDeg) + ", " +
+					   fmt(limitDeg) + "] deg, got [" + fmt(v[0]) + ", " +
+					   fmt(v[1]) + "]");
 		lo = v[0] * kDegToRad;
 		hi = v[1] * kDegToRad;
 		step = v[2] * kDegToRad;
 	}
 
-	Label label(const YAML::Node& n, const std::string& path, int line) const
+	Label label(const Field& f) const
 	{
-		const std::string name = text(n, path, line);
-		const int l = lineOf(n, line);
+		const std::string name = text(f);
 		Label lab = Label::Unknown;
 		try
 		{
@@ -279,288 +301,231 @@ class Parser
 		catch (const UnknownLabelError&)
 		{
 			fail(
-				l, path,
-				"unknown label '" + name + "' (known: " +
-					labelNamesForObjects() + ")");
+				f, "unknown label '" + name + "' (known: " +
+					   labelNamesForObjects() + ")");
 		}
 		if (lab == Label::Unknown)
-			fail(l, path, "label 'unknown' is not allowed for an object");
+			fail(f, "label 'unknown' is not allowed for an object");
 		return lab;
 	}
 
-	BoxShape box(const YAML::Node& n, const std::string& path, int line) const
+	BoxShape box(const Field& f) const
 	{
-		expectMap(n, path, line);
-		checkKeys(n, path, {"center", "size", "yaw"});
-		const int l = lineOf(n, line);
+		expectMap(f);
+		checkKeys(f, {"center", "size", "yaw"});
 		BoxShape b;
-		b.center =
-			point3(required(n, path, l, "center"), child(path, "center"), l);
-		const std::string sizePath = child(path, "size");
-		const YAML::Node sizeNode = required(n, path, l, "size");
-		const auto s = numbers(sizeNode, sizePath, l, 3);
+		b.center = point3(required(f, "center"));
+		const Field size = required(f, "size");
+		const auto s = numbers(size, 3);
 		for (std::size_t i = 0; i < 3; i++)
 			if (!(s[i] > 0))
-				fail(
-					lineOf(sizeNode[i], l), item(sizePath, i),
-					"must be > 0, got " + fmt(s[i]));
+				fail(element(size, i), "must be > 0, got " + fmt(s[i]));
 		b.size = {s[0], s[1], s[2]};
-		if (const YAML::Node y = n["yaw"]; y.IsDefined())
-			b.yaw = number(y, child(path, "yaw"), l) * kDegToRad;
+		b.yaw = yaw(f);
 		return b;
 	}
 
-	CylinderShape cylinder(
-		const YAML::Node& n, const std::string& path, int line) const
+	CylinderShape cylinder(const Field& f) const
 	{
-		expectMap(n, path, line);
-		checkKeys(n, path, {"center", "radius", "height"});
-		const int l = lineOf(n, line);
+		expectMap(f);
+		checkKeys(f, {"center", "radius", "height"});
 		CylinderShape c;
-		c.center =
-			point3(required(n, path, l, "center"), child(path, "center"), l);
-		c.radius =
-			positive(required(n, path, l, "radius"), child(path, "radius"), l);
-		c.height =
-			positive(required(n, path, l, "height"), child(path, "height"), l);
+		c.center = point3(required(f, "center"));
+		c.radius = positive(required(f, "radius"));
+		c.height = positive(required(f, "height"));
 		return c;
 	}
 
-	StairsShape stairs(
-		const YAML::Node& n, const std::string& path, int line) const
+	StairsShape stairs(const Field& f) const
 	{
-		expectMap(n, path, line);
-		checkKeys(
-			n, path, {"origin", "yaw", "steps", "rise", "run", "width"});
-		const int l = lineOf(n, line);
+		expectMap(f);
+		checkKeys(f, {"origin", "yaw", "steps", "rise", "run", "width"});
 		StairsShape s;
-		s.origin =
-			point2(required(n, path, l, "origin"), child(path, "origin"), l);
-		if (const YAML::Node y = n["yaw"]; y.IsDefined())
-			s.yaw = number(y, child(path, "yaw"), l) * kDegToRad;
-		const YAML::Node stepsNode = required(n, path, l, "steps");
-		s.steps = integer(stepsNode, child(path, "steps"), l);
+		s.origin = point2(required(f, "origin"));
+		s.yaw = yaw(f);
+		const Field steps = required(f, "steps");
+		s.steps = integer(steps);
 		if (s.steps < 1)
-			fail(
-				lineOf(stepsNode, l), child(path, "steps"),
-				"must be >= 1, got " + std::to_string(s.steps));
-		s.rise = positive(required(n, path, l, "rise"), child(path, "rise"), l);
-		s.run = positive(required(n, path, l, "run"), child(path, "run"), l);
-		s.width =
-			positive(required(n, path, l, "width"), child(path, "width"), l);
+			fail(steps, "must be >= 1, got " + std::to_string(s.steps));
+		s.rise = positive(required(f, "rise"));
+		s.run = positive(required(f, "run"));
+		s.width = positive(required(f, "width"));
 		return s;
 	}
 
-	TerrainShape terrain(
-		const YAML::Node& n, const std::string& path, int line) const
+	TerrainShape terrain(const Field& f) const
 	{
-		expectMap(n, path, line);
-		checkKeys(n, path, {"polygon", "roughness"});
-		const int l = lineOf(n, line);
+		expectMap(f);
+		checkKeys(f, {"polygon", "roughness"});
 		TerrainShape t;
-		const std::string polyPath = child(path, "polygon");
-		const YAML::Node poly = required(n, path, l, "polygon");
-		expectList(poly, polyPath, l);
-		const int pl = lineOf(poly, l);
-		if (poly.size() < 3)
+		const Field poly = required(f, "polygon");
+		expectList(poly);
+		if (poly.node.size() < 3)
 			fail(
-				pl, polyPath,
-				"expected at least 3 vertices, got " +
-					std::to_string(poly.size()));
-		for (std::size_t i = 0; i < poly.size(); i++)
-			t.polygon.push_back(point2(poly[i], item(polyPath, i), pl));
+				poly, "expected at least 3 vertices, got " +
+						  std::to_string(poly.node.size()));
+		for (std::size_t i = 0; i < poly.node.size(); i++)
+			t.polygon.push_back(point2(element(poly, i)));
 		if (!(polygonArea(t.polygon) > 1e-9))
-			fail(pl, polyPath, "degenerate polygon (zero area)");
-		t.roughness = nonNegative(
-			required(n, path, l, "roughness"), child(path, "roughness"), l);
+			fail(poly, "degenerate polygon (zero area)");
+		t.roughness = nonNegative(required(f, "roughness"));
 		return t;
 	}
 
-	/** The one primitive key of `owner` (already known to be present). */
-	ScenePrimitive primitive(
-		const YAML::Node& owner, const std::string& key,
-		const std::string& ownerPath, int line) const
+	/** The one primitive of the map `owner` among kPrimitiveKeys (and
+	 * `parts` when allowed); exactly one must be present. */
+	std::string shapeKey(const Field& owner, bool allowParts) const
 	{
-		const YAML::Node n = owner[key];
-		const std::string path = child(ownerPath, key);
-		if (key == "box") return box(n, path, line);
-		if (key == "cylinder") return cylinder(n, path, line);
-		if (key == "stairs") return stairs(n, path, line);
-		return terrain(n, path, line);
-	}
-
-	/** Keys of `map` among `candidates`; exactly one must be present. */
-	std::string onlyOneOf(
-		const YAML::Node& map, const std::string& path, int line,
-		const std::vector<std::string>& candidates) const
-	{
+		std::vector<std::string> candidates = kPrimitiveKeys;
+		if (allowParts) candidates.push_back("parts");
 		std::vector<std::string> present;
 		for (const auto& k : candidates)
-			if (map[k].IsDefined()) present.push_back(k);
+			if (owner.node[k].IsDefined()) present.push_back(k);
 		const std::string list = joined(candidates, ", ");
 		if (present.empty())
-			fail(line, path, "missing shape: expected one of " + list);
+			fail(owner, "missing shape: expected one of " + list);
 		if (present.size() > 1)
 			fail(
-				line, path,
-				"expected exactly one of " + list + ", got " +
-					joined(present, " and "));
+				owner, "expected exactly one of " + list + ", got " +
+						   joined(present, " and "));
 		return present.front();
 	}
 
-	SceneObject object(
-		const YAML::Node& n, const std::string& path, int line) const
+	ScenePrimitive primitive(const Field& owner, const std::string& key) const
 	{
-		expectMap(n, path, line);
+		const Field f = field(owner, key);
+		if (key == "box") return box(f);
+		if (key == "cylinder") return cylinder(f);
+		if (key == "stairs") return stairs(f);
+		return terrain(f);
+	}
+
+	SceneObject object(const Field& f) const
+	{
+		expectMap(f);
 		std::vector<std::string> allowed = {"label"};
-		allowed.insert(allowed.end(), kPrimitiveKeys.begin(), kPrimitiveKeys.end());
+		allowed.insert(
+			allowed.end(), kPrimitiveKeys.begin(), kPrimitiveKeys.end());
 		allowed.push_back("parts");
-		checkKeys(n, path, allowed);
-		const int l = lineOf(n, line);
+		checkKeys(f, allowed);
 		SceneObject o;
-		o.line = l;
-		o.label = label(required(n, path, l, "label"), child(path, "label"), l);
-		std::vector<std::string> shapes = kPrimitiveKeys;
-		shapes.push_back("parts");
-		const std::string key = onlyOneOf(n, path, l, shapes);
+		o.line = lineOf(f);
+		o.label = label(required(f, "label"));
+		const std::string key = shapeKey(f, true);
 		if (key != "parts")
 		{
-			o.parts.push_back(primitive(n, key, path, l));
+			o.parts.push_back(primitive(f, key));
 			return o;
 		}
-		const std::string partsPath = child(path, "parts");
-		const YAML::Node parts = n["parts"];
-		expectList(parts, partsPath, l);
-		if (parts.size() == 0)
-			fail(lineOf(parts, l), partsPath, "expected at least 1 part, got 0");
-		for (std::size_t i = 0; i < parts.size(); i++)
+		const Field parts = field(f, "parts");
+		expectList(parts);
+		if (parts.node.size() == 0) fail(parts, "expected at least 1 part, got 0");
+		for (std::size_t i = 0; i < parts.node.size(); i++)
 		{
-			const std::string pp = item(partsPath, i);
-			const YAML::Node p = parts[i];
-			expectMap(p, pp, lineOf(parts, l));
-			checkKeys(p, pp, kPrimitiveKeys);
-			const int ppl = lineOf(p, l);
-			const std::string k = onlyOneOf(p, pp, ppl, kPrimitiveKeys);
-			o.parts.push_back(primitive(p, k, pp, ppl));
+			const Field p = element(parts, i);
+			expectMap(p);
+			checkKeys(p, kPrimitiveKeys);
+			o.parts.push_back(primitive(p, shapeKey(p, false)));
 		}
 		return o;
 	}
 
-	void sensor(
-		const YAML::Node& n, const std::string& path, int line,
-		SensorSpec& s) const
+	void sensor(const Field& f, SensorSpec& s) const
 	{
-		expectMap(n, path, line);
-		checkKeys(n, path, {"mount", "phi", "theta", "max_range", "range_noise"});
-		const int l = lineOf(n, line);
-		if (const YAML::Node m = n["mount"]; m.IsDefined())
-			s.mount = point3(m, child(path, "mount"), l);
-		if (const YAML::Node p = n["phi"]; p.IsDefined())
-			angleRange(
-				p, child(path, "phi"), l, 180, s.phiMin, s.phiMax, s.phiStep);
-		if (const YAML::Node t = n["theta"]; t.IsDefined())
-			angleRange(
-				t, child(path, "theta"), l, 90, s.thetaMin, s.thetaMax,
-				s.thetaStep);
-		if (const YAML::Node r = n["max_range"]; r.IsDefined())
-			s.maxRange = positive(r, child(path, "max_range"), l);
-		if (const YAML::Node r = n["range_noise"]; r.IsDefined())
-			s.rangeNoise = nonNegative(r, child(path, "range_noise"), l);
+		expectMap(f);
+		checkKeys(f, {"mount", "phi", "theta", "max_range", "range_noise"});
+		if (const Field v = field(f, "mount"); v.present()) s.mount = point3(v);
+		if (const Field v = field(f, "phi"); v.present())
+			angleRange(v, 180, s.phiMin, s.phiMax, s.phiStep);
+		if (const Field v = field(f, "theta"); v.present())
+			angleRange(v, 90, s.thetaMin, s.thetaMax, s.thetaStep);
+		if (const Field v = field(f, "max_range"); v.present())
+			s.maxRange = positive(v);
+		if (const Field v = field(f, "range_noise"); v.present())
+			s.rangeNoise = nonNegative(v);
 	}
 
-	void odometry(
-		const YAML::Node& n, const std::string& path, int line,
-		OdometrySpec& o) const
+	void odometry(const Field& f, OdometrySpec& o) const
 	{
-		expectMap(n, path, line);
+		expectMap(f);
 		checkKeys(
-			n, path,
-			{"trans_noise", "rot_noise_deg_per_m", "rot_bias_deg_per_m"});
-		const int l = lineOf(n, line);
-		if (const YAML::Node v = n["trans_noise"]; v.IsDefined())
-			o.transNoise = nonNegative(v, child(path, "trans_noise"), l);
-		if (const YAML::Node v = n["rot_noise_deg_per_m"]; v.IsDefined())
-			o.rotNoisePerM =
-				nonNegative(v, child(path, "rot_noise_deg_per_m"), l) *
-				kDegToRad;
-		if (const YAML::Node v = n["rot_bias_deg_per_m"]; v.IsDefined())
-			o.rotBiasPerM =
-				number(v, child(path, "rot_bias_deg_per_m"), l) * kDegToRad;
+			f, {"trans_noise", "rot_noise_deg_per_m", "rot_bias_deg_per_m"});
+		if (const Field v = field(f, "trans_noise"); v.present())
+			o.transNoise = nonNegative(v);
+		if (const Field v = field(f, "rot_noise_deg_per_m"); v.present())
+			o.rotNoisePerM = nonNegative(v) * kDegToRad;
+		if (const Field v = field(f, "rot_bias_deg_per_m"); v.present())
+			o.rotBiasPerM = number(v) * kDegToRad;
 	}
 };
 
-Scene Parser::scene(const YAML::Node& root) const
+Scene Parser::scene(const YAML::Node& rootNode) const
 {
-	if (!root.IsDefined() || !root.IsMap())
+	const Field root{rootNode, "", 1};
+	if (!rootNode.IsDefined() || !rootNode.IsMap())
 		fail(
-			lineOf(root, 1), "",
-			"expected a scene map (keys: " + joined(kSceneKeys, ", ") +
-				"), got " + describe(root));
-	checkKeys(root, "", kSceneKeys);
-	const int rl = lineOf(root, 1);
+			root, "expected a scene map (keys: " + joined(kSceneKeys, ", ") +
+					  "), got " + describe(rootNode));
+	checkKeys(root, kSceneKeys);
 	Scene sc;
 
-	const YAML::Node nameNode = required(root, "", rl, "name");
-	sc.name = text(nameNode, "name", rl);
+	const Field name = required(root, "name");
+	sc.name = text(name);
 	const bool nameOk = !sc.name.empty() && sc.name[0] != '.' &&
 		std::all_of(sc.name.begin(), sc.name.end(), [](unsigned char c) {
-							return std::isalnum(c) || c == '_' || c == '-' || c == '.';
+							return std::isalnum(c) || c == '_' || c == '-' ||
+								c == '.';
 						});
 	if (!nameOk)
 		fail(
-			lineOf(nameNode, rl), "name",
-			"'" + sc.name +
-				"' is not a valid file name (use letters, digits, _ - .)");
+			name, "'" + sc.name +
+					  "' is not a valid file name (use letters, digits, _ - .)");
 
-	const YAML::Node boundsNode = required(root, "", rl, "bounds");
-	const auto b = numbers(boundsNode, "bounds", rl, 4);
+	const Field bounds = required(root, "bounds");
+	const auto b = numbers(bounds, 4);
 	sc.bounds = {b[0], b[1], b[2], b[3]};
 	if (!(b[2] > b[0]) || !(b[3] > b[1]))
 		fail(
-			lineOf(boundsNode, rl), "bounds",
-			"expected xmin < xmax and ymin < ymax, got [" + fmt(b[0]) + ", " +
-				fmt(b[1]) + ", " + fmt(b[2]) + ", " + fmt(b[3]) + "]");
+			bounds, "expected xmin < xmax and ymin < ymax, got [" + fmt(b[0]) +
+						", " + fmt(b[1]) + ", " + fmt(b[2]) + ", " +
+						fmt(b[3]) + "]");
 
-	if (const YAML::Node c = root["ceiling_height"]; c.IsDefined())
-		sc.ceilingHeight = positive(c, "ceiling_height", rl);
+	if (const Field c = field(root, "ceiling_height"); c.present())
+		sc.ceilingHeight = positive(c);
 
-	if (const YAML::Node objs = root["objects"]; objs.IsDefined())
+	if (const Field objs = field(root, "objects"); objs.present())
 	{
-		expectList(objs, "objects", rl);
-		const int ol = lineOf(objs, rl);
-		if (objs.size() > kMaxObjects)
+		expectList(objs);
+		if (objs.node.size() > kMaxObjects)
 			fail(
-				lineOf(objs[kMaxObjects], ol), item("objects", kMaxObjects),
-				"too many objects: " + std::to_string(objs.size()) +
+				element(objs, kMaxObjects),
+				"too many objects: " + std::to_string(objs.node.size()) +
 					", at most " + std::to_string(kMaxObjects) +
 					" (instance ids are stored in a byte)");
-		for (std::size_t i = 0; i < objs.size(); i++)
+		for (std::size_t i = 0; i < objs.node.size(); i++)
 		{
-			SceneObject o = object(objs[i], item("objects", i), ol);
+			SceneObject o = object(element(objs, i));
 			o.id = static_cast<int>(i) + 1;
 			sc.objects.push_back(std::move(o));
 		}
 	}
 
-	if (const YAML::Node s = root["sensor"]; s.IsDefined())
-		sensor(s, "sensor", rl, sc.sensor);
-	if (const YAML::Node o = root["odometry"]; o.IsDefined())
-		odometry(o, "odometry", rl, sc.odometry);
+	if (const Field s = field(root, "sensor"); s.present())
+		sensor(s, sc.sensor);
+	if (const Field o = field(root, "odometry"); o.present())
+		odometry(o, sc.odometry);
 
-	const YAML::Node traj = required(root, "", rl, "trajectory");
-	expectList(traj, "trajectory", rl);
-	const int tl = lineOf(traj, rl);
-	if (traj.size() == 0)
-		fail(tl, "trajectory", "expected at least 1 pose, got 0");
-	for (std::size_t i = 0; i < traj.size(); i++)
+	const Field traj = required(root, "trajectory");
+	expectList(traj);
+	if (traj.node.size() == 0) fail(traj, "expected at least 1 pose, got 0");
+	for (std::size_t i = 0; i < traj.node.size(); i++)
 	{
-		const std::string path = item("trajectory", i);
-		const auto p = numbers(traj[i], path, tl, 3);
+		const Field pose = element(traj, i);
+		const auto p = numbers(pose, 3);
 		if (!sc.bounds.contains(p[0], p[1]))
 			fail(
-				lineOf(traj[i], tl), path,
-				"pose (" + fmt(p[0]) + ", " + fmt(p[1]) +
-					") is outside the bounds");
+				pose, "pose (" + fmt(p[0]) + ", " + fmt(p[1]) +
+						  ") is outside the bounds");
 		sc.trajectory.emplace_back(p[0], p[1], p[2] * kDegToRad);
 	}
 	return sc;
@@ -599,7 +564,7 @@ Scene SceneLoader::parse(
 	if (docs.empty()) parser.fail(1, "", "empty scene file");
 	if (docs.size() > 1)
 		parser.fail(
-			docs[1].Mark().is_null() ? 0 : docs[1].Mark().line + 1, "",
+			Parser::lineOf(docs[1], 0), "",
 			"expected one YAML document, got " + std::to_string(docs.size()));
 	try
 	{

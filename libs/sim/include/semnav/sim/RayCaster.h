@@ -38,8 +38,13 @@ struct RayHit
  *   floor. Node heights have std dev 1.5 * roughness so that the RMS height
  *   of the interpolated surface (bilinear interpolation of i.i.d. nodes has
  *   mean variance 4/9 of the nodes') equals `roughness`. The ray is marched
- *   only through grid cells whose height range it crosses, then the crossing
- *   is refined by bisection to < 0.01 mm.
+ *   cell by cell, only through the cells whose height range it crosses
+ *   (inside the patch's z band). In a cell the surface is bilinear, so the
+ *   height above it is a quadratic along the ray and its first root is
+ *   bracketed exactly (dips under a bump included); in tapered boundary
+ *   cells the ray is sampled every quarter cell. The crossing is refined by
+ *   bisection to < 0.01 mm. A root within 1 mm outside the polygon still
+ *   counts as terrain, so no ray slips between terrain and floor.
  *
  * A ray starting inside a solid does not hit that solid. The nearest hit
  * wins; exact ties go to the first primitive in scene order (floor and
@@ -47,7 +52,7 @@ struct RayHit
  * results. cast() is const and thread-safe. */
 class RayCaster
 {
-   public:
+public:
 	enum class Mode
 	{
 		/** Bounding-volume hierarchy over primitive boxes, nearest-first. */
@@ -64,7 +69,7 @@ class RayCaster
 	 * SceneError for degenerate primitives (non-positive sizes, polygons
 	 * with < 3 vertices) and Error for terrainCell <= 0. */
 	explicit RayCaster(
-		const Scene& scene, uint64_t seed = 0, double terrainCell = 0.1);
+	    const Scene& scene, uint64_t seed = 0, double terrainCell = 0.1);
 	~RayCaster();
 	RayCaster(RayCaster&&) noexcept;
 	RayCaster& operator=(RayCaster&&) noexcept;
@@ -74,8 +79,8 @@ class RayCaster
 	/** Nearest hit along origin + t * unitDir, 0 <= t <= maxRange.
 	 * `unitDir` must have unit length. */
 	RayHit cast(
-		const mrpt::math::TPoint3D& origin, const mrpt::math::TPoint3D& unitDir,
-		double maxRange) const;
+	    const mrpt::math::TPoint3D& origin, const mrpt::math::TPoint3D& unitDir,
+	    double maxRange) const;
 
 	void setMode(Mode m) { m_mode = m; }
 	Mode mode() const { return m_mode; }
@@ -90,7 +95,7 @@ class RayCaster
 	/** Largest SceneObject::id in the scene (0 if none). */
 	int maxInstanceId() const { return m_maxInstance; }
 
-   private:
+private:
 	struct Impl;
 	std::unique_ptr<Impl> m_impl;
 	Mode m_mode = Mode::Accelerated;

@@ -4,12 +4,12 @@
 #include <mrpt/core/Clock.h>
 #include <mrpt/math/TPose2D.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
-#include <opencv2/core/mat.hpp>
 #include <semnav/scan/Sweep.h>
 #include <semnav/sim/RayCaster.h>
 #include <semnav/sim/Scene.h>
 
 #include <cstdint>
+#include <opencv2/core/mat.hpp>
 #include <string>
 #include <vector>
 
@@ -29,13 +29,18 @@ struct SimulatedSweep
 	/** Noise-free ranges, CV_32FC1, same layout as `labels`; 0 where the
 	 * beam has no valid return. */
 	cv::Mat trueRanges;
+	/** Tilt of each label-image row (increasing). */
+	std::vector<double> thetas;
+	/** Bearing of each column relative to the scanner's x axis
+	 * (phi_c - phiCenter), as MRPT and Sweep::phi() see them. */
+	std::vector<double> bearings;
 	bool ascending = true;
 	std::size_t index = 0;
 	/** True robot pose (world frame). */
 	mrpt::math::TPose2D truePose;
 
-	/** The lines as an organized Sweep (row 0 = lowest tilt); its odometry
-	 * is left unset. */
+	/** The lines as an organized Sweep (row 0 = lowest tilt, phi(c) =
+	 * bearings[c], timestamp = first line's); its odometry is left unset. */
 	Sweep toSweep() const;
 };
 
@@ -56,19 +61,19 @@ struct SimulatedSweep
  * seeded from (seed, k, r), so results do not depend on the thread count. */
 class TiltingLaserSimulator
 {
-   public:
+public:
 	/** `caster` must outlive the simulator. Throws Error if the spec has
 	 * no beams or lines, or an instance id does not fit in the label
 	 * image's high byte (> 255). */
 	TiltingLaserSimulator(
-		const RayCaster& caster, const SensorSpec& spec, uint64_t seed = 0,
-		std::string sensorLabel = "TILT_LMS");
+	    const RayCaster& caster, const SensorSpec& spec, uint64_t seed = 0,
+	    std::string sensorLabel = "TILT_LMS");
 
 	/** Simulates sweep `sweepIndex` from the true robot pose; line i
 	 * (acquisition order) is stamped t0 + i * linePeriod seconds. */
 	SimulatedSweep simulate(
-		const mrpt::math::TPose2D& robotPose, std::size_t sweepIndex,
-		mrpt::Clock::time_point t0, double linePeriod) const;
+	    const mrpt::math::TPose2D& robotPose, std::size_t sweepIndex,
+	    mrpt::Clock::time_point t0, double linePeriod) const;
 
 	/** OpenMP threads over scan lines; 0 = all available (default). */
 	void setThreads(int n) { m_threads = n; }
@@ -84,7 +89,7 @@ class TiltingLaserSimulator
 	const SensorSpec& spec() const { return m_spec; }
 	const std::string& sensorLabel() const { return m_sensorLabel; }
 
-   private:
+private:
 	const RayCaster& m_caster;
 	SensorSpec m_spec;
 	uint64_t m_seed;
