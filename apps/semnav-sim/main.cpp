@@ -1,8 +1,8 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // semnav-sim: simulates a tilting LMS200 in a scene and writes a rawlog
 // with ground truth (DESIGN.md, "Apps").
-#include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/config/CConfigFile.h>
+#include <semnav/common/CommandLine.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
 #include <semnav/common/ProgressBar.h>
@@ -18,36 +18,6 @@
 
 namespace
 {
-/** First non-empty line of a message (MRPT exceptions carry backtraces). */
-std::string oneLine(const std::string& msg)
-{
-	std::size_t b = msg.find_first_not_of(" \t\r\n");
-	if (b == std::string::npos) return "unknown error";
-	const std::size_t e = msg.find_first_of("\r\n", b);
-	return msg.substr(b, e == std::string::npos ? std::string::npos : e - b);
-}
-
-/** MRPT's TCLAP has no setExceptionHandling(false): parse() reports errors
- * through the output object and returns false. Keep the error as one line
- * for main() instead of TCLAP's multi-line usage dump. */
-class OneLineOutput : public TCLAP::StdOutput
-{
-public:
-	void failure(TCLAP::CmdLineInterface&, TCLAP::ArgException& e) override
-	{
-		failed = true;
-		message = e.error();
-		std::string id = e.argId();
-		if (id.rfind("Argument:", 0) == 0) id = id.substr(9);
-		const auto b = id.find_first_not_of(" ()"),
-		           l = id.find_last_not_of(" ()");
-		id = b == std::string::npos ? "" : id.substr(b, l - b + 1);
-		if (!id.empty() && id != "undefined") message += " (" + id + ")";
-	}
-	bool failed = false;
-	std::string message;
-};
-
 /** Strict unsigned parse of --seed; empty optional = bad usage. */
 std::optional<uint64_t> parseSeed(const std::string& s)
 {
@@ -60,12 +30,11 @@ std::optional<uint64_t> parseSeed(const std::string& s)
 
 int main(int argc, char** argv)
 {
-	OneLineOutput output;  // outlives cmd, which points to it
-	TCLAP::CmdLine cmd(
+	semnav::CommandLine cli(
+	    "semnav-sim",
 	    "Simulates a SICK LMS200 on a tilting head (stop-and-scan) in a scene "
-	    "and writes <out>/<name>.rawlog, <name>.gt.txt and <name>.labels/.",
-	    ' ', "0.1.0");
-	cmd.setOutput(&output);
+	    "and writes <out>/<name>.rawlog, <name>.gt.txt and <name>.labels/.");
+	auto& cmd = cli.cmd();
 	TCLAP::ValueArg<std::string> argScene(
 	    "", "scene", "Scene file (YAML); required", false, "", "S.yaml", cmd);
 	TCLAP::ValueArg<std::string> argOut(
@@ -81,75 +50,62 @@ int main(int argc, char** argv)
 	    "C.ini", cmd);
 	TCLAP::SwitchArg argJson(
 	    "", "json", "Print a JSON summary on stdout", cmd, false);
-	if (!cmd.parse(argc, argv))
-	{
-		if (!output.failed) return 0;  // --help or --version
-		std::cerr << "semnav-sim: " << output.message << "; see --help\n";
-		return 2;
-	}
+	if (const auto code = cli.parse(argc, argv)) return *code;
 	for (auto* a : {&argScene, &argOut})
 		if (a->getValue().empty())
-		{
-			std::cerr << "semnav-sim: missing --" << a->getName()
-			          << "; see --help\n";
-			return 2;
-		}
+			return cli.usageError("missing --" + a->getName());
 	const auto seedValue = parseSeed(argSeed.getValue());
 	if (!seedValue)
-	{
-		std::cerr << "semnav-sim: --seed must be a non-negative integer, got '"
-		          << argSeed.getValue() << "'; see --help\n";
-		return 2;
-	}
+		return cli.usageError(
+		    "--seed must be a non-negative integer, got '" +
+		    argSeed.getValue() + "'");
 	const std::string scenePath = argScene.getValue();
 	const std::string outDir = argOut.getValue();
 	const std::string configPath = argConfig.getValue();
 	const uint64_t seed = *seedValue;
 	const bool json = argJson.getValue();
 
-	try
-	{
-		semnav::SimulationRunner::TOptions opts;
-		if (!configPath.empty())
-		{
-			const auto cfg = semnav::openIniFile(configPath, {"Simulator"});
-			opts.loadFromConfigFile(*cfg, "Simulator");
-		}
-		const semnav::Scene scene = semnav::SceneLoader::loadFile(scenePath);
-		const semnav::SimulationRunner runner(scene, opts, seed);
+	return cli.run(
+	    [&]
+	    {
+		    semnav::SimulationRunner::TOptions opts;
+		    if (!configPath.empty())
+		    {
+			    const auto cfg = semnav::openIniFile(configPath, {"Simulator"});
+			    opts.loadFromConfigFile(*cfg, "Simulator");
+		    }
+		    const semnav::Scene scene =
+		        semnav::SceneLoader::loadFile(scenePath);
+		    const semnav::SimulationRunner runner(scene, opts, seed);
 
-		semnav::ProgressBar bar(
-		    scene.trajectory.size(), "simulating " + scene.name);
-		const auto res = runner.run(
-		    outDir, [&](std::size_t done, std::size_t) { bar.update(done); });
-		bar.finish();
+		    semnav::ProgressBar bar(
+		        scene.trajectory.size(), "simulating " + scene.name);
+		    const auto res = runner.run(
+		        outDir,
+		        [&](std::size_t done, std::size_t) { bar.update(done); });
+		    bar.finish();
 
-		if (json)
-		{
-			nlohmann::json j;
-			j["rawlog"] = res.rawlogPath;
-			j["sweeps"] = res.sweeps;
-			j["scans"] = res.scans;
-			j["gt"] = res.gtPath;
-			j["labels_dir"] = res.labelsDir;
-			std::cout << j.dump() << std::endl;
-		}
-		else
-		{
-			std::cout << "scene " << scene.name << " (seed " << seed
-			          << "): " << res.sweeps << " sweeps, " << res.scans
-			          << " scan lines, " << res.odometry
-			          << " odometry entries\n"
-			          << "  rawlog:       " << res.rawlogPath << "\n"
-			          << "  ground truth: " << res.gtPath << "\n"
-			          << "  label images: " << res.labelsDir
-			          << "/sweep_NNNN.png\n";
-		}
-		return 0;
-	}
-	catch (const std::exception& e)
-	{
-		std::cerr << "semnav-sim: " << oneLine(e.what()) << "\n";
-		return 1;
-	}
+		    if (json)
+		    {
+			    nlohmann::json j;
+			    j["rawlog"] = res.rawlogPath;
+			    j["sweeps"] = res.sweeps;
+			    j["scans"] = res.scans;
+			    j["gt"] = res.gtPath;
+			    j["labels_dir"] = res.labelsDir;
+			    std::cout << j.dump() << std::endl;
+		    }
+		    else
+		    {
+			    std::cout << "scene " << scene.name << " (seed " << seed
+			              << "): " << res.sweeps << " sweeps, " << res.scans
+			              << " scan lines, " << res.odometry
+			              << " odometry entries\n"
+			              << "  rawlog:       " << res.rawlogPath << "\n"
+			              << "  ground truth: " << res.gtPath << "\n"
+			              << "  label images: " << res.labelsDir
+			              << "/sweep_NNNN.png\n";
+		    }
+		    return 0;
+	    });
 }

@@ -16,8 +16,8 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <opencv2/imgcodecs.hpp>
+#include <regex>
 
 using namespace semnav;
 namespace fs = std::filesystem;
@@ -34,13 +34,17 @@ struct SimulatedOffice
 /** The bundled office, first three stops only, simulated once. */
 const SimulatedOffice& office()
 {
-	static const SimulatedOffice sim = [] {
+	static const SimulatedOffice sim = []
+	{
 		SimulatedOffice s;
-		s.dir = fs::temp_directory_path() / ("semnav_roundtrip_" + std::to_string(::getpid()));
+		s.dir = fs::temp_directory_path() /
+		        ("semnav_roundtrip_" + std::to_string(::getpid()));
 		fs::remove_all(s.dir);
-		s.scene = SceneLoader::loadFile(std::string(SEMNAV_SOURCE_DIR) + "/datasets/office/office.yaml");
+		s.scene = SceneLoader::loadFile(
+		    std::string(SEMNAV_SOURCE_DIR) + "/datasets/office/office.yaml");
 		s.scene.trajectory.resize(3);
-		s.result = SimulationRunner(s.scene, SimulationRunner::TOptions(), 7).run(s.dir.string());
+		s.result = SimulationRunner(s.scene, SimulationRunner::TOptions(), 7)
+		               .run(s.dir.string());
 		return s;
 	}();
 	return sim;
@@ -68,9 +72,13 @@ RawContent readRaw(const std::string& path)
 		{
 			break;
 		}
-		if (auto s = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(o))
+		if (auto s =
+		        std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(
+		            o))
 			out.scans.push_back(s);
-		else if (auto d = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(o))
+		else if (
+		    auto d =
+		        std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(o))
 			out.odometry.push_back(d);
 	}
 	return out;
@@ -105,7 +113,9 @@ TEST(SimRoundTrip, WritesTheFilesOfTheContract)
 	{
 		char name[32];
 		std::snprintf(name, sizeof(name), "sweep_%04d.png", i);
-		const cv::Mat img = cv::imread((fs::path(s.result.labelsDir) / name).string(), cv::IMREAD_UNCHANGED);
+		const cv::Mat img = cv::imread(
+		    (fs::path(s.result.labelsDir) / name).string(),
+		    cv::IMREAD_UNCHANGED);
 		ASSERT_FALSE(img.empty()) << name;
 		EXPECT_EQ(img.type(), CV_16UC1);
 		EXPECT_EQ(img.rows, 211);
@@ -150,8 +160,10 @@ TEST(SimRoundTrip, AssemblerGivesTheSameRangesAndTilts)
 			ASSERT_NEAR(theta, (-15 + 0.5 * r) * M_PI / 180, 1e-9);
 			for (std::size_t c = 0; c < 361; c++)
 			{
-				ASSERT_EQ(sw.valid(r, c), sc.getScanRangeValidity(c)) << r << "," << c;
-				if (sw.valid(r, c)) ASSERT_EQ(sw.range(r, c), sc.getScanRange(c));
+				ASSERT_EQ(sw.valid(r, c), sc.getScanRangeValidity(c))
+				    << r << "," << c;
+				if (sw.valid(r, c))
+					ASSERT_EQ(sw.range(r, c), sc.getScanRange(c));
 			}
 		}
 	}
@@ -169,13 +181,16 @@ TEST(SimRoundTrip, LabelsAreThoseOfTheSurfacesHit)
 	{
 		char name[32];
 		std::snprintf(name, sizeof(name), "sweep_%04zu.png", k);
-		const cv::Mat lab = cv::imread((fs::path(s.result.labelsDir) / name).string(), cv::IMREAD_UNCHANGED);
+		const cv::Mat lab = cv::imread(
+		    (fs::path(s.result.labelsDir) / name).string(),
+		    cv::IMREAD_UNCHANGED);
 		const mrpt::poses::CPose3D robot(gt[k][2], gt[k][3], 0, gt[k][4], 0, 0);
 		std::map<int, std::size_t> seen;
 		for (std::size_t r = 0; r < sweeps[k].rows(); r++)
 			for (std::size_t c = 0; c < sweeps[k].cols(); c++)
 			{
-				const int v = lab.at<uint16_t>(static_cast<int>(r), static_cast<int>(c));
+				const int v =
+				    lab.at<uint16_t>(static_cast<int>(r), static_cast<int>(c));
 				ASSERT_EQ(sweeps[k].valid(r, c), v != 0) << r << "," << c;
 				if (!v) continue;
 				const Label l = static_cast<Label>(v & 0xFF);
@@ -185,8 +200,10 @@ TEST(SimRoundTrip, LabelsAreThoseOfTheSurfacesHit)
 				robot.composePoint(p.x, p.y, p.z, wx, wy, wz);
 				if (l == Label::Floor) EXPECT_NEAR(wz, 0, 0.03);
 				if (l == Label::Ceiling) EXPECT_NEAR(wz, ceiling, 0.03);
-				if (l == Label::Floor || l == Label::Ceiling) EXPECT_EQ(v >> 8, 0);
-				else EXPECT_GT(v >> 8, 0) << "object pixel without instance id";
+				if (l == Label::Floor || l == Label::Ceiling)
+					EXPECT_EQ(v >> 8, 0);
+				else
+					EXPECT_GT(v >> 8, 0) << "object pixel without instance id";
 			}
 		EXPECT_GT(seen[static_cast<int>(Label::Floor)], 1000u);
 		EXPECT_GT(seen[static_cast<int>(Label::Ceiling)], 1000u);
@@ -197,10 +214,12 @@ TEST(SimRoundTrip, LabelsAreThoseOfTheSurfacesHit)
 TEST(SimRoundTrip, MrptRawlogEditReadsTheRawlog)
 {
 	if (std::system("command -v rawlog-edit >/dev/null 2>&1") != 0)
-		GTEST_SKIP() << "MRPT's rawlog-edit is not installed (package mrpt-apps)";
+		GTEST_SKIP()
+		    << "MRPT's rawlog-edit is not installed (package mrpt-apps)";
 	const auto& s = office();
 	const std::string out = (s.dir / "info.txt").string();
-	const std::string cmd = "rawlog-edit --info -i '" + s.result.rawlogPath + "' > '" + out + "' 2>&1";
+	const std::string cmd = "rawlog-edit --info -i '" + s.result.rawlogPath +
+	                        "' > '" + out + "' 2>&1";
 	ASSERT_EQ(std::system(cmd.c_str()), 0) << "rawlog-edit failed, see " << out;
 	std::ifstream f(out);
 	std::stringstream ss;
@@ -208,8 +227,15 @@ TEST(SimRoundTrip, MrptRawlogEditReadsTheRawlog)
 	const std::string text = ss.str();
 	// MRPT 2.5's --info names sensors and counts objects: 3 odometry
 	// entries and 3 x 211 scan lines, observation-only format.
-	EXPECT_TRUE(std::regex_search(text, std::regex("Overall number of objects\\s*:\\s*636"))) << text;
-	EXPECT_TRUE(std::regex_search(text, std::regex("Observations format\\s*:\\s*Yes"))) << text;
-	EXPECT_TRUE(std::regex_search(text, std::regex("TILT_LMS\\s*/\\s*633\\s*/"))) << text;
-	EXPECT_TRUE(std::regex_search(text, std::regex("ODOMETRY\\s*/\\s*3\\s*/"))) << text;
+	EXPECT_TRUE(std::regex_search(
+	    text, std::regex("Overall number of objects\\s*:\\s*636")))
+	    << text;
+	EXPECT_TRUE(
+	    std::regex_search(text, std::regex("Observations format\\s*:\\s*Yes")))
+	    << text;
+	EXPECT_TRUE(
+	    std::regex_search(text, std::regex("TILT_LMS\\s*/\\s*633\\s*/")))
+	    << text;
+	EXPECT_TRUE(std::regex_search(text, std::regex("ODOMETRY\\s*/\\s*3\\s*/")))
+	    << text;
 }

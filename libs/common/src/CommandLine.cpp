@@ -1,0 +1,73 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/CommandLine.h>
+
+#include <iostream>
+
+namespace semnav
+{
+/** MRPT's TCLAP has no setExceptionHandling(false): parse() reports errors
+ * through the output object and returns false. Keep the error as one line
+ * instead of TCLAP's multi-line usage dump. */
+class CommandLine::OneLineOutput : public TCLAP::StdOutput
+{
+public:
+	void failure(TCLAP::CmdLineInterface&, TCLAP::ArgException& e) override
+	{
+		failed = true;
+		message = e.error();
+		std::string id = e.argId();
+		if (id.rfind("Argument:", 0) == 0) id = id.substr(9);
+		const auto b = id.find_first_not_of(" ()"),
+		           l = id.find_last_not_of(" ()");
+		id = b == std::string::npos ? "" : id.substr(b, l - b + 1);
+		if (!id.empty() && id != "undefined") message += " (" + id + ")";
+	}
+	bool failed = false;
+	std::string message;
+};
+
+CommandLine::CommandLine(std::string appName, const std::string& description)
+    : m_app(std::move(appName)),
+      m_output(std::make_unique<OneLineOutput>()),
+      m_cmd(std::make_unique<TCLAP::CmdLine>(description, ' ', "0.1.0"))
+{
+	m_cmd->setOutput(m_output.get());
+}
+
+CommandLine::~CommandLine() = default;
+
+std::optional<int> CommandLine::parse(int argc, char** argv)
+{
+	if (m_cmd->parse(argc, argv)) return std::nullopt;
+	if (!m_output->failed) return 0;  // --help or --version
+	return usageError(m_output->message);
+}
+
+int CommandLine::usageError(const std::string& what) const
+{
+	std::cerr << m_app << ": " << what << "; see --help\n";
+	return 2;
+}
+
+int CommandLine::run(const std::function<int()>& body) const
+{
+	try
+	{
+		return body();
+	}
+	catch (const std::exception& e)
+	{
+		std::cerr << m_app << ": " << firstLine(e.what()) << "\n";
+		return 1;
+	}
+}
+
+std::string CommandLine::firstLine(const std::string& msg)
+{
+	const std::size_t b = msg.find_first_not_of(" \t\r\n");
+	if (b == std::string::npos) return "unknown error";
+	const std::size_t e = msg.find_first_of("\r\n", b);
+	return msg.substr(b, e == std::string::npos ? std::string::npos : e - b);
+}
+
+}  // namespace semnav

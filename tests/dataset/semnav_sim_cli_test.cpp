@@ -1,0 +1,110 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// The semnav-sim command line: exit codes, one-line errors, --json.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace
+{
+struct AppRun
+{
+	int code;
+	std::string out, err;
+};
+
+AppRun runSim(const std::string& args)
+{
+	const fs::path tmp = fs::temp_directory_path() /
+	                     ("semnav_cli_" + std::to_string(::getpid()));
+	fs::create_directories(tmp);
+	const std::string errFile = (tmp / "stderr.txt").string();
+	const std::string cmd = std::string(SEMNAV_BINARY_DIR) +
+	                        "/apps/semnav-sim/semnav-sim " + args + " 2>" +
+	                        errFile;
+	AppRun r{};
+	FILE* p = ::popen(cmd.c_str(), "r");
+	std::array<char, 4096> buf{};
+	std::size_t n;
+	while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0)
+		r.out.append(buf.data(), n);
+	const int status = ::pclose(p);
+	r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+	FILE* e = std::fopen(errFile.c_str(), "r");
+	while (e && (n = std::fread(buf.data(), 1, buf.size(), e)) > 0)
+		r.err.append(buf.data(), n);
+	if (e) std::fclose(e);
+	return r;
+}
+
+std::size_t lines(const std::string& s)
+{
+	return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n'));
+}
+
+const std::string kSource = SEMNAV_SOURCE_DIR;
+}  // namespace
+
+TEST(SemnavSimCli, JsonSummaryOnSuccess)
+{
+	const fs::path out = fs::temp_directory_path() /
+	                     ("semnav_cli_out_" + std::to_string(::getpid()));
+	const AppRun r = runSim(
+	    "--scene " + kSource + "/datasets/outdoor/outdoor.yaml --out " +
+	    out.string() + " --seed 3 --json");
+	ASSERT_EQ(r.code, 0) << r.err;
+	const auto j = nlohmann::json::parse(r.out);
+	EXPECT_EQ(j.at("sweeps").get<int>(), 7);
+	EXPECT_EQ(j.at("scans").get<int>(), 7 * 211);
+	EXPECT_TRUE(fs::exists(j.at("rawlog").get<std::string>()));
+	EXPECT_TRUE(fs::exists(j.at("gt").get<std::string>()));
+	EXPECT_TRUE(r.err.empty()) << "no progress bar off a TTY: " << r.err;
+	fs::remove_all(out);
+}
+
+TEST(SemnavSimCli, BadUsageIsOneLineAndExitTwo)
+{
+	for (const std::string args :
+	     {"--bogus", "--scene x.yaml", "--scene x.yaml --out /tmp/x --seed -4"})
+	{
+		const AppRun r = runSim(args);
+		EXPECT_EQ(r.code, 2) << args;
+		EXPECT_EQ(lines(r.err), 1u) << args << ": " << r.err;
+		EXPECT_EQ(r.err.rfind("semnav-sim: ", 0), 0u) << r.err;
+	}
+}
+
+TEST(SemnavSimCli, BadSceneIsOneLineNamingFileLineAndKey)
+{
+	const fs::path bad =
+	    fs::temp_directory_path() /
+	    ("semnav_cli_bad_" + std::to_string(::getpid()) + ".yaml");
+	{
+		std::FILE* f = std::fopen(bad.c_str(), "w");
+		std::fputs(
+		    "name: x\nbounds: [0, 0, 4, 4]\ntrajectory: [[1, 1, "
+		    "0]]\nobjects:\n  - {label: wall, box: {center: [1, 1, 1], size: "
+		    "[1, -1, 1]}}\n",
+		    f);
+		std::fclose(f);
+	}
+	const AppRun r =
+	    runSim("--scene " + bad.string() + " --out /tmp/semnav_never");
+	EXPECT_EQ(r.code, 1);
+	EXPECT_EQ(lines(r.err), 1u) << r.err;
+	EXPECT_NE(r.err.find(bad.string() + ":5:"), std::string::npos) << r.err;
+	EXPECT_NE(r.err.find("objects[0].box.size"), std::string::npos) << r.err;
+	EXPECT_FALSE(fs::exists("/tmp/semnav_never/x.rawlog"));
+	fs::remove(bad);
+	const AppRun m =
+	    runSim("--scene /nonexistent.yaml --out /tmp/semnav_never");
+	EXPECT_EQ(m.code, 1);
+	EXPECT_NE(m.err.find("/nonexistent.yaml"), std::string::npos) << m.err;
+}
