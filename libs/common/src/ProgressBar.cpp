@@ -16,6 +16,12 @@ ProgressBar::~ProgressBar() { finish(); }
 void ProgressBar::update(std::size_t done)
 {
 	if (!m_enabled || m_finished) return;
+	if (m_total == 0)  // unknown total: a counter
+	{
+		std::fprintf(stderr, "\r%s: %zu", m_what.c_str(), done);
+		std::fflush(stderr);
+		return;
+	}
 	constexpr int kWidth = 40;
 	const double f = m_total ? static_cast<double>(done) / m_total : 1.0;
 	const int filled = static_cast<int>(f * kWidth + 0.5);

@@ -11,6 +11,7 @@ namespace semnav
 class ProgressBar
 {
    public:
+	/** total = 0: the total is unknown, a counter is shown. */
 	ProgressBar(std::size_t total, std::string what);
 	~ProgressBar();
 

@@ -1,0 +1,124 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/system/COutputLogger.h>
+#include <semnav/planning/DiffusionField.h>
+#include <semnav/planning/GoalLayer.h>
+#include <semnav/planning/PlannedPath.h>
+#include <semnav/planning/TraversabilityGrid.h>
+
+#include <string>
+
+namespace semnav
+{
+/** Update schedules of the diffusion; both reach the same fixed point. */
+enum class CnnSchedule
+{
+	/** In-place alternating raster passes (down, up), Gauss-Seidel style:
+	 * each row is relaxed from the previous row, then along itself both
+	 * ways; only columns next to cells that rose since are revisited; the
+	 * grid is split into horizontal bands, one per thread. Stops when no
+	 * cell is left unverified. Production. */
+	Sweep,
+	/** Synchronous eq. (10): every cell from the previous state. Reference
+	 * for tests. */
+	Jacobi
+};
+
+/** "sweep" / "jacobi"; throws PlanningError on other names. */
+CnnSchedule cnnScheduleFromName(const std::string& name);
+const char* cnnScheduleName(CnnSchedule s);
+
+/** The path planner of the paper's sec. 3: a three-layer cellular neural
+ * network (goal g, traversability u, diffusion x) on an N x M grid.
+ *
+ * Cost convention: cost(c0..cn) = sum over k = 1..n of (a(c_{k-1}, c_k) +
+ * u(c_k)), a = resolution or resolution * sqrt(2) (eq. (8), 8-neighbourhood):
+ * the start cell's u is not charged, every entered cell's u is, the goal
+ * cell's included.
+ *
+ * Derivation. Eq. (10) passes x_kl - a - u_kl from the neighbour kl the
+ * robot would enter, so at the fixed point x(c) = x(goal) - cost(c -> goal)
+ * along the best path. Eq. (9) starts a goal cell at g - u = L - u(goal):
+ * the goal's u would be charged twice (on entry and in x(goal)), biasing the
+ * choice among goals. Here goal cells start at L, so L - x(c) is exactly the
+ * min cost from c to the goal set in the convention above. Non-goal cells
+ * start at -infinity instead of -u (the limit of a very large L: -u would
+ * make every cell a spurious source of value -u) and blocked cells (u >= L,
+ * C_occ, u = infinity in eq. (7)) stay at -infinity and are never entered.
+ * Eq. (12) is read as the max of the same neighbour term as eq. (10),
+ * x_nm - a - u_nm (the literal max of x_nm ignores step length and entry
+ * cost and is not optimal); at the fixed point that term equals x of the
+ * current cell, so each step raises x by exactly its cost and the reported
+ * cost (summed along the path) equals L - x(start) up to rounding. x is
+ * double and every schedule evaluates the same expression x_kl - (a + u_kl):
+ * they reach the same floating-point fixed point, bit for bit (it is unique
+ * while each step lowers x by more than its rounding unit, e.g. L <= 1e9
+ * with cells >= 1 mm). Float would lose 1e-6 relative accuracy over long
+ * paths near L. */
+class CnnPlanner : public mrpt::system::COutputLogger
+{
+public:
+	/** Options, INI section [CnnPlanner] (config/planning.ini). */
+	struct TOptions : public mrpt::config::CLoadableOptions
+	{
+		void loadFromConfigFile(
+		    const mrpt::config::CConfigFileBase& c,
+		    const std::string& section) override;
+		void saveToConfigFile(
+		    mrpt::config::CConfigFileBase& c,
+		    const std::string& section) const override;
+		static const std::vector<std::string>& knownKeys();
+
+		/** schedule: sweep (production) | jacobi (reference). */
+		CnnSchedule schedule = CnnSchedule::Sweep;
+		/** threads: 0 = all cores. */
+		int threads = 0;
+		/** max_iterations: passes (sweep) or updates (jacobi) before
+		 * NotConvergedError; 0 = no limit. */
+		int maxIterations = 0;
+	};
+
+	CnnPlanner();
+	explicit CnnPlanner(const TOptions& options);
+
+	const TOptions& options() const { return m_options; }
+	TOptions& options() { return m_options; }
+
+	/** Start cell of (x, y); throws StartOutsideMapError. */
+	static CellIndex startCell(
+	    const GridGeometry& geometry, double x, double y);
+
+	/** Throws StartOutsideMapError, StartBlockedError, EmptyGoalError (or
+	 * PlanningError when u and goals differ in geometry). */
+	static void checkInputs(
+	    const TraversabilityGrid& u, const GoalLayer& goals,
+	    const CellIndex& start);
+
+	/** Diffusion to the fixed point (eq. (9)-(11)). Throws EmptyGoalError,
+	 * NotConvergedError, PlanningError. */
+	DiffusionField computeField(
+	    const TraversabilityGrid& u, const GoalLayer& goals) const;
+
+	/** Path by eq. (12) from `start` over a converged field. Throws
+	 * StartOutsideMapError, StartBlockedError, NoPathError. */
+	static PlannedPath extractPath(
+	    const DiffusionField& field, const TraversabilityGrid& u,
+	    const GoalLayer& goals, const CellIndex& start);
+
+	/** checkInputs + computeField + extractPath; the field is stored in
+	 * `field` when not null. */
+	PlannedPath plan(
+	    const TraversabilityGrid& u, const GoalLayer& goals,
+	    const CellIndex& start, DiffusionField* field = nullptr) const;
+	/** As above from world coordinates (m). */
+	PlannedPath plan(
+	    const TraversabilityGrid& u, const GoalLayer& goals, double startX,
+	    double startY, DiffusionField* field = nullptr) const;
+
+private:
+	TOptions m_options;
+};
+
+}  // namespace semnav

@@ -1,0 +1,129 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+
+#include <mrpt/config/CLoadableOptions.h>
+#include <semnav/common/Label.h>
+#include <semnav/common/LabelSet.h>
+#include <semnav/planning/CellOccupancy.h>
+#include <semnav/planning/TraversabilityGrid.h>
+
+#include <array>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace semnav
+{
+/** Cost profiles of the paper (sec. 3, after eq. (12)). */
+enum class CostProfile
+{
+	/** f_s(r1) = L if r1 < r, 0 otherwise; r = 5 cm. */
+	Shortest,
+	/** Eq. (13) as corrected in DESIGN.md: f_s(r1) = L if r1 < r/2, 1 if
+	 * r/2 <= r1 < r, 0 if r1 >= r; r = 30 cm. */
+	Safe
+};
+
+/** Robot types: stairs are traversable only for walking robots. */
+enum class RobotType
+{
+	Wheeled,
+	Walking
+};
+
+/** "shortest" / "safe"; throws PlanningError on other names. */
+CostProfile costProfileFromName(const std::string& name);
+const char* costProfileName(CostProfile p);
+
+/** Builds the traversability layer u from per-cell label sets and
+ * occupancy (the paper's objects (s, u_s, r_s, f_s)).
+ *
+ * A cell is an obstacle when it is occupied, unobserved with u_unobserved =
+ * blocked, or carries a label whose u_s is blocked (stairs always are for a
+ * wheeled robot). Other cells get u = max over their labels of u_s (and
+ * u_unobserved if unobserved). Around obstacles, with d = distance from the
+ * cell centre to the obstacle cell's square and r1 = d - robot_radius (the
+ * clearance of the robot's disc):
+ * - C-space (eq. (2)): r1 < 0 (the disc would touch the obstacle) -> L;
+ * - profile influence f_s(r1) with r = r_scale_<label> x the profile radius
+ *   (occupancy obstacles: scale 1); u = max(u, f_s(r1)).
+ * A cell's u is the max of all contributions (a set of labels is as costly
+ * as its costliest member). */
+class TraversabilityBuilder
+{
+public:
+	/** Value of a blocked cost in TOptions (any value >= L blocks). */
+	static constexpr double kBlocked = std::numeric_limits<double>::infinity();
+
+	/** Options, INI section [Traversability] (config/planning.ini). Costs
+	 * accept a number in [0, L] or the word `blocked` (kBlocked). */
+	struct TOptions : public mrpt::config::CLoadableOptions
+	{
+		TOptions();
+
+		void loadFromConfigFile(
+		    const mrpt::config::CConfigFileBase& c,
+		    const std::string& section) override;
+		void saveToConfigFile(
+		    mrpt::config::CConfigFileBase& c,
+		    const std::string& section) const override;
+		static const std::vector<std::string>& knownKeys();
+
+		/** L: blocked value of u and goal value of g. */
+		double L = 1e6;
+		/** robot_type: wheeled | walking. */
+		RobotType robotType = RobotType::Wheeled;
+		/** robot_radius_m: C-space inflation. */
+		double robotRadius = 0.25;
+		/** profile: the default profile of build(). */
+		CostProfile profile = CostProfile::Shortest;
+		/** shortest_radius_m: r of the shortest profile. */
+		double shortestRadius = 0.05;
+		/** safe_radius_m: r of the safe profile (eq. (13)). */
+		double safeRadius = 0.30;
+		/** safe_ring_cost: f_s in [r/2, r) of eq. (13). */
+		double safeRingCost = 1.0;
+		/** u_unobserved: u of never-observed cells (default blocked). */
+		double uUnobserved = kBlocked;
+		/** goal_reach_m: goal regions extend this far beyond the closest
+		 * allowed clearance (see goalRegionRadius()). */
+		double goalReach = 0.30;
+		/** u_<label>: traversability per label (by label id). u_stairs is
+		 * used by walking robots only. */
+		std::array<double, kLabelCount> labelU{};
+		/** r_scale_<label>: multiplies the profile radius r for obstacles of
+		 * this label (the paper's per-object r_s). */
+		std::array<double, kLabelCount> labelRadiusScale{};
+	};
+
+	TraversabilityBuilder();
+	explicit TraversabilityBuilder(const TOptions& options);
+
+	const TOptions& options() const { return m_options; }
+	TOptions& options() { return m_options; }
+
+	/** u of a cell holding only `l`, for the configured robot type (L =
+	 * blocked). */
+	double labelCost(Label l) const;
+
+	/** Builds u. `labels` and `occupancy` are row-major over `geometry`;
+	 * either may be empty (no labels / all free). Throws PlanningError on
+	 * size mismatch or a bad geometry. */
+	TraversabilityGrid build(
+	    const GridGeometry& geometry, const std::vector<LabelSet>& labels,
+	    const std::vector<CellOccupancy>& occupancy, CostProfile profile) const;
+	/** As above with options().profile. */
+	TraversabilityGrid build(
+	    const GridGeometry& geometry, const std::vector<LabelSet>& labels,
+	    const std::vector<CellOccupancy>& occupancy) const;
+
+	/** Distance (m) from an object's cells within which goal cells are
+	 * placed: robot_radius + the blocked clearance of the profile (scale 1) +
+	 * goal_reach. */
+	double goalRegionRadius(CostProfile profile) const;
+
+private:
+	TOptions m_options;
+};
+
+}  // namespace semnav

@@ -1,0 +1,261 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <mrpt/config/CConfigFileBase.h>
+#include <semnav/common/ConfigChecks.h>
+#include <semnav/common/Error.h>
+#include <semnav/planning/CnnPlanner.h>
+#include <semnav/planning/PlanningErrors.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include "DiffusionKernels.h"
+
+namespace semnav
+{
+using detail::kInf;
+
+CnnSchedule cnnScheduleFromName(const std::string& name)
+{
+	if (name == "sweep") return CnnSchedule::Sweep;
+	if (name == "jacobi") return CnnSchedule::Jacobi;
+	throw PlanningError(
+	    "unknown CNN schedule '" + name + "' (known: sweep, jacobi)");
+}
+
+const char* cnnScheduleName(CnnSchedule s)
+{
+	return s == CnnSchedule::Jacobi ? "jacobi" : "sweep";
+}
+
+const std::vector<std::string>& CnnPlanner::TOptions::knownKeys()
+{
+	static const std::vector<std::string> keys{
+	    "schedule", "threads", "max_iterations"};
+	return keys;
+}
+
+void CnnPlanner::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+	checkKnownKeys(c, s, knownKeys());
+	TOptions o = *this;
+	std::string name = c.read_string(s, "schedule", "", false);
+	name.erase(0, name.find_first_not_of(" \t"));
+	name.erase(name.find_last_not_of(" \t\r\n") + 1);
+	if (!name.empty())
+	{
+		try
+		{
+			o.schedule = cnnScheduleFromName(name);
+		}
+		catch (const PlanningError&)
+		{
+			throw ConfigError(
+			    "[" + s + "] schedule = '" + name +
+			    "' is not one of sweep | jacobi");
+		}
+	}
+	o.threads = readCheckedInt(c, s, "threads", threads, 0, 1024);
+	o.maxIterations =
+	    readCheckedInt(c, s, "max_iterations", maxIterations, 0, 1000000000);
+	*this = o;
+}
+
+void CnnPlanner::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
+{
+	c.write(s, "schedule", std::string(cnnScheduleName(schedule)));
+	c.write(s, "threads", std::to_string(threads));
+	c.write(s, "max_iterations", std::to_string(maxIterations));
+}
+
+CnnPlanner::CnnPlanner() : CnnPlanner(TOptions()) {}
+
+CnnPlanner::CnnPlanner(const TOptions& options)
+    : mrpt::system::COutputLogger("CnnPlanner"), m_options(options)
+{
+}
+
+namespace
+{
+std::string cellText(const GridGeometry& g, const CellIndex& c)
+{
+	char buf[160];
+	std::snprintf(
+	    buf, sizeof(buf), "(%.3f, %.3f) [row %d, col %d]", g.centerX(c.col),
+	    g.centerY(c.row), c.row, c.col);
+	return buf;
+}
+
+void checkSameGeometry(const GridGeometry& a, const GridGeometry& b)
+{
+	if (a.rows != b.rows || a.cols != b.cols || a.resolution != b.resolution ||
+	    a.originX != b.originX || a.originY != b.originY)
+		throw PlanningError(
+		    "goal layer and traversability layer have different grids");
+}
+
+std::size_t traversableGoals(const TraversabilityGrid& u, const GoalLayer& g)
+{
+	std::size_t n = 0;
+	for (std::size_t i = 0; i < u.values().size(); i++)
+		if (g.isGoal(i) && !u.blocked(i)) n++;
+	return n;
+}
+
+void throwEmptyGoals(const GoalLayer& goals)
+{
+	throw EmptyGoalError(
+	    goals.count() == 0
+	        ? std::string("the goal set is empty")
+	        : "the goal set is empty: all " + std::to_string(goals.count()) +
+	              " goal cells are blocked (obstacle or within the robot "
+	              "radius)");
+}
+
+int resolveThreads(int t)
+{
+	if (t > 0) return t;
+	return std::max(1u, std::thread::hardware_concurrency());
+}
+}  // namespace
+
+CellIndex CnnPlanner::startCell(const GridGeometry& g, double x, double y)
+{
+	const auto c = g.cellOf(x, y);
+	if (!c)
+	{
+		char buf[200];
+		std::snprintf(
+		    buf, sizeof(buf),
+		    "start (%.3f, %.3f) is outside the map [%.3f, %.3f] x [%.3f, "
+		    "%.3f]",
+		    x, y, g.originX, g.maxX(), g.originY, g.maxY());
+		throw StartOutsideMapError(buf);
+	}
+	return *c;
+}
+
+void CnnPlanner::checkInputs(
+    const TraversabilityGrid& u, const GoalLayer& goals, const CellIndex& start)
+{
+	const auto& g = u.geometry();
+	checkSameGeometry(g, goals.geometry());
+	if (!g.contains(start))
+		throw StartOutsideMapError(
+		    "start cell [row " + std::to_string(start.row) + ", col " +
+		    std::to_string(start.col) + "] is outside the " +
+		    std::to_string(g.cols) + " x " + std::to_string(g.rows) + " grid");
+	if (u.blocked(start))
+		throw StartBlockedError(
+		    "start " + cellText(g, start) +
+		    " is blocked (obstacle or within the robot radius of one)");
+	if (traversableGoals(u, goals) == 0) throwEmptyGoals(goals);
+}
+
+DiffusionField CnnPlanner::computeField(
+    const TraversabilityGrid& u, const GoalLayer& goals) const
+{
+	const auto& g = u.geometry();
+	checkSameGeometry(g, goals.geometry());
+	const auto t0 = std::chrono::steady_clock::now();
+	DiffusionField f;
+	f.geometry = g;
+	f.L = u.L();
+	if (detail::initialField(u, goals, f.x) == 0) throwEmptyGoals(goals);
+	const auto ue = detail::effectiveU(u);
+	const int threads = resolveThreads(m_options.threads);
+	f.iterations =
+	    m_options.schedule == CnnSchedule::Jacobi
+	        ? detail::diffuseJacobi(
+	              g, ue, f.x, m_options.maxIterations, threads)
+	        : detail::diffuseSweep(
+	              g, ue, f.x, m_options.maxIterations, threads, f.rowUpdates);
+	if (f.iterations < 0)
+		throw NotConvergedError(
+		    std::string("CNN diffusion (") +
+		    cnnScheduleName(m_options.schedule) +
+		    ") did not converge within max_iterations = " +
+		    std::to_string(m_options.maxIterations));
+	f.milliseconds = std::chrono::duration<double, std::milli>(
+	                     std::chrono::steady_clock::now() - t0)
+	                     .count();
+	MRPT_LOG_DEBUG_FMT(
+	    "diffusion (%s): %d iterations, %.1f ms",
+	    cnnScheduleName(m_options.schedule), f.iterations, f.milliseconds);
+	return f;
+}
+
+PlannedPath CnnPlanner::extractPath(
+    const DiffusionField& field, const TraversabilityGrid& u,
+    const GoalLayer& goals, const CellIndex& start)
+{
+	const auto& g = u.geometry();
+	checkInputs(u, goals, start);
+	checkSameGeometry(g, field.geometry);
+	if (!field.reached(start))
+		throw NoPathError(
+		    "no path from " + cellText(g, start) + " to any of " +
+		    std::to_string(goals.count()) + " goal cells");
+	const detail::Steps a(g.resolution);
+	const auto& U = u.values();
+	const double L = u.L();
+	PlannedPath p;
+	CellIndex cur = start;
+	p.cells.push_back(cur);
+	while (!goals.isGoal(cur))
+	{
+		// Eq. (12) with the neighbour term of eq. (10).
+		double best = -kInf;
+		int bestK = -1;
+		for (int k = 0; k < 8; k++)
+		{
+			const CellIndex n{
+			    cur.row + detail::kDr[k], cur.col + detail::kDc[k]};
+			if (!g.contains(n)) continue;
+			const std::size_t j = g.index(n);
+			if (U[j] >= L) continue;
+			const double t = field.x[j] - (a[k] + U[j]);
+			if (t > best)
+			{
+				best = t;
+				bestK = k;
+			}
+		}
+		if (bestK < 0 || p.cells.size() > g.cellCount())
+			throw PlanningError(
+			    "path extraction failed at " + cellText(g, cur) +
+			    ": the field is not a converged diffusion field");
+		cur = {cur.row + detail::kDr[bestK], cur.col + detail::kDc[bestK]};
+		p.cost += a[bestK] + U[g.index(cur)];
+		p.lengthM += a[bestK];
+		p.cells.push_back(cur);
+	}
+	p.goalId = goals.id(cur);
+	p.points.reserve(p.cells.size());
+	for (const auto& c : p.cells)
+		p.points.emplace_back(g.centerX(c.col), g.centerY(c.row));
+	return p;
+}
+
+PlannedPath CnnPlanner::plan(
+    const TraversabilityGrid& u, const GoalLayer& goals, const CellIndex& start,
+    DiffusionField* field) const
+{
+	checkInputs(u, goals, start);
+	if (!field) return extractPath(computeField(u, goals), u, goals, start);
+	*field = computeField(u, goals);  // kept for the caller on NoPathError
+	return extractPath(*field, u, goals, start);
+}
+
+PlannedPath CnnPlanner::plan(
+    const TraversabilityGrid& u, const GoalLayer& goals, double startX,
+    double startY, DiffusionField* field) const
+{
+	return plan(u, goals, startCell(u.geometry(), startX, startY), field);
+}
+
+}  // namespace semnav

@@ -1,0 +1,30 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/planning/GridGeometry.h>
+#include <semnav/planning/PlanningErrors.h>
+
+#include <cmath>
+#include <string>
+
+namespace semnav
+{
+void GridGeometry::validate() const
+{
+	if (!(resolution > 0) || !std::isfinite(resolution))
+		throw PlanningError(
+		    "grid resolution must be > 0 (got " + std::to_string(resolution) +
+		    ")");
+	if (rows < 1 || cols < 1)
+		throw PlanningError(
+		    "grid size must be at least 1 x 1 (got " + std::to_string(cols) +
+		    " x " + std::to_string(rows) + ")");
+}
+
+std::optional<CellIndex> GridGeometry::cellOf(double x, double y) const
+{
+	const double fx = std::floor((x - originX) / resolution);
+	const double fy = std::floor((y - originY) / resolution);
+	if (!(fx >= 0 && fy >= 0 && fx < cols && fy < rows)) return std::nullopt;
+	return CellIndex{static_cast<int>(fy), static_cast<int>(fx)};
+}
+
+}  // namespace semnav

@@ -1,0 +1,427 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// CNN path planner (paper sec. 3) against a binary-heap Dijkstra and MRPT's
+// PlannerSimple2D on the same generated office map: 1000 x 1000 cells (50 m
+// x 50 m at 5 cm), 10 x 10 rooms with 1 m doors, 400 boxes; robot radius
+// 0.2 m, shortest profile; one goal cell in the far room. The synchronous
+// (Jacobi) reference runs once on it and on a 250 x 250 map of the same
+// kind. Run with
+//   bench_planner --benchmark_repetitions=5
+//   --benchmark_report_aggregates_only=true
+// A summary (time ratios, path costs) is printed at the end.
+#include <benchmark/benchmark.h>
+#include <mrpt/maps/COccupancyGridMap2D.h>
+#include <mrpt/nav/planners/PlannerSimple2D.h>
+#include <semnav/planning/CnnPlanner.h>
+#include <semnav/planning/DijkstraPlanner.h>
+#include <semnav/planning/TraversabilityBuilder.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <random>
+
+using namespace semnav;
+
+namespace
+{
+struct OfficeMap
+{
+	GridGeometry geometry;
+	std::vector<CellOccupancy> occupancy;
+	TraversabilityGrid u;
+	GoalLayer goals;
+	CellIndex start, goal;
+	std::size_t boxes = 0;
+};
+
+/** Square office of `rooms` x `rooms` rooms of `room` cells, 10 cm walls,
+ * 1 m doors (a random spanning tree of the rooms plus extra doors), boxes
+ * of 0.3-1.5 m kept 1.2 m away from doors, start and goal. */
+std::unique_ptr<OfficeMap> makeOffice(int rooms, int room, int nBoxes)
+{
+	auto m = std::make_unique<OfficeMap>();
+	const int n = rooms * room;
+	m->geometry = GridGeometry(0.05, 0, 0, n, n);
+	const auto& g = m->geometry;
+	m->occupancy.assign(g.cellCount(), CellOccupancy::Free);
+	const auto fill = [&](int r0, int c0, int r1, int c1)
+	{
+		for (int r = std::max(0, r0); r < std::min(n, r1); r++)
+			for (int c = std::max(0, c0); c < std::min(n, c1); c++)
+				m->occupancy[g.index(r, c)] = CellOccupancy::Occupied;
+	};
+	const auto clear = [&](int r0, int c0, int r1, int c1)
+	{
+		for (int r = std::max(0, r0); r < std::min(n, r1); r++)
+			for (int c = std::max(0, c0); c < std::min(n, c1); c++)
+				m->occupancy[g.index(r, c)] = CellOccupancy::Free;
+	};
+	const int wall = 2, door = 20;
+	fill(0, 0, wall, n);
+	fill(n - wall, 0, n, n);
+	fill(0, 0, n, wall);
+	fill(0, n - wall, n, n);
+	for (int k = 1; k < rooms; k++)
+	{
+		fill(k * room - 1, 0, k * room + 1, n);
+		fill(0, k * room - 1, n, k * room + 1);
+	}
+
+	std::mt19937_64 rng(20240607);
+	// Doors: Kruskal spanning tree over the rooms, plus 30 % extra doors.
+	struct Edge
+	{
+		int a, b;
+	};
+	std::vector<Edge> edges;
+	for (int i = 0; i < rooms; i++)
+		for (int j = 0; j < rooms; j++)
+		{
+			if (j + 1 < rooms)
+				edges.push_back({i * rooms + j, i * rooms + j + 1});
+			if (i + 1 < rooms)
+				edges.push_back({i * rooms + j, (i + 1) * rooms + j});
+		}
+	std::shuffle(edges.begin(), edges.end(), rng);
+	std::vector<int> parent(rooms * rooms);
+	std::iota(parent.begin(), parent.end(), 0);
+	std::function<int(int)> root = [&](int a)
+	{ return parent[a] == a ? a : parent[a] = root(parent[a]); };
+	std::uniform_real_distribution<double> U(0, 1);
+	std::vector<std::pair<int, int>> doorCentres;
+	for (const auto& e : edges)
+	{
+		const bool tree = root(e.a) != root(e.b);
+		if (!tree && U(rng) > 0.3) continue;
+		parent[root(e.a)] = root(e.b);
+		const int ia = e.a / rooms, ja = e.a % rooms;
+		const int off = 10 + static_cast<int>(U(rng) * (room - door - 20));
+		if (e.b == e.a + 1)  // vertical wall at column (ja + 1) * room
+		{
+			const int c = (ja + 1) * room, r = ia * room + off;
+			clear(r, c - 1, r + door, c + 1);
+			doorCentres.push_back({r + door / 2, c});
+		}
+		else
+		{
+			const int r = (ia + 1) * room, c = ja * room + off;
+			clear(r - 1, c, r + 1, c + door);
+			doorCentres.push_back({r, c + door / 2});
+		}
+	}
+
+	m->start = {room / 2, room / 2};
+	m->goal = {n - room / 2, n - room / 2};
+	const auto near = [](int r0, int c0, int r1, int c1, int pr, int pc, int d)
+	{ return pr >= r0 - d && pr < r1 + d && pc >= c0 - d && pc < c1 + d; };
+	for (int attempt = 0;
+	     attempt < 100 * nBoxes && m->boxes < static_cast<std::size_t>(nBoxes);
+	     attempt++)
+	{
+		const int h = 6 + static_cast<int>(U(rng) * 24);
+		const int w = 6 + static_cast<int>(U(rng) * 24);
+		const int r0 = static_cast<int>(U(rng) * (n - h));
+		const int c0 = static_cast<int>(U(rng) * (n - w));
+		bool ok =
+		    !near(r0, c0, r0 + h, c0 + w, m->start.row, m->start.col, 30) &&
+		    !near(r0, c0, r0 + h, c0 + w, m->goal.row, m->goal.col, 30);
+		for (const auto& [dr, dc] : doorCentres)
+			ok = ok && !near(r0, c0, r0 + h, c0 + w, dr, dc, 24);
+		if (!ok) continue;
+		fill(r0, c0, r0 + h, c0 + w);
+		m->boxes++;
+	}
+
+	TraversabilityBuilder::TOptions o;
+	o.robotRadius = 0.2;
+	m->u = TraversabilityBuilder(o).build(
+	    g, {}, m->occupancy, CostProfile::Shortest);
+	m->goals = GoalLayer(g);
+	m->goals.addCell(m->goal);
+	return m;
+}
+
+const OfficeMap& office1000()
+{
+	static const auto m = makeOffice(10, 100, 400);
+	return *m;
+}
+const OfficeMap& office250()
+{
+	static const auto m = makeOffice(5, 50, 25);
+	return *m;
+}
+
+/** Path costs and iteration counts reported in the summary. */
+std::map<std::string, double> g_figures;
+
+CnnPlanner cnn(CnnSchedule s, int threads)
+{
+	CnnPlanner::TOptions o;
+	o.schedule = s;
+	o.threads = threads;
+	return CnnPlanner(o);
+}
+
+void runCnn(
+    benchmark::State& st, const OfficeMap& m, CnnSchedule s, int threads,
+    const std::string& name)
+{
+	const CnnPlanner p = cnn(s, threads);
+	DiffusionField f;
+	for (auto _ : st)
+	{
+		f = p.computeField(m.u, m.goals);
+		benchmark::DoNotOptimize(f.x.data());
+	}
+	const auto path = CnnPlanner::extractPath(f, m.u, m.goals, m.start);
+	if (s == CnnSchedule::Jacobi)
+	{
+		// The production field must be the same, bit for bit.
+		const auto sweep =
+		    cnn(CnnSchedule::Sweep, 2).computeField(m.u, m.goals);
+		std::size_t differ = 0;
+		for (std::size_t i = 0; i < f.x.size(); i++)
+			differ += sweep.x[i] != f.x[i];
+		st.counters["cells_differing_from_sweep"] = static_cast<double>(differ);
+		g_figures[name + " cells differing from sweep"] =
+		    static_cast<double>(differ);
+	}
+	st.counters["iterations"] = f.iterations;
+	st.counters["row_updates"] = static_cast<double>(f.rowUpdates);
+	st.counters["cost"] = path.cost;
+	g_figures[name + " cost"] = path.cost;
+	g_figures[name + " iterations"] = f.iterations;
+}
+
+void BM_CnnSweep_1000(benchmark::State& st)
+{
+	runCnn(st, office1000(), CnnSchedule::Sweep, 1, "BM_CnnSweep_1000");
+}
+void BM_CnnSweep2Threads_1000(benchmark::State& st)
+{
+	runCnn(st, office1000(), CnnSchedule::Sweep, 2, "BM_CnnSweep2Threads_1000");
+}
+void BM_CnnPlan_1000(benchmark::State& st)
+{
+	const auto& m = office1000();
+	const CnnPlanner p = cnn(CnnSchedule::Sweep, 1);
+	PlannedPath path;
+	for (auto _ : st) path = p.plan(m.u, m.goals, m.start);
+	st.counters["cost"] = path.cost;
+}
+void BM_Dijkstra_1000(benchmark::State& st)
+{
+	const auto& m = office1000();
+	std::vector<double> V;
+	for (auto _ : st)
+	{
+		V = DijkstraPlanner::costField(m.u, m.goals);
+		benchmark::DoNotOptimize(V.data());
+	}
+	st.counters["cost"] = V[m.geometry.index(m.start)];
+	g_figures["dijkstra cost"] = V[m.geometry.index(m.start)];
+}
+void BM_DijkstraToStart_1000(benchmark::State& st)
+{
+	const auto& m = office1000();
+	PlannedPath path;
+	for (auto _ : st) path = DijkstraPlanner::plan(m.u, m.goals, m.start);
+	st.counters["cost"] = path.cost;
+}
+void BM_MrptPlannerSimple2D_1000(benchmark::State& st)
+{
+	// MRPT plans on the same C-space: blocked cells become occupied and its
+	// own obstacle growing is off (robotRadius = 0).
+	const auto& m = office1000();
+	const auto& g = m.geometry;
+	mrpt::maps::COccupancyGridMap2D grid;
+	grid.setSize(g.originX, g.maxX(), g.originY, g.maxY(), g.resolution, 1.0f);
+	if (static_cast<int>(grid.getSizeX()) != g.cols ||
+	    static_cast<int>(grid.getSizeY()) != g.rows)
+	{
+		st.SkipWithError("MRPT grid size differs");
+		return;
+	}
+	for (int r = 0; r < g.rows; r++)
+		for (int c = 0; c < g.cols; c++)
+			grid.setCell(c, r, m.u.blocked(r, c) ? 0.0f : 1.0f);
+	mrpt::nav::PlannerSimple2D planner;
+	planner.robotRadius = 0;
+	planner.minStepInReturnedPath = 0;
+	const mrpt::poses::CPose2D from(
+	    g.centerX(m.start.col), g.centerY(m.start.row), 0);
+	const mrpt::poses::CPose2D to(
+	    g.centerX(m.goal.col), g.centerY(m.goal.row), 0);
+	std::deque<mrpt::math::TPoint2D> path;
+	bool notFound = true;
+	for (auto _ : st) planner.computePath(grid, from, to, path, notFound);
+	if (notFound)
+	{
+		st.SkipWithError("PlannerSimple2D found no path");
+		return;
+	}
+	double len = 0, px = from.x(), py = from.y();
+	bool collision = false;
+	for (const auto& p : path)
+	{
+		len += std::hypot(p.x - px, p.y - py);
+		px = p.x;
+		py = p.y;
+		const auto c = g.cellOf(p.x, p.y);
+		collision = collision || !c || m.u.blocked(*c);
+	}
+	st.counters["cost"] = len;
+	st.counters["collisions"] = collision ? 1 : 0;
+	g_figures["mrpt cost"] = len;
+}
+void BM_CnnJacobi_1000(benchmark::State& st)
+{
+	runCnn(st, office1000(), CnnSchedule::Jacobi, 1, "BM_CnnJacobi_1000");
+}
+void BM_CnnJacobi_250(benchmark::State& st)
+{
+	runCnn(st, office250(), CnnSchedule::Jacobi, 1, "BM_CnnJacobi_250");
+}
+void BM_CnnJacobi2Threads_250(benchmark::State& st)
+{
+	runCnn(st, office250(), CnnSchedule::Jacobi, 2, "BM_CnnJacobi2Threads_250");
+}
+void BM_CnnSweep_250(benchmark::State& st)
+{
+	runCnn(st, office250(), CnnSchedule::Sweep, 1, "BM_CnnSweep_250");
+}
+void BM_Dijkstra_250(benchmark::State& st)
+{
+	const auto& m = office250();
+	for (auto _ : st)
+		benchmark::DoNotOptimize(DijkstraPlanner::costField(m.u, m.goals));
+}
+void BM_TraversabilityShortest_1000(benchmark::State& st)
+{
+	const auto& m = office1000();
+	TraversabilityBuilder::TOptions o;
+	o.robotRadius = 0.2;
+	const TraversabilityBuilder b(o);
+	for (auto _ : st)
+		benchmark::DoNotOptimize(
+		    b.build(m.geometry, {}, m.occupancy, CostProfile::Shortest));
+}
+void BM_TraversabilitySafe_1000(benchmark::State& st)
+{
+	const auto& m = office1000();
+	TraversabilityBuilder::TOptions o;
+	o.robotRadius = 0.2;
+	const TraversabilityBuilder b(o);
+	for (auto _ : st)
+		benchmark::DoNotOptimize(
+		    b.build(m.geometry, {}, m.occupancy, CostProfile::Safe));
+}
+
+BENCHMARK(BM_CnnSweep_1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CnnSweep2Threads_1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CnnPlan_1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Dijkstra_1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DijkstraToStart_1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MrptPlannerSimple2D_1000)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK(BM_CnnJacobi_1000)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_CnnJacobi_250)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CnnJacobi2Threads_250)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CnnSweep_250)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Dijkstra_250)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TraversabilityShortest_1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TraversabilitySafe_1000)->Unit(benchmark::kMillisecond);
+
+/** Console output plus the real time per benchmark (median when
+ * aggregates are reported) for the summary. */
+class SummaryReporter : public benchmark::ConsoleReporter
+{
+public:
+	std::map<std::string, double> ms;
+	void ReportRuns(const std::vector<Run>& runs) override
+	{
+		ConsoleReporter::ReportRuns(runs);
+		for (const auto& r : runs)
+		{
+			if (r.error_occurred) continue;
+			const double t = r.GetAdjustedRealTime() *
+			                 (r.time_unit == benchmark::kMillisecond   ? 1.0
+			                  : r.time_unit == benchmark::kMicrosecond ? 1e-3
+			                  : r.time_unit == benchmark::kNanosecond  ? 1e-6
+			                                                           : 1e3);
+			const std::string name = r.run_name.function_name;
+			if (r.run_type == Run::RT_Aggregate)
+			{
+				if (r.aggregate_name == "median") ms[name] = t;
+			}
+			else if (!medianSeen(name))
+				ms[name] = t;
+		}
+	}
+
+private:
+	bool medianSeen(const std::string&) const { return false; }
+};
+
+void printRatio(
+    const SummaryReporter& r, const char* what, const std::string& a,
+    const std::string& b)
+{
+	const auto ia = r.ms.find(a), ib = r.ms.find(b);
+	if (ia == r.ms.end() || ib == r.ms.end()) return;
+	std::printf(
+	    "  %-44s %9.2f ms / %9.2f ms = %.3f\n", what, ia->second, ib->second,
+	    ia->second / ib->second);
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+	benchmark::Initialize(&argc, argv);
+	if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+	const auto& m = office1000();
+	std::printf(
+	    "office map %d x %d cells (%.0f m x %.0f m), %zu boxes, %.1f %% of "
+	    "cells blocked (C-space, robot radius 0.2 m)\n",
+	    m.geometry.cols, m.geometry.rows, m.geometry.maxX(), m.geometry.maxY(),
+	    m.boxes, 100.0 * m.u.blockedCount() / m.geometry.cellCount());
+	SummaryReporter rep;
+	benchmark::RunSpecifiedBenchmarks(&rep);
+	std::printf("\nsummary (median real time when repetitions are used):\n");
+	printRatio(
+	    rep, "CNN sweep 1 thread / Dijkstra field (1000)", "BM_CnnSweep_1000",
+	    "BM_Dijkstra_1000");
+	printRatio(
+	    rep, "CNN sweep 2 threads / Dijkstra field (1000)",
+	    "BM_CnnSweep2Threads_1000", "BM_Dijkstra_1000");
+	printRatio(
+	    rep, "CNN sweep 1 thread / Dijkstra to start (1000)",
+	    "BM_CnnSweep_1000", "BM_DijkstraToStart_1000");
+	printRatio(
+	    rep, "CNN plan 1 thread / MRPT PlannerSimple2D (1000)",
+	    "BM_CnnPlan_1000", "BM_MrptPlannerSimple2D_1000");
+	printRatio(
+	    rep, "CNN Jacobi 1 thread / CNN sweep (1000)", "BM_CnnJacobi_1000",
+	    "BM_CnnSweep_1000");
+	printRatio(
+	    rep, "CNN Jacobi 1 thread / CNN sweep (250)", "BM_CnnJacobi_250",
+	    "BM_CnnSweep_250");
+	printRatio(
+	    rep, "CNN Jacobi 1 thread / Dijkstra field (250)", "BM_CnnJacobi_250",
+	    "BM_Dijkstra_250");
+	for (const auto& [k, v] : g_figures)
+		std::printf("  %-50s %.6f\n", k.c_str(), v);
+	const auto c = g_figures.find("BM_CnnSweep_1000 cost");
+	const auto d = g_figures.find("mrpt cost");
+	if (c != g_figures.end() && d != g_figures.end())
+		std::printf(
+		    "  MRPT path length - CNN path cost: %.6f m (%+.4f %%)\n",
+		    d->second - c->second, 100.0 * (d->second - c->second) / c->second);
+	benchmark::Shutdown();
+	return 0;
+}
