@@ -22,7 +22,7 @@ TEST(GridGeometry, CellsOfPointsAndCentres)
 	EXPECT_NEAR(g.centerY(19), 2.95, 1e-12);
 	for (std::size_t i : {0u, 29u, 30u, 599u})
 		EXPECT_EQ(g.index(g.cellAt(i)), i);
-	EXPECT_THROW(GridGeometry(0.1, 0, 0, 0, 3).validate(), PlanningError);
+	EXPECT_THROW(GridGeometry(0.1, 0, 0, 0, 3).validate(), Error);
 }
 
 TEST(GoalLayer, DiscRegionIdsAndMask)

@@ -11,7 +11,7 @@ namespace semnav
 {
 GoalLayer::GoalLayer(const GridGeometry& geometry) : m_geometry(geometry)
 {
-	geometry.validate();
+	validatePlanningGrid(geometry);
 	m_id.assign(geometry.cellCount(), 0);
 }
 

@@ -205,7 +205,27 @@ TraversabilityGrid TraversabilityBuilder::build(
     const GridGeometry& g, const std::vector<LabelSet>& labels,
     const std::vector<CellOccupancy>& occupancy, CostProfile profile) const
 {
-	g.validate();
+	return buildImpl(g, nullptr, 0, labels, occupancy, profile);
+}
+
+TraversabilityGrid TraversabilityBuilder::buildFromCost(
+    const GridGeometry& g, const std::vector<float>& baseU, double baseLethal,
+    const std::vector<LabelSet>& labels,
+    const std::vector<CellOccupancy>& occupancy, CostProfile profile) const
+{
+	if (baseU.size() != g.cellCount())
+		throw PlanningError(
+		    "cost layer has " + std::to_string(baseU.size()) +
+		    " cells, the grid " + std::to_string(g.cellCount()));
+	return buildImpl(g, &baseU, baseLethal, labels, occupancy, profile);
+}
+
+TraversabilityGrid TraversabilityBuilder::buildImpl(
+    const GridGeometry& g, const std::vector<float>* baseU, double baseLethal,
+    const std::vector<LabelSet>& labels,
+    const std::vector<CellOccupancy>& occupancy, CostProfile profile) const
+{
+	validatePlanningGrid(g);
 	const std::size_t n = g.cellCount();
 	if (!labels.empty() && labels.size() != n)
 		throw PlanningError(
@@ -248,9 +268,26 @@ TraversabilityGrid TraversabilityBuilder::build(
 					ui = std::max(ui, m_options.uUnobserved);
 			}
 		}
-		if (!labels.empty() && !labels[i].empty())
+		const auto mask = labels.empty() ? 0u : labels[i].mask();
+		if (baseU)
 		{
-			const auto mask = labels[i].mask();
+			if ((*baseU)[i] >= baseLethal)
+			{
+				// Influence of the costliest obstacle label seen there.
+				double s = 0;
+				bool labelled = false;
+				for (std::size_t k = 0; k < kLabelCount; k++)
+					if ((mask & (1u << k)) && cost[k] >= L)
+					{
+						labelled = true;
+						s = std::max(s, m_options.labelRadiusScale[k]);
+					}
+				markObstacle(i, labelled ? s : 1);
+			}
+			else
+				ui = std::max(ui, static_cast<double>((*baseU)[i]));
+		}
+		else
 			for (std::size_t k = 0; k < kLabelCount; k++)
 			{
 				if (!(mask & (1u << k))) continue;
@@ -259,7 +296,6 @@ TraversabilityGrid TraversabilityBuilder::build(
 				else
 					ui = std::max(ui, cost[k]);
 			}
-		}
 		u[i] = scale[i] != 0.f ? L : ui;
 	}
 

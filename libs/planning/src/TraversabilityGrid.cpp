@@ -12,7 +12,7 @@ TraversabilityGrid::TraversabilityGrid(
     const GridGeometry& geometry, double L, double initialU)
     : m_geometry(geometry), m_L(L)
 {
-	geometry.validate();
+	validatePlanningGrid(geometry);
 	if (!(L > 0) || !std::isfinite(L))
 		throw PlanningError(
 		    "L must be a finite value > 0 (got " + std::to_string(L) + ")");
@@ -31,4 +31,19 @@ std::size_t TraversabilityGrid::blockedCount() const
 	    m_u.begin(), m_u.end(), [this](double v) { return v >= m_L; }));
 }
 
+}  // namespace semnav
+
+namespace semnav
+{
+void validatePlanningGrid(const GridGeometry& g)
+{
+	try
+	{
+		g.validate();
+	}
+	catch (const Error& e)
+	{
+		throw PlanningError(e.what());
+	}
+}
 }  // namespace semnav

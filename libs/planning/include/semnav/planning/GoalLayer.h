@@ -1,7 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #pragma once
 
-#include <semnav/planning/GridGeometry.h>
+#include <semnav/common/GridGeometry.h>
 
 #include <cstdint>
 #include <vector>

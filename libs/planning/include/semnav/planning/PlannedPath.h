@@ -2,7 +2,7 @@
 #pragma once
 
 #include <mrpt/math/TPoint2D.h>
-#include <semnav/planning/CellIndex.h>
+#include <semnav/common/CellIndex.h>
 
 #include <vector>
 

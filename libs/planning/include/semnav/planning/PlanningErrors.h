@@ -2,6 +2,7 @@
 #pragma once
 
 #include <semnav/common/Error.h>
+#include <semnav/common/GridGeometry.h>
 
 namespace semnav
 {
@@ -41,5 +42,8 @@ class NotConvergedError : public PlanningError
 {
 	using PlanningError::PlanningError;
 };
+
+/** GridGeometry::validate() with the failure as a PlanningError. */
+void validatePlanningGrid(const GridGeometry& g);
 
 }  // namespace semnav

@@ -117,12 +117,26 @@ public:
 	    const GridGeometry& geometry, const std::vector<LabelSet>& labels,
 	    const std::vector<CellOccupancy>& occupancy) const;
 
+	/** As build(), with the per-cell u_s taken from `baseU` (e.g. the
+	 * semantic map's travel-cost layer, which already knows grass roughness
+	 * and robot type) instead of the u_<label> options: cells with baseU >=
+	 * baseLethal are obstacles. Labels only give obstacles' r_scale. */
+	TraversabilityGrid buildFromCost(
+	    const GridGeometry& geometry, const std::vector<float>& baseU,
+	    double baseLethal, const std::vector<LabelSet>& labels,
+	    const std::vector<CellOccupancy>& occupancy, CostProfile profile) const;
+
 	/** Distance (m) from an object's cells within which goal cells are
 	 * placed: robot_radius + the blocked clearance of the profile (scale 1) +
 	 * goal_reach. */
 	double goalRegionRadius(CostProfile profile) const;
 
 private:
+	TraversabilityGrid buildImpl(
+	    const GridGeometry& geometry, const std::vector<float>* baseU,
+	    double baseLethal, const std::vector<LabelSet>& labels,
+	    const std::vector<CellOccupancy>& occupancy, CostProfile profile) const;
+
 	TOptions m_options;
 };
 

@@ -1,14 +1,15 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #pragma once
 
-#include <semnav/planning/CellIndex.h>
+#include <semnav/common/CellIndex.h>
 
 #include <cstddef>
 #include <optional>
 
 namespace semnav
 {
-/** Geometry of a planning grid, as MRPT's COccupancyGridMap2D: cell (row,
+/** Geometry of a 2D grid (the semantic map's layers, the planner's
+ * layers), as MRPT's COccupancyGridMap2D: cell (row,
  * col) covers x in [originX + col res, originX + (col + 1) res) and y in
  * [originY + row res, originY + (row + 1) res). Layers are stored row-major:
  * index = row * cols + col. */
@@ -29,7 +30,7 @@ struct GridGeometry
 	{
 	}
 
-	/** Throws PlanningError unless resolution > 0 and both sizes >= 1. */
+	/** Throws Error unless resolution > 0 and both sizes >= 1. */
 	void validate() const;
 
 	std::size_t cellCount() const
@@ -57,6 +58,21 @@ struct GridGeometry
 
 	double centerX(int col) const { return originX + (col + 0.5) * resolution; }
 	double centerY(int row) const { return originY + (row + 0.5) * resolution; }
+	/** Cell (col = x index, row = y index) of a world point; false (the
+	 * indices still set) outside the grid. */
+	bool worldToCell(double x, double y, int& col, int& row) const;
+	/** Centre of a cell; false outside the grid. */
+	bool cellToWorld(int col, int row, double& x, double& y) const
+	{
+		x = centerX(col);
+		y = centerY(row);
+		return contains(row, col);
+	}
+	bool operator==(const GridGeometry& o) const
+	{
+		return resolution == o.resolution && originX == o.originX &&
+		    originY == o.originY && cols == o.cols && rows == o.rows;
+	}
 	double maxX() const { return originX + cols * resolution; }
 	double maxY() const { return originY + rows * resolution; }
 };

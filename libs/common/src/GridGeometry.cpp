@@ -1,6 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-#include <semnav/planning/GridGeometry.h>
-#include <semnav/planning/PlanningErrors.h>
+#include <semnav/common/Error.h>
+#include <semnav/common/GridGeometry.h>
 
 #include <cmath>
 #include <string>
@@ -10,13 +10,20 @@ namespace semnav
 void GridGeometry::validate() const
 {
 	if (!(resolution > 0) || !std::isfinite(resolution))
-		throw PlanningError(
+		throw Error(
 		    "grid resolution must be > 0 (got " + std::to_string(resolution) +
 		    ")");
 	if (rows < 1 || cols < 1)
-		throw PlanningError(
+		throw Error(
 		    "grid size must be at least 1 x 1 (got " + std::to_string(cols) +
 		    " x " + std::to_string(rows) + ")");
+}
+
+bool GridGeometry::worldToCell(double x, double y, int& col, int& row) const
+{
+	col = static_cast<int>(std::floor((x - originX) / resolution));
+	row = static_cast<int>(std::floor((y - originY) / resolution));
+	return contains(row, col);
 }
 
 std::optional<CellIndex> GridGeometry::cellOf(double x, double y) const
