@@ -64,10 +64,20 @@ int CommandLine::run(const std::function<int()>& body) const
 
 std::string CommandLine::firstLine(const std::string& msg)
 {
-	const std::size_t b = msg.find_first_not_of(" \t\r\n");
-	if (b == std::string::npos) return "unknown error";
-	const std::size_t e = msg.find_first_of("\r\n", b);
-	return msg.substr(b, e == std::string::npos ? std::string::npos : e - b);
+	// The first line with content; MRPT's exceptions open with a
+	// "==== MRPT exception ====" banner.
+	std::size_t pos = 0;
+	while (pos < msg.size())
+	{
+		std::size_t e = msg.find_first_of("\r\n", pos);
+		if (e == std::string::npos) e = msg.size();
+		std::string line = msg.substr(pos, e - pos);
+		const auto b = line.find_first_not_of(" \t");
+		if (b != std::string::npos && line.compare(b, 4, "====") != 0)
+			return line.substr(b);
+		pos = e + 1;
+	}
+	return "unknown error";
 }
 
 }  // namespace semnav

@@ -5,6 +5,7 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt/system/filesystem.h>
+#include <semnav/common/CommandLine.h>
 #include <semnav/common/Error.h>
 #include <semnav/scan/RawlogSweepReader.h>
 
@@ -41,9 +42,7 @@ void RawlogSweepReader::readMore()
 		}
 		catch (const std::exception& e)
 		{
-			std::string what = e.what();
-			// MRPT's messages span lines; keep the first.
-			what = what.substr(0, what.find('\n'));
+			const std::string what = CommandLine::firstLine(e.what());
 			m_error = "rawlog " + m_path + " is corrupt or truncated after " +
 				std::to_string(m_objects) + " objects (" +
 				std::to_string(m_assembler.sweepsEmitted()) +

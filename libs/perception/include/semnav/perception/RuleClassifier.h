@@ -1,0 +1,226 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/system/COutputLogger.h>
+#include <semnav/perception/LabeledSweep.h>
+#include <semnav/perception/NormalImage.h>
+#include <semnav/perception/Roughness.h>
+
+#include <opencv2/core/mat.hpp>
+#include <string>
+#include <vector>
+
+namespace semnav
+{
+/** The paper's rule-based identification of uniform areas (sec. 2.2.1):
+ * floor, ceiling, wall, door, sidewalk, grass and obstacle.
+ *
+ * 1. Orientation per pixel from the normals averaged over 3 x 3 pixels:
+ *    up, down, vertical, oblique, none.
+ * 2. Ground level: the lowest well-supported height of up-facing pixels
+ *    (or ground_z_m): "floor has z equal to the ground level".
+ * 3. Surfaces. Floor, walls and ceiling flood into one area (the paper
+ *    says so; in fact everything standing on the floor does), so areas
+ *    are split into surfaces: 4-connected pixels of one area and
+ *    orientation with continuous ranges, vertical and oblique ones also
+ *    with normals close to the neighbour's and to the surface's running
+ *    mean (a corner must not chain two walls). Vertical surfaces that lie
+ *    on one plane are grouped across areas (a wall seen at a grazing angle
+ *    floods into column strips), and a group is split where its plane
+ *    steps by plane_split_offset_m (a door recessed in its wall: dominant
+ *    plane by RANSAC, smoothed residuals, Otsu). Looser groups (one wall
+ *    within wall_group_tolerance_m) serve the wall size rule.
+ * 4. Rules on each surface (size, orientation, topology; thresholds in
+ *    config/perception.ini):
+ *    - ground: up-facing, mean height within ground_tolerance_m of the
+ *      ground level;
+ *    - ceiling: down-facing, at least ceiling_min_height_m above ground;
+ *    - wall: vertical and tall (wall_min_height_m), reaching the ceiling
+ *      or long (wall_min_length_m), itself or with its wall group;
+ *    - door: one vertical surface door_min/max_width_m wide,
+ *      door_min/max_height_m high, bottom at the ground, with walls
+ *      parallel and within door_max_offset_m of its plane on its left,
+ *      right and top in the image (the paper's "connects directly to a
+ *      floor at its bottom and to a wall from all other sides"), standing
+ *      off them by door_min_offset_m. A side cut by the field of view (the
+ *      surface reaches the image border there) is accepted in place of a
+ *      wall, and its extent there in place of the size, when
+ *      door_allow_truncation; one side must still be a wall;
+ *    - obstacle: any other surface reaching above the ground; a piece
+ *      lying on an adjacent wall's plane is left to step 5 instead.
+ * 5. Pixels left over (surface edges, oblique or missing normals, small
+ *    areas) join a neighbouring labelled surface when they lie on its plane
+ *    (or in its area, for obstacles), else by height: ground level ->
+ *    ground, above -> obstacle. The paper leaves small areas out; this step
+ *    (classify_leftover_pixels) labels them for pixel-level scoring.
+ * 6. Ground: floor when indoor (a ceiling seen, or environment = indoor);
+ *    outdoors each w' x w' square of ground is sidewalk when its R-bar >=
+ *    sidewalk_min_rbar, else grass; squares without R-bar (far ground, no
+ *    normals) by the spread of their heights (sidewalk_max_height_std_m);
+ *    the rest take their nearest neighbour's type; patches under
+ *    min_patch_squares are absorbed.
+ *
+ * classify() runs on the images of a NormalImage, the areas of a
+ * RangeSegmentation and a Roughness; buffers are reused between calls. */
+class RuleClassifier : public mrpt::system::COutputLogger
+{
+public:
+	/** INI section [RuleClassifier]. Angles are configured in degrees and
+	 * stored in radians. */
+	struct TOptions : public mrpt::config::CLoadableOptions
+	{
+		void loadFromConfigFile(
+		    const mrpt::config::CConfigFileBase& c,
+		    const std::string& section) override;
+		void saveToConfigFile(
+		    mrpt::config::CConfigFileBase& c,
+		    const std::string& section) const override;
+
+		enum class Environment
+		{
+			Auto,
+			Indoor,
+			Outdoor
+		};
+
+		// Orientation
+		int normalSmoothingHalfWidth = 1;
+		double groundNormalTolerance = 30.0 * M_PI / 180;
+		double ceilingNormalTolerance = 20.0 * M_PI / 180;
+		double wallNormalTolerance = 20.0 * M_PI / 180;
+		double surfaceJoinAngle = 20.0 * M_PI / 180;
+		double surfaceMaxAngle = 25.0 * M_PI / 180;
+		double surfaceMaxRangeStep = 0.05;
+		int minSurfacePixels = 30;
+		double planeMergeTolerance = 0.01;
+		double planeMergeAngle = 10.0 * M_PI / 180;
+		double planeSplitOffset = 0.012;
+		double wallGroupTolerance = 0.05;
+		double wallGroupAngle = 15.0 * M_PI / 180;
+		int planeSplitHalfWidth = 2;
+		// Ground and ceiling
+		bool autoGroundLevel = true;
+		double groundZ = 0.0;
+		double groundTolerance = 0.10;
+		int minGroundPixels = 200;
+		double ceilingMinHeight = 1.8;
+		Environment environment = Environment::Auto;
+		int indoorMinCeilingPixels = 500;
+		// Wall
+		double wallMinHeight = 1.9;
+		double wallCeilingGap = 0.3;
+		double wallMinLength = 2.5;
+		double wallMinWidth = 0.1;
+		// Door
+		double doorMinWidth = 0.7, doorMaxWidth = 2.0;
+		double doorMinHeight = 1.5, doorMaxHeight = 2.5;
+		double doorBottomTolerance = 0.15;
+		double doorMaxOffset = 0.15;
+		double doorMaxAngle = 15.0 * M_PI / 180;
+		double doorMinOffset = 0.005;
+		bool doorAllowTruncation = true;
+		int doorSearchPixels = 6;
+		double doorMinSideFraction = 0.5;
+		// Ground type (outdoor)
+		double sidewalkMinRbar = 0.97;
+		double sidewalkMaxHeightStd = 0.012;
+		int minPatchSquares = 4;
+		// Leftover pixels
+		double leftoverPlaneTolerance = 0.05;
+		bool classifyLeftoverPixels = true;
+	};
+
+	RuleClassifier();
+	explicit RuleClassifier(const TOptions& options);
+
+	/** Labels the sweep. `areaIds` from RangeSegmentation; `roughness`
+	 * computed on the same normals and areas (its square width is w').
+	 * Fills out.labels, regionIds, regions, groundZ, ceilingZ, indoor;
+	 * the other images of `out` are left untouched. */
+	void classify(
+	    const NormalImage& normals, const cv::Mat& areaIds,
+	    const Roughness& roughness, LabeledSweep& out);
+
+	const TOptions& options() const { return m_options; }
+
+	/** Surfaces of the last classify() call (step 3), CV_32S, -1 = none; a
+	 * view of internal memory, valid until the next call. For debugging
+	 * and tests. */
+	cv::Mat surfaceIds() const;
+	/** Orientation class of the last call's pixels (0 none, 1 up, 2 down,
+	 * 3 vertical, 4 oblique), CV_8U view; for debugging and tests. */
+	cv::Mat orientationClasses() const;
+	/** Smoothed residuals to the plane of their coplanar group (m, CV_32F,
+	 * 0 outside split candidates) and the side of the step each pixel is
+	 * on (CV_8U); views, for debugging and tests. */
+	cv::Mat planeResiduals() const { return m_resSum; }
+	cv::Mat planeSides() const;
+
+private:
+	/** A connected piece of one area (pass 1) or of one group of coplanar
+	 * pieces (pass 2) with one orientation. */
+	struct Surface
+	{
+		uint8_t orient = 0;
+		int area = 0;
+		int count = 0;
+		cv::Vec3d sumP{0, 0, 0}, sumN{0, 0, 0};
+		double sxx = 0, sxy = 0, syy = 0;
+		cv::Vec3f minP, maxP;
+		int minR = 0, maxR = 0, minC = 0, maxC = 0;
+		cv::Vec3d normal{0, 0, 0}, centroid{0, 0, 0};
+		double width = 0, height = 0;
+		int8_t label = -1;  ///< Label id, -1 = none yet
+		double planeD() const { return normal.dot(centroid); }
+	};
+	/** What the door rule found around a candidate. */
+	struct DoorCheck
+	{
+		double left = 0, right = 0, top = 0;  ///< fraction with a wall
+		bool leftFov = false, rightFov = false, topFov = false,
+		     bottomFov = false;
+		double maxOffset = 0;  ///< largest |offset| to an adjacent wall
+	};
+
+	/** Pass 1 (`byGroup` false): 4-connected pixels of one area and one
+	 * orientation, vertical/oblique ones with close normals. Pass 2: pixels
+	 * of one coplanar group (m_group) and one side of its plane step. */
+	void buildSurfaces(bool byGroup);
+	void computeSurfaceStats(int count, int firstAccumulated);
+	void finishSurface(Surface& s) const;
+	static void fitVerticalPlane(Surface& s);
+	/** Unites adjacent coplanar vertical surfaces (across areas) into
+	 * m_group. */
+	void mergeCoplanar();
+	/** Sets m_side where a vertical group has two planes a step apart. */
+	void splitPlanes();
+	double estimateGround(bool& estimated) const;
+	DoorCheck checkDoor(
+	    int self, const std::vector<int>& wallCandidate,
+	    const std::vector<uint8_t>& isCeiling) const;
+	void labelGroundTypes(const Roughness& roughness, LabeledSweep& out);
+	void buildRegions(LabeledSweep& out, const cv::Mat& rBar);
+
+	TOptions m_options;
+	// Per-call working state (buffers reused between sweeps).
+	int m_rows = 0, m_cols = 0;
+	const cv::Mat* m_points = nullptr;
+	const cv::Mat* m_pointMask = nullptr;
+	const cv::Mat* m_ranges = nullptr;
+	const cv::Mat* m_areas = nullptr;
+	cv::Mat m_smooth, m_smoothSum;
+	const cv::Mat* m_ns = nullptr;
+	std::vector<uint8_t> m_class;
+	std::vector<uint8_t> m_side, m_join;
+	std::vector<int> m_surf, m_group, m_stack, m_parent, m_loose, m_surfLoose,
+	    m_uf;
+	std::vector<Surface> m_surfaces;
+	std::vector<int8_t> m_label;
+	std::vector<int> m_owner;
+	std::vector<int> m_rowOf, m_colOf;
+	cv::Mat m_res, m_wt, m_resSum, m_wtSum;
+	std::vector<float> m_tmp;
+};
+
+}  // namespace semnav

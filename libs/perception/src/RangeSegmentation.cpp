@@ -1,0 +1,142 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <mrpt/config/CConfigFileBase.h>
+#include <semnav/common/ConfigChecks.h>
+#include <semnav/common/Error.h>
+#include <semnav/perception/RangeSegmentation.h>
+
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+namespace semnav
+{
+void RangeSegmentation::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+	checkKnownKeys(
+	    c, s, {"max_neighbour_difference_m", "min_area_px", "connectivity"});
+	maxNeighbourDifference = readChecked(
+	    c, s, "max_neighbour_difference_m", maxNeighbourDifference, 0, 10);
+	minAreaPixels =
+	    readCheckedInt(c, s, "min_area_px", minAreaPixels, 0, 1000000);
+	connectivity = readCheckedInt(c, s, "connectivity", connectivity, 4, 8);
+	if (connectivity != 4 && connectivity != 8)
+		throw ConfigError("[" + s + "] connectivity must be 4 or 8");
+}
+
+void RangeSegmentation::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
+{
+	c.write(s, "max_neighbour_difference_m", maxNeighbourDifference);
+	c.write(s, "min_area_px", minAreaPixels);
+	c.write(s, "connectivity", connectivity);
+}
+
+RangeSegmentation::RangeSegmentation() : RangeSegmentation(TOptions()) {}
+
+RangeSegmentation::RangeSegmentation(const TOptions& options)
+    : m_options(options)
+{
+}
+
+void RangeSegmentation::compute(const Sweep& sweep)
+{
+	const int rows = static_cast<int>(sweep.rows());
+	const int cols = static_cast<int>(sweep.cols());
+	m_ids.create(rows, cols, CV_32S);
+	m_sizes.assign(1, 0);
+	m_fills = 0;
+	m_singletons = 0;
+	if (rows == 0 || cols == 0) return;
+
+	// Range image with invalid pixels blocked in the mask (mask != 0 stops
+	// the fill; the 1-pixel frame the mask needs is blocked too).
+	m_range.create(rows, cols, CV_32F);
+	m_mask.create(rows + 2, cols + 2, CV_8U);
+	m_mask.setTo(1);
+	const float* rng = sweep.ranges().data();
+	const uint8_t* val = sweep.validity().data();
+	for (int r = 0; r < rows; r++)
+	{
+		float* R = m_range.ptr<float>(r);
+		uint8_t* M = m_mask.ptr<uint8_t>(r + 1) + 1;
+		int* I = m_ids.ptr<int>(r);
+		for (int c = 0; c < cols; c++)
+		{
+			const std::size_t i = static_cast<std::size_t>(r) * cols + c;
+			const float d = rng[i];
+			const bool ok = val[i] && std::isfinite(d) && d > 0;
+			R[c] = ok ? d : 0.0f;
+			M[c] = ok ? 0 : 1;
+			I[c] = ok ? -1 : 0;
+			if (!ok) m_sizes[0]++;
+		}
+	}
+
+	// Fill value 2 marks the pixels of the current fill in the mask; they
+	// are collected inside the returned bounding box and re-marked 1.
+	const double diff = m_options.maxNeighbourDifference;
+	const int flags =
+	    m_options.connectivity | cv::FLOODFILL_MASK_ONLY | (2 << 8);
+	for (int r = 0; r < rows; r++)
+	{
+		const int* I = m_ids.ptr<int>(r);
+		for (int c = 0; c < cols; c++)
+		{
+			if (I[c] != -1) continue;
+			// A pixel with no joinable neighbour is an area of its own: no
+			// need to call the flood fill (most calls are such on noisy or
+			// grazing surfaces). Same result: it is never > min_area_px.
+			{
+				const float d = m_range.ptr<float>(r)[c];
+				uint8_t* Mr = m_mask.ptr<uint8_t>(r + 1) + 1;
+				const uint8_t* Mu = m_mask.ptr<uint8_t>(r) + 1;
+				const uint8_t* Md = m_mask.ptr<uint8_t>(r + 2) + 1;
+				auto joinable = [&](const uint8_t* M, int rr, int cc) {
+					return M[cc] == 0 &&
+					       std::abs(m_range.ptr<float>(rr)[cc] - d) <= diff;
+				};
+				bool any = joinable(Mr, r, c - 1) || joinable(Mr, r, c + 1) ||
+				           joinable(Mu, r - 1, c) || joinable(Md, r + 1, c);
+				if (!any && m_options.connectivity == 8)
+					any = joinable(Mu, r - 1, c - 1) ||
+					      joinable(Mu, r - 1, c + 1) ||
+					      joinable(Md, r + 1, c - 1) ||
+					      joinable(Md, r + 1, c + 1);
+				if (!any && m_options.minAreaPixels >= 1)
+				{
+					Mr[c] = 1;
+					m_ids.ptr<int>(r)[c] = 0;
+					m_sizes[0]++;
+					m_singletons++;
+					continue;
+				}
+			}
+			cv::Rect box;
+			const int n = cv::floodFill(
+			    m_range, m_mask, cv::Point(c, r), cv::Scalar(0), &box,
+			    cv::Scalar(diff), cv::Scalar(diff), flags);
+			m_fills++;
+			int id = 0;
+			if (n > m_options.minAreaPixels)
+			{
+				id = static_cast<int>(m_sizes.size());
+				m_sizes.push_back(n);
+			}
+			else
+				m_sizes[0] += n;
+			for (int rr = box.y; rr < box.y + box.height; rr++)
+			{
+				uint8_t* M = m_mask.ptr<uint8_t>(rr + 1) + 1;
+				int* J = m_ids.ptr<int>(rr);
+				for (int cc = box.x; cc < box.x + box.width; cc++)
+					if (M[cc] == 2)
+					{
+						M[cc] = 1;
+						J[cc] = id;
+					}
+			}
+		}
+	}
+}
+
+}  // namespace semnav

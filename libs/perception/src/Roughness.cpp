@@ -1,0 +1,173 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <mrpt/config/CConfigFileBase.h>
+#include <semnav/common/ConfigChecks.h>
+#include <semnav/perception/Roughness.h>
+
+#include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+
+#include "BoxSum.h"
+
+namespace semnav
+{
+void Roughness::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+	checkKnownKeys(
+	    c, s,
+	    {"window_half_width_px", "square_width_px", "min_square_px",
+	     "smooth_normals", "smoothing_half_width_px"});
+	windowHalfWidth =
+	    readCheckedInt(c, s, "window_half_width_px", windowHalfWidth, 1, 20);
+	squareWidth = readCheckedInt(c, s, "square_width_px", squareWidth, 1, 100);
+	minSquarePixels =
+	    readCheckedInt(c, s, "min_square_px", minSquarePixels, 1, 10000);
+	smoothNormals = readCheckedBool(c, s, "smooth_normals", smoothNormals);
+	smoothingHalfWidth = readCheckedInt(
+	    c, s, "smoothing_half_width_px", smoothingHalfWidth, 1, 10);
+}
+
+void Roughness::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
+{
+	c.write(s, "window_half_width_px", windowHalfWidth);
+	c.write(s, "square_width_px", squareWidth);
+	c.write(s, "min_square_px", minSquarePixels);
+	c.write(s, "smooth_normals", smoothNormals ? "true" : "false");
+	c.write(s, "smoothing_half_width_px", smoothingHalfWidth);
+}
+
+Roughness::Roughness() : Roughness(TOptions()) {}
+
+Roughness::Roughness(const TOptions& options) : m_options(options) {}
+
+void Roughness::compute(const NormalImage& normals, const cv::Mat& areaIds)
+{
+	const int rows = normals.normals().rows, cols = normals.normals().cols;
+	constexpr float nan = std::numeric_limits<float>::quiet_NaN();
+	m_r.create(rows, cols, CV_32F);
+	if (rows == 0 || cols == 0)
+	{
+		m_rBar.create(rows, cols, CV_32F);
+		return;
+	}
+	const cv::Mat* n = &normals.normals();
+	if (m_options.smoothNormals)
+	{
+		normals.smoothed(areaIds, m_options.smoothingHalfWidth, m_smooth);
+		n = &m_smooth;
+	}
+	// R = n . (S - n) / (N - 1), S and N the sums of normals and of the
+	// normal mask over the window (box filters: O(1) per pixel). Normals are
+	// 0 where there is none, so S only counts pixels with a normal.
+	normals.normalMask().convertTo(m_mask, CV_32F);
+	detail::boxSum(*n, m_options.windowHalfWidth, m_sumN, m_tmp);
+	detail::boxSum(m_mask, m_options.windowHalfWidth, m_sumM, m_tmp);
+	for (int r = 0; r < rows; r++)
+	{
+		const auto* N = n->ptr<cv::Vec3f>(r);
+		const auto* S = m_sumN.ptr<cv::Vec3f>(r);
+		const float* C = m_sumM.ptr<float>(r);
+		const uint8_t* NM = normals.normalMask().ptr<uint8_t>(r);
+		float* R = m_r.ptr<float>(r);
+		for (int c = 0; c < cols; c++)
+		{
+			const float cnt = C[c] - 1.0f;
+			if (!NM[c] || cnt < 0.5f)
+			{
+				R[c] = nan;
+				continue;
+			}
+			R[c] = (N[c].dot(S[c]) - N[c].dot(N[c])) / cnt;
+		}
+	}
+	squareMeans(
+	    m_r, areaIds, m_options.squareWidth, m_options.minSquarePixels, m_rBar);
+}
+
+void Roughness::squareMeans(
+    const cv::Mat& r, const cv::Mat& groups, int w, int minPixels, cv::Mat& out)
+{
+	constexpr float nan = std::numeric_limits<float>::quiet_NaN();
+	const int rows = r.rows, cols = r.cols;
+	out.create(rows, cols, CV_32F);
+	w = std::max(1, w);
+	std::vector<int> ids;
+	std::vector<double> sums;
+	std::vector<int> counts;
+	for (int r0 = 0; r0 < rows; r0 += w)
+		for (int c0 = 0; c0 < cols; c0 += w)
+		{
+			const int r1 = std::min(rows, r0 + w), c1 = std::min(cols, c0 + w);
+			// Common case: the whole square in one group.
+			const int g0 = groups.ptr<int>(r0)[c0];
+			bool uniform = true;
+			float sum = 0;
+			int cnt = 0;
+			for (int rr = r0; rr < r1 && uniform; rr++)
+			{
+				const int* G = groups.ptr<int>(rr);
+				const float* R = r.ptr<float>(rr);
+				for (int cc = c0; cc < c1; cc++)
+				{
+					uniform &= G[cc] == g0;
+					const float v = R[cc];
+					const bool ok = v == v;  // not NaN
+					sum += ok ? v : 0.0f;
+					cnt += ok;
+				}
+			}
+			if (uniform)
+			{
+				const float m = g0 > 0 && cnt >= minPixels ? sum / cnt : nan;
+				for (int rr = r0; rr < r1; rr++)
+				{
+					float* O = out.ptr<float>(rr);
+					for (int cc = c0; cc < c1; cc++) O[cc] = m;
+				}
+				continue;
+			}
+			ids.clear();
+			sums.clear();
+			counts.clear();
+			for (int rr = r0; rr < r1; rr++)
+			{
+				const int* G = groups.ptr<int>(rr);
+				const float* R = r.ptr<float>(rr);
+				for (int cc = c0; cc < c1; cc++)
+				{
+					if (G[cc] <= 0 || !std::isfinite(R[cc])) continue;
+					std::size_t k = 0;
+					while (k < ids.size() && ids[k] != G[cc]) k++;
+					if (k == ids.size())
+					{
+						ids.push_back(G[cc]);
+						sums.push_back(0);
+						counts.push_back(0);
+					}
+					sums[k] += R[cc];
+					counts[k]++;
+				}
+			}
+			for (int rr = r0; rr < r1; rr++)
+			{
+				const int* G = groups.ptr<int>(rr);
+				float* O = out.ptr<float>(rr);
+				for (int cc = c0; cc < c1; cc++)
+				{
+					O[cc] = nan;
+					if (G[cc] <= 0) continue;
+					for (std::size_t k = 0; k < ids.size(); k++)
+						if (ids[k] == G[cc])
+						{
+							if (counts[k] >= minPixels)
+								O[cc] = static_cast<float>(sums[k] / counts[k]);
+							break;
+						}
+				}
+			}
+		}
+}
+
+}  // namespace semnav

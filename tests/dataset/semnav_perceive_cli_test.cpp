@@ -1,0 +1,202 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// The semnav-perceive command line: exit codes, one-line errors, --json,
+// the PNGs per sweep, scoring against semnav-sim's ground truth, and a
+// corrupt rawlog (outputs for the good sweeps, then one line, exit 1).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace
+{
+struct AppRun
+{
+	int code;
+	std::string out, err;
+};
+
+const std::string kSource = SEMNAV_SOURCE_DIR;
+const fs::path kTmp = fs::temp_directory_path() /
+                      ("semnav_perceive_cli_" + std::to_string(::getpid()));
+
+AppRun run(const std::string& app, const std::string& args)
+{
+	fs::create_directories(kTmp);
+	const std::string errFile = (kTmp / "stderr.txt").string();
+	const std::string cmd = std::string(SEMNAV_BINARY_DIR) + "/apps/" + app +
+	                        "/" + app + " " + args + " 2>" + errFile;
+	AppRun r{};
+	FILE* p = ::popen(cmd.c_str(), "r");
+	std::array<char, 4096> buf{};
+	std::size_t n;
+	while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0)
+		r.out.append(buf.data(), n);
+	const int status = ::pclose(p);
+	r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+	std::ifstream e(errFile);
+	r.err.assign(std::istreambuf_iterator<char>(e), {});
+	return r;
+}
+
+std::size_t lines(const std::string& s)
+{
+	return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n'));
+}
+
+/** The outdoor dataset simulated once (7 sweeps). */
+const fs::path& outdoorSim()
+{
+	static const fs::path dir = []
+	{
+		const fs::path d = kTmp / "sim";
+		const AppRun r =
+		    run("semnav-sim", "--scene " + kSource +
+		                          "/datasets/outdoor/outdoor.yaml --out " +
+		                          d.string() + " --seed 1");
+		EXPECT_EQ(r.code, 0) << r.err;
+		return d;
+	}();
+	return dir;
+}
+
+class SemnavPerceiveCli : public ::testing::Test
+{
+protected:
+	static void TearDownTestSuite() { fs::remove_all(kTmp); }
+};
+}  // namespace
+
+TEST_F(SemnavPerceiveCli, BadUsageIsExit2WithOneLine)
+{
+	for (const std::string args :
+	     {"", "--out /tmp/x", "--rawlog a --3dtk b --out /tmp/x", "--rawlog a",
+	      "--bogus"})
+	{
+		const AppRun r = run("semnav-perceive", args);
+		EXPECT_EQ(r.code, 2) << args;
+		EXPECT_EQ(lines(r.err), 1u) << args << ": " << r.err;
+		EXPECT_EQ(r.err.rfind("semnav-perceive: ", 0), 0u) << r.err;
+		EXPECT_TRUE(r.out.empty());
+	}
+	EXPECT_EQ(run("semnav-perceive", "--help").code, 0);
+}
+
+TEST_F(SemnavPerceiveCli, ErrorsAreExit1WithOneLine)
+{
+	AppRun r =
+	    run("semnav-perceive",
+	        "--rawlog /nonexistent.rawlog --out " + (kTmp / "e").string());
+	EXPECT_EQ(r.code, 1);
+	EXPECT_EQ(lines(r.err), 1u) << r.err;
+	EXPECT_NE(r.err.find("/nonexistent.rawlog"), std::string::npos);
+
+	const fs::path ini = kTmp / "bad.ini";
+	fs::create_directories(kTmp);
+	std::ofstream(ini) << "[RuleClassifier]\ndoor_min_width_m = -1\n";
+	r = run(
+	    "semnav-perceive",
+	    "--rawlog " + (outdoorSim() / "outdoor.rawlog").string() + " --out " +
+	        (kTmp / "e").string() + " --config " + ini.string());
+	EXPECT_EQ(r.code, 1);
+	EXPECT_EQ(lines(r.err), 1u) << r.err;
+	EXPECT_NE(r.err.find("door_min_width_m"), std::string::npos) << r.err;
+}
+
+TEST_F(SemnavPerceiveCli, ScoresAgainstGroundTruthAsJson)
+{
+	const fs::path out = kTmp / "out";
+	const AppRun r = run(
+	    "semnav-perceive",
+	    "--rawlog " + (outdoorSim() / "outdoor.rawlog").string() + " --out " +
+	        out.string() + " --gt-dir " + outdoorSim().string() + " --config " +
+	        kSource + "/config/perception.ini --json");
+	ASSERT_EQ(r.code, 0) << r.err;
+	const auto j = nlohmann::json::parse(r.out);
+	EXPECT_EQ(j.at("sweeps").get<int>(), 7);
+	EXPECT_GT(j.at("ms_per_sweep_median").get<double>(), 0.0);
+	EXPECT_TRUE(j.at("objects").is_object());
+	const auto& classes = j.at("classes");
+	for (const char* l : {"wall", "door", "sidewalk", "grass"})
+	{
+		ASSERT_TRUE(classes.contains(l)) << l;
+		const auto& c = classes.at(l);
+		for (const char* k : {"precision", "recall", "f1", "pixels"})
+			EXPECT_TRUE(c.contains(k));
+		EXPECT_GT(c.at("pixels").get<long>(), 0);
+		EXPECT_GT(c.at("f1").get<double>(), 0.8) << l;
+	}
+	EXPECT_FALSE(classes.contains("floor"))
+	    << "outdoor: no floor in truth nor output";
+	// Four images per sweep, the sweep's size (labels and gt with a legend).
+	for (int i = 0; i < 7; i++)
+	{
+		char name[32];
+		std::snprintf(name, sizeof(name), "sweep_%04d", i);
+		const cv::Mat n =
+		    cv::imread((out / (std::string(name) + "_normal.png")).string());
+		ASSERT_FALSE(n.empty()) << name;
+		EXPECT_EQ(n.rows, 211);
+		EXPECT_EQ(n.cols, 361);
+		const cv::Mat s =
+		    cv::imread((out / (std::string(name) + "_segments.png")).string());
+		EXPECT_EQ(s.size(), n.size());
+		const cv::Mat l =
+		    cv::imread((out / (std::string(name) + "_labels.png")).string());
+		EXPECT_GT(l.rows, n.rows);  // legend below
+		EXPECT_TRUE(fs::exists(out / (std::string(name) + "_gt.png")));
+	}
+	// No temporary files left behind by the atomic writes.
+	for (const auto& e : fs::directory_iterator(out))
+		EXPECT_EQ(e.path().extension(), ".png") << e.path();
+}
+
+TEST_F(SemnavPerceiveCli, CorruptRawlogWritesTheGoodSweepsThenFails)
+{
+	const fs::path src = outdoorSim() / "outdoor.rawlog";
+	const fs::path bad = kTmp / "cut.rawlog";
+	{
+		std::ifstream in(src, std::ios::binary);
+		std::string all((std::istreambuf_iterator<char>(in)), {});
+		std::ofstream(bad, std::ios::binary) << all.substr(0, all.size() / 2);
+	}
+	const fs::path out = kTmp / "cut";
+	const AppRun r =
+	    run("semnav-perceive",
+	        "--rawlog " + bad.string() + " --out " + out.string());
+	EXPECT_EQ(r.code, 1);
+	EXPECT_EQ(r.err.rfind("semnav-perceive: "), r.err.find("semnav-perceive: "))
+	    << "one error line: " << r.err;
+	EXPECT_NE(r.err.find("cut.rawlog"), std::string::npos) << r.err;
+	std::size_t labels = 0;
+	for (const auto& e : fs::directory_iterator(out))
+		labels += e.path().string().find("_labels.png") != std::string::npos;
+	EXPECT_GE(labels, 2u);
+	EXPECT_LT(labels, 7u);
+}
+
+TEST_F(SemnavPerceiveCli, ThreeDtkScan)
+{
+	const fs::path scan =
+	    fs::path(kSource) / ".." / "shared" / "data" / "3dtk" / "scan000.3d";
+	if (!fs::exists(scan))
+		GTEST_SKIP() << "3DTK data not found at " << scan.string()
+		             << " (real-scan checks skipped)";
+	const fs::path out = kTmp / "3dtk";
+	const AppRun r =
+	    run("semnav-perceive",
+	        "--3dtk " + scan.string() + " --out " + out.string() + " --json");
+	ASSERT_EQ(r.code, 0) << r.err;
+	EXPECT_EQ(nlohmann::json::parse(r.out).at("sweeps").get<int>(), 1);
+	const cv::Mat n = cv::imread((out / "sweep_0000_normal.png").string());
+	EXPECT_EQ(n.rows, 226);
+	EXPECT_EQ(n.cols, 360);
+}

@@ -1,0 +1,245 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <semnav/common/Error.h>
+#include <semnav/perception/PerceptionPipeline.h>
+
+#include <cmath>
+#include <limits>
+#include <opencv2/core.hpp>
+
+#include "SyntheticScene.h"
+
+using namespace semnav;
+using namespace semnav::test;
+
+namespace
+{
+/** A corridor along +x (walls at y = +-1.2, ceiling 2.6, end wall at
+ * x = 8) with a closed door recessed 2 cm in the left wall (gap x 3..4, a
+ * lintel above it), a box on the floor and a cabinet against the end wall. */
+SynthScene corridor()
+{
+	SynthScene sc;
+	sc.ceiling = 2.6;
+	sc.noise = 0.005;
+	const double H = 2.6;
+	sc.boxes = {
+	    {{-2, -1.3, 0}, {8.1, -1.2, H}, Label::Wall},  // right wall
+	    {{-2, 1.2, 0},
+	     {3.0, 1.3, H},
+	     Label::Wall},  // left wall, before the door
+	    {{4.0, 1.2, 0}, {8.1, 1.3, H}, Label::Wall},    // left wall, after it
+	    {{3.0, 1.2, 2.0}, {4.0, 1.3, H}, Label::Wall},  // lintel
+	    {{8.0, -1.3, 0}, {8.1, 1.3, H}, Label::Wall},   // end wall
+	    {{-2.1, -1.3, 0}, {-2, 1.3, H}, Label::Wall},   // wall behind
+	    {{3.02, 1.22, 0}, {3.98, 1.26, 2.0}, Label::Door},
+	    {{2.0, -0.8, 0}, {2.6, -0.3, 0.7}, Label::Obstacle},
+	    {{7.55, -0.9, 0}, {8.0, 0.3, 1.8}, Label::Obstacle},  // cabinet
+	};
+	return sc;
+}
+
+double noise(double x, double y)
+{
+	// Deterministic bumps of a few cm on a ~10 cm scale (grass).
+	return 0.012 * std::sin(61 * x + 3) * std::cos(53 * y) +
+	       0.01 * std::sin(37 * x + 71 * y) +
+	       0.008 * std::cos(97 * x - 29 * y + 1);
+}
+}  // namespace
+
+TEST(RuleClassifier, CorridorWithADoor)
+{
+	cv::Mat truth;
+	const Sweep sw = renderSweep(corridor(), &truth);
+	PerceptionPipeline pipeline;
+	const LabeledSweep ls = pipeline.process(sw);
+	ASSERT_EQ(ls.labels.size(), truth.size());
+	EXPECT_TRUE(ls.indoor);
+	EXPECT_NEAR(ls.groundZ, 0.0, 0.02);
+	ASSERT_TRUE(ls.ceilingZ.has_value());
+	EXPECT_NEAR(*ls.ceilingZ, 2.6, 0.05);
+
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Floor), 0.95);
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Wall), 0.95);
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Ceiling), 0.95);
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Door), 0.85);
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Obstacle), 0.7);
+
+	// One door region of the door's size, on the left, facing the robot.
+	int doors = 0;
+	for (const auto& reg : ls.regions)
+	{
+		if (reg.label != Label::Door || reg.pixels < 100) continue;
+		doors++;
+		// Seen at ~70 deg from its normal: the far edge's strips may go to
+		// the wall; door-sized in any case.
+		EXPECT_GT(reg.width, 0.6);
+		EXPECT_LT(reg.width, 1.05);
+		EXPECT_NEAR(reg.height, 2.0, 0.1);
+		EXPECT_NEAR(reg.centroid.y, 1.22, 0.05);
+		EXPECT_LT(reg.meanNormal.y, -0.9);
+		EXPECT_LE(reg.minCorner.z, 0.1);
+	}
+	EXPECT_EQ(doors, 1);
+
+	// The cabinet (door-sized, at the floor, walls around it in the image,
+	// but 45 cm off the wall) is no door.
+	std::size_t cabinetDoor = 0, cabinet = 0;
+	for (int r = 0; r < truth.rows; r++)
+		for (int c = 0; c < truth.cols; c++)
+		{
+			const auto p = ls.points.at<cv::Vec3f>(r, c);
+			if (truth.at<uint8_t>(r, c) !=
+			        static_cast<uint8_t>(Label::Obstacle) ||
+			    p[0] < 7.5f)
+				continue;
+			cabinet++;
+			cabinetDoor += ls.label(r, c) == Label::Door;
+		}
+	ASSERT_GT(cabinet, 100u);
+	EXPECT_EQ(cabinetDoor, 0u);
+
+	// Per-region statistics are consistent with the per-pixel images.
+	std::vector<std::size_t> n(ls.regions.size(), 0);
+	for (int r = 0; r < ls.regionIds.rows; r++)
+		for (int c = 0; c < ls.regionIds.cols; c++)
+		{
+			const int id = ls.regionIds.at<int>(r, c);
+			if (id < 0)
+			{
+				EXPECT_TRUE(
+				    ls.label(r, c) == Label::Unknown || !sw.valid(r, c));
+				continue;
+			}
+			ASSERT_LT(id, static_cast<int>(ls.regions.size()));
+			EXPECT_EQ(ls.label(r, c), ls.regions[id].label);
+			n[id]++;
+		}
+	for (const auto& reg : ls.regions) EXPECT_EQ(n[reg.id], reg.pixels);
+}
+
+TEST(RuleClassifier, SidewalkAndGrassByRoughness)
+{
+	// No ceiling: outdoor. A smooth path along x between rough grass, and a
+	// building wall ahead.
+	SynthScene sc;
+	sc.noise = 0.005;
+	auto onPath = [](double, double y) { return std::abs(y) < 1.0; };
+	sc.height = [onPath](double x, double y)
+	{ return onPath(x, y) ? 0.0005 * std::sin(13 * x) : 2.5 * noise(x, y); };
+	sc.groundLabel = [onPath](double x, double y)
+	{ return onPath(x, y) ? Label::Sidewalk : Label::Grass; };
+	sc.boxes.push_back({{7, -6, 0}, {7.3, 6, 3.0}, Label::Wall});
+	cv::Mat truth;
+	const Sweep sw = renderSweep(sc, &truth);
+	PerceptionPipeline pipeline;
+	const LabeledSweep ls = pipeline.process(sw);
+	EXPECT_FALSE(ls.indoor);
+	EXPECT_FALSE(ls.ceilingZ.has_value());
+	// (Far squares are the weak part: no normals there, and at grazing
+	// angles only the tops of the bumps are seen, so the heights spread
+	// less; ~0.84 / 0.91 measured.)
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Sidewalk), 0.8);
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Grass), 0.85);
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Wall), 0.9);
+	EXPECT_EQ(ls.count(Label::Floor), 0u);
+
+	// Forced indoor: the same ground is floor.
+	PerceptionPipeline::TOptions o;
+	o.classifier.environment = RuleClassifier::TOptions::Environment::Indoor;
+	PerceptionPipeline indoor(o);
+	const LabeledSweep li = indoor.process(sw);
+	EXPECT_TRUE(li.indoor);
+	EXPECT_EQ(li.count(Label::Sidewalk) + li.count(Label::Grass), 0u);
+	EXPECT_GT(li.count(Label::Floor), ls.count(Label::Sidewalk));
+}
+
+TEST(RuleClassifier, GroundLevelIsEstimated)
+{
+	// Floor 40 cm below the robot frame's z = 0 (a sensor-frame scan such
+	// as 3DTK's): found automatically; with a fixed ground_z_m = 0 the
+	// floor is not recognised.
+	SynthScene sc = boxRoom(-3, 5, -2, 2.5, 2.5);
+	sc.height = [](double, double) { return -0.4; };
+	sc.noise = 0.005;
+	cv::Mat truth;
+	const Sweep sw = renderSweep(sc, &truth);
+	PerceptionPipeline automatic;
+	const LabeledSweep a = automatic.process(sw);
+	EXPECT_TRUE(a.groundEstimated);
+	EXPECT_NEAR(a.groundZ, -0.4, 0.02);
+	EXPECT_GE(pixelF1(a.labels, truth, sw, Label::Floor), 0.95);
+
+	PerceptionPipeline::TOptions o;
+	o.classifier.autoGroundLevel = false;
+	PerceptionPipeline fixed(o);
+	const LabeledSweep f = fixed.process(sw);
+	EXPECT_FALSE(f.groundEstimated);
+	EXPECT_DOUBLE_EQ(f.groundZ, 0.0);
+	EXPECT_LT(pixelF1(f.labels, truth, sw, Label::Floor), 0.5);
+}
+
+TEST(RuleClassifier, BadInputGivesAClearEmptyResult)
+{
+	PerceptionPipeline pipeline;
+	SynthScene one = boxRoom(-3, 5, -2, 2.5, 2.5);
+	one.thetaMinDeg = one.thetaMaxDeg = 0;
+	Sweep nanSweep = renderSweep(boxRoom(-3, 5, -2, 2.5, 2.5));
+	for (std::size_t r = 0; r < nanSweep.rows(); r++)
+		for (std::size_t c = 0; c < nanSweep.cols(); c++)
+			nanSweep.setRange(
+			    r, c, std::numeric_limits<float>::quiet_NaN(), true);
+	const std::vector<Sweep> bad = {
+	    Sweep(), Sweep(211, 361), nanSweep, renderSweep(one)};
+	for (const Sweep& sw : bad)
+	{
+		LabeledSweep ls;
+		ASSERT_NO_THROW(pipeline.process(sw, ls));
+		EXPECT_EQ(ls.labels.rows, static_cast<int>(sw.rows()));
+		EXPECT_EQ(ls.labels.cols, static_cast<int>(sw.cols()));
+		if (sw.validCount() == 0 || sw.rows() == 0)
+		{
+			EXPECT_EQ(cv::countNonZero(ls.labels), 0);
+			EXPECT_TRUE(ls.regions.empty());
+		}
+		EXPECT_GE(pipeline.lastTimings().total, 0.0);
+	}
+	// The 1-row sweep has no normals: its pixels are labelled by height
+	// only (walls around are "above the ground": obstacle), none is a door
+	// or a wall (those need surfaces).
+	LabeledSweep row;
+	pipeline.process(renderSweep(one), row);
+	EXPECT_EQ(row.count(Label::Wall) + row.count(Label::Door), 0u);
+}
+
+TEST(RuleClassifier, OptionsAreCheckedAndRoundTrip)
+{
+	RuleClassifier::TOptions o;
+	o.doorMinWidth = 0.8;
+	o.environment = RuleClassifier::TOptions::Environment::Outdoor;
+	o.wallNormalTolerance = 12 * M_PI / 180;
+	mrpt::config::CConfigFileMemory cfg;
+	o.saveToConfigFile(cfg, "RuleClassifier");
+	RuleClassifier::TOptions back;
+	back.loadFromConfigFile(cfg, "RuleClassifier");
+	EXPECT_DOUBLE_EQ(back.doorMinWidth, 0.8);
+	EXPECT_EQ(back.environment, RuleClassifier::TOptions::Environment::Outdoor);
+	EXPECT_NEAR(back.wallNormalTolerance, o.wallNormalTolerance, 1e-12);
+
+	auto expectBad = [](const char* key, const char* value)
+	{
+		mrpt::config::CConfigFileMemory c;
+		c.write("RuleClassifier", key, std::string(value));
+		RuleClassifier::TOptions t;
+		EXPECT_THROW(t.loadFromConfigFile(c, "RuleClassifier"), ConfigError)
+		    << key;
+	};
+	expectBad("door_width_m", "1");           // unknown key
+	expectBad("environment", "space");        // not an enum value
+	expectBad("ground_tolerance_m", "-0.1");  // out of range
+	expectBad("door_min_width_m", "3");       // above door_max_width_m
+	expectBad("min_surface_px", "2.5");       // not an integer
+	expectBad("classify_leftover_pixels", "maybe");
+}
