@@ -127,6 +127,12 @@ TEST(TraversabilityBuilder, UnobservedCellsAndBadInput)
 	occ[g.index(15, 15)] = CellOccupancy::Unknown;
 	TraversabilityBuilder::TOptions o;
 	o.robotRadius = 0.1;
+	// By default an unseen cell is not entered but not inflated either.
+	const auto plain = TraversabilityBuilder(o).build(g, {}, occ);
+	EXPECT_TRUE(plain.blocked(15, 15));
+	EXPECT_FALSE(plain.blocked(15, 16));
+	EXPECT_EQ(plain.blockedCount(), 1u);
+	o.inflateUnobserved = true;
 	EXPECT_TRUE(TraversabilityBuilder(o).build(g, {}, occ).blocked(15, 17));
 	o.uUnobserved = 0.2;
 	const auto u = TraversabilityBuilder(o).build(g, {}, occ);

@@ -105,6 +105,7 @@ const std::vector<std::string>& TraversabilityBuilder::TOptions::knownKeys()
 		    "safe_radius_m",
 		    "safe_ring_cost",
 		    "u_unobserved",
+		    "inflate_unobserved",
 		    "goal_reach_m"};
 		for (Label l : allLabels()) k.push_back("u_" + labelName(l));
 		for (Label l : allLabels()) k.push_back("r_scale_" + labelName(l));
@@ -133,6 +134,8 @@ void TraversabilityBuilder::TOptions::loadFromConfigFile(
 	o.safeRingCost =
 	    readCost(c, s, "safe_ring_cost", rescale(safeRingCost), o.L);
 	o.uUnobserved = readCost(c, s, "u_unobserved", rescale(uUnobserved), o.L);
+	o.inflateUnobserved =
+	    readCheckedBool(c, s, "inflate_unobserved", inflateUnobserved);
 	o.goalReach = readChecked(c, s, "goal_reach_m", goalReach, 0, 10);
 	for (Label l : allLabels())
 	{
@@ -158,6 +161,7 @@ void TraversabilityBuilder::TOptions::saveToConfigFile(
 	c.write(s, "safe_radius_m", num(safeRadius));
 	c.write(s, "safe_ring_cost", costText(safeRingCost, L));
 	c.write(s, "u_unobserved", costText(uUnobserved, L));
+	c.write(s, "inflate_unobserved", std::string(inflateUnobserved ? "true" : "false"));
 	c.write(s, "goal_reach_m", num(goalReach));
 	for (Label l : allLabels())
 		c.write(
@@ -253,19 +257,26 @@ TraversabilityGrid TraversabilityBuilder::buildImpl(
 		scale[i] = std::max(scale[i], v);
 		if (scale[i] == 0.f) scale[i] = v;
 	};
+	// Unobserved cells that are blocked but not inflated.
+	std::vector<uint8_t> notEnterable(n, 0);
+	const bool inflateUnknown = m_options.inflateUnobserved;
 	for (std::size_t i = 0; i < n; i++)
 	{
 		double ui = 0;
+		const bool unknown =
+		    !occupancy.empty() && occupancy[i] == CellOccupancy::Unknown;
 		if (!occupancy.empty())
 		{
 			if (occupancy[i] == CellOccupancy::Occupied)
 				markObstacle(i, 1);
-			else if (occupancy[i] == CellOccupancy::Unknown)
+			else if (unknown)
 			{
-				if (m_options.uUnobserved >= L)
+				if (m_options.uUnobserved < L)
+					ui = std::max(ui, m_options.uUnobserved);
+				else if (inflateUnknown)
 					markObstacle(i, 1);
 				else
-					ui = std::max(ui, m_options.uUnobserved);
+					notEnterable[i] = 1;
 			}
 		}
 		const auto mask = labels.empty() ? 0u : labels[i].mask();
@@ -282,7 +293,10 @@ TraversabilityGrid TraversabilityBuilder::buildImpl(
 						labelled = true;
 						s = std::max(s, m_options.labelRadiusScale[k]);
 					}
-				markObstacle(i, labelled ? s : 1);
+				if (!labelled && unknown && !inflateUnknown)
+					notEnterable[i] = 1;  // lethal only for being unseen
+				else
+					markObstacle(i, labelled ? s : 1);
 			}
 			else
 				ui = std::max(ui, static_cast<double>((*baseU)[i]));
@@ -296,7 +310,7 @@ TraversabilityGrid TraversabilityBuilder::buildImpl(
 				else
 					ui = std::max(ui, cost[k]);
 			}
-		u[i] = scale[i] != 0.f ? L : ui;
+		u[i] = scale[i] != 0.f || notEnterable[i] ? L : ui;
 	}
 
 	// Influence around obstacles: only obstacle cells with a free

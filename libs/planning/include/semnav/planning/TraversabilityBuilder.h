@@ -85,6 +85,11 @@ public:
 		double safeRingCost = 1.0;
 		/** u_unobserved: u of never-observed cells (default blocked). */
 		double uUnobserved = kBlocked;
+		/** inflate_unobserved: a blocked unobserved cell is an obstacle
+		 * inflated like the others (true) or only not enterable (false: a
+		 * robot may pass next to space it has not seen, e.g. the laser's
+		 * blind zone around its own stops). */
+		bool inflateUnobserved = false;
 		/** goal_reach_m: goal regions extend this far beyond the closest
 		 * allowed clearance (see goalRegionRadius()). */
 		double goalReach = 0.30;

@@ -1,0 +1,31 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+
+#include <semnav/map/SemanticMap.h>
+
+#include <string>
+
+namespace semnav
+{
+/** Reads and writes the map directory of DESIGN.md.
+ *
+ * `map.yaml` has the ROS map_server keys (image, resolution, origin,
+ * occupied_thresh, free_thresh, negate) plus a `semnav:` section with the
+ * layer files, the object list and the number of sweeps. Images have
+ * map_server's orientation (row 0 = the largest y). Files:
+ * occupancy.png (map_server trinary: 0 occupied, 254 free, 205 unknown,
+ * otherwise 255 (1 - p)), labels.png (16-bit LabelSet mask), objects.png
+ * (16-bit instance id), cost.png (16-bit, u / L * 65535), map.png (colour
+ * rendering), octomap.bt, and under layers/ the exact state (log-odds
+ * occupancy and every float layer as PFM) so that load(save(m)) == m.
+ * Every file is written atomically. */
+class MapIO
+{
+   public:
+	static void save(const SemanticMap& map, const std::string& dir);
+	/** Loads into `map` (whose options are kept); throws IoError naming the
+	 * file (and the line for map.yaml) on anything missing or corrupt. */
+	static void load(const std::string& dir, SemanticMap& map);
+};
+
+}  // namespace semnav

@@ -1,0 +1,23 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+
+#include <opencv2/core/mat.hpp>
+#include <semnav/common/Label.h>
+#include <semnav/map/SemanticMap.h>
+
+namespace semnav
+{
+/** Draws a SemanticMap like the paper's Fig. 4: white floor and unknown
+ * area, black walls and other obstacles, one colour per object label
+ * (door, stairs, washbasin, wastebasket, ...), north (+y) up, with a legend
+ * and a 1 m scale bar. */
+class MapRenderer
+{
+   public:
+	/** BGR image; each cell is `pixelsPerCell` pixels wide. */
+	static cv::Mat render(const SemanticMap& map, int pixelsPerCell = 3);
+	/** BGR colour of a label in renderings. */
+	static cv::Scalar labelColor(Label l);
+};
+
+}  // namespace semnav

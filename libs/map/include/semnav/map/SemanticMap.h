@@ -1,0 +1,209 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/maps/COccupancyGridMap2D.h>
+#include <mrpt/math/TPoint2D.h>
+#include <mrpt/poses/CPose2D.h>
+#include <mrpt/system/COutputLogger.h>
+#include <semnav/common/LabelSet.h>
+#include <semnav/common/GridGeometry.h>
+#include <semnav/map/ObjectInstance.h>
+#include <semnav/map/TravelCostModel.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace octomap
+{
+class OcTree;
+}
+
+namespace semnav
+{
+class Sweep;
+class LabeledSweep;
+
+/** The semantic map: one grid geometry shared by named layers, in the
+ * spirit of grid_map's GridMap.
+ *
+ * - occupancy: an mrpt::maps::COccupancyGridMap2D (log-odds), always the
+ *   same geometry as the layers;
+ * - float layers by name: "labels" (LabelSet bitmask per cell: the paper's
+ *   list of labels of a cell), "cost" (travel cost u, TravelCostModel),
+ *   "objects" (instance id, 0 = none), "roughness" (mean R-bar of ground
+ *   points), "observations" (times the cell was seen: 0 = unknown), plus
+ *   any layer a user adds;
+ * - object instances merged across sweeps;
+ * - an OctoMap of all points at the map's resolution.
+ *
+ * Sweeps are inserted at a robot pose; the grid grows to hold what is seen.
+ * World frame: x, y on the floor, z up. */
+class SemanticMap : public mrpt::system::COutputLogger
+{
+   public:
+	struct TOptions : public mrpt::config::CLoadableOptions
+	{
+		void loadFromConfigFile(
+			const mrpt::config::CConfigFileBase& c,
+			const std::string& section) override;
+		void saveToConfigFile(
+			mrpt::config::CConfigFileBase& c,
+			const std::string& section) const override;
+
+		double resolution = 0.05;
+		/** Extra room added around new points when the grid grows (m). */
+		double growMargin = 2.0;
+		/** Points from floor + obstacleMinHeight to robotHeight are
+		 * obstacles (m). */
+		double obstacleMinHeight = 0.02;
+		double robotHeight = 1.0;
+		/** The robot's footprint radius: the cells it stands on are free
+		 * (the laser cannot see them) (m). */
+		double robotRadius = 0.3;
+		/** Occupancy update per sweep for a hit / a free cell. */
+		double hitProbability = 0.8;
+		double freeProbability = 0.35;
+		/** cellState() thresholds on the occupancy probability. */
+		double occupiedThreshold = 0.65;
+		double freeThreshold = 0.35;
+		/** Detections of one label closer than this are one object (m). */
+		double mergeDistance = 0.6;
+		/** Objects seen fewer times are not reported (one-off detections). */
+		int minObservations = 1;
+		/** Doors whose merged extent is lower than this are not reported
+		 * (fragments of walls or furniture taken for a door) (m). */
+		double doorMinHeight = 1.2;
+		/** Insert points into the OctoMap. */
+		bool octomap = true;
+		TravelCostModel::TOptions cost;
+	};
+
+	enum class CellState
+	{
+		Unknown,
+		Free,
+		Occupied
+	};
+
+	SemanticMap();
+	explicit SemanticMap(const TOptions& options);
+	~SemanticMap() override;
+	SemanticMap(const SemanticMap&) = delete;
+	SemanticMap& operator=(const SemanticMap&) = delete;
+
+	// ---- geometry -------------------------------------------------------
+	const GridGeometry& geometry() const { return m_geometry; }
+	/** Cell of a world point; false outside the map. */
+	bool worldToCell(double x, double y, int& cx, int& cy) const
+	{
+		return m_geometry.worldToCell(x, y, cx, cy);
+	}
+	/** Centre of a cell; false outside the map. */
+	bool cellToWorld(int cx, int cy, double& x, double& y) const
+	{
+		return m_geometry.cellToWorld(cx, cy, x, y);
+	}
+	/** Grows the grid (all layers) to hold the box; contents kept. */
+	void growToInclude(double xmin, double ymin, double xmax, double ymax);
+
+	// ---- layers ---------------------------------------------------------
+	bool exists(const std::string& layer) const;
+	/** Adds a layer filled with `value` (no-op if it exists). */
+	void add(const std::string& layer, float value = 0.0f);
+	/** Throws Error if the layer does not exist. */
+	const std::vector<float>& get(const std::string& layer) const;
+	std::vector<float>& get(const std::string& layer);
+	float at(const std::string& layer, int cx, int cy) const
+	{
+		return get(layer)[m_geometry.index(cy, cx)];
+	}
+	float& at(const std::string& layer, int cx, int cy)
+	{
+		return get(layer)[m_geometry.index(cy, cx)];
+	}
+	std::vector<std::string> layers() const;
+
+	LabelSet labels(int cx, int cy) const;
+	double cost(int cx, int cy) const { return at("cost", cx, cy); }
+	int objectId(int cx, int cy) const
+	{
+		return static_cast<int>(at("objects", cx, cy));
+	}
+	/** Occupancy probability (0.5 for a cell never seen). */
+	double occupancy(int cx, int cy) const;
+	CellState cellState(int cx, int cy) const;
+
+	const mrpt::maps::COccupancyGridMap2D& occupancyGrid() const
+	{
+		return m_occupancy;
+	}
+	mrpt::maps::COccupancyGridMap2D& occupancyGrid() { return m_occupancy; }
+
+	// ---- insertion ------------------------------------------------------
+	/** Inserts a classified sweep taken at `robotPose` (world frame). */
+	void insert(
+		const Sweep& sweep, const LabeledSweep& labeled,
+		const mrpt::poses::CPose2D& robotPose);
+	/** Recomputes the cost layer of every cell from its labels, roughness
+	 * and occupancy. */
+	void updateCosts();
+	std::size_t sweepsInserted() const { return m_sweeps; }
+
+	// ---- objects --------------------------------------------------------
+	/** All instances, including those below minObservations. */
+	const std::vector<ObjectInstance>& allInstances() const
+	{
+		return m_instances;
+	}
+	/** True when an instance passes the reporting rules (observations,
+	 * plausible size). */
+	bool reported(const ObjectInstance& o) const;
+	/** Instances that pass the reporting rules. */
+	std::vector<ObjectInstance> instances() const;
+	std::vector<ObjectInstance> instances(Label label) const;
+	/** Throws Error for an unknown id. */
+	const ObjectInstance& instance(int id) const;
+	/** Nearest reported instance of `label` to a point (Euclidean), or
+	 * nullptr. */
+	const ObjectInstance* nearestInstance(
+		Label label, const mrpt::math::TPoint2D& p) const;
+	/** Cells whose "objects" layer holds the instance. */
+	std::vector<std::pair<int, int>> cellsOf(int id) const;
+	/** Goal region of an instance: free cells within `reach` metres of its
+	 * cells (for a door: the free cells in front of and behind it). */
+	std::vector<std::pair<int, int>> goalRegion(int id, double reach) const;
+
+	// ---- 3D -------------------------------------------------------------
+	const octomap::OcTree& octree() const { return *m_octree; }
+	octomap::OcTree& octree() { return *m_octree; }
+
+	const TOptions& options() const { return m_options; }
+	const TravelCostModel& costModel() const { return m_costModel; }
+
+	/** Replaces the contents (used by the loader). */
+	void restore(
+		const GridGeometry& g, std::map<std::string, std::vector<float>> layers,
+		const std::vector<int8_t>& logodds, std::vector<ObjectInstance> objs,
+		std::size_t sweeps);
+
+   private:
+	void mergeObject(
+		Label label, const mrpt::math::TPoint3D& centroid,
+		const mrpt::math::TPoint3D& minCorner,
+		const mrpt::math::TPoint3D& maxCorner, std::vector<int>& seenThisSweep,
+		int& id);
+
+	TOptions m_options;
+	TravelCostModel m_costModel;
+	GridGeometry m_geometry;
+	std::map<std::string, std::vector<float>> m_layers;
+	mrpt::maps::COccupancyGridMap2D m_occupancy;
+	std::vector<ObjectInstance> m_instances;
+	std::unique_ptr<octomap::OcTree> m_octree;
+	std::size_t m_sweeps = 0;
+};
+
+}  // namespace semnav

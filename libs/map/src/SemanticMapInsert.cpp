@@ -1,0 +1,300 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// SemanticMap::insert(): projects a classified sweep into the grid layers,
+// the occupancy grid, the object instances and the OctoMap.
+#include <mrpt/poses/CPose3D.h>
+#include <octomap/OcTree.h>
+#include <semnav/map/SemanticMap.h>
+#include <semnav/perception/LabeledSweep.h>
+#include <semnav/scan/Sweep.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace semnav
+{
+namespace
+{
+bool isGround(Label l)
+{
+	return l == Label::Floor || l == Label::Sidewalk || l == Label::Grass;
+}
+
+/** Calls f(cx, cy) for the cells of the segment (x0,y0)-(x1,y1) (Bresenham,
+ * both ends included). */
+template <typename F>
+void traceLine(int x0, int y0, int x1, int y1, F&& f)
+{
+	const int dx = std::abs(x1 - x0), sx = x0 < x1 ? 1 : -1;
+	const int dy = -std::abs(y1 - y0), sy = y0 < y1 ? 1 : -1;
+	int err = dx + dy;
+	for (;;)
+	{
+		f(x0, y0);
+		if (x0 == x1 && y0 == y1) break;
+		const int e2 = 2 * err;
+		if (e2 >= dy)
+		{
+			err += dy;
+			x0 += sx;
+		}
+		if (e2 <= dx)
+		{
+			err += dx;
+			y0 += sy;
+		}
+	}
+}
+
+struct WorldPoint
+{
+	float x, y, z;
+	float height;  // above the floor
+	int r, c;
+};
+}  // namespace
+
+void SemanticMap::insert(
+	const Sweep& sweep, const LabeledSweep& ls,
+	const mrpt::poses::CPose2D& robotPose)
+{
+	const mrpt::poses::CPose3D robot(
+		robotPose.x(), robotPose.y(), 0, robotPose.phi(), 0, 0);
+	const int rows = ls.points.rows, cols = ls.points.cols;
+
+	// World points of the valid pixels.
+	std::vector<WorldPoint> pts;
+	pts.reserve(static_cast<std::size_t>(rows) * cols);
+	double xmin = robotPose.x(), xmax = xmin, ymin = robotPose.y(),
+		   ymax = ymin;
+	for (int r = 0; r < rows; r++)
+		for (int c = 0; c < cols; c++)
+		{
+			if (!ls.validMask.empty() && !ls.validMask.at<uint8_t>(r, c))
+				continue;
+			const auto& p = ls.points.at<cv::Vec3f>(r, c);
+			if (!std::isfinite(p[0]) || !std::isfinite(p[1]) ||
+				!std::isfinite(p[2]))
+				continue;
+			double wx, wy, wz;
+			robot.composePoint(p[0], p[1], p[2], wx, wy, wz);
+			pts.push_back(
+				{static_cast<float>(wx), static_cast<float>(wy),
+				 static_cast<float>(wz),
+				 static_cast<float>(p[2] - ls.groundZ), r, c});
+			xmin = std::min(xmin, wx);
+			xmax = std::max(xmax, wx);
+			ymin = std::min(ymin, wy);
+			ymax = std::max(ymax, wy);
+		}
+	growToInclude(xmin, ymin, xmax, ymax);
+	const GridGeometry& g = m_geometry;
+
+	// Sensor position on the grid (rays start there).
+	double sx = robotPose.x(), sy = robotPose.y(), sz = 0;
+	if (sweep.rows() > 0)
+	{
+		const auto& sp = sweep.sensorPose(sweep.rows() / 2);
+		robot.composePoint(sp.x(), sp.y(), sp.z(), sx, sy, sz);
+	}
+	int scx, scy;
+	worldToCell(sx, sy, scx, scy);
+
+	// Per-sweep evidence.
+	std::vector<uint8_t> hit(g.cellCount(), 0), freeEnd(g.cellCount(), 0),
+		seenFree(g.cellCount(), 0);
+	auto& labelLayer = get("labels");
+	auto& roughLayer = get("roughness");
+	auto& obsLayer = get("observations");
+	std::vector<float> roughSum(g.cellCount(), 0.0f);
+	std::vector<uint16_t> roughN(g.cellCount(), 0);
+	std::vector<int> cellOfPixel(static_cast<std::size_t>(rows) * cols, -1);
+	for (const auto& p : pts)
+	{
+		int cx, cy;
+		if (!worldToCell(p.x, p.y, cx, cy)) continue;
+		const std::size_t i = g.index(cy, cx);
+		cellOfPixel[static_cast<std::size_t>(p.r) * cols + p.c] =
+			static_cast<int>(i);
+		const Label l = ls.label(static_cast<std::size_t>(p.r), static_cast<std::size_t>(p.c));
+		if (l != Label::Unknown)
+		{
+			LabelSet s(static_cast<LabelSet::mask_t>(labelLayer[i]));
+			s.insert(l);
+			labelLayer[i] = s.mask();
+		}
+		if (isGround(l) || p.height < m_options.obstacleMinHeight)
+		{
+			freeEnd[i] = 1;
+			if (!ls.roughnessBar.empty())
+			{
+				const float rb = ls.roughnessBar.at<float>(p.r, p.c);
+				if (std::isfinite(rb))
+				{
+					roughSum[i] += rb;
+					roughN[i]++;
+				}
+			}
+		}
+		else if (p.height <= m_options.robotHeight && l != Label::Ceiling)
+			hit[i] = 1;
+	}
+
+	// Free space: the rays from the sensor to every ground cell seen.
+	for (int cy = 0; cy < g.rows; cy++)
+		for (int cx = 0; cx < g.cols; cx++)
+			if (freeEnd[g.index(cy, cx)])
+				traceLine(scx, scy, cx, cy, [&](int x, int y) {
+					if (g.contains(y, x)) seenFree[g.index(y, x)] = 1;
+				});
+
+	// The robot stands on its footprint: free, though the laser cannot
+	// see it.
+	const int rr = static_cast<int>(std::ceil(m_options.robotRadius / g.resolution));
+	int rcx, rcy;
+	worldToCell(robotPose.x(), robotPose.y(), rcx, rcy);
+	for (int dy = -rr; dy <= rr; dy++)
+		for (int dx = -rr; dx <= rr; dx++)
+		{
+			double x, y;
+			if (!cellToWorld(rcx + dx, rcy + dy, x, y)) continue;
+			if (std::hypot(x - robotPose.x(), y - robotPose.y()) <= m_options.robotRadius)
+				seenFree[g.index(rcy + dy, rcx + dx)] = 1;
+		}
+
+	const float pHit = static_cast<float>(m_options.hitProbability);
+	const float pFree = static_cast<float>(m_options.freeProbability);
+	for (int cy = 0; cy < g.rows; cy++)
+		for (int cx = 0; cx < g.cols; cx++)
+		{
+			const std::size_t i = g.index(cy, cx);
+			if (hit[i]) m_occupancy.updateCell(cx, cy, pHit);
+			else if (seenFree[i])
+				m_occupancy.updateCell(cx, cy, pFree);
+			else
+				continue;
+			obsLayer[i] += 1;
+			if (roughN[i])
+			{
+				const float mean = roughSum[i] / roughN[i];
+				const float prev = roughLayer[i];
+				roughLayer[i] =
+					std::isnan(prev) ? mean : 0.5f * (prev + mean);
+			}
+		}
+
+	// Objects: detections and door regions, merged into instances.
+	auto& objLayer = get("objects");
+	std::vector<int> seenThisSweep;
+	auto toWorldBox = [&](const mrpt::math::TPoint3D& a,
+						  const mrpt::math::TPoint3D& b,
+						  mrpt::math::TPoint3D& lo, mrpt::math::TPoint3D& hi) {
+		lo = {1e18, 1e18, 1e18};
+		hi = {-1e18, -1e18, -1e18};
+		for (int k = 0; k < 8; k++)
+		{
+			double x, y, z;
+			robot.composePoint(
+				(k & 1) ? b.x : a.x, (k & 2) ? b.y : a.y, (k & 4) ? b.z : a.z,
+				x, y, z);
+			lo = {std::min(lo.x, x), std::min(lo.y, y), std::min(lo.z, z)};
+			hi = {std::max(hi.x, x), std::max(hi.y, y), std::max(hi.z, z)};
+		}
+	};
+	auto paint = [&](int id, const cv::Rect& box, auto&& belongs) {
+		const cv::Rect clip = box & cv::Rect(0, 0, cols, rows);
+		for (int r = clip.y; r < clip.y + clip.height; r++)
+			for (int c = clip.x; c < clip.x + clip.width; c++)
+			{
+				const int i = cellOfPixel[static_cast<std::size_t>(r) * cols + c];
+				if (i >= 0 && belongs(r, c)) objLayer[static_cast<std::size_t>(i)] = static_cast<float>(id);
+			}
+	};
+	for (const auto& d : ls.detections)
+	{
+		const mrpt::math::TPoint3D half{d.extent.x / 2, d.extent.y / 2, d.extent.z / 2};
+		mrpt::math::TPoint3D lo, hi, wc;
+		toWorldBox(d.centroid - half, d.centroid + half, lo, hi);
+		robot.composePoint(d.centroid, wc);
+		int id = 0;
+		mergeObject(d.label, wc, lo, hi, seenThisSweep, id);
+		paint(id, d.imageBox, [&](int r, int c) {
+			return ls.label(static_cast<std::size_t>(r), static_cast<std::size_t>(c)) == d.label;
+		});
+	}
+	for (const auto& reg : ls.regions)
+	{
+		if (reg.label != Label::Door) continue;
+		mrpt::math::TPoint3D lo, hi, wc;
+		toWorldBox(reg.minCorner, reg.maxCorner, lo, hi);
+		robot.composePoint(reg.centroid, wc);
+		int id = 0;
+		mergeObject(Label::Door, wc, lo, hi, seenThisSweep, id);
+		paint(id, reg.imageBox, [&](int r, int c) {
+			return ls.regionIds.at<int32_t>(r, c) == reg.id;
+		});
+	}
+
+	// 3D: every point into the OctoMap (endpoints; free space stays 2D).
+	if (m_options.octomap)
+	{
+		for (const auto& p : pts)
+			m_octree->updateNode(octomap::point3d(p.x, p.y, p.z), true, true);
+		m_octree->updateInnerOccupancy();
+	}
+
+	updateCosts();
+	m_sweeps++;
+}
+
+void SemanticMap::mergeObject(
+	Label label, const mrpt::math::TPoint3D& centroid,
+	const mrpt::math::TPoint3D& minCorner, const mrpt::math::TPoint3D& maxCorner,
+	std::vector<int>& seenThisSweep, int& id)
+{
+	ObjectInstance* best = nullptr;
+	double bestD = m_options.mergeDistance;
+	for (auto& o : m_instances)
+	{
+		if (o.label != label) continue;
+		const double d =
+			std::hypot(o.centroid.x - centroid.x, o.centroid.y - centroid.y);
+		if (d < bestD)
+		{
+			bestD = d;
+			best = &o;
+		}
+	}
+	if (!best)
+	{
+		ObjectInstance o;
+		o.id = static_cast<int>(m_instances.size()) + 1;
+		o.label = label;
+		o.centroid = centroid;
+		o.minCorner = minCorner;
+		o.maxCorner = maxCorner;
+		o.observations = 1;
+		m_instances.push_back(o);
+		seenThisSweep.push_back(o.id);
+		id = o.id;
+		return;
+	}
+	const bool again = std::find(seenThisSweep.begin(), seenThisSweep.end(),
+								 best->id) != seenThisSweep.end();
+	if (!again)
+	{
+		const double n = static_cast<double>(best->observations);
+		best->centroid = (best->centroid * n + centroid) * (1.0 / (n + 1));
+		best->observations++;
+		seenThisSweep.push_back(best->id);
+	}
+	best->minCorner = {std::min(best->minCorner.x, minCorner.x),
+					   std::min(best->minCorner.y, minCorner.y),
+					   std::min(best->minCorner.z, minCorner.z)};
+	best->maxCorner = {std::max(best->maxCorner.x, maxCorner.x),
+					   std::max(best->maxCorner.y, maxCorner.y),
+					   std::max(best->maxCorner.z, maxCorner.z)};
+	id = best->id;
+}
+
+}  // namespace semnav

@@ -1,0 +1,186 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <gtest/gtest.h>
+#include <octomap/OcTree.h>
+#include <semnav/common/Error.h>
+#include <semnav/map/MapIO.h>
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+#include "MapTestUtils.h"
+
+using namespace semnav;
+using semnav::test::floorFan;
+using semnav::test::makeFakeSweep;
+namespace fs = std::filesystem;
+
+namespace
+{
+fs::path tempDir(const std::string& name)
+{
+	const fs::path d = fs::temp_directory_path() / ("semnav_" + name + "_" + std::to_string(::getpid()));
+	fs::remove_all(d);
+	return d;
+}
+
+/** A small map: floor, a box, a ceiling point, a wastebasket detection. */
+void buildMap(SemanticMap& m)
+{
+	auto pts = floorFan(3.0);
+	for (double y = -0.3; y <= 0.3; y += 0.02) pts.push_back({2.5, y, 0.3, Label::Obstacle});
+	pts.push_back({1.0, 0.0, 2.5, Label::Ceiling});
+	auto f = makeFakeSweep(pts);
+	Detection d;
+	d.label = Label::Wastebasket;
+	d.imageBox = cv::Rect(0, 0, 3, 1);
+	d.centroid = {1.5, 0.8, 0.2};
+	d.extent = {0.3, 0.3, 0.4};
+	f.labeled.detections = {d};
+	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(1, 1, 0.3));
+	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(1.2, 1, 0.35));
+}
+
+/** What ROS map_server does with map.yaml and its image (trinary mode). */
+struct MapServerMap
+{
+	double resolution, originX, originY;
+	int width, height;
+	std::vector<int8_t> data;  // row-major from the bottom row: 100 occ, 0 free, -1 unknown
+};
+MapServerMap loadLikeMapServer(const fs::path& yamlPath)
+{
+	const YAML::Node y = YAML::LoadFile(yamlPath.string());
+	MapServerMap m;
+	m.resolution = y["resolution"].as<double>();
+	m.originX = y["origin"][0].as<double>();
+	m.originY = y["origin"][1].as<double>();
+	const double occ = y["occupied_thresh"].as<double>(), free = y["free_thresh"].as<double>();
+	const bool negate = y["negate"].as<int>() != 0;
+	const cv::Mat img = cv::imread((yamlPath.parent_path() / y["image"].as<std::string>()).string(), cv::IMREAD_GRAYSCALE);
+	m.width = img.cols;
+	m.height = img.rows;
+	for (int j = 0; j < img.rows; j++)
+		for (int i = 0; i < img.cols; i++)
+		{
+			const int v = img.at<uint8_t>(img.rows - 1 - j, i);
+			const double p = negate ? v / 255.0 : (255.0 - v) / 255.0;
+			m.data.push_back(p > occ ? 100 : p < free ? 0 : -1);
+		}
+	return m;
+}
+}  // namespace
+
+TEST(MapIO, SaveThenLoadGivesTheSameMap)
+{
+	SemanticMap a;
+	buildMap(a);
+	const auto dir = tempDir("mapio_rt");
+	MapIO::save(a, dir.string());
+	for (const char* f : {"map.yaml", "occupancy.png", "labels.png", "cost.png", "objects.png", "map.png", "octomap.bt"})
+		EXPECT_TRUE(fs::exists(dir / f)) << f;
+
+	SemanticMap b;
+	MapIO::load(dir.string(), b);
+	EXPECT_EQ(b.geometry(), a.geometry());
+	EXPECT_EQ(b.layers(), a.layers());
+	for (const auto& name : a.layers())
+	{
+		const auto &la = a.get(name), &lb = b.get(name);
+		ASSERT_EQ(la.size(), lb.size());
+		for (std::size_t i = 0; i < la.size(); i++)
+			ASSERT_TRUE(la[i] == lb[i] || (std::isnan(la[i]) && std::isnan(lb[i]))) << name << " cell " << i;
+	}
+	EXPECT_EQ(b.occupancyGrid().getRawMap(), a.occupancyGrid().getRawMap());
+	ASSERT_EQ(b.allInstances().size(), a.allInstances().size());
+	const auto &oa = a.allInstances()[0], &ob = b.allInstances()[0];
+	EXPECT_EQ(ob.id, oa.id);
+	EXPECT_EQ(ob.label, Label::Wastebasket);
+	EXPECT_EQ(ob.observations, 2u);
+	EXPECT_NEAR(ob.centroid.x, oa.centroid.x, 1e-9);
+	EXPECT_NEAR(ob.maxCorner.y, oa.maxCorner.y, 1e-9);
+	EXPECT_EQ(b.sweepsInserted(), 2u);
+	EXPECT_EQ(b.octree().size(), a.octree().size());
+	fs::remove_all(dir);
+}
+
+TEST(MapIO, MapYamlReadsLikeMapServer)
+{
+	SemanticMap a;
+	buildMap(a);
+	const auto dir = tempDir("mapio_ms");
+	MapIO::save(a, dir.string());
+	const auto ms = loadLikeMapServer(dir / "map.yaml");
+	const auto& g = a.geometry();
+	ASSERT_EQ(ms.width, g.cols);
+	ASSERT_EQ(ms.height, g.rows);
+	EXPECT_DOUBLE_EQ(ms.resolution, g.resolution);
+	std::size_t occ = 0, free = 0;
+	for (int cy = 0; cy < g.rows; cy++)
+		for (int cx = 0; cx < g.cols; cx++)
+		{
+			const int8_t v = ms.data[static_cast<std::size_t>(cy) * g.cols + cx];
+			switch (a.cellState(cx, cy))
+			{
+				case SemanticMap::CellState::Occupied: ASSERT_EQ(v, 100); occ++; break;
+				case SemanticMap::CellState::Free: ASSERT_EQ(v, 0); free++; break;
+				default: ASSERT_EQ(v, -1);
+			}
+		}
+	EXPECT_GT(occ, 5u);
+	EXPECT_GT(free, 500u);
+	// A world point maps to the same cell both ways.
+	int cx, cy;
+	ASSERT_TRUE(a.worldToCell(2.01, 1.51, cx, cy));
+	EXPECT_EQ(static_cast<int>(std::floor((2.01 - ms.originX) / ms.resolution)), cx);
+	EXPECT_EQ(static_cast<int>(std::floor((1.51 - ms.originY) / ms.resolution)), cy);
+	fs::remove_all(dir);
+}
+
+TEST(MapIO, CorruptOrMissingFilesGiveClearErrors)
+{
+	SemanticMap a;
+	buildMap(a);
+	const auto dir = tempDir("mapio_bad");
+	auto expectError = [&](const std::string& needle) {
+		SemanticMap b;
+		try
+		{
+			MapIO::load(dir.string(), b);
+			FAIL() << "loaded a broken map (" << needle << ")";
+		}
+		catch (const IoError& e)
+		{
+			EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+		}
+	};
+	MapIO::save(a, dir.string());
+	fs::remove(dir / "labels.png");
+	expectError("labels.png");
+
+	MapIO::save(a, dir.string());
+	std::ofstream(dir / "layers" / "cost.pfm") << "garbage";
+	expectError("cost.pfm");
+
+	MapIO::save(a, dir.string());
+	cv::imwrite((dir / "occupancy.png").string(), cv::Mat(3, 3, CV_8UC1, cv::Scalar(0)));
+	expectError("occupancy.png");
+
+	MapIO::save(a, dir.string());
+	std::ofstream(dir / "map.yaml") << "image: occupancy.png\nresolution: [oops\n";
+	expectError("map.yaml:");
+
+	MapIO::save(a, dir.string());
+	{
+		std::ifstream in(dir / "map.yaml");
+		std::stringstream ss;
+		ss << in.rdbuf();
+		std::string t = ss.str();
+		t.replace(t.find("label: wastebasket"), 18, "label: trashcan");
+		std::ofstream(dir / "map.yaml") << t;
+	}
+	expectError("trashcan");
+	EXPECT_THROW(MapIO::load((dir / "nothing").string(), a), IoError);
+	fs::remove_all(dir);
+}

@@ -1,0 +1,210 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <semnav/common/ConfigChecks.h>
+#include <semnav/common/Error.h>
+#include <octomap/OcTree.h>
+#include <semnav/map/SemanticMap.h>
+
+#include "MapTestUtils.h"
+
+using namespace semnav;
+using semnav::test::FakePoint;
+using semnav::test::floorFan;
+using semnav::test::makeFakeSweep;
+
+TEST(SemanticMap, LayerApiAndConversions)
+{
+	SemanticMap m;
+	m.growToInclude(-1, -1, 1, 1);
+	const auto& g = m.geometry();
+	EXPECT_DOUBLE_EQ(g.resolution, 0.05);
+	int cx, cy;
+	ASSERT_TRUE(m.worldToCell(0.01, 0.01, cx, cy));
+	double x, y;
+	ASSERT_TRUE(m.cellToWorld(cx, cy, x, y));
+	EXPECT_NEAR(x, 0.025, 1e-9);
+	EXPECT_NEAR(y, 0.025, 1e-9);
+	EXPECT_FALSE(m.worldToCell(1e3, 0, cx, cy));
+	EXPECT_FALSE(m.cellToWorld(-1, 0, x, y));
+
+	EXPECT_TRUE(m.exists("labels"));
+	EXPECT_TRUE(m.exists("cost"));
+	EXPECT_FALSE(m.exists("elevation"));
+	m.add("elevation", 1.5f);
+	ASSERT_TRUE(m.worldToCell(0.31, -0.21, cx, cy));
+	EXPECT_FLOAT_EQ(m.at("elevation", cx, cy), 1.5f);
+	m.at("elevation", cx, cy) = 7.0f;
+	EXPECT_THROW(m.get("nonexistent"), Error);
+	// Unknown is distinct from free.
+	EXPECT_EQ(m.cellState(cx, cy), SemanticMap::CellState::Unknown);
+
+	// Growing keeps contents at the same world place and cell alignment.
+	m.growToInclude(-6, -3, 9, 2);
+	int cx2, cy2;
+	ASSERT_TRUE(m.worldToCell(0.31, -0.21, cx2, cy2));
+	EXPECT_FLOAT_EQ(m.at("elevation", cx2, cy2), 7.0f);
+	EXPECT_NEAR(std::remainder(m.geometry().originX, 0.05), 0, 1e-9);
+	EXPECT_EQ(static_cast<int>(m.occupancyGrid().getSizeX()), m.geometry().cols);
+	EXPECT_NEAR(m.occupancyGrid().getXMin(), m.geometry().originX, 1e-4);
+	EXPECT_EQ(m.occupancyGrid().x2idx(0.31), cx2);
+}
+
+TEST(SemanticMap, InsertionMarksFreeOccupiedAndLabels)
+{
+	SemanticMap m;
+	auto pts = floorFan(3.0);
+	// A box face 2 m ahead, 0.1..0.5 m high; a ceiling point above.
+	for (double y = -0.2; y <= 0.2; y += 0.02)
+		for (double z = 0.1; z <= 0.5; z += 0.1) pts.push_back({2.0, y, z, Label::Obstacle});
+	pts.push_back({1.0, 0.0, 2.5, Label::Ceiling});
+	const auto f = makeFakeSweep(pts);
+	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(1.0, 2.0, M_PI / 2));  // facing +y
+
+	int cx, cy;
+	// The box is 2 m ahead of the robot, i.e. at world (1, 4).
+	ASSERT_TRUE(m.worldToCell(1.0, 4.01, cx, cy));
+	EXPECT_EQ(m.cellState(cx, cy), SemanticMap::CellState::Occupied);
+	EXPECT_TRUE(m.labels(cx, cy).contains(Label::Obstacle));
+	EXPECT_GE(m.cost(cx, cy), m.costModel().options().lethalCost);
+	// Floor between robot and box: free, labelled floor, cost 0.
+	ASSERT_TRUE(m.worldToCell(1.0, 3.0, cx, cy));
+	EXPECT_EQ(m.cellState(cx, cy), SemanticMap::CellState::Free);
+	EXPECT_TRUE(m.labels(cx, cy).contains(Label::Floor));
+	EXPECT_DOUBLE_EQ(m.cost(cx, cy), 0.0);
+	// Behind the robot nothing was seen.
+	ASSERT_TRUE(m.worldToCell(1.0, 1.0, cx, cy));
+	EXPECT_EQ(m.cellState(cx, cy), SemanticMap::CellState::Unknown);
+	EXPECT_GE(m.cost(cx, cy), m.costModel().options().unknownCost);
+	// The ceiling point labels its cell but occupies nothing.
+	ASSERT_TRUE(m.worldToCell(1.0, 3.0, cx, cy));
+	EXPECT_TRUE(m.labels(cx, cy).contains(Label::Ceiling));
+	EXPECT_EQ(m.sweepsInserted(), 1u);
+	EXPECT_GT(m.octree().size(), 0u);
+}
+
+TEST(SemanticMap, LaterSweepsClearAnObstacleThatLeft)
+{
+	SemanticMap m;
+	auto withBox = floorFan(3.0);
+	for (double y = -0.2; y <= 0.2; y += 0.02) withBox.push_back({1.5, y, 0.3, Label::Obstacle});
+	const auto a = makeFakeSweep(withBox);
+	const mrpt::poses::CPose2D pose(0, 0, 0);
+	m.insert(a.sweep, a.labeled, pose);
+	int cx, cy;
+	ASSERT_TRUE(m.worldToCell(1.5, 0.0, cx, cy));
+	ASSERT_EQ(m.cellState(cx, cy), SemanticMap::CellState::Occupied);
+	const auto b = makeFakeSweep(floorFan(3.0));
+	for (int i = 0; i < 6; i++) m.insert(b.sweep, b.labeled, pose);
+	EXPECT_EQ(m.cellState(cx, cy), SemanticMap::CellState::Free);
+	EXPECT_LT(m.cost(cx, cy), m.costModel().options().lethalCost);
+}
+
+TEST(SemanticMap, DetectionsMergeIntoInstances)
+{
+	SemanticMap::TOptions o;
+	o.minObservations = 2;
+	SemanticMap m(o);
+	auto f = makeFakeSweep(floorFan(3.0));
+	Detection d;
+	d.label = Label::Wastebasket;
+	d.imageBox = cv::Rect(0, 0, 1, 1);
+	d.centroid = {2.0, 0.5, 0.2};
+	d.extent = {0.3, 0.3, 0.4};
+	f.labeled.detections = {d};
+	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
+	ASSERT_EQ(m.allInstances().size(), 1u);
+	EXPECT_TRUE(m.instances().empty()) << "a one-off detection must not be reported";
+	// Seen again from another pose, 10 cm off: same instance.
+	f.labeled.detections[0].centroid = {1.0, 0.6, 0.2};
+	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(1.1, 0, 0));
+	ASSERT_EQ(m.allInstances().size(), 1u);
+	const auto inst = m.instances(Label::Wastebasket);
+	ASSERT_EQ(inst.size(), 1u);
+	EXPECT_EQ(inst[0].observations, 2u);
+	EXPECT_NEAR(inst[0].centroid.x, 2.05, 1e-9);
+	EXPECT_NEAR(inst[0].centroid.y, 0.55, 1e-9);
+	EXPECT_GT(inst[0].extent().x, 0.3);
+	// Another label at the same place, and the same label far away: new.
+	f.labeled.detections[0].label = Label::Washbasin;
+	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
+	f.labeled.detections[0].label = Label::Wastebasket;
+	f.labeled.detections[0].centroid = {2.0, -2.0, 0.2};
+	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
+	EXPECT_EQ(m.allInstances().size(), 3u);
+	const auto* near = m.nearestInstance(Label::Wastebasket, {2, 0.5});
+	ASSERT_NE(near, nullptr);
+	EXPECT_EQ(near->id, inst[0].id);
+	EXPECT_EQ(m.nearestInstance(Label::Stairs, {0, 0}), nullptr);
+	EXPECT_THROW(m.instance(99), Error);
+}
+
+TEST(SemanticMap, GoalRegionIsFreeCellsWithinReach)
+{
+	SemanticMap m;
+	auto pts = floorFan(1.95);  // the floor up to the basin's foot
+	for (double y = -0.1; y <= 0.1; y += 0.02) pts.push_back({2.0, y, 0.3, Label::Washbasin});
+	auto f = makeFakeSweep(pts);
+	Detection d;
+	d.label = Label::Washbasin;
+	d.imageBox = cv::Rect(static_cast<int>(pts.size()) - 11, 0, 11, 1);
+	d.centroid = {2.0, 0.0, 0.3};
+	d.extent = {0.1, 0.2, 0.1};
+	f.labeled.detections = {d};
+	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
+	const auto objs = m.instances(Label::Washbasin);
+	ASSERT_EQ(objs.size(), 1u);
+	const auto cells = m.cellsOf(objs[0].id);
+	ASSERT_FALSE(cells.empty());
+	const auto goal = m.goalRegion(objs[0].id, 0.5);
+	ASSERT_FALSE(goal.empty());
+	for (const auto& [cx, cy] : goal)
+	{
+		EXPECT_EQ(m.cellState(cx, cy), SemanticMap::CellState::Free);
+		double x, y;
+		m.cellToWorld(cx, cy, x, y);
+		EXPECT_LT(std::hypot(x - 2.0, y), 0.5 + 0.2);
+		EXPECT_LT(x, 2.0) << "free cells are on the robot's side";
+	}
+}
+
+TEST(SemanticMapOptions, ShippedConfigLoadsAndBadValuesAreRejected)
+{
+	const auto cfg = openIniFile(std::string(SEMNAV_SOURCE_DIR) + "/config/map.ini",
+		{"SemanticMap", "TravelCost", "SweepAssembler", "NormalImage", "RangeSegmentation", "Roughness",
+		 "RuleClassifier"});
+	SemanticMap::TOptions o;
+	o.loadFromConfigFile(*cfg, "SemanticMap");
+	o.cost.loadFromConfigFile(*cfg, "TravelCost");
+	EXPECT_DOUBLE_EQ(o.resolution, 0.05);
+	mrpt::config::CConfigFileMemory bad("[SemanticMap]\nresolution_m = 0\n");
+	EXPECT_THROW(o.loadFromConfigFile(bad, "SemanticMap"), ConfigError);
+	mrpt::config::CConfigFileMemory typo("[TravelCost]\nrobot_type = hovercraft\n");
+	EXPECT_THROW(o.cost.loadFromConfigFile(typo, "TravelCost"), ConfigError);
+}
+
+TEST(TravelCostModel, FollowsTheLabels)
+{
+	TravelCostModel::TOptions o;
+	const TravelCostModel wheeled(o);
+	o.robotType = TravelCostModel::RobotType::Walking;
+	const TravelCostModel walking(o);
+	const double L = o.lethalCost;
+	LabelSet floor, grass, stairs, wallFloor;
+	floor.insert(Label::Floor);
+	grass.insert(Label::Grass);
+	stairs.insert(Label::Stairs);
+	wallFloor.insert(Label::Floor);
+	wallFloor.insert(Label::Wall);
+	using Occ = TravelCostModel::Occupancy;
+	EXPECT_DOUBLE_EQ(wheeled.cost(floor, 1.0, Occ::Free), 0.0);
+	EXPECT_GT(wheeled.cost(grass, 0.95, Occ::Free), wheeled.cost(grass, 1.0, Occ::Free));
+	EXPECT_DOUBLE_EQ(wheeled.cost(stairs, 1.0, Occ::Free), L);
+	EXPECT_LT(walking.cost(stairs, 1.0, Occ::Free), L);
+	EXPECT_DOUBLE_EQ(wheeled.cost(wallFloor, 1.0, Occ::Unknown), L);
+	EXPECT_DOUBLE_EQ(wheeled.cost(wallFloor, 1.0, Occ::Free), 0.0) << "the wall left";
+	EXPECT_DOUBLE_EQ(wheeled.cost(floor, 1.0, Occ::Occupied), L);
+	EXPECT_DOUBLE_EQ(wheeled.cost(LabelSet(), NAN, Occ::Unknown), o.unknownCost);
+	EXPECT_DOUBLE_EQ(wheeled.cost(LabelSet(), NAN, Occ::Free), 0.0);
+}
