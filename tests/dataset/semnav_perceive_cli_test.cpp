@@ -14,43 +14,18 @@
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 
+#include "AppRunner.h"
+
 namespace fs = std::filesystem;
+using semnav::test::AppRun;
+using semnav::test::lineCount;
+using semnav::test::runApp;
 
 namespace
 {
-struct AppRun
-{
-	int code;
-	std::string out, err;
-};
-
 const std::string kSource = SEMNAV_SOURCE_DIR;
 const fs::path kTmp = fs::temp_directory_path() /
                       ("semnav_perceive_cli_" + std::to_string(::getpid()));
-
-AppRun run(const std::string& app, const std::string& args)
-{
-	fs::create_directories(kTmp);
-	const std::string errFile = (kTmp / "stderr.txt").string();
-	const std::string cmd = std::string(SEMNAV_BINARY_DIR) + "/apps/" + app +
-	                        "/" + app + " " + args + " 2>" + errFile;
-	AppRun r{};
-	FILE* p = ::popen(cmd.c_str(), "r");
-	std::array<char, 4096> buf{};
-	std::size_t n;
-	while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0)
-		r.out.append(buf.data(), n);
-	const int status = ::pclose(p);
-	r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-	std::ifstream e(errFile);
-	r.err.assign(std::istreambuf_iterator<char>(e), {});
-	return r;
-}
-
-std::size_t lines(const std::string& s)
-{
-	return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n'));
-}
 
 /** The outdoor dataset simulated once (7 sweeps). */
 const fs::path& outdoorSim()
@@ -58,10 +33,10 @@ const fs::path& outdoorSim()
 	static const fs::path dir = []
 	{
 		const fs::path d = kTmp / "sim";
-		const AppRun r =
-		    run("semnav-sim", "--scene " + kSource +
-		                          "/datasets/outdoor/outdoor.yaml --out " +
-		                          d.string() + " --seed 1");
+		const AppRun r = runApp(
+		    "semnav-sim", "--scene " + kSource +
+		                      "/datasets/outdoor/outdoor.yaml --out " +
+		                      d.string() + " --seed 1");
 		EXPECT_EQ(r.code, 0) << r.err;
 		return d;
 	}();
@@ -81,40 +56,40 @@ TEST_F(SemnavPerceiveCli, BadUsageIsExit2WithOneLine)
 	     {"", "--out /tmp/x", "--rawlog a --3dtk b --out /tmp/x", "--rawlog a",
 	      "--bogus"})
 	{
-		const AppRun r = run("semnav-perceive", args);
+		const AppRun r = runApp("semnav-perceive", args);
 		EXPECT_EQ(r.code, 2) << args;
-		EXPECT_EQ(lines(r.err), 1u) << args << ": " << r.err;
+		EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;
 		EXPECT_EQ(r.err.rfind("semnav-perceive: ", 0), 0u) << r.err;
 		EXPECT_TRUE(r.out.empty());
 	}
-	EXPECT_EQ(run("semnav-perceive", "--help").code, 0);
+	EXPECT_EQ(runApp("semnav-perceive", "--help").code, 0);
 }
 
 TEST_F(SemnavPerceiveCli, ErrorsAreExit1WithOneLine)
 {
-	AppRun r =
-	    run("semnav-perceive",
-	        "--rawlog /nonexistent.rawlog --out " + (kTmp / "e").string());
+	AppRun r = runApp(
+	    "semnav-perceive",
+	    "--rawlog /nonexistent.rawlog --out " + (kTmp / "e").string());
 	EXPECT_EQ(r.code, 1);
-	EXPECT_EQ(lines(r.err), 1u) << r.err;
+	EXPECT_EQ(lineCount(r.err), 1u) << r.err;
 	EXPECT_NE(r.err.find("/nonexistent.rawlog"), std::string::npos);
 
 	const fs::path ini = kTmp / "bad.ini";
 	fs::create_directories(kTmp);
 	std::ofstream(ini) << "[RuleClassifier]\ndoor_min_width_m = -1\n";
-	r = run(
+	r = runApp(
 	    "semnav-perceive",
 	    "--rawlog " + (outdoorSim() / "outdoor.rawlog").string() + " --out " +
 	        (kTmp / "e").string() + " --config " + ini.string());
 	EXPECT_EQ(r.code, 1);
-	EXPECT_EQ(lines(r.err), 1u) << r.err;
+	EXPECT_EQ(lineCount(r.err), 1u) << r.err;
 	EXPECT_NE(r.err.find("door_min_width_m"), std::string::npos) << r.err;
 }
 
 TEST_F(SemnavPerceiveCli, ScoresAgainstGroundTruthAsJson)
 {
 	const fs::path out = kTmp / "out";
-	const AppRun r = run(
+	const AppRun r = runApp(
 	    "semnav-perceive",
 	    "--rawlog " + (outdoorSim() / "outdoor.rawlog").string() + " --out " +
 	        out.string() + " --gt-dir " + outdoorSim().string() + " --config " +
@@ -169,9 +144,9 @@ TEST_F(SemnavPerceiveCli, CorruptRawlogWritesTheGoodSweepsThenFails)
 		std::ofstream(bad, std::ios::binary) << all.substr(0, all.size() / 2);
 	}
 	const fs::path out = kTmp / "cut";
-	const AppRun r =
-	    run("semnav-perceive",
-	        "--rawlog " + bad.string() + " --out " + out.string());
+	const AppRun r = runApp(
+	    "semnav-perceive",
+	    "--rawlog " + bad.string() + " --out " + out.string());
 	EXPECT_EQ(r.code, 1);
 	EXPECT_EQ(r.err.rfind("semnav-perceive: "), r.err.find("semnav-perceive: "))
 	    << "one error line: " << r.err;
@@ -191,9 +166,9 @@ TEST_F(SemnavPerceiveCli, ThreeDtkScan)
 		GTEST_SKIP() << "3DTK data not found at " << scan.string()
 		             << " (real-scan checks skipped)";
 	const fs::path out = kTmp / "3dtk";
-	const AppRun r =
-	    run("semnav-perceive",
-	        "--3dtk " + scan.string() + " --out " + out.string() + " --json");
+	const AppRun r = runApp(
+	    "semnav-perceive",
+	    "--3dtk " + scan.string() + " --out " + out.string() + " --json");
 	ASSERT_EQ(r.code, 0) << r.err;
 	EXPECT_EQ(nlohmann::json::parse(r.out).at("sweeps").get<int>(), 1);
 	const cv::Mat n = cv::imread((out / "sweep_0000_normal.png").string());

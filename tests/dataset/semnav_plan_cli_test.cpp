@@ -17,67 +17,59 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "AppRunner.h"
+
 using namespace semnav;
 namespace fs = std::filesystem;
+using semnav::test::AppRun;
+using semnav::test::lineCount;
+using semnav::test::runApp;
 
 namespace
 {
-struct AppRun
-{
-	int code;
-	std::string out, err;
-};
-
 AppRun runPlan(const std::string& args)
 {
-	const fs::path tmp = fs::temp_directory_path() / ("semnav_plancli_" + std::to_string(::getpid()));
-	fs::create_directories(tmp);
-	const std::string errFile = (tmp / "stderr.txt").string();
-	const std::string cmd = std::string(SEMNAV_BINARY_DIR) + "/apps/semnav-plan/semnav-plan " + args + " 2>" + errFile;
-	AppRun r{};
-	FILE* p = ::popen(cmd.c_str(), "r");
-	std::array<char, 4096> buf{};
-	std::size_t n;
-	while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-	const int status = ::pclose(p);
-	r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-	std::ifstream e(errFile);
-	std::stringstream ss;
-	ss << e.rdbuf();
-	r.err = ss.str();
-	return r;
+	return runApp("semnav-plan", args);
 }
 
 /** The office mapped with true poses from its first 5 stops. */
 const fs::path& officeMap()
 {
-	static const fs::path dir = [] {
-		const fs::path d = fs::temp_directory_path() / ("semnav_planmap_" + std::to_string(::getpid()));
+	static const fs::path dir = []
+	{
+		const fs::path d = fs::temp_directory_path() /
+		                   ("semnav_planmap_" + std::to_string(::getpid()));
 		fs::remove_all(d);
-		Scene scene = SceneLoader::loadFile(std::string(SEMNAV_SOURCE_DIR) + "/datasets/office/office.yaml");
+		Scene scene = SceneLoader::loadFile(
+		    std::string(SEMNAV_SOURCE_DIR) + "/datasets/office/office.yaml");
 		scene.trajectory.resize(5);
-		const auto res = SimulationRunner(scene, SimulationRunner::TOptions(), 1).run((d / "sim").string());
-		const auto gt = GroundTruthLog::forRawlog((d / "sim").string(), res.rawlogPath);
+		const auto res =
+		    SimulationRunner(scene, SimulationRunner::TOptions(), 1)
+		        .run((d / "sim").string());
+		const auto gt =
+		    GroundTruthLog::forRawlog((d / "sim").string(), res.rawlogPath);
 		SemanticMap map;
 		PerceptionPipeline pipeline;
 		RawlogSweepReader reader(res.rawlogPath);
 		Sweep s;
-		while (reader.next(s)) map.insert(s, pipeline.process(s), gt.pose(s.index()));
+		while (reader.next(s))
+			map.insert(s, pipeline.process(s), gt.pose(s.index()));
 		MapIO::save(map, (d / "map").string());
 		return d / "map";
 	}();
 	return dir;
 }
 
-std::size_t lines(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
 }  // namespace
 
 TEST(SemnavPlanCli, PlansToTheNearestDoorWithPictureAndGrids)
 {
 	const fs::path out = officeMap().parent_path();
 	const AppRun r = runPlan(
-		"--map " + officeMap().string() + " --from 1.2,1.2 --goal door --json --png " + (out / "plan.png").string() +
-		" --export-grid " + (out / "grid").string());
+	    "--map " + officeMap().string() +
+	    " --from 1.2,1.2 --goal door --json --png " +
+	    (out / "plan.png").string() + " --export-grid " +
+	    (out / "grid").string());
 	ASSERT_EQ(r.code, 0) << r.err;
 	EXPECT_TRUE(r.err.empty()) << r.err;
 	const auto j = nlohmann::json::parse(r.out);
@@ -88,7 +80,8 @@ TEST(SemnavPlanCli, PlansToTheNearestDoorWithPictureAndGrids)
 	ASSERT_GE(path.size(), 2u);
 	EXPECT_NEAR(path[0][0].get<double>(), 1.2, 0.05);
 	EXPECT_NEAR(path[0][1].get<double>(), 1.2, 0.05);
-	EXPECT_GE(j.at("cost").get<double>(), j.at("length_m").get<double>() - 1e-9);
+	EXPECT_GE(
+	    j.at("cost").get<double>(), j.at("length_m").get<double>() - 1e-9);
 	EXPECT_GT(j.at("iterations").get<int>(), 0);
 	EXPECT_TRUE(fs::file_size(out / "plan.png") > 1000);
 
@@ -97,7 +90,8 @@ TEST(SemnavPlanCli, PlansToTheNearestDoorWithPictureAndGrids)
 	std::string head(10, '\0');
 	u.read(head.data(), 10);
 	EXPECT_EQ(head.substr(0, 6), "\x93NUMPY");
-	const std::size_t hlen = static_cast<unsigned char>(head[8]) | (static_cast<unsigned char>(head[9]) << 8);
+	const std::size_t hlen = static_cast<unsigned char>(head[8]) |
+	                         (static_cast<unsigned char>(head[9]) << 8);
 	std::string dict(hlen, '\0');
 	u.read(dict.data(), static_cast<std::streamsize>(hlen));
 	EXPECT_NE(dict.find("'descr': '<f4'"), std::string::npos) << dict;
@@ -111,8 +105,12 @@ TEST(SemnavPlanCli, PlansToTheNearestDoorWithPictureAndGrids)
 	EXPECT_GE(rows, 0);
 	EXPECT_GE(cols, 0);
 	std::vector<float> uv(fs::file_size(out / "grid_u.npy") - 10 - hlen);
-	u.read(reinterpret_cast<char*>(uv.data()), static_cast<std::streamsize>(uv.size()));
-	EXPECT_TRUE(std::any_of(uv.begin(), uv.end(), [](float v) { return std::isinf(v); })) << "blocked cells are +inf";
+	u.read(
+	    reinterpret_cast<char*>(uv.data()),
+	    static_cast<std::streamsize>(uv.size()));
+	EXPECT_TRUE(std::any_of(
+	    uv.begin(), uv.end(), [](float v) { return std::isinf(v); }))
+	    << "blocked cells are +inf";
 }
 
 TEST(SemnavPlanCli, ErrorsAreOneLineWithExitCodes)
@@ -124,19 +122,20 @@ TEST(SemnavPlanCli, ErrorsAreOneLineWithExitCodes)
 		int code;
 	};
 	const Case cases[] = {
-		{map + " --from 1.2,1.2 --goal trashcan", "known:", 1},
-		{map + " --from 1.2,1.2 --goal stairs_nope", "unknown label", 1},
-		{map + " --from 1.2,1.2 --goal washbasin", "no washbasin", 1},
-		{map + " --from 500,500 --goal door", "outside", 1},
-		{map + " --from 1.2 --goal door", "--from", 2},
-		{map + " --from 1.2,1.2", "exactly one", 2},
-		{"--map /nonexistent --from 1,1 --goal door", "/nonexistent", 1},
+	    {map + " --from 1.2,1.2 --goal trashcan", "known:", 1},
+	    {map + " --from 1.2,1.2 --goal stairs_nope", "unknown label", 1},
+	    {map + " --from 1.2,1.2 --goal washbasin", "no washbasin", 1},
+	    {map + " --from 500,500 --goal door", "outside", 1},
+	    {map + " --from 1.2 --goal door", "--from", 2},
+	    {map + " --from 1.2,1.2", "exactly one", 2},
+	    {"--map /nonexistent --from 1,1 --goal door", "/nonexistent", 1},
 	};
 	for (const auto& c : cases)
 	{
 		const AppRun r = runPlan(c.args);
 		EXPECT_EQ(r.code, c.code) << c.args << ": " << r.err;
-		EXPECT_EQ(lines(r.err), 1u) << c.args << ": " << r.err;
-		EXPECT_NE(r.err.find(c.needle), std::string::npos) << c.args << ": " << r.err;
+		EXPECT_EQ(lineCount(r.err), 1u) << c.args << ": " << r.err;
+		EXPECT_NE(r.err.find(c.needle), std::string::npos)
+		    << c.args << ": " << r.err;
 	}
 }

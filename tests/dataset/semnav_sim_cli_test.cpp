@@ -10,43 +10,18 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "AppRunner.h"
+
 namespace fs = std::filesystem;
+using semnav::test::AppRun;
+using semnav::test::lineCount;
+using semnav::test::runApp;
 
 namespace
 {
-struct AppRun
-{
-	int code;
-	std::string out, err;
-};
-
 AppRun runSim(const std::string& args)
 {
-	const fs::path tmp = fs::temp_directory_path() /
-	                     ("semnav_cli_" + std::to_string(::getpid()));
-	fs::create_directories(tmp);
-	const std::string errFile = (tmp / "stderr.txt").string();
-	const std::string cmd = std::string(SEMNAV_BINARY_DIR) +
-	                        "/apps/semnav-sim/semnav-sim " + args + " 2>" +
-	                        errFile;
-	AppRun r{};
-	FILE* p = ::popen(cmd.c_str(), "r");
-	std::array<char, 4096> buf{};
-	std::size_t n;
-	while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0)
-		r.out.append(buf.data(), n);
-	const int status = ::pclose(p);
-	r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-	FILE* e = std::fopen(errFile.c_str(), "r");
-	while (e && (n = std::fread(buf.data(), 1, buf.size(), e)) > 0)
-		r.err.append(buf.data(), n);
-	if (e) std::fclose(e);
-	return r;
-}
-
-std::size_t lines(const std::string& s)
-{
-	return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n'));
+	return runApp("semnav-sim", args);
 }
 
 const std::string kSource = SEMNAV_SOURCE_DIR;
@@ -76,7 +51,7 @@ TEST(SemnavSimCli, BadUsageIsOneLineAndExitTwo)
 	{
 		const AppRun r = runSim(args);
 		EXPECT_EQ(r.code, 2) << args;
-		EXPECT_EQ(lines(r.err), 1u) << args << ": " << r.err;
+		EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;
 		EXPECT_EQ(r.err.rfind("semnav-sim: ", 0), 0u) << r.err;
 	}
 }
@@ -98,7 +73,7 @@ TEST(SemnavSimCli, BadSceneIsOneLineNamingFileLineAndKey)
 	const AppRun r =
 	    runSim("--scene " + bad.string() + " --out /tmp/semnav_never");
 	EXPECT_EQ(r.code, 1);
-	EXPECT_EQ(lines(r.err), 1u) << r.err;
+	EXPECT_EQ(lineCount(r.err), 1u) << r.err;
 	EXPECT_NE(r.err.find(bad.string() + ":5:"), std::string::npos) << r.err;
 	EXPECT_NE(r.err.find("objects[0].box.size"), std::string::npos) << r.err;
 	EXPECT_FALSE(fs::exists("/tmp/semnav_never/x.rawlog"));
