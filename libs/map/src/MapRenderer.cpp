@@ -30,14 +30,18 @@ cv::Mat MapRenderer::render(const SemanticMap& map, int k)
 	for (int cy = 0; cy < g.rows; cy++)
 		for (int cx = 0; cx < g.cols; cx++)
 		{
-			cv::Scalar col(255, 255, 255);
+			// The paper draws unknown white too; a light grey tells them apart.
+			cv::Scalar col = map.cellState(cx, cy) == SemanticMap::CellState::Unknown
+				? cv::Scalar(225, 225, 225)
+				: cv::Scalar(255, 255, 255);
 			const LabelSet ls = map.labels(cx, cy);
 			if (ls.contains(Label::Grass)) col = labelColor(Label::Grass);
 			if (ls.contains(Label::Sidewalk)) col = labelColor(Label::Sidewalk);
 			if (map.cellState(cx, cy) == SemanticMap::CellState::Occupied)
 				col = {0, 0, 0};
 			const int id = map.objectId(cx, cy);
-			if (id > 0) col = labelColor(map.instance(id).label);
+			if (id > 0 && map.reported(map.instance(id)))
+				col = labelColor(map.instance(id).label);
 			const int row = (g.rows - 1 - cy) * k;  // +y up
 			cv::rectangle(
 				img, cv::Rect(cx * k, row, k, k), col, cv::FILLED);
@@ -47,7 +51,7 @@ cv::Mat MapRenderer::render(const SemanticMap& map, int k)
 	int y = 20;
 	cv::putText(img, "semnav map", {x0, y}, cv::FONT_HERSHEY_SIMPLEX, 0.45, {0, 0, 0}, 1, cv::LINE_AA);
 	const std::pair<const char*, cv::Scalar> items[] = {
-		{"floor / unknown", {255, 255, 255}}, {"wall / obstacle", {0, 0, 0}},
+		{"free floor", {255, 255, 255}}, {"unknown", {225, 225, 225}}, {"wall / obstacle", {0, 0, 0}},
 		{"door", labelColor(Label::Door)}, {"stairs", labelColor(Label::Stairs)},
 		{"washbasin", labelColor(Label::Washbasin)},
 		{"wastebasket", labelColor(Label::Wastebasket)},

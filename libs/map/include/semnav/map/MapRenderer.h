@@ -7,8 +7,9 @@
 
 namespace semnav
 {
-/** Draws a SemanticMap like the paper's Fig. 4: white floor and unknown
- * area, black walls and other obstacles, one colour per object label
+/** Draws a SemanticMap like the paper's Fig. 4: white free floor (unknown
+ * cells light grey, where the paper has white too), black walls and other
+ * obstacles, one colour per object label
  * (door, stairs, washbasin, wastebasket, ...), north (+y) up, with a legend
  * and a 1 m scale bar. */
 class MapRenderer
