@@ -351,31 +351,36 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 		// and oblique pixels close normals. Precomputed row by row; only
 		// the surface's running mean is checked during the fill.
 		m_join.assign(n, 0);
+		const uint8_t* CL = m_class.data();
+		uint8_t* J = m_join.data();
+		// (Every term is evaluated, without branches: the outcome is
+		// unpredictable along surface edges and in noisy parts. A pixel
+		// with a class has a point and a normal; q's class equal to p's
+		// covers q's validity.)
+		auto ok = [&](int p, int q)
+		{
+			const uint8_t cls = CL[p];
+			const bool angular = (cls == kVertical) | (cls == kOblique);
+			return (PM[p] != 0) & (A[p] >= 1) & (cls != kNone) &
+			       (CL[q] == cls) & (A[q] == A[p]) &
+			       (std::abs(RG[p] - RG[q]) <= maxStep) &
+			       (!angular | (NS[p].dot(NS[q]) >= cosJoin));
+		};
 		for (int r = 0; r < rows; r++)
 		{
 			const int base = r * cols;
-			for (int c = 0; c < cols; c++)
+			for (int p = base; p + 1 < base + cols; p++)
 			{
-				const int p = base + c;
-				const uint8_t cls = m_class[p];
-				if (!PM[p] || A[p] < 1 || cls == kNone) continue;
-				const bool angular = cls == kVertical || cls == kOblique;
-				auto ok = [&](int q)
-				{
-					return m_class[q] == cls && A[q] == A[p] &&
-					       std::abs(RG[p] - RG[q]) <= maxStep &&
-					       (!angular || NS[p].dot(NS[q]) >= cosJoin);
-				};
-				if (c + 1 < cols && ok(p + 1))
-				{
-					m_join[p] |= 1;
-					m_join[p + 1] |= 2;
-				}
-				if (r + 1 < rows && ok(p + cols))
-				{
-					m_join[p] |= 4;
-					m_join[p + cols] |= 8;
-				}
+				const uint8_t right = ok(p, p + 1);
+				J[p] |= right;
+				J[p + 1] |= static_cast<uint8_t>(right << 1);
+			}
+			if (r + 1 == rows) continue;
+			for (int p = base; p < base + cols; p++)
+			{
+				const uint8_t down = ok(p, p + cols);
+				J[p] |= static_cast<uint8_t>(down << 2);
+				J[p + cols] |= static_cast<uint8_t>(down << 3);
 			}
 		}
 		// Up- and down-facing pixels need no running mean: their surfaces
@@ -459,13 +464,13 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 	{
 		// Pass 2: a group of coplanar pieces is one surface, unless its
 		// plane steps (m_side), where connected pieces of each side are.
+		// (Groups with pixels on side 1 are known from splitPlanes().)
 		const int ns = static_cast<int>(m_surfaces.size());
-		std::vector<uint8_t> hasSide(ns, 0);
-		for (int p = 0; p < n; p++)
-			if (m_surf[p] >= 0 && m_side[p]) hasSide[m_parent[m_surf[p]]] = 1;
+		const std::vector<uint8_t>& hasSide = m_groupSplit;
 		// Unsplit groups: the sum of their pieces' statistics.
 		std::vector<int> newId(ns, -1);
 		std::vector<Surface> combined;
+		combined.reserve(ns);
 		for (int i = 0; i < ns; i++)
 		{
 			const int g = m_parent[i];
@@ -501,7 +506,10 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 		}
 		const bool anySplit =
 		    std::find(hasSide.begin(), hasSide.end(), 1) != hasSide.end();
-		if (anySplit) m_group.assign(n, -1);
+		if (anySplit) m_group.resize(n);
+		// The split groups' pixels, row-major, are numbered below and
+		// summed up in computeSurfaceStats().
+		m_splitPix.clear();
 		for (int p = 0; p < n; p++)
 		{
 			const int s = m_surf[p];
@@ -511,6 +519,7 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 			{
 				m_group[p] = g;
 				m_surf[p] = -2;  // to label below
+				m_splitPix.push_back(p);
 			}
 			else
 				m_surf[p] = newId[g];
@@ -521,7 +530,7 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 			if (!hasSide[m_parent[i]] && m_surfLoose[newId[m_parent[i]]] < 0)
 				m_surfLoose[newId[m_parent[i]]] = m_loose[i];
 		firstAccumulated = count;
-		for (int seed = 0; anySplit && seed < n; seed++)
+		for (const int seed : m_splitPix)
 		{
 			if (m_surf[seed] != -2) continue;
 			const int id = count++;
@@ -555,7 +564,7 @@ void RuleClassifier::computeSurfaceStats(int count, int firstAccumulated)
 {
 	const int* RO = m_rowOf.data();
 	const int* CO = m_colOf.data();
-	const int n = m_rows * m_cols;
+	const int rows = m_rows, cols = m_cols;
 	const auto* P = m_points->ptr<cv::Vec3f>(0);
 	const int* A = m_areas->ptr<int>(0);
 	const auto* NS = m_ns->ptr<cv::Vec3f>(0);
@@ -603,13 +612,11 @@ void RuleClassifier::computeSurfaceStats(int count, int firstAccumulated)
 		s.maxC = std::max(s.maxC, run.c1);
 		run.id = -1;
 	};
-	for (int p = 0; p < n && firstAccumulated < count; p++)
+	// A run ends where the id changes, at a row's end, or (pass 2, which
+	// visits only the split groups' pixels) at a gap.
+	// Adds pixel p (row r, column c) of surface id >= 0 to the run.
+	auto add = [&](int p, int r, int c, int id)
 	{
-		const int id = m_surf[p];
-		const int c = CO[p];
-		if (id != run.id || c == 0) flush();
-		if (id < 0) continue;
-		if (id < firstAccumulated) continue;
 		const cv::Vec3f& q = P[p];
 		if (run.id < 0)
 		{
@@ -622,7 +629,7 @@ void RuleClassifier::computeSurfaceStats(int count, int firstAccumulated)
 				s.area = A[p];
 			}
 			for (int k = 0; k < 3; k++) run.lo[k] = run.hi[k] = q[k];
-			run.r = RO[p];
+			run.r = r;
 			run.c0 = c;
 		}
 		run.c1 = c;
@@ -640,6 +647,34 @@ void RuleClassifier::computeSurfaceStats(int count, int firstAccumulated)
 		{
 			run.lo[k] = std::min(run.lo[k], q[k]);
 			run.hi[k] = std::max(run.hi[k], q[k]);
+		}
+	};
+	if (firstAccumulated == 0)
+	{
+		// Pass 1: all pixels, row by row.
+		for (int r = 0, p = 0; r < rows; r++)
+		{
+			flush();
+			for (int c = 0; c < cols; c++, p++)
+			{
+				const int id = m_surf[p];
+				if (id != run.id) flush();
+				if (id >= 0) add(p, r, c, id);
+			}
+		}
+	}
+	else if (firstAccumulated < count)
+	{
+		// Pass 2: the split groups' pixels (row-major); a run also ends at
+		// a gap.
+		int prev = -2;
+		for (const int p : m_splitPix)
+		{
+			const int id = m_surf[p];
+			const int c = CO[p];
+			if (id != run.id || c == 0 || p != prev + 1) flush();
+			prev = p;
+			if (id >= firstAccumulated) add(p, RO[p], c, id);
 		}
 	}
 	flush();
@@ -663,34 +698,41 @@ void RuleClassifier::mergeCoplanar()
 	// of noisy pixels between two pieces of a wall does not part them).
 	// (Each surface remembers its last few partners: the same pair shows up
 	// along whole boundaries, and sorting all of them is slow.)
-	std::vector<uint64_t> pairs;
+	std::vector<uint64_t>& pairs = m_pairs;
 	constexpr int kRecent = 4;
 	std::vector<int> recent(static_cast<std::size_t>(ns) * kRecent, -1);
 	std::vector<uint8_t> recentPos(ns, 0);
+	pairs.clear();
 	for (int r = 0; r < rows; r++)
+	{
+		// This row and the next two (null past the last row).
+		const int* S0 = m_surf.data() + static_cast<std::size_t>(r) * cols;
+		const int* S1 = r + 1 < rows ? S0 + cols : nullptr;
+		const int* S2 = r + 2 < rows ? S0 + 2 * cols : nullptr;
 		for (int c = 0; c < cols; c++)
 		{
-			const int p = r * cols + c, s = m_surf[p];
+			const int s = S0[c];
 			if (s < 0 || !mergeable(s)) continue;
-			const int nb[4] = {
-			    c + 1 < cols ? p + 1 : -1, r + 1 < rows ? p + cols : -1,
-			    c + 2 < cols ? p + 2 : -1, r + 2 < rows ? p + 2 * cols : -1};
-			int* rs = &recent[static_cast<std::size_t>(s) * kRecent];
-			for (int q : nb)
+			auto visit = [&](int t)
 			{
-				if (q < 0) continue;
-				const int t = m_surf[q];
-				if (t < 0 || t == s || !mergeable(t)) continue;
+				// (Inside a surface, the common case: t == s.)
+				if (t == s || t < 0 || !mergeable(t)) return;
+				int* rs = &recent[static_cast<std::size_t>(s) * kRecent];
 				if (rs[0] == t || rs[1] == t || rs[2] == t || rs[3] == t)
-					continue;
+					return;
 				rs[recentPos[s]] = t;
 				recentPos[s] =
 				    static_cast<uint8_t>((recentPos[s] + 1) % kRecent);
 				const uint64_t a = static_cast<uint64_t>(std::min(s, t)),
 				               b = static_cast<uint64_t>(std::max(s, t));
 				pairs.push_back(a << 32 | b);
-			}
+			};
+			if (c + 1 < cols) visit(S0[c + 1]);
+			if (S1) visit(S1[c]);
+			if (c + 2 < cols) visit(S0[c + 2]);
+			if (S2) visit(S2[c]);
 		}
+	}
 	std::sort(pairs.begin(), pairs.end());
 	pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
 	std::vector<int> start(ns + 1, 0), adj(2 * pairs.size());
@@ -770,20 +812,22 @@ void RuleClassifier::splitPlanes()
 {
 	const int rows = m_rows, cols = m_cols, n = rows * cols;
 	m_side.assign(n, 0);
+	m_groupSplit.assign(m_surfaces.size(), 0);
 	if (m_options.planeSplitOffset <= 0) return;
 	const auto* P = m_points->ptr<cv::Vec3f>(0);
 	const int ns = static_cast<int>(m_surfaces.size());
-	// Group statistics (pass-1 surfaces summed into their group's root).
-	std::vector<Surface> groups(ns);
+	// Group statistics (pass-1 surfaces summed into their group's root;
+	// only the sums the plane fit needs: most surfaces are small).
+	m_groupSums.assign(ns, GroupSums());
+	std::vector<GroupSums>& groups = m_groupSums;
 	for (int i = 0; i < ns; i++)
 	{
 		const Surface& s = m_surfaces[i];
 		if (s.orient != kVertical) continue;
-		Surface& g = groups[m_parent[i]];
-		g.orient = kVertical;
+		GroupSums& g = groups[m_parent[i]];
 		g.count += s.count;
-		g.sumP += s.sumP;
-		g.sumN += s.sumN;
+		g.sx += s.sumP[0];
+		g.sy += s.sumP[1];
 		g.sxx += s.sxx;
 		g.sxy += s.sxy;
 		g.syy += s.syy;
@@ -808,10 +852,10 @@ void RuleClassifier::splitPlanes()
 	std::vector<double> offset;
 	for (int i = 0; i < ns; i++)
 	{
-		const Surface& g = groups[i];
-		if (g.orient != kVertical || g.count < 2 * m_options.minSurfacePixels)
-			continue;
-		const double cx = g.sumP[0] / g.count, cy = g.sumP[1] / g.count;
+		const GroupSums& g = groups[i];
+		// (Only vertical surfaces are summed: count 0 otherwise.)
+		if (g.count == 0 || g.count < 2 * m_options.minSurfacePixels) continue;
+		const double cx = g.sx / g.count, cy = g.sy / g.count;
 		const double a = g.sxx / g.count - cx * cx,
 		             b = g.sxy / g.count - cx * cy,
 		             d = g.syy / g.count - cy * cy;
@@ -836,21 +880,23 @@ void RuleClassifier::splitPlanes()
 	for (int i = 0; i < ns; i++)
 		if (m_surfaces[i].orient == kVertical)
 			slotOfSurface[i] = slot[m_parent[i]];
+	// (One pass over the image collects the pixels and their slots.)
+	m_candPix.clear();
+	m_candSlot.clear();
 	for (int p = 0; p < n; p++)
 	{
 		const int s = m_surf[p];
-		if (s >= 0 && slotOfSurface[s] >= 0) start[slotOfSurface[s] + 1]++;
+		if (s < 0 || slotOfSurface[s] < 0) continue;
+		m_candPix.push_back(p);
+		m_candSlot.push_back(slotOfSurface[s]);
+		start[slotOfSurface[s] + 1]++;
 	}
 	for (int k = 0; k < nSlots; k++) start[k + 1] += start[k];
 	std::vector<int> pix(start[nSlots]);
 	{
 		std::vector<int> fill(start.begin(), start.end() - 1);
-		for (int p = 0; p < n; p++)
-		{
-			const int s = m_surf[p];
-			if (s >= 0 && slotOfSurface[s] >= 0)
-				pix[fill[slotOfSurface[s]]++] = p;
-		}
+		for (std::size_t i = 0; i < m_candPix.size(); i++)
+			pix[fill[m_candSlot[i]]++] = m_candPix[i];
 	}
 
 	// The dominant plane of each group: a least-squares fit of all points
@@ -918,19 +964,19 @@ void RuleClassifier::splitPlanes()
 				if (j != 0) tryAngle(coarse + j * kStep);
 			const cv::Vec3d bestM(std::cos(bestA), std::sin(bestA), 0);
 			// Least squares on the points of that band.
+			// (Points outside the band would add exact zeros: skipped.)
 			double s0 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
 			for (int i = 0; i < cnt; i++)
 			{
 				const double x = P[mem[i]][0], y = P[mem[i]][1];
-				const bool in =
-				    std::abs(bestM[0] * x + bestM[1] * y - bestD) <= half;
-				const double w = in ? 1.0 : 0.0;
-				s0 += w;
-				sx += w * x;
-				sy += w * y;
-				sxx += w * x * x;
-				sxy += w * x * y;
-				syy += w * y * y;
+				if (!(std::abs(bestM[0] * x + bestM[1] * y - bestD) <= half))
+					continue;
+				s0 += 1.0;
+				sx += x;
+				sy += y;
+				sxx += x * x;
+				sxy += x * y;
+				syy += y * y;
 			}
 			cv::Vec3d m;
 			if (s0 >= m_options.minSurfacePixels &&
@@ -1031,8 +1077,15 @@ void RuleClassifier::splitPlanes()
 		    std::min(w0b, total - w0b) < m_options.minSurfacePixels)
 			continue;
 		const float thr = static_cast<float>((bestB + 1) * kBin - kRange);
+		bool any = false;
 		for (int i = start[k]; i < start[k + 1]; i++)
-			m_side[pix[i]] = RS[pix[i]] >= thr ? 1 : 0;
+		{
+			const bool side = RS[pix[i]] >= thr;
+			m_side[pix[i]] = side ? 1 : 0;
+			any |= side;
+		}
+		// Split: pass 2 labels this group's pixels by side.
+		if (any) m_groupSplit[m_parent[m_surf[pix[start[k]]]]] = 1;
 	}
 	for (int p : pix) RES[p] = WT[p] = 0;
 }
@@ -1264,31 +1317,36 @@ void RuleClassifier::classify(
 	// 1. Orientation per pixel on normals averaged inside their area.
 	// (A box filter over all pixels: 0 where there is no normal; pixels
 	// without their own normal are not classified anyway.)
-	if (o.normalSmoothingHalfWidth > 0)
+	const float cosUp = static_cast<float>(std::cos(o.groundNormalTolerance));
+	const float cosDown =
+	    static_cast<float>(std::cos(o.ceilingNormalTolerance));
+	const float sinVert = static_cast<float>(std::sin(o.wallNormalTolerance));
+	const bool smooth = o.normalSmoothingHalfWidth > 0;
+	if (smooth)
 	{
 		detail::boxSum(
 		    normals.normals(), o.normalSmoothingHalfWidth, m_smoothSum, m_tmp);
-		// Normalised in place.
-		auto* S = m_smoothSum.ptr<cv::Vec3f>(0);
-		for (int p = 0; p < n; p++)
+		m_ns = &m_smoothSum;
+	}
+	else
+		m_ns = &normals.normals();
+	// Smoothed normals normalised in place, and classified, in one pass.
+	auto* S = smooth ? m_smoothSum.ptr<cv::Vec3f>(0) : nullptr;
+	const auto* NS = m_ns->ptr<cv::Vec3f>(0);
+	m_class.resize(n);
+	for (int p = 0; p < n; p++)
+	{
+		if (smooth)
 		{
 			const float l2 = S[p].dot(S[p]);
 			S[p] = l2 > 1e-24f ? S[p] * (1.0f / std::sqrt(l2))
 			                   : cv::Vec3f(0, 0, 0);
 		}
-		m_ns = &m_smoothSum;
-	}
-	else
-		m_ns = &normals.normals();
-	const auto* NS = m_ns->ptr<cv::Vec3f>(0);
-	const float cosUp = static_cast<float>(std::cos(o.groundNormalTolerance));
-	const float cosDown =
-	    static_cast<float>(std::cos(o.ceilingNormalTolerance));
-	const float sinVert = static_cast<float>(std::sin(o.wallNormalTolerance));
-	m_class.assign(n, kNone);
-	for (int p = 0; p < n; p++)
-	{
-		if (!PM[p] || !NM[p]) continue;
+		if (!PM[p] || !NM[p])
+		{
+			m_class[p] = kNone;
+			continue;
+		}
 		const float nz = NS[p][2];
 		m_class[p] = nz >= cosUp               ? kUp
 		             : nz <= -cosDown          ? kDown
@@ -1348,12 +1406,20 @@ void RuleClassifier::classify(
 		const bool longWall = s.width >= o.wallMinLength;
 		return tall || toCeiling || longWall;
 	};
-	std::vector<Surface> loose(m_loose.size());
+	// (Indexed through looseIdx: few of the loose groups are used.)
+	std::vector<int> looseIdx(m_loose.size(), -1);
+	std::vector<Surface> loose;
 	for (std::size_t i = 0; i < ns; i++)
 	{
 		const Surface& s = m_surfaces[i];
 		if (s.orient != kVertical || s.count < o.minSurfacePixels) continue;
-		Surface& g = loose[m_surfLoose[i]];
+		int& li = looseIdx[m_surfLoose[i]];
+		if (li < 0)
+		{
+			li = static_cast<int>(loose.size());
+			loose.emplace_back();
+		}
+		Surface& g = loose[li];
 		if (g.count == 0)
 		{
 			g = s;
@@ -1380,7 +1446,7 @@ void RuleClassifier::classify(
 	{
 		const Surface& s = m_surfaces[i];
 		if (s.orient != kVertical || s.count < o.minSurfacePixels) continue;
-		wallCandidate[i] = wallSized(s) || looseWall[m_surfLoose[i]];
+		wallCandidate[i] = wallSized(s) || looseWall[looseIdx[m_surfLoose[i]]];
 	}
 	const double f = o.doorMinSideFraction;
 	for (std::size_t i = 0; i < ns; i++)
@@ -1478,22 +1544,33 @@ void RuleClassifier::classify(
 
 	const auto t7 = std::chrono::steady_clock::now();
 	// 5. Pixels: surface labels, then leftovers by multi-source growth.
-	m_label.assign(n, kNoLabel);
-	m_owner.assign(n, -1);
+	// (Labels per surface in a compact array: the pixels look them up.)
+	m_label.resize(n);
+	m_owner.resize(n);
 	m_stack.clear();
-	for (int p = 0; p < n; p++)
+	m_surfLabel.resize(ns + 1);
+	m_surfLabel[0] = kNoLabel;  // no surface (id -1)
+	for (std::size_t i = 0; i < ns; i++)
+		m_surfLabel[i + 1] = m_surfaces[i].label;
 	{
-		const int s = m_surf[p];
-		if (s >= 0 && m_surfaces[s].label != kNoLabel)
+		const int8_t* SL = m_surfLabel.data() + 1;
+		int8_t* LB = m_label.data();
+		int* OW = m_owner.data();
+		const int* SF = m_surf.data();
+		for (int p = 0; p < n; p++)
 		{
-			m_label[p] = m_surfaces[s].label;
-			m_owner[p] = s;
+			const int s = SF[p];
+			const int8_t l = SL[s];  // s >= -1
+			LB[p] = l;
+			OW[p] = l != kNoLabel ? s : -1;
 		}
 	}
 	if (o.classifyLeftoverPixels)
 	{
 		// Seeds: labelled pixels next to a valid unlabelled one, in
-		// row-major order (found from the unlabelled side: they are few).
+		// row-major order (marked from the unlabelled side: they are few;
+		// then collected in order).
+		m_seed.assign(n, 0);
 		for (int q = 0; q < n; q++)
 		{
 			if (!PM[q] || m_owner[q] >= 0) continue;
@@ -1502,11 +1579,10 @@ void RuleClassifier::classify(
 			    c > 0 ? q - 1 : -1, c + 1 < cols ? q + 1 : -1,
 			    r > 0 ? q - cols : -1, r + 1 < rows ? q + cols : -1};
 			for (int p : nb)
-				if (p >= 0 && m_owner[p] >= 0) m_stack.push_back(p);
+				if (p >= 0 && m_owner[p] >= 0) m_seed[p] = 1;
 		}
-		std::sort(m_stack.begin(), m_stack.end());
-		m_stack.erase(
-		    std::unique(m_stack.begin(), m_stack.end()), m_stack.end());
+		for (int p = 0; p < n; p++)
+			if (m_seed[p]) m_stack.push_back(p);
 	}
 	if (o.classifyLeftoverPixels)
 	{

@@ -213,6 +213,21 @@ private:
 	const cv::Mat* m_ns = nullptr;
 	std::vector<uint8_t> m_class;
 	std::vector<uint8_t> m_side, m_join;
+	/** Per pass-1 surface: root of a group split by splitPlanes(); (pass 2)
+	 * the split groups' pixels, row-major. */
+	std::vector<uint8_t> m_groupSplit;
+	std::vector<int> m_splitPix;
+	std::vector<uint64_t> m_pairs;    ///< mergeCoplanar()'s surface pairs
+	std::vector<uint8_t> m_seed;      ///< leftover growth's seeds
+	std::vector<int8_t> m_surfLabel;  ///< label per surface id + 1
+	std::vector<int> m_candPix, m_candSlot;  ///< splitPlanes()' pixels
+	/** splitPlanes()'s sums per group (those the plane fit needs). */
+	struct GroupSums
+	{
+		int count = 0;
+		double sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
+	};
+	std::vector<GroupSums> m_groupSums;
 	std::vector<int> m_surf, m_group, m_stack, m_parent, m_loose, m_surfLoose,
 	    m_uf;
 	std::vector<Surface> m_surfaces;
