@@ -4,8 +4,8 @@
 #include <semnav/common/Error.h>
 #include <semnav/perception/RangeSegmentation.h>
 
-#include <algorithm>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 
 namespace semnav
 {
@@ -48,117 +48,94 @@ void RangeSegmentation::compute(const Sweep& sweep)
 	m_singletons = 0;
 	if (rows == 0 || cols == 0) return;
 
-	// The areas are the connected components of the graph joining valid
-	// 4- (or 8-) neighbours whose ranges differ by at most
-	// max_neighbour_difference_m: exactly what cv::floodFill with a floating
-	// range finds from each first unassigned pixel (the same float test,
-	// -diff <= a - b <= diff), found here by union-find in one row-major
-	// scan instead of one fill per area. The root of a component is its
-	// first pixel in row-major order, so areas are numbered in the order
-	// the fills would number them.
-	const int n = rows * cols;
+	// Range image with invalid pixels blocked in the mask (mask != 0 stops
+	// the fill; the 1-pixel frame the mask needs is blocked too).
 	m_range.create(rows, cols, CV_32F);
-	m_parent.resize(static_cast<std::size_t>(n));
-	const float diff = static_cast<float>(m_options.maxNeighbourDifference);
-	const bool eight = m_options.connectivity == 8;
+	m_mask.create(rows + 2, cols + 2, CV_8U);
+	m_mask.setTo(1);
 	const float* rng = sweep.ranges().data();
 	const uint8_t* val = sweep.validity().data();
-	float* R = m_range.ptr<float>(0);
-	int* U = m_parent.data();
-	auto find = [U](int x)
-	{
-		while (U[x] != x)
-		{
-			U[x] = U[U[x]];
-			x = U[x];
-		}
-		return x;
-	};
-	auto unite = [&](int a, int b)
-	{
-		a = find(a);
-		b = find(b);
-		if (a != b) U[std::max(a, b)] = std::min(a, b);
-	};
-	auto joins = [&](int p, int q)
-	{
-		const float d = R[p] - R[q];
-		return U[q] >= 0 && -diff <= d && d <= diff;
-	};
 	for (int r = 0; r < rows; r++)
 	{
-		const int base = r * cols;
+		float* R = m_range.ptr<float>(r);
+		uint8_t* M = m_mask.ptr<uint8_t>(r + 1) + 1;
+		int* I = m_ids.ptr<int>(r);
 		for (int c = 0; c < cols; c++)
 		{
-			const int p = base + c;
-			const float d = rng[p];
-			const bool ok = val[p] && std::isfinite(d) && d > 0;
-			R[p] = ok ? d : 0.0f;
-			U[p] = ok ? p : -1;  // -1: invalid, in no area
-			if (!ok) continue;
-			// p is new (its own root, above all others): it hangs under
-			// its left neighbour's root; the upper neighbour's tree is
-			// united with that.
-			int root = p;
-			if (c > 0 && joins(p, p - 1)) root = find(p - 1);
-			if (r > 0 && joins(p, p - cols))
+			const std::size_t i = static_cast<std::size_t>(r) * cols + c;
+			const float d = rng[i];
+			const bool ok = val[i] && std::isfinite(d) && d > 0;
+			R[c] = ok ? d : 0.0f;
+			M[c] = ok ? 0 : 1;
+			I[c] = ok ? -1 : 0;
+			if (!ok) m_sizes[0]++;
+		}
+	}
+
+	// Fill value 2 marks the pixels of the current fill in the mask; they
+	// are collected inside the returned bounding box and re-marked 1.
+	const double diff = m_options.maxNeighbourDifference;
+	const int flags =
+	    m_options.connectivity | cv::FLOODFILL_MASK_ONLY | (2 << 8);
+	for (int r = 0; r < rows; r++)
+	{
+		const int* I = m_ids.ptr<int>(r);
+		for (int c = 0; c < cols; c++)
+		{
+			if (I[c] != -1) continue;
+			// A pixel with no joinable neighbour is an area of its own: no
+			// need to call the flood fill (most calls are such on noisy or
+			// grazing surfaces). Same result: it is never > min_area_px.
 			{
-				const int up = find(p - cols);
-				if (root == p)
-					root = up;
-				else if (up != root)
+				const float d = m_range.ptr<float>(r)[c];
+				uint8_t* Mr = m_mask.ptr<uint8_t>(r + 1) + 1;
+				const uint8_t* Mu = m_mask.ptr<uint8_t>(r) + 1;
+				const uint8_t* Md = m_mask.ptr<uint8_t>(r + 2) + 1;
+				auto joinable = [&](const uint8_t* M, int rr, int cc) {
+					return M[cc] == 0 &&
+					       std::abs(m_range.ptr<float>(rr)[cc] - d) <= diff;
+				};
+				bool any = joinable(Mr, r, c - 1) || joinable(Mr, r, c + 1) ||
+				           joinable(Mu, r - 1, c) || joinable(Md, r + 1, c);
+				if (!any && m_options.connectivity == 8)
+					any = joinable(Mu, r - 1, c - 1) ||
+					      joinable(Mu, r - 1, c + 1) ||
+					      joinable(Md, r + 1, c - 1) ||
+					      joinable(Md, r + 1, c + 1);
+				if (!any && m_options.minAreaPixels >= 1)
 				{
-					U[std::max(up, root)] = std::min(up, root);
-					root = std::min(up, root);
+					Mr[c] = 1;
+					m_ids.ptr<int>(r)[c] = 0;
+					m_sizes[0]++;
+					m_singletons++;
+					continue;
 				}
 			}
-			U[p] = root;
-			if (eight && r > 0)
+			cv::Rect box;
+			const int n = cv::floodFill(
+			    m_range, m_mask, cv::Point(c, r), cv::Scalar(0), &box,
+			    cv::Scalar(diff), cv::Scalar(diff), flags);
+			m_fills++;
+			int id = 0;
+			if (n > m_options.minAreaPixels)
 			{
-				if (c > 0 && joins(p, p - cols - 1)) unite(p - cols - 1, p);
-				if (c + 1 < cols && joins(p, p - cols + 1))
-					unite(p - cols + 1, p);
-			}
-		}
-	}
-	// Component sizes (at the roots), then ids in row-major order of the
-	// roots.
-	int* I = m_ids.ptr<int>(0);
-	for (int p = 0; p < n; p++)
-	{
-		I[p] = 0;
-		if (U[p] < 0) continue;
-		const int root = find(p);
-		U[p] = root;
-		I[root]++;
-	}
-	for (int p = 0; p < n; p++)
-	{
-		if (U[p] < 0)
-		{
-			m_sizes[0]++;
-			continue;
-		}
-		if (U[p] == p)
-		{
-			const int size = I[p];
-			if (size == 1 && m_options.minAreaPixels >= 1)
-				m_singletons++;
-			else
-				m_fills++;
-			if (size > m_options.minAreaPixels)
-			{
-				I[p] = static_cast<int>(m_sizes.size());
-				m_sizes.push_back(size);
+				id = static_cast<int>(m_sizes.size());
+				m_sizes.push_back(n);
 			}
 			else
+				m_sizes[0] += n;
+			for (int rr = box.y; rr < box.y + box.height; rr++)
 			{
-				I[p] = 0;
-				m_sizes[0] += size;
+				uint8_t* M = m_mask.ptr<uint8_t>(rr + 1) + 1;
+				int* J = m_ids.ptr<int>(rr);
+				for (int cc = box.x; cc < box.x + box.width; cc++)
+					if (M[cc] == 2)
+					{
+						M[cc] = 1;
+						J[cc] = id;
+					}
 			}
 		}
-		else
-			I[p] = I[U[p]];
 	}
 }
 

@@ -18,9 +18,7 @@ namespace semnav
  * row-major order, starting at (0, 0). An area with more than min_area_px
  * pixels (30) gets the next number 1..n, smaller ones get 0 ("not
  * considered in any later stage" by the paper). Invalid pixels (no return,
- * NaN range) never join an area and are 0. Computed by union-find in one
- * scan (the same areas and numbers as the fills, without one image pass
- * per fill). */
+ * NaN range) never join an area and are 0. */
 class RangeSegmentation
 {
 public:
@@ -55,8 +53,7 @@ public:
 	int areaCount() const { return static_cast<int>(m_sizes.size()) - 1; }
 	/** Pixels of area i (index 0: pixels in no area, invalid included). */
 	const std::vector<int>& areaSizes() const { return m_sizes; }
-	/** Areas of more than one pixel before the size test (the flood fills
-	 * the paper's procedure runs). */
+	/** Flood fills run (areas before the size test). */
 	int fills() const { return m_fills; }
 	/** Pixels with no joinable neighbour (areas of one pixel, found without
 	 * a flood fill). */
@@ -70,8 +67,7 @@ public:
 
 private:
 	TOptions m_options;
-	cv::Mat m_range, m_ids;
-	std::vector<int> m_parent;  ///< union-find forest, -1 = invalid
+	cv::Mat m_range, m_mask, m_ids;
 	std::vector<int> m_sizes;
 	int m_fills = 0, m_singletons = 0;
 };
