@@ -42,100 +42,147 @@ std::optional<std::pair<double, double>> parseXY(const std::string& s)
 int main(int argc, char** argv)
 {
 	semnav::CommandLine cli(
-		"semnav-plan",
-		"Plans the least-cost path (CNN diffusion, paper sec. 3) on a semantic "
-		"map from a start point to the nearest object of a label, to one "
-		"object, or to a point.");
+	    "semnav-plan",
+	    "Plans the least-cost path (CNN diffusion, paper sec. 3) on a semantic "
+	    "map from a start point to the nearest object of a label, to one "
+	    "object, or to a point.");
 	auto& cmd = cli.cmd();
-	TCLAP::ValueArg<std::string> argMap("", "map", "Map directory (semnav-map); required", false, "", "MAPDIR", cmd);
-	TCLAP::ValueArg<std::string> argFrom("", "from", "Start X,Y (m); required", false, "", "X,Y", cmd);
-	TCLAP::ValueArg<std::string> argGoal("", "goal", "Goal label: the nearest (least-cost) object of it", false, "", "LABEL", cmd);
-	TCLAP::ValueArg<int> argObject("", "object", "Goal object id", false, 0, "ID", cmd);
-	TCLAP::ValueArg<std::string> argTo("", "to", "Goal point X,Y (m)", false, "", "X,Y", cmd);
-	TCLAP::ValueArg<std::string> argProfile("", "profile", "shortest (default) or safe", false, "", "shortest|safe", cmd);
-	TCLAP::ValueArg<std::string> argConfig("", "config", "INI file (see config/planning.ini)", false, "", "C.ini", cmd);
-	TCLAP::ValueArg<std::string> argPng("", "png", "Write a picture of map, u, field and path", false, "", "OUT.png", cmd);
-	TCLAP::ValueArg<std::string> argExport("", "export-grid", "Write PREFIX_u.npy, PREFIX_goal.npy, PREFIX_meta.json", false, "", "PREFIX", cmd);
-	TCLAP::SwitchArg argJson("", "json", "Print a JSON summary on stdout", cmd, false);
+	TCLAP::ValueArg<std::string> argMap(
+	    "", "map", "Map directory (semnav-map); required", false, "", "MAPDIR",
+	    cmd);
+	TCLAP::ValueArg<std::string> argFrom(
+	    "", "from", "Start X,Y (m); required", false, "", "X,Y", cmd);
+	TCLAP::ValueArg<std::string> argGoal(
+	    "", "goal", "Goal label: the nearest (least-cost) object of it", false,
+	    "", "LABEL", cmd);
+	TCLAP::ValueArg<int> argObject(
+	    "", "object", "Goal object id", false, 0, "ID", cmd);
+	TCLAP::ValueArg<std::string> argTo(
+	    "", "to", "Goal point X,Y (m)", false, "", "X,Y", cmd);
+	TCLAP::ValueArg<std::string> argProfile(
+	    "", "profile", "shortest (default) or safe", false, "", "shortest|safe",
+	    cmd);
+	TCLAP::ValueArg<std::string> argConfig(
+	    "", "config", "INI file (see config/planning.ini)", false, "", "C.ini",
+	    cmd);
+	TCLAP::ValueArg<std::string> argPng(
+	    "", "png", "Write a picture of map, u, field and path", false, "",
+	    "OUT.png", cmd);
+	TCLAP::ValueArg<std::string> argExport(
+	    "", "export-grid",
+	    "Write PREFIX_u.npy, PREFIX_goal.npy, PREFIX_meta.json", false, "",
+	    "PREFIX", cmd);
+	TCLAP::SwitchArg argJson(
+	    "", "json", "Print a JSON summary on stdout", cmd, false);
 	if (const auto code = cli.parse(argc, argv)) return *code;
 	if (argMap.getValue().empty()) return cli.usageError("missing --map");
 	const auto from = parseXY(argFrom.getValue());
-	if (!from) return cli.usageError("--from must be X,Y in metres, got '" + argFrom.getValue() + "'");
-	const int goals = !argGoal.getValue().empty() + argObject.isSet() + !argTo.getValue().empty();
-	if (goals != 1) return cli.usageError("give exactly one of --goal, --object, --to");
+	if (!from)
+		return cli.usageError(
+		    "--from must be X,Y in metres, got '" + argFrom.getValue() + "'");
+	const int goals = !argGoal.getValue().empty() + argObject.isSet() +
+	                  !argTo.getValue().empty();
+	if (goals != 1)
+		return cli.usageError("give exactly one of --goal, --object, --to");
 	std::optional<std::pair<double, double>> to;
 	if (!argTo.getValue().empty() && !(to = parseXY(argTo.getValue())))
-		return cli.usageError("--to must be X,Y in metres, got '" + argTo.getValue() + "'");
+		return cli.usageError(
+		    "--to must be X,Y in metres, got '" + argTo.getValue() + "'");
 
 	const bool json = argJson.getValue();
-	return cli.run([&] {
-		semnav::CnnPlanner::TOptions cnnOpts;
-		semnav::TraversabilityBuilder::TOptions travOpts;
-		semnav::SemanticMap::TOptions mapOpts;
-		if (!argConfig.getValue().empty())
-		{
-			const auto cfg = semnav::openIniFile(
-				argConfig.getValue(), {"CnnPlanner", "Traversability", "SemanticMap", "TravelCost"});
-			cnnOpts.loadFromConfigFile(*cfg, "CnnPlanner");
-			travOpts.loadFromConfigFile(*cfg, "Traversability");
-			mapOpts.loadFromConfigFile(*cfg, "SemanticMap");
-			mapOpts.cost.loadFromConfigFile(*cfg, "TravelCost");
-		}
-		const semnav::CostProfile profile = argProfile.getValue().empty()
-			? travOpts.profile
-			: semnav::costProfileFromName(argProfile.getValue());
-		const semnav::Label label =
-			argGoal.getValue().empty() ? semnav::Label::Unknown : semnav::labelFromName(argGoal.getValue());
+	return cli.run(
+	    [&]
+	    {
+		    semnav::CnnPlanner::TOptions cnnOpts;
+		    semnav::TraversabilityBuilder::TOptions travOpts;
+		    semnav::SemanticMap::TOptions mapOpts;
+		    if (!argConfig.getValue().empty())
+		    {
+			    const auto cfg = semnav::openIniFile(
+			        argConfig.getValue(), {"CnnPlanner", "Traversability",
+			                               "SemanticMap", "TravelCost"});
+			    cnnOpts.loadFromConfigFile(*cfg, "CnnPlanner");
+			    travOpts.loadFromConfigFile(*cfg, "Traversability");
+			    mapOpts.loadFromConfigFile(*cfg, "SemanticMap");
+			    mapOpts.cost.loadFromConfigFile(*cfg, "TravelCost");
+		    }
+		    const semnav::CostProfile profile =
+		        argProfile.getValue().empty()
+		            ? travOpts.profile
+		            : semnav::costProfileFromName(argProfile.getValue());
+		    const semnav::Label label =
+		        argGoal.getValue().empty()
+		            ? semnav::Label::Unknown
+		            : semnav::labelFromName(argGoal.getValue());
 
-		semnav::SemanticMap map(mapOpts);
-		semnav::MapIO::load(argMap.getValue(), map);
-		const semnav::SemanticPlanner planner(map, cnnOpts, travOpts);
-		nlohmann::json j{{"found", false}};
-		try
-		{
-			semnav::SemanticPlanner::Plan plan;
-			if (label != semnav::Label::Unknown) plan = planner.toLabel(from->first, from->second, label, profile);
-			else if (argObject.isSet())
-				plan = planner.toObject(from->first, from->second, argObject.getValue(), profile);
-			else
-				plan = planner.toPoint(from->first, from->second, to->first, to->second, profile);
+		    semnav::SemanticMap map(mapOpts);
+		    semnav::MapIO::load(argMap.getValue(), map);
+		    const semnav::SemanticPlanner planner(map, cnnOpts, travOpts);
+		    nlohmann::json j{{"found", false}};
+		    try
+		    {
+			    semnav::SemanticPlanner::Plan plan;
+			    if (label != semnav::Label::Unknown)
+				    plan = planner.toLabel(
+				        from->first, from->second, label, profile);
+			    else if (argObject.isSet())
+				    plan = planner.toObject(
+				        from->first, from->second, argObject.getValue(),
+				        profile);
+			    else
+				    plan = planner.toPoint(
+				        from->first, from->second, to->first, to->second,
+				        profile);
 
-			j["found"] = true;
-			j["goal_label"] = plan.goalLabel == semnav::Label::Unknown ? nullptr : nlohmann::json(semnav::labelName(plan.goalLabel));
-			j["goal_object_id"] = plan.goalObjectId;
-			j["cost"] = plan.path.cost;
-			j["length_m"] = plan.path.lengthM;
-			j["iterations"] = plan.field.iterations;
-			j["ms"] = plan.field.milliseconds;
-			j["profile"] = semnav::costProfileName(profile);
-			j["path"] = nlohmann::json::array();
-			for (const auto& p : plan.path.points) j["path"].push_back({p.x, p.y});
-			if (!argPng.getValue().empty())
-			{
-				std::vector<uchar> buf;
-				cv::imencode(".png", semnav::PlanRenderer::render(map, plan), buf);
-				semnav::writeFileAtomically(argPng.getValue(), std::string(buf.begin(), buf.end()));
-			}
-			if (!argExport.getValue().empty()) semnav::exportPlanGrids(argExport.getValue(), plan);
-			if (json) std::cout << j.dump() << std::endl;
-			else
-			{
-				std::cout << "semnav-plan: path of " << plan.path.lengthM << " m, cost " << plan.path.cost;
-				if (plan.goalObjectId)
-					std::cout << ", to " << semnav::labelName(plan.goalLabel) << " #" << plan.goalObjectId;
-				std::cout << " (" << plan.field.iterations << " passes, " << plan.field.milliseconds << " ms)\n";
-				if (!argPng.getValue().empty()) std::cout << "  picture: " << argPng.getValue() << "\n";
-			}
-		}
-		catch (const semnav::PlanningError& e)
-		{
-			if (json)
-			{
-				j["error"] = e.what();
-				std::cout << j.dump() << std::endl;
-			}
-			throw;
-		}
-		return 0;
-	});
+			    j["found"] = true;
+			    j["goal_label"] =
+			        plan.goalLabel == semnav::Label::Unknown
+			            ? nullptr
+			            : nlohmann::json(semnav::labelName(plan.goalLabel));
+			    j["goal_object_id"] = plan.goalObjectId;
+			    j["cost"] = plan.path.cost;
+			    j["length_m"] = plan.path.lengthM;
+			    j["iterations"] = plan.field.iterations;
+			    j["ms"] = plan.field.milliseconds;
+			    j["profile"] = semnav::costProfileName(profile);
+			    j["path"] = nlohmann::json::array();
+			    for (const auto& p : plan.path.points)
+				    j["path"].push_back({p.x, p.y});
+			    if (!argPng.getValue().empty())
+			    {
+				    std::vector<uchar> buf;
+				    cv::imencode(
+				        ".png", semnav::PlanRenderer::render(map, plan), buf);
+				    semnav::writeFileAtomically(
+				        argPng.getValue(), std::string(buf.begin(), buf.end()));
+			    }
+			    if (!argExport.getValue().empty())
+				    semnav::exportPlanGrids(argExport.getValue(), plan);
+			    if (json)
+				    std::cout << j.dump() << std::endl;
+			    else
+			    {
+				    std::cout << "semnav-plan: path of " << plan.path.lengthM
+				              << " m, cost " << plan.path.cost;
+				    if (plan.goalObjectId)
+					    std::cout << ", to "
+					              << semnav::labelName(plan.goalLabel) << " #"
+					              << plan.goalObjectId;
+				    std::cout << " (" << plan.field.iterations << " passes, "
+				              << plan.field.milliseconds << " ms)\n";
+				    if (!argPng.getValue().empty())
+					    std::cout << "  picture: " << argPng.getValue() << "\n";
+			    }
+		    }
+		    catch (const semnav::PlanningError& e)
+		    {
+			    if (json)
+			    {
+				    j["error"] = e.what();
+				    std::cout << j.dump() << std::endl;
+			    }
+			    throw;
+		    }
+		    return 0;
+	    });
 }

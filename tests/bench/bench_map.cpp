@@ -24,11 +24,16 @@ struct Office
 
 const Office& office()
 {
-	static const Office o = [] {
+	static const Office o = []
+	{
 		Office out;
-		const Scene scene = SceneLoader::loadFile(std::string(SEMNAV_SOURCE_DIR) + "/datasets/office/office.yaml");
-		const auto dir = std::filesystem::temp_directory_path() / "semnav_bench_map";
-		const auto res = SimulationRunner(scene, SimulationRunner::TOptions(), 1).run(dir.string());
+		const Scene scene = SceneLoader::loadFile(
+		    std::string(SEMNAV_SOURCE_DIR) + "/datasets/office/office.yaml");
+		const auto dir =
+		    std::filesystem::temp_directory_path() / "semnav_bench_map";
+		const auto res =
+		    SimulationRunner(scene, SimulationRunner::TOptions(), 1)
+		        .run(dir.string());
 		PerceptionPipeline p;
 		out.sweeps = readRawlogSweeps(res.rawlogPath);
 		for (std::size_t i = 0; i < out.sweeps.size(); i++)
@@ -50,15 +55,23 @@ void insertAll(benchmark::State& state, bool withOctomap)
 	for (auto _ : state)
 	{
 		SemanticMap m(opts);
-		for (std::size_t i = 0; i < o.sweeps.size(); i++) m.insert(o.sweeps[i], o.labeled[i], o.poses[i]);
+		for (std::size_t i = 0; i < o.sweeps.size(); i++)
+			m.insert(o.sweeps[i], o.labeled[i], o.poses[i]);
 		benchmark::DoNotOptimize(m.get("cost").data());
 	}
 	state.counters["sweeps_per_s"] = benchmark::Counter(
-		static_cast<double>(o.sweeps.size()), benchmark::Counter::kIsIterationInvariantRate);
+	    static_cast<double>(o.sweeps.size()),
+	    benchmark::Counter::kIsIterationInvariantRate);
 }
 
-void BM_MapInsertOfficeSweeps(benchmark::State& s) { insertAll(s, true); }
-void BM_MapInsertOfficeSweepsNoOctomap(benchmark::State& s) { insertAll(s, false); }
+void BM_MapInsertOfficeSweeps(benchmark::State& s)
+{
+	insertAll(s, true);
+}
+void BM_MapInsertOfficeSweepsNoOctomap(benchmark::State& s)
+{
+	insertAll(s, false);
+}
 
 void BM_MapMemory50x50m(benchmark::State& state)
 {
@@ -68,8 +81,10 @@ void BM_MapMemory50x50m(benchmark::State& state)
 		opts.growMargin = 0;
 		SemanticMap m(opts);
 		m.growToInclude(0, 0, 50, 50);
-		std::size_t bytes = m.occupancyGrid().getRawMap().size() * sizeof(int8_t);
-		for (const auto& name : m.layers()) bytes += m.get(name).size() * sizeof(float);
+		std::size_t bytes =
+		    m.occupancyGrid().getRawMap().size() * sizeof(int8_t);
+		for (const auto& name : m.layers())
+			bytes += m.get(name).size() * sizeof(float);
 		state.counters["cells"] = static_cast<double>(m.geometry().cellCount());
 		state.counters["MiB"] = static_cast<double>(bytes) / (1024.0 * 1024.0);
 	}

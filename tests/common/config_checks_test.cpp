@@ -38,22 +38,41 @@ TEST(ConfigChecks, ReadsValuesAndKeepsDefaults)
 
 TEST(ConfigChecks, ErrorsNameSectionAndKey)
 {
-	mrpt::config::CConfigFileMemory c("[A]\nx_m = 12\ny_m = abc\nn = 2.5\nflag = maybe\ntypo = 1\n");
-	EXPECT_NE(messageOf([&] { readChecked(c, "A", "x_m", 1, 0, 10); }).find("[A] x_m"), std::string::npos);
-	EXPECT_NE(messageOf([&] { readChecked(c, "A", "y_m", 1, 0, 10); }).find("not a number"), std::string::npos);
-	EXPECT_NE(messageOf([&] { readCheckedInt(c, "A", "n", 1, 0, 10); }).find("integer"), std::string::npos);
-	EXPECT_NE(messageOf([&] { readCheckedBool(c, "A", "flag", true); }).find("flag"), std::string::npos);
-	const auto m = messageOf([&] { checkKnownKeys(c, "A", {"x_m", "y_m", "n", "flag"}); });
+	mrpt::config::CConfigFileMemory c(
+	    "[A]\nx_m = 12\ny_m = abc\nn = 2.5\nflag = maybe\ntypo = 1\n");
+	EXPECT_NE(
+	    messageOf([&] { readChecked(c, "A", "x_m", 1, 0, 10); })
+	        .find("[A] x_m"),
+	    std::string::npos);
+	EXPECT_NE(
+	    messageOf([&] { readChecked(c, "A", "y_m", 1, 0, 10); })
+	        .find("not a number"),
+	    std::string::npos);
+	EXPECT_NE(
+	    messageOf([&] { readCheckedInt(c, "A", "n", 1, 0, 10); })
+	        .find("integer"),
+	    std::string::npos);
+	EXPECT_NE(
+	    messageOf([&] { readCheckedBool(c, "A", "flag", true); }).find("flag"),
+	    std::string::npos);
+	const auto m = messageOf(
+	    [&] {
+		    checkKnownKeys(c, "A", {"x_m", "y_m", "n", "flag"});
+	    });
 	EXPECT_NE(m.find("unknown key [A] typo"), std::string::npos) << m;
 }
 
 TEST(ConfigChecks, OpenIniFileRejectsUnknownSectionsAndMissingFiles)
 {
-	const auto p = std::filesystem::temp_directory_path() / ("semnav_cfg_" + std::to_string(::getpid()) + ".ini");
+	const auto p = std::filesystem::temp_directory_path() /
+	               ("semnav_cfg_" + std::to_string(::getpid()) + ".ini");
 	std::ofstream(p) << "[Known]\na = 1\n[Stray]\nb = 2\n";
 	const auto m = messageOf([&] { openIniFile(p.string(), {"Known"}); });
 	EXPECT_NE(m.find("[Stray]"), std::string::npos) << m;
 	EXPECT_NO_THROW(openIniFile(p.string(), {"Known", "Stray"}));
-	EXPECT_NE(messageOf([&] { openIniFile("/nonexistent.ini", {}); }).find("not found"), std::string::npos);
+	EXPECT_NE(
+	    messageOf([&] { openIniFile("/nonexistent.ini", {}); })
+	        .find("not found"),
+	    std::string::npos);
 	std::filesystem::remove(p);
 }

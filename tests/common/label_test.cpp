@@ -8,8 +8,9 @@ using namespace semnav;
 
 TEST(Label, NamesRoundTripInDesignOrder)
 {
-	const char* expected[] = {"unknown", "floor",	  "ceiling",	 "wall",	  "door",	 "sidewalk",
-							  "grass",	 "stairs",	  "washbasin", "wastebasket", "obstacle"};
+	const char* expected[] = {"unknown",   "floor",       "ceiling", "wall",
+	                          "door",      "sidewalk",    "grass",   "stairs",
+	                          "washbasin", "wastebasket", "obstacle"};
 	ASSERT_EQ(allLabels().size(), std::size(expected));
 	for (std::size_t i = 0; i < kLabelCount; i++)
 	{

@@ -40,7 +40,8 @@ inline FakeSweep makeFakeSweep(const std::vector<FakePoint>& pts)
 	for (int i = 0; i < n; i++)
 	{
 		ls.points.at<cv::Vec3f>(0, i) = cv::Vec3f(
-			static_cast<float>(pts[i].x), static_cast<float>(pts[i].y), static_cast<float>(pts[i].z));
+		    static_cast<float>(pts[i].x), static_cast<float>(pts[i].y),
+		    static_cast<float>(pts[i].z));
 		ls.labels.at<uint8_t>(0, i) = static_cast<uint8_t>(pts[i].label);
 	}
 	return f;
@@ -52,7 +53,8 @@ inline std::vector<FakePoint> floorFan(double range, double step = 0.04)
 	std::vector<FakePoint> pts;
 	for (double a = -0.6; a <= 0.6; a += 0.02)
 		for (double r = 0.3; r <= range; r += step)
-			pts.push_back({r * std::cos(a), r * std::sin(a), 0.0, Label::Floor});
+			pts.push_back(
+			    {r * std::cos(a), r * std::sin(a), 0.0, Label::Floor});
 	return pts;
 }
 

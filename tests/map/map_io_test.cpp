@@ -20,7 +20,8 @@ namespace
 {
 fs::path tempDir(const std::string& name)
 {
-	const fs::path d = fs::temp_directory_path() / ("semnav_" + name + "_" + std::to_string(::getpid()));
+	const fs::path d = fs::temp_directory_path() /
+	                   ("semnav_" + name + "_" + std::to_string(::getpid()));
 	fs::remove_all(d);
 	return d;
 }
@@ -29,7 +30,8 @@ fs::path tempDir(const std::string& name)
 void buildMap(SemanticMap& m)
 {
 	auto pts = floorFan(3.0);
-	for (double y = -0.3; y <= 0.3; y += 0.02) pts.push_back({2.5, y, 0.3, Label::Obstacle});
+	for (double y = -0.3; y <= 0.3; y += 0.02)
+		pts.push_back({2.5, y, 0.3, Label::Obstacle});
 	pts.push_back({1.0, 0.0, 2.5, Label::Ceiling});
 	auto f = makeFakeSweep(pts);
 	Detection d;
@@ -47,7 +49,8 @@ struct MapServerMap
 {
 	double resolution, originX, originY;
 	int width, height;
-	std::vector<int8_t> data;  // row-major from the bottom row: 100 occ, 0 free, -1 unknown
+	std::vector<int8_t>
+	    data;  // row-major from the bottom row: 100 occ, 0 free, -1 unknown
 };
 MapServerMap loadLikeMapServer(const fs::path& yamlPath)
 {
@@ -56,9 +59,12 @@ MapServerMap loadLikeMapServer(const fs::path& yamlPath)
 	m.resolution = y["resolution"].as<double>();
 	m.originX = y["origin"][0].as<double>();
 	m.originY = y["origin"][1].as<double>();
-	const double occ = y["occupied_thresh"].as<double>(), free = y["free_thresh"].as<double>();
+	const double occ = y["occupied_thresh"].as<double>(),
+	             free = y["free_thresh"].as<double>();
 	const bool negate = y["negate"].as<int>() != 0;
-	const cv::Mat img = cv::imread((yamlPath.parent_path() / y["image"].as<std::string>()).string(), cv::IMREAD_GRAYSCALE);
+	const cv::Mat img = cv::imread(
+	    (yamlPath.parent_path() / y["image"].as<std::string>()).string(),
+	    cv::IMREAD_GRAYSCALE);
 	m.width = img.cols;
 	m.height = img.rows;
 	for (int j = 0; j < img.rows; j++)
@@ -78,7 +84,9 @@ TEST(MapIO, SaveThenLoadGivesTheSameMap)
 	buildMap(a);
 	const auto dir = tempDir("mapio_rt");
 	MapIO::save(a, dir.string());
-	for (const char* f : {"map.yaml", "occupancy.png", "labels.png", "cost.png", "objects.png", "map.png", "octomap.bt"})
+	for (const char* f :
+	     {"map.yaml", "occupancy.png", "labels.png", "cost.png", "objects.png",
+	      "map.png", "octomap.bt"})
 		EXPECT_TRUE(fs::exists(dir / f)) << f;
 
 	SemanticMap b;
@@ -90,7 +98,9 @@ TEST(MapIO, SaveThenLoadGivesTheSameMap)
 		const auto &la = a.get(name), &lb = b.get(name);
 		ASSERT_EQ(la.size(), lb.size());
 		for (std::size_t i = 0; i < la.size(); i++)
-			ASSERT_TRUE(la[i] == lb[i] || (std::isnan(la[i]) && std::isnan(lb[i]))) << name << " cell " << i;
+			ASSERT_TRUE(
+			    la[i] == lb[i] || (std::isnan(la[i]) && std::isnan(lb[i])))
+			    << name << " cell " << i;
 	}
 	EXPECT_EQ(b.occupancyGrid().getRawMap(), a.occupancyGrid().getRawMap());
 	ASSERT_EQ(b.allInstances().size(), a.allInstances().size());
@@ -120,12 +130,20 @@ TEST(MapIO, MapYamlReadsLikeMapServer)
 	for (int cy = 0; cy < g.rows; cy++)
 		for (int cx = 0; cx < g.cols; cx++)
 		{
-			const int8_t v = ms.data[static_cast<std::size_t>(cy) * g.cols + cx];
+			const int8_t v =
+			    ms.data[static_cast<std::size_t>(cy) * g.cols + cx];
 			switch (a.cellState(cx, cy))
 			{
-				case SemanticMap::CellState::Occupied: ASSERT_EQ(v, 100); occ++; break;
-				case SemanticMap::CellState::Free: ASSERT_EQ(v, 0); free++; break;
-				default: ASSERT_EQ(v, -1);
+				case SemanticMap::CellState::Occupied:
+					ASSERT_EQ(v, 100);
+					occ++;
+					break;
+				case SemanticMap::CellState::Free:
+					ASSERT_EQ(v, 0);
+					free++;
+					break;
+				default:
+					ASSERT_EQ(v, -1);
 			}
 		}
 	EXPECT_GT(occ, 5u);
@@ -133,8 +151,10 @@ TEST(MapIO, MapYamlReadsLikeMapServer)
 	// A world point maps to the same cell both ways.
 	int cx, cy;
 	ASSERT_TRUE(a.worldToCell(2.01, 1.51, cx, cy));
-	EXPECT_EQ(static_cast<int>(std::floor((2.01 - ms.originX) / ms.resolution)), cx);
-	EXPECT_EQ(static_cast<int>(std::floor((1.51 - ms.originY) / ms.resolution)), cy);
+	EXPECT_EQ(
+	    static_cast<int>(std::floor((2.01 - ms.originX) / ms.resolution)), cx);
+	EXPECT_EQ(
+	    static_cast<int>(std::floor((1.51 - ms.originY) / ms.resolution)), cy);
 	fs::remove_all(dir);
 }
 
@@ -143,7 +163,8 @@ TEST(MapIO, CorruptOrMissingFilesGiveClearErrors)
 	SemanticMap a;
 	buildMap(a);
 	const auto dir = tempDir("mapio_bad");
-	auto expectError = [&](const std::string& needle) {
+	auto expectError = [&](const std::string& needle)
+	{
 		SemanticMap b;
 		try
 		{
@@ -152,7 +173,8 @@ TEST(MapIO, CorruptOrMissingFilesGiveClearErrors)
 		}
 		catch (const IoError& e)
 		{
-			EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+			EXPECT_NE(std::string(e.what()).find(needle), std::string::npos)
+			    << e.what();
 		}
 	};
 	MapIO::save(a, dir.string());
@@ -164,11 +186,14 @@ TEST(MapIO, CorruptOrMissingFilesGiveClearErrors)
 	expectError("cost.pfm");
 
 	MapIO::save(a, dir.string());
-	cv::imwrite((dir / "occupancy.png").string(), cv::Mat(3, 3, CV_8UC1, cv::Scalar(0)));
+	cv::imwrite(
+	    (dir / "occupancy.png").string(),
+	    cv::Mat(3, 3, CV_8UC1, cv::Scalar(0)));
 	expectError("occupancy.png");
 
 	MapIO::save(a, dir.string());
-	std::ofstream(dir / "map.yaml") << "image: occupancy.png\nresolution: [oops\n";
+	std::ofstream(dir / "map.yaml")
+	    << "image: occupancy.png\nresolution: [oops\n";
 	expectError("map.yaml:");
 
 	MapIO::save(a, dir.string());

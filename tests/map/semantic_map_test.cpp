@@ -2,9 +2,9 @@
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
+#include <octomap/OcTree.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
-#include <octomap/OcTree.h>
 #include <semnav/map/SemanticMap.h>
 
 #include "MapTestUtils.h"
@@ -46,7 +46,8 @@ TEST(SemanticMap, LayerApiAndConversions)
 	ASSERT_TRUE(m.worldToCell(0.31, -0.21, cx2, cy2));
 	EXPECT_FLOAT_EQ(m.at("elevation", cx2, cy2), 7.0f);
 	EXPECT_NEAR(std::remainder(m.geometry().originX, 0.05), 0, 1e-9);
-	EXPECT_EQ(static_cast<int>(m.occupancyGrid().getSizeX()), m.geometry().cols);
+	EXPECT_EQ(
+	    static_cast<int>(m.occupancyGrid().getSizeX()), m.geometry().cols);
 	EXPECT_NEAR(m.occupancyGrid().getXMin(), m.geometry().originX, 1e-4);
 	EXPECT_EQ(m.occupancyGrid().x2idx(0.31), cx2);
 }
@@ -57,10 +58,13 @@ TEST(SemanticMap, InsertionMarksFreeOccupiedAndLabels)
 	auto pts = floorFan(3.0);
 	// A box face 2 m ahead, 0.1..0.5 m high; a ceiling point above.
 	for (double y = -0.2; y <= 0.2; y += 0.02)
-		for (double z = 0.1; z <= 0.5; z += 0.1) pts.push_back({2.0, y, z, Label::Obstacle});
+		for (double z = 0.1; z <= 0.5; z += 0.1)
+			pts.push_back({2.0, y, z, Label::Obstacle});
 	pts.push_back({1.0, 0.0, 2.5, Label::Ceiling});
 	const auto f = makeFakeSweep(pts);
-	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(1.0, 2.0, M_PI / 2));  // facing +y
+	m.insert(
+	    f.sweep, f.labeled,
+	    mrpt::poses::CPose2D(1.0, 2.0, M_PI / 2));  // facing +y
 
 	int cx, cy;
 	// The box is 2 m ahead of the robot, i.e. at world (1, 4).
@@ -88,7 +92,8 @@ TEST(SemanticMap, LaterSweepsClearAnObstacleThatLeft)
 {
 	SemanticMap m;
 	auto withBox = floorFan(3.0);
-	for (double y = -0.2; y <= 0.2; y += 0.02) withBox.push_back({1.5, y, 0.3, Label::Obstacle});
+	for (double y = -0.2; y <= 0.2; y += 0.02)
+		withBox.push_back({1.5, y, 0.3, Label::Obstacle});
 	const auto a = makeFakeSweep(withBox);
 	const mrpt::poses::CPose2D pose(0, 0, 0);
 	m.insert(a.sweep, a.labeled, pose);
@@ -115,7 +120,8 @@ TEST(SemanticMap, DetectionsMergeIntoInstances)
 	f.labeled.detections = {d};
 	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
 	ASSERT_EQ(m.allInstances().size(), 1u);
-	EXPECT_TRUE(m.instances().empty()) << "a one-off detection must not be reported";
+	EXPECT_TRUE(m.instances().empty())
+	    << "a one-off detection must not be reported";
 	// Seen again from another pose, 10 cm off: same instance.
 	f.labeled.detections[0].centroid = {1.0, 0.6, 0.2};
 	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(1.1, 0, 0));
@@ -144,7 +150,8 @@ TEST(SemanticMap, GoalRegionIsFreeCellsWithinReach)
 {
 	SemanticMap m;
 	auto pts = floorFan(1.95);  // the floor up to the basin's foot
-	for (double y = -0.1; y <= 0.1; y += 0.02) pts.push_back({2.0, y, 0.3, Label::Washbasin});
+	for (double y = -0.1; y <= 0.1; y += 0.02)
+		pts.push_back({2.0, y, 0.3, Label::Washbasin});
 	auto f = makeFakeSweep(pts);
 	Detection d;
 	d.label = Label::Washbasin;
@@ -171,16 +178,18 @@ TEST(SemanticMap, GoalRegionIsFreeCellsWithinReach)
 
 TEST(SemanticMapOptions, ShippedConfigLoadsAndBadValuesAreRejected)
 {
-	const auto cfg = openIniFile(std::string(SEMNAV_SOURCE_DIR) + "/config/map.ini",
-		{"SemanticMap", "TravelCost", "SweepAssembler", "NormalImage", "RangeSegmentation", "Roughness",
-		 "RuleClassifier"});
+	const auto cfg = openIniFile(
+	    std::string(SEMNAV_SOURCE_DIR) + "/config/map.ini",
+	    {"SemanticMap", "TravelCost", "SweepAssembler", "NormalImage",
+	     "RangeSegmentation", "Roughness", "RuleClassifier"});
 	SemanticMap::TOptions o;
 	o.loadFromConfigFile(*cfg, "SemanticMap");
 	o.cost.loadFromConfigFile(*cfg, "TravelCost");
 	EXPECT_DOUBLE_EQ(o.resolution, 0.05);
 	mrpt::config::CConfigFileMemory bad("[SemanticMap]\nresolution_m = 0\n");
 	EXPECT_THROW(o.loadFromConfigFile(bad, "SemanticMap"), ConfigError);
-	mrpt::config::CConfigFileMemory typo("[TravelCost]\nrobot_type = hovercraft\n");
+	mrpt::config::CConfigFileMemory typo(
+	    "[TravelCost]\nrobot_type = hovercraft\n");
 	EXPECT_THROW(o.cost.loadFromConfigFile(typo, "TravelCost"), ConfigError);
 }
 
@@ -199,12 +208,16 @@ TEST(TravelCostModel, FollowsTheLabels)
 	wallFloor.insert(Label::Wall);
 	using Occ = TravelCostModel::Occupancy;
 	EXPECT_DOUBLE_EQ(wheeled.cost(floor, 1.0, Occ::Free), 0.0);
-	EXPECT_GT(wheeled.cost(grass, 0.95, Occ::Free), wheeled.cost(grass, 1.0, Occ::Free));
+	EXPECT_GT(
+	    wheeled.cost(grass, 0.95, Occ::Free),
+	    wheeled.cost(grass, 1.0, Occ::Free));
 	EXPECT_DOUBLE_EQ(wheeled.cost(stairs, 1.0, Occ::Free), L);
 	EXPECT_LT(walking.cost(stairs, 1.0, Occ::Free), L);
 	EXPECT_DOUBLE_EQ(wheeled.cost(wallFloor, 1.0, Occ::Unknown), L);
-	EXPECT_DOUBLE_EQ(wheeled.cost(wallFloor, 1.0, Occ::Free), 0.0) << "the wall left";
+	EXPECT_DOUBLE_EQ(wheeled.cost(wallFloor, 1.0, Occ::Free), 0.0)
+	    << "the wall left";
 	EXPECT_DOUBLE_EQ(wheeled.cost(floor, 1.0, Occ::Occupied), L);
-	EXPECT_DOUBLE_EQ(wheeled.cost(LabelSet(), NAN, Occ::Unknown), o.unknownCost);
+	EXPECT_DOUBLE_EQ(
+	    wheeled.cost(LabelSet(), NAN, Occ::Unknown), o.unknownCost);
 	EXPECT_DOUBLE_EQ(wheeled.cost(LabelSet(), NAN, Occ::Free), 0.0);
 }

@@ -11,12 +11,15 @@ namespace semnav::test
 {
 /** Range of beam `c` on a synthetic line at tilt index `k`: unique per pixel
  * so tests can check where every value went. */
-inline float syntheticRange(int k, std::size_t c) { return 1.0f + 0.01f * k + 0.001f * c; }
+inline float syntheticRange(int k, std::size_t c)
+{
+	return 1.0f + 0.01f * k + 0.001f * c;
+}
 
 /** A 2D scan line at tilt index k (theta = thetaMin + k * step). */
 inline mrpt::obs::CObservation2DRangeScan::Ptr makeLine(
-	int k, double thetaMin = -15 * M_PI / 180, double step = 0.5 * M_PI / 180,
-	std::size_t beams = 361, const std::string& label = "TILT_LMS")
+    int k, double thetaMin = -15 * M_PI / 180, double step = 0.5 * M_PI / 180,
+    std::size_t beams = 361, const std::string& label = "TILT_LMS")
 {
 	auto s = mrpt::obs::CObservation2DRangeScan::Create();
 	s->sensorLabel = label;
@@ -34,7 +37,8 @@ inline mrpt::obs::CObservation2DRangeScan::Ptr makeLine(
 	return s;
 }
 
-inline mrpt::obs::CObservationOdometry::Ptr makeOdometry(double x, double y, double yaw)
+inline mrpt::obs::CObservationOdometry::Ptr makeOdometry(
+    double x, double y, double yaw)
 {
 	auto o = mrpt::obs::CObservationOdometry::Create();
 	o->sensorLabel = "ODOMETRY";

@@ -20,7 +20,7 @@ namespace
 fs::path tempDir(const std::string& name)
 {
 	const fs::path d = fs::temp_directory_path() /
-		("semnav_" + name + "_" + std::to_string(::getpid()));
+	                   ("semnav_" + name + "_" + std::to_string(::getpid()));
 	fs::remove_all(d);
 	fs::create_directories(d);
 	return d;
@@ -34,7 +34,8 @@ std::string writeLog(const fs::path& dir, int sweeps, int compress = 1)
 	for (int n = 0; n < sweeps; n++)
 	{
 		w.write(*makeOdometry(n, 0, 0));
-		for (int i = 0; i < 211; i++) w.write(*makeLine(n % 2 == 0 ? i : 210 - i));
+		for (int i = 0; i < 211; i++)
+			w.write(*makeLine(n % 2 == 0 ? i : 210 - i));
 	}
 	w.commit();
 	return path;
@@ -96,7 +97,8 @@ TEST(RawlogSweepReader, GarbageAndMissingFilesAreRawlogErrors)
 	const auto garbage = (dir / "garbage.rawlog").string();
 	std::ofstream(garbage) << "this is not a rawlog at all, just text\n";
 	EXPECT_THROW(readRawlogSweeps(garbage), RawlogError);
-	EXPECT_THROW(readRawlogSweeps((dir / "missing.rawlog").string()), RawlogError);
+	EXPECT_THROW(
+	    readRawlogSweeps((dir / "missing.rawlog").string()), RawlogError);
 	fs::remove_all(dir);
 }
 

@@ -38,7 +38,8 @@ void expectRowsAreTiltIndices(const Sweep& s)
 	{
 		EXPECT_NEAR(s.theta(r), (-15 + 0.5 * r) * M_PI / 180, 1e-9);
 		if (s.valid(r, 100))  // rows of missing lines are all invalid
-			EXPECT_FLOAT_EQ(s.range(r, 100), syntheticRange(static_cast<int>(r), 100));
+			EXPECT_FLOAT_EQ(
+			    s.range(r, 100), syntheticRange(static_cast<int>(r), 100));
 	}
 }
 }  // namespace
@@ -167,7 +168,9 @@ TEST(SweepAssembler, OtherSensorsAreIgnored)
 	for (int k = 0; k < kLines; k++)
 	{
 		a.push(makeLine(k));
-		a.push(makeLine(kLines - 1 - k, -15 * M_PI / 180, 0.5 * M_PI / 180, 361, "FRONT_LASER"));
+		a.push(makeLine(
+		    kLines - 1 - k, -15 * M_PI / 180, 0.5 * M_PI / 180, 361,
+		    "FRONT_LASER"));
 	}
 	a.finish();
 	const auto sweeps = drain(a);
@@ -207,9 +210,11 @@ TEST(SweepAssemblerOptions, LoadSaveAndRejectBadKeys)
 	EXPECT_FALSE(back.splitOnMotion);
 	EXPECT_NEAR(back.sameTiltTolerance, o.sameTiltTolerance, 1e-12);
 
-	mrpt::config::CConfigFileMemory bad("[SweepAssembler]\nmin_valid_rang_m = 0.3\n");
+	mrpt::config::CConfigFileMemory bad(
+	    "[SweepAssembler]\nmin_valid_rang_m = 0.3\n");
 	EXPECT_THROW(back.loadFromConfigFile(bad, "SweepAssembler"), ConfigError);
-	mrpt::config::CConfigFileMemory range("[SweepAssembler]\ncomplete_span_fraction = 1.5\n");
+	mrpt::config::CConfigFileMemory range(
+	    "[SweepAssembler]\ncomplete_span_fraction = 1.5\n");
 	try
 	{
 		back.loadFromConfigFile(range, "SweepAssembler");
@@ -217,6 +222,8 @@ TEST(SweepAssemblerOptions, LoadSaveAndRejectBadKeys)
 	}
 	catch (const ConfigError& e)
 	{
-		EXPECT_NE(std::string(e.what()).find("complete_span_fraction"), std::string::npos);
+		EXPECT_NE(
+		    std::string(e.what()).find("complete_span_fraction"),
+		    std::string::npos);
 	}
 }

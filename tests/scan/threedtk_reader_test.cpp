@@ -15,12 +15,13 @@ namespace fs = std::filesystem;
 namespace
 {
 // Real scans live outside the repo (see ../shared/data/3dtk/README.md).
-const fs::path kDataDir = fs::path(SEMNAV_SOURCE_DIR) / ".." / "shared" / "data" / "3dtk";
+const fs::path kDataDir =
+    fs::path(SEMNAV_SOURCE_DIR) / ".." / "shared" / "data" / "3dtk";
 
-#define SKIP_WITHOUT_3DTK(file)                                                        \
-	if (!fs::exists(kDataDir / file))                                                 \
-	GTEST_SKIP() << "3DTK data not found at " << (kDataDir / file).string()         \
-				 << " (real-scan checks skipped)"
+#define SKIP_WITHOUT_3DTK(file)                                             \
+	if (!fs::exists(kDataDir / file))                                       \
+	GTEST_SKIP() << "3DTK data not found at " << (kDataDir / file).string() \
+	             << " (real-scan checks skipped)"
 
 struct RawXyz
 {
@@ -31,7 +32,8 @@ std::vector<RawXyz> readRaw(const fs::path& p)
 	std::ifstream f(p);
 	std::vector<RawXyz> out;
 	RawXyz q;
-	while (f >> q.x >> q.y >> q.z) out.push_back({q.x / 100, q.y / 100, q.z / 100});
+	while (f >> q.x >> q.y >> q.z)
+		out.push_back({q.x / 100, q.y / 100, q.z / 100});
 	return out;
 }
 }  // namespace
@@ -45,7 +47,8 @@ TEST(ThreeDtkReader, ReadsTheOrganizedScanAndMasksInvalidReadings)
 	ASSERT_EQ(s.cols(), 360u);
 	EXPECT_NEAR(s.theta(0) * 180 / M_PI, -48.7, 0.1);
 	EXPECT_NEAR(s.theta(225) * 180 / M_PI, 67.6, 0.1);
-	for (std::size_t r = 1; r < s.rows(); r++) EXPECT_GT(s.theta(r), s.theta(r - 1));
+	for (std::size_t r = 1; r < s.rows(); r++)
+		EXPECT_GT(s.theta(r), s.theta(r - 1));
 	EXPECT_NEAR(s.phi(0), -M_PI / 2, 1e-9);
 	EXPECT_NEAR(s.phi(359), 89.5 * M_PI / 180, 1e-9);
 
@@ -72,15 +75,18 @@ TEST(ThreeDtkReader, ReadsTheOrganizedScanAndMasksInvalidReadings)
 			}
 			ASSERT_TRUE(s.valid(r, c));
 			valid++;
-			// Same point as the file's, in semnav's frame (x fwd, y left, z up).
+			// Same point as the file's, in semnav's frame (x fwd, y left, z
+			// up).
 			const auto p = s.point(r, c);
 			maxErr = std::max(
-				{maxErr, std::abs(p.x - q.z), std::abs(p.y + q.x), std::abs(p.z - q.y)});
+			    {maxErr, std::abs(p.x - q.z), std::abs(p.y + q.x),
+			     std::abs(p.z - q.y)});
 		}
 	EXPECT_GT(noReturn, 0u);
 	EXPECT_GT(tooClose, 0u);
 	EXPECT_EQ(valid, s.validCount());
-	EXPECT_LT(maxErr, 0.02) << "per-row tilt does not reproduce the file's points";
+	EXPECT_LT(maxErr, 0.02)
+	    << "per-row tilt does not reproduce the file's points";
 }
 
 TEST(ThreeDtkReader, FloorBelowTheSensorIsLevel)
@@ -104,8 +110,10 @@ TEST(ThreeDtkReader, FloorBelowTheSensorIsLevel)
 TEST(ThreeDtkReader, PoseFilesGiveTheSecondScanAhead)
 {
 	SKIP_WITHOUT_3DTK("scan001.pose");
-	const auto p0 = ThreeDtkReader::readPose((kDataDir / "scan000.pose").string());
-	const auto p1 = ThreeDtkReader::readPose((kDataDir / "scan001.pose").string());
+	const auto p0 =
+	    ThreeDtkReader::readPose((kDataDir / "scan000.pose").string());
+	const auto p1 =
+	    ThreeDtkReader::readPose((kDataDir / "scan001.pose").string());
 	EXPECT_NEAR(p1.x() - p0.x(), 1.57, 0.05);
 	EXPECT_NEAR(p1.y() - p0.y(), 0.03, 0.05);
 	const Sweep s = ThreeDtkReader().read((kDataDir / "scan001.3d").string());
@@ -115,7 +123,8 @@ TEST(ThreeDtkReader, PoseFilesGiveTheSecondScanAhead)
 
 TEST(ThreeDtkReader, MalformedFilesNameTheLine)
 {
-	const fs::path p = fs::temp_directory_path() / ("semnav_bad_" + std::to_string(::getpid()) + ".3d");
+	const fs::path p = fs::temp_directory_path() /
+	                   ("semnav_bad_" + std::to_string(::getpid()) + ".3d");
 	{
 		std::ofstream f(p);
 		f << "1 2 3\n4 five 6\n";
@@ -127,7 +136,8 @@ TEST(ThreeDtkReader, MalformedFilesNameTheLine)
 	}
 	catch (const IoError& e)
 	{
-		EXPECT_NE(std::string(e.what()).find(":2:"), std::string::npos) << e.what();
+		EXPECT_NE(std::string(e.what()).find(":2:"), std::string::npos)
+		    << e.what();
 	}
 	{
 		std::ofstream f(p);

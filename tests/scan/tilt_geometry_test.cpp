@@ -11,8 +11,12 @@ TEST(TiltGeometry, TiltRoundTripsThroughSensorPose)
 	for (double deg = -89; deg <= 89; deg += 7.3)
 	{
 		const double theta = deg * M_PI / 180;
-		EXPECT_NEAR(tiltOfSensorPose(tiltedSensorPose({0.1, 0, 0.45}, theta)), theta, 1e-12);
-		EXPECT_NEAR(tiltOfSensorPose(tiltedSensorPose({0, 0, 0.45}, theta, 0.3)), theta, 1e-12);
+		EXPECT_NEAR(
+		    tiltOfSensorPose(tiltedSensorPose({0.1, 0, 0.45}, theta)), theta,
+		    1e-12);
+		EXPECT_NEAR(
+		    tiltOfSensorPose(tiltedSensorPose({0, 0, 0.45}, theta, 0.3)), theta,
+		    1e-12);
 	}
 }
 

@@ -49,12 +49,12 @@ trajectory:
 /** Minimal valid scene; error tests edit it line by line:
  * 1 name, 2 bounds, 3 objects, 4 the wall, 5 trajectory, 6 a pose. */
 const std::vector<std::string> kBaseLines = {
-	"name: t",
-	"bounds: [0, 0, 10, 10]",
-	"objects:",
-	"  - {label: wall, box: {center: [1, 1, 1], size: [1, 1, 2]}}",
-	"trajectory:",
-	"  - [1, 2, 0]"};
+    "name: t",
+    "bounds: [0, 0, 10, 10]",
+    "objects:",
+    "  - {label: wall, box: {center: [1, 1, 1], size: [1, 1, 2]}}",
+    "trajectory:",
+    "  - [1, 2, 0]"};
 
 /** Base scene with line `lineNo` (1-based) replaced by `text` (several
  * lines allowed); lineNo 0 replaces nothing. */
@@ -96,16 +96,16 @@ std::string errorOf(const std::string& yaml)
 /** Expects an error whose message starts with `t.yaml:<line>: <path>: ` and
  * contains `fragment`, on one line. */
 void expectError(
-	const std::string& yaml, int line, const std::string& path,
-	const std::string& fragment)
+    const std::string& yaml, int line, const std::string& path,
+    const std::string& fragment)
 {
 	const std::string msg = errorOf(yaml);
 	const std::string prefix = "t.yaml:" + std::to_string(line) + ": " +
-		(path.empty() ? "" : path + ": ");
+	                           (path.empty() ? "" : path + ": ");
 	EXPECT_EQ(msg.rfind(prefix, 0), 0u)
-		<< "expected prefix '" << prefix << "' in: " << msg;
+	    << "expected prefix '" << prefix << "' in: " << msg;
 	EXPECT_NE(msg.find(fragment), std::string::npos)
-		<< "expected '" << fragment << "' in: " << msg;
+	    << "expected '" << fragment << "' in: " << msg;
 	EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
 }
 
@@ -134,9 +134,9 @@ TEST(SceneLoader, FullSceneEveryField)
 
 	ASSERT_EQ(s.objects.size(), 6u);
 	const int expectedLines[] = {6, 7, 8, 9, 16, 17};
-	const Label expectedLabels[] = {Label::Wall,	  Label::Door,
-									Label::Wastebasket, Label::Washbasin,
-									Label::Stairs,	  Label::Grass};
+	const Label expectedLabels[] = {Label::Wall,        Label::Door,
+	                                Label::Wastebasket, Label::Washbasin,
+	                                Label::Stairs,      Label::Grass};
 	for (std::size_t i = 0; i < s.objects.size(); i++)
 	{
 		EXPECT_EQ(s.objects[i].id, static_cast<int>(i) + 1);
@@ -157,7 +157,7 @@ TEST(SceneLoader, FullSceneEveryField)
 	const auto& door = partAs<BoxShape>(s, 1);
 	EXPECT_DOUBLE_EQ(door.center.x, 3);
 	EXPECT_DOUBLE_EQ(door.size.y, 0.04);
-	EXPECT_DOUBLE_EQ(door.yaw, 0);	// default
+	EXPECT_DOUBLE_EQ(door.yaw, 0);  // default
 
 	const auto& bin = partAs<CylinderShape>(s, 2);
 	EXPECT_DOUBLE_EQ(bin.center.x, 1.5);
@@ -243,7 +243,7 @@ TEST(SceneLoader, DefaultsWhenOptionalSectionsAbsent)
 TEST(SceneLoader, SensorKeysAreIndividuallyOptional)
 {
 	const Scene s =
-		SceneLoader::parse(appended("sensor: {max_range: 4}"), "t.yaml");
+	    SceneLoader::parse(appended("sensor: {max_range: 4}"), "t.yaml");
 	EXPECT_DOUBLE_EQ(s.sensor.maxRange, 4);
 	EXPECT_EQ(s.sensor.beamCount(), 361u);
 	EXPECT_DOUBLE_EQ(s.sensor.rangeNoise, 0.005);
@@ -252,8 +252,8 @@ TEST(SceneLoader, SensorKeysAreIndividuallyOptional)
 TEST(SceneLoader, ObjectsMayBeAbsent)
 {
 	const Scene s = SceneLoader::parse(
-		"name: empty\nbounds: [0, 0, 1, 1]\ntrajectory: [[0.5, 0.5, 0]]\n",
-		"t.yaml");
+	    "name: empty\nbounds: [0, 0, 1, 1]\ntrajectory: [[0.5, 0.5, 0]]\n",
+	    "t.yaml");
 	EXPECT_TRUE(s.objects.empty());
 	EXPECT_EQ(s.trajectory.size(), 1u);
 }
@@ -261,39 +261,39 @@ TEST(SceneLoader, ObjectsMayBeAbsent)
 TEST(SceneLoaderErrors, UnknownTopLevelKey)
 {
 	expectError(
-		appended("colour: red"), 7, "colour",
-		"unknown key (allowed: name, bounds, ceiling_height, objects, "
-		"sensor, odometry, trajectory)");
+	    appended("colour: red"), 7, "colour",
+	    "unknown key (allowed: name, bounds, ceiling_height, objects, "
+	    "sensor, odometry, trajectory)");
 }
 
 TEST(SceneLoaderErrors, UnknownObjectKey)
 {
 	expectError(
-		edited(
-			4,
-			"  - {label: wall, colour: red, box: {center: [1, 1, 1], size: "
-			"[1, 1, 2]}}"),
-		4, "objects[0].colour", "unknown key (allowed: label, box,");
+	    edited(
+	        4,
+	        "  - {label: wall, colour: red, box: {center: [1, 1, 1], size: "
+	        "[1, 1, 2]}}"),
+	    4, "objects[0].colour", "unknown key (allowed: label, box,");
 }
 
 TEST(SceneLoaderErrors, UnknownBoxKey)
 {
 	expectError(
-		edited(
-			4,
-			"  - {label: wall, box: {center: [1, 1, 1], size: [1, 1, 2], "
-			"pitch: 3}}"),
-		4, "objects[0].box.pitch", "unknown key (allowed: center, size, yaw)");
+	    edited(
+	        4,
+	        "  - {label: wall, box: {center: [1, 1, 1], size: [1, 1, 2], "
+	        "pitch: 3}}"),
+	    4, "objects[0].box.pitch", "unknown key (allowed: center, size, yaw)");
 }
 
 TEST(SceneLoaderErrors, UnknownKeyInNestedBlock)
 {
 	expectError(
-		appended("sensor:\n  mount: [0, 0, 0.4]\n  fov: 180"), 9, "sensor.fov",
-		"unknown key (allowed: mount, phi, theta, max_range, range_noise)");
+	    appended("sensor:\n  mount: [0, 0, 0.4]\n  fov: 180"), 9, "sensor.fov",
+	    "unknown key (allowed: mount, phi, theta, max_range, range_noise)");
 	expectError(
-		appended("odometry:\n  trans_noise: 0.1\n  rot_noise: 2"), 9,
-		"odometry.rot_noise", "allowed: trans_noise, rot_noise_deg_per_m");
+	    appended("odometry:\n  trans_noise: 0.1\n  rot_noise: 2"), 9,
+	    "odometry.rot_noise", "allowed: trans_noise, rot_noise_deg_per_m");
 }
 
 TEST(SceneLoaderErrors, DuplicateKey)
@@ -305,195 +305,196 @@ TEST(SceneLoaderErrors, MissingRequiredKey)
 {
 	expectError(edited(1, "# no name"), 2, "name", "missing required key");
 	expectError(
-		edited(4, "  - {label: wall, box: {center: [1, 1, 1]}}"), 4,
-		"objects[0].box.size", "missing required key");
+	    edited(4, "  - {label: wall, box: {center: [1, 1, 1]}}"), 4,
+	    "objects[0].box.size", "missing required key");
 	expectError(
-		edited(4, "  - {box: {center: [1, 1, 1], size: [1, 1, 2]}}"), 4,
-		"objects[0].label", "missing required key");
+	    edited(4, "  - {box: {center: [1, 1, 1], size: [1, 1, 2]}}"), 4,
+	    "objects[0].label", "missing required key");
 	expectError(firstLines(4), 1, "trajectory", "missing required key");
 	expectError(
-		edited(4, "  - {label: wall}"), 4, "objects[0]",
-		"missing shape: expected one of box, cylinder, stairs, terrain, parts");
+	    edited(4, "  - {label: wall}"), 4, "objects[0]",
+	    "missing shape: expected one of box, cylinder, stairs, terrain, parts");
 }
 
 TEST(SceneLoaderErrors, TwoShapesInOneObject)
 {
 	expectError(
-		edited(
-			4,
-			"  - {label: wall, box: {center: [1, 1, 1], size: [1, 1, 2]}, "
-			"cylinder: {center: [1, 1, 1], radius: 1, height: 1}}"),
-		4, "objects[0]", "got box and cylinder");
+	    edited(
+	        4,
+	        "  - {label: wall, box: {center: [1, 1, 1], size: [1, 1, 2]}, "
+	        "cylinder: {center: [1, 1, 1], radius: 1, height: 1}}"),
+	    4, "objects[0]", "got box and cylinder");
 	expectError(
-		edited(
-			4,
-			"  - label: washbasin\n"
-			"    parts:\n"
-			"      - {cylinder: {center: [1, 1, 1], radius: 1, height: 1}}\n"
-			"      - {box: {center: [1, 1, 1], size: [1, 1, 2]}, terrain: "
-			"{polygon: [[0, 0], [1, 0], [1, 1]], roughness: 0}}"),
-		7, "objects[0].parts[1]", "got box and terrain");
+	    edited(
+	        4,
+	        "  - label: washbasin\n"
+	        "    parts:\n"
+	        "      - {cylinder: {center: [1, 1, 1], radius: 1, height: 1}}\n"
+	        "      - {box: {center: [1, 1, 1], size: [1, 1, 2]}, terrain: "
+	        "{polygon: [[0, 0], [1, 0], [1, 1]], roughness: 0}}"),
+	    7, "objects[0].parts[1]", "got box and terrain");
 }
 
 TEST(SceneLoaderErrors, WrongType)
 {
 	expectError(
-		edited(
-			4, "  - {label: wall, box: {center: [1, 1, 1], size: [1, one, 2]}}"),
-		4, "objects[0].box.size[1]", "expected a number, got 'one'");
+	    edited(
+	        4,
+	        "  - {label: wall, box: {center: [1, 1, 1], size: [1, one, 2]}}"),
+	    4, "objects[0].box.size[1]", "expected a number, got 'one'");
 	expectError(
-		edited(
-			4,
-			"  - {label: wall, box: {center: [1, 1, 1], size: [1, 1, 2], yaw: "
-			"\"90\"}}"),
-		4, "objects[0].box.yaw", "expected a number, got string '90'");
+	    edited(
+	        4,
+	        "  - {label: wall, box: {center: [1, 1, 1], size: [1, 1, 2], yaw: "
+	        "\"90\"}}"),
+	    4, "objects[0].box.yaw", "expected a number, got string '90'");
 	expectError(
-		edited(4, "  - {label: wall, box: [1, 1, 1]}"), 4, "objects[0].box",
-		"expected a map, got a list");
+	    edited(4, "  - {label: wall, box: [1, 1, 1]}"), 4, "objects[0].box",
+	    "expected a map, got a list");
 	expectError(
-		edited(2, "bounds: {xmin: 0}"), 2, "bounds",
-		"expected a list of 4 numbers, got a map");
+	    edited(2, "bounds: {xmin: 0}"), 2, "bounds",
+	    "expected a list of 4 numbers, got a map");
 	expectError(
-		appended("ceiling_height: true"), 7, "ceiling_height",
-		"expected a number, got 'true'");
+	    appended("ceiling_height: true"), 7, "ceiling_height",
+	    "expected a number, got 'true'");
 	expectError(
-		firstLines(2) + "objects: {a: 1}\ntrajectory: [[1, 2, 0]]\n", 3,
-		"objects", "expected a list, got a map");
+	    firstLines(2) + "objects: {a: 1}\ntrajectory: [[1, 2, 0]]\n", 3,
+	    "objects", "expected a list, got a map");
 	expectError(
-		edited(
-			4,
-			"  - {label: stairs, stairs: {origin: [1, 1], steps: 2.5, rise: "
-			"0.2, run: 0.3, width: 1}}"),
-		4, "objects[0].stairs.steps", "expected an integer, got 2.5");
+	    edited(
+	        4,
+	        "  - {label: stairs, stairs: {origin: [1, 1], steps: 2.5, rise: "
+	        "0.2, run: 0.3, width: 1}}"),
+	    4, "objects[0].stairs.steps", "expected an integer, got 2.5");
 }
 
 TEST(SceneLoaderErrors, WrongListLength)
 {
 	expectError(
-		edited(4, "  - {label: wall, box: {center: [1, 1, 1], size: [1, 1]}}"),
-		4, "objects[0].box.size", "expected 3 numbers, got 2");
+	    edited(4, "  - {label: wall, box: {center: [1, 1, 1], size: [1, 1]}}"),
+	    4, "objects[0].box.size", "expected 3 numbers, got 2");
 	expectError(
-		edited(6, "  - [1, 2]"), 6, "trajectory[0]",
-		"expected 3 numbers, got 2");
+	    edited(6, "  - [1, 2]"), 6, "trajectory[0]",
+	    "expected 3 numbers, got 2");
 	expectError(
-		edited(2, "bounds: [0, 0, 10]"), 2, "bounds",
-		"expected 4 numbers, got 3");
+	    edited(2, "bounds: [0, 0, 10]"), 2, "bounds",
+	    "expected 4 numbers, got 3");
 }
 
 TEST(SceneLoaderErrors, NegativeOrZeroSize)
 {
 	expectError(
-		edited(
-			4, "  - {label: wall, box: {center: [1, 1, 1], size: [1, -1, 2]}}"),
-		4, "objects[0].box.size[1]", "must be > 0, got -1");
+	    edited(
+	        4, "  - {label: wall, box: {center: [1, 1, 1], size: [1, -1, 2]}}"),
+	    4, "objects[0].box.size[1]", "must be > 0, got -1");
 	expectError(
-		edited(
-			4,
-			"  - label: washbasin\n"
-			"    parts:\n"
-			"      - cylinder:\n"
-			"          center: [1, 1, 1]\n"
-			"          radius: 0\n"
-			"          height: 1"),
-		8, "objects[0].parts[0].cylinder.radius", "must be > 0, got 0");
+	    edited(
+	        4,
+	        "  - label: washbasin\n"
+	        "    parts:\n"
+	        "      - cylinder:\n"
+	        "          center: [1, 1, 1]\n"
+	        "          radius: 0\n"
+	        "          height: 1"),
+	    8, "objects[0].parts[0].cylinder.radius", "must be > 0, got 0");
 	expectError(
-		edited(
-			4,
-			"  - {label: stairs, stairs: {origin: [1, 1], steps: 0, rise: "
-			"0.2, run: 0.3, width: 1}}"),
-		4, "objects[0].stairs.steps", "must be >= 1, got 0");
+	    edited(
+	        4,
+	        "  - {label: stairs, stairs: {origin: [1, 1], steps: 0, rise: "
+	        "0.2, run: 0.3, width: 1}}"),
+	    4, "objects[0].stairs.steps", "must be >= 1, got 0");
 }
 
 TEST(SceneLoaderErrors, UnknownLabel)
 {
 	expectError(
-		edited(
-			4, "  - {label: chair, box: {center: [1, 1, 1], size: [1, 1, 2]}}"),
-		4, "objects[0].label", "unknown label 'chair' (known: floor,");
+	    edited(
+	        4, "  - {label: chair, box: {center: [1, 1, 1], size: [1, 1, 2]}}"),
+	    4, "objects[0].label", "unknown label 'chair' (known: floor,");
 	expectError(
-		edited(
-			4,
-			"  - {label: unknown, box: {center: [1, 1, 1], size: [1, 1, 2]}}"),
-		4, "objects[0].label", "'unknown' is not allowed");
+	    edited(
+	        4,
+	        "  - {label: unknown, box: {center: [1, 1, 1], size: [1, 1, 2]}}"),
+	    4, "objects[0].label", "'unknown' is not allowed");
 }
 
 TEST(SceneLoaderErrors, PolygonWithTwoVertices)
 {
 	expectError(
-		edited(
-			4,
-			"  - label: grass\n"
-			"    terrain:\n"
-			"      roughness: 0.03\n"
-			"      polygon: [[0, 0], [1, 1]]"),
-		7, "objects[0].terrain.polygon", "expected at least 3 vertices, got 2");
+	    edited(
+	        4,
+	        "  - label: grass\n"
+	        "    terrain:\n"
+	        "      roughness: 0.03\n"
+	        "      polygon: [[0, 0], [1, 1]]"),
+	    7, "objects[0].terrain.polygon", "expected at least 3 vertices, got 2");
 	expectError(
-		edited(
-			4,
-			"  - {label: grass, terrain: {polygon: [[0, 0], [1, 1], [2, 2]], "
-			"roughness: 0}}"),
-		4, "objects[0].terrain.polygon", "degenerate polygon");
+	    edited(
+	        4,
+	        "  - {label: grass, terrain: {polygon: [[0, 0], [1, 1], [2, 2]], "
+	        "roughness: 0}}"),
+	    4, "objects[0].terrain.polygon", "degenerate polygon");
 	expectError(
-		edited(
-			4,
-			"  - {label: grass, terrain: {polygon: [[0, 0], [1, 0], [1, 1]], "
-			"roughness: -0.1}}"),
-		4, "objects[0].terrain.roughness", "must be >= 0, got -0.1");
+	    edited(
+	        4,
+	        "  - {label: grass, terrain: {polygon: [[0, 0], [1, 0], [1, 1]], "
+	        "roughness: -0.1}}"),
+	    4, "objects[0].terrain.roughness", "must be >= 0, got -0.1");
 }
 
 TEST(SceneLoaderErrors, SensorAngleRanges)
 {
 	expectError(
-		appended("sensor:\n  theta: [30, 10, 0.5]"), 8, "sensor.theta",
-		"min must be < max, got min 30, max 10");
+	    appended("sensor:\n  theta: [30, 10, 0.5]"), 8, "sensor.theta",
+	    "min must be < max, got min 30, max 10");
 	expectError(
-		appended("sensor:\n  theta: [10, 10, 0.5]"), 8, "sensor.theta",
-		"min must be < max");
+	    appended("sensor:\n  theta: [10, 10, 0.5]"), 8, "sensor.theta",
+	    "min must be < max");
 	expectError(
-		appended("sensor:\n  theta: [-15, 95, 0.5]"), 8, "sensor.theta",
-		"must lie within [-90, 90] deg");
+	    appended("sensor:\n  theta: [-15, 95, 0.5]"), 8, "sensor.theta",
+	    "must lie within [-90, 90] deg");
 	expectError(
-		appended("sensor: {phi: [-190, 90, 0.5]}"), 7, "sensor.phi",
-		"must lie within [-180, 180] deg");
+	    appended("sensor: {phi: [-190, 90, 0.5]}"), 7, "sensor.phi",
+	    "must lie within [-180, 180] deg");
 	expectError(
-		appended("sensor: {phi: [-90, 90, 0]}"), 7, "sensor.phi",
-		"step must be > 0");
+	    appended("sensor: {phi: [-90, 90, 0]}"), 7, "sensor.phi",
+	    "step must be > 0");
 	expectError(
-		appended("sensor: {max_range: 0}"), 7, "sensor.max_range",
-		"must be > 0");
+	    appended("sensor: {max_range: 0}"), 7, "sensor.max_range",
+	    "must be > 0");
 	expectError(
-		appended("odometry: {trans_noise: -0.1}"), 7, "odometry.trans_noise",
-		"must be >= 0");
+	    appended("odometry: {trans_noise: -0.1}"), 7, "odometry.trans_noise",
+	    "must be >= 0");
 }
 
 TEST(SceneLoaderErrors, BadBoundsAndPoses)
 {
 	expectError(
-		edited(2, "bounds: [0, 0, 0, 10]"), 2, "bounds",
-		"expected xmin < xmax and ymin < ymax");
+	    edited(2, "bounds: [0, 0, 0, 10]"), 2, "bounds",
+	    "expected xmin < xmax and ymin < ymax");
 	expectError(
-		edited(6, "  - [1, 2, 0]\n  - [11, 2, 0]"), 7, "trajectory[1]",
-		"outside the bounds");
+	    edited(6, "  - [1, 2, 0]\n  - [11, 2, 0]"), 7, "trajectory[1]",
+	    "outside the bounds");
 	expectError(
-		appended("ceiling_height: -2"), 7, "ceiling_height", "must be > 0");
+	    appended("ceiling_height: -2"), 7, "ceiling_height", "must be > 0");
 	expectError(edited(1, "name: a/b"), 1, "name", "not a valid file name");
 }
 
 TEST(SceneLoaderErrors, EmptyTrajectory)
 {
+	expectError(edited(6, ""), 5, "trajectory", "expected a list, got null");
 	expectError(
-		edited(6, ""), 5, "trajectory", "expected a list, got null");
-	expectError(
-		firstLines(4) + "trajectory: []\n", 5, "trajectory",
-		"expected at least 1 pose, got 0");
+	    firstLines(4) + "trajectory: []\n", 5, "trajectory",
+	    "expected at least 1 pose, got 0");
 }
 
 TEST(SceneLoaderErrors, TooManyObjects)
 {
 	std::string yaml = "name: t\nbounds: [0, 0, 10, 10]\nobjects:\n";
 	for (int i = 0; i < 256; i++)
-		yaml += "  - {label: obstacle, cylinder: {center: [1, 1, 0.5], "
-				"radius: 0.1, height: 1}}\n";
+		yaml +=
+		    "  - {label: obstacle, cylinder: {center: [1, 1, 0.5], "
+		    "radius: 0.1, height: 1}}\n";
 	yaml += "trajectory: [[5, 5, 0]]\n";
 	expectError(yaml, 259, "objects[255]", "too many objects: 256");
 	// 255 is fine, ids 1..255
@@ -508,8 +509,9 @@ TEST(SceneLoaderErrors, TooManyObjects)
 TEST(SceneLoaderErrors, YamlSyntaxError)
 {
 	expectError(
-		edited(4, "  - {label: wall, box: {center: [1, 1, 1], size: [1, 1, 2]}"),
-		6, "", "YAML syntax error");
+	    edited(
+	        4, "  - {label: wall, box: {center: [1, 1, 1], size: [1, 1, 2]}"),
+	    6, "", "YAML syntax error");
 	expectError(appended("foo: bar: baz"), 7, "", "YAML syntax error");
 }
 
@@ -530,17 +532,18 @@ TEST(SceneLoaderErrors, MissingFile)
 	catch (const SceneError& e)
 	{
 		EXPECT_STREQ(
-			e.what(), "cannot open scene file /nonexistent/dir/scene.yaml");
+		    e.what(), "cannot open scene file /nonexistent/dir/scene.yaml");
 	}
 }
 
 TEST(SceneLoader, LoadFileNamesTheFileInErrors)
 {
-	const auto path =
-		std::filesystem::temp_directory_path() / "semnav_scene_loader_test.yaml";
+	const auto path = std::filesystem::temp_directory_path() /
+	                  "semnav_scene_loader_test.yaml";
 	{
 		std::ofstream f(path);
-		f << edited(4, "  - {label: wall, box: {center: [1, 1], size: [1, 1, 2]}}");
+		f << edited(
+		    4, "  - {label: wall, box: {center: [1, 1], size: [1, 1, 2]}}");
 	}
 	try
 	{
@@ -550,9 +553,9 @@ TEST(SceneLoader, LoadFileNamesTheFileInErrors)
 	catch (const SceneError& e)
 	{
 		EXPECT_EQ(
-			std::string(e.what()),
-			path.string() +
-				":4: objects[0].box.center: expected 3 numbers, got 2");
+		    std::string(e.what()),
+		    path.string() +
+		        ":4: objects[0].box.center: expected 3 numbers, got 2");
 	}
 	std::filesystem::remove(path);
 }
@@ -565,7 +568,7 @@ std::vector<std::filesystem::path> datasetScenes()
 {
 	std::vector<std::filesystem::path> files;
 	const std::filesystem::path root =
-		std::filesystem::path(SEMNAV_SOURCE_DIR) / "datasets";
+	    std::filesystem::path(SEMNAV_SOURCE_DIR) / "datasets";
 	for (const auto& dir : std::filesystem::directory_iterator(root))
 	{
 		if (!dir.is_directory()) continue;
@@ -581,8 +584,9 @@ std::vector<std::filesystem::path> datasetScenes()
  * terrain has no footprint (it is floor): +inf. */
 double footprintDistance(const ScenePrimitive& p, double x, double y)
 {
-	auto rectDist = [](double u, double v, double u0, double u1, double v0,
-					   double v1) {
+	auto rectDist =
+	    [](double u, double v, double u0, double u1, double v0, double v1)
+	{
 		const double du = std::max({u0 - u, 0.0, u - u1});
 		const double dv = std::max({v0 - v, 0.0, v - v1});
 		return std::hypot(du, dv);
@@ -592,33 +596,34 @@ double footprintDistance(const ScenePrimitive& p, double x, double y)
 		const double dx = x - b->center.x, dy = y - b->center.y;
 		const double c = std::cos(b->yaw), s = std::sin(b->yaw);
 		return rectDist(
-			c * dx + s * dy, -s * dx + c * dy, -b->size.x / 2, b->size.x / 2,
-			-b->size.y / 2, b->size.y / 2);
+		    c * dx + s * dy, -s * dx + c * dy, -b->size.x / 2, b->size.x / 2,
+		    -b->size.y / 2, b->size.y / 2);
 	}
 	if (const auto* c = std::get_if<CylinderShape>(&p))
 		return std::max(
-			0.0, std::hypot(x - c->center.x, y - c->center.y) - c->radius);
+		    0.0, std::hypot(x - c->center.x, y - c->center.y) - c->radius);
 	if (const auto* st = std::get_if<StairsShape>(&p))
 	{
 		const double dx = x - st->origin.x, dy = y - st->origin.y;
 		const double c = std::cos(st->yaw), s = std::sin(st->yaw);
 		return rectDist(
-			c * dx + s * dy, -s * dx + c * dy, 0, st->steps * st->run,
-			-st->width / 2, st->width / 2);
+		    c * dx + s * dy, -s * dx + c * dy, 0, st->steps * st->run,
+		    -st->width / 2, st->width / 2);
 	}
 	return std::numeric_limits<double>::infinity();
 }
 
 /** Footprint corners (or samples) of a primitive, and its z range. */
 void extent(
-	const ScenePrimitive& p, std::vector<mrpt::math::TPoint2D>& pts,
-	double& zmin, double& zmax)
+    const ScenePrimitive& p, std::vector<mrpt::math::TPoint2D>& pts,
+    double& zmin, double& zmax)
 {
 	pts.clear();
 	zmin = 0;
 	zmax = 0;
 	auto rect = [&](double cx, double cy, double yaw, double u0, double u1,
-					double v0, double v1) {
+	                double v0, double v1)
+	{
 		const double c = std::cos(yaw), s = std::sin(yaw);
 		for (double u : {u0, u1})
 			for (double v : {v0, v1})
@@ -627,23 +632,24 @@ void extent(
 	if (const auto* b = std::get_if<BoxShape>(&p))
 	{
 		rect(
-			b->center.x, b->center.y, b->yaw, -b->size.x / 2, b->size.x / 2,
-			-b->size.y / 2, b->size.y / 2);
+		    b->center.x, b->center.y, b->yaw, -b->size.x / 2, b->size.x / 2,
+		    -b->size.y / 2, b->size.y / 2);
 		zmin = b->center.z - b->size.z / 2;
 		zmax = b->center.z + b->size.z / 2;
 	}
 	else if (const auto* c = std::get_if<CylinderShape>(&p))
 	{
-		rect(c->center.x, c->center.y, 0, -c->radius, c->radius, -c->radius,
-			 c->radius);
+		rect(
+		    c->center.x, c->center.y, 0, -c->radius, c->radius, -c->radius,
+		    c->radius);
 		zmin = c->center.z - c->height / 2;
 		zmax = c->center.z + c->height / 2;
 	}
 	else if (const auto* st = std::get_if<StairsShape>(&p))
 	{
 		rect(
-			st->origin.x, st->origin.y, st->yaw, 0, st->steps * st->run,
-			-st->width / 2, st->width / 2);
+		    st->origin.x, st->origin.y, st->yaw, 0, st->steps * st->run,
+		    -st->width / 2, st->width / 2);
 		zmax = st->steps * st->rise;
 	}
 	else if (const auto* t = std::get_if<TerrainShape>(&p))
@@ -698,7 +704,8 @@ TEST(SceneDatasets, TrajectoryKeepsClearOfObjects)
 	for (const auto& f : datasetScenes())
 	{
 		const Scene s = SceneLoader::loadFile(f.string());
-		auto clearance = [&](double x, double y, int& line) {
+		auto clearance = [&](double x, double y, int& line)
+		{
 			double d = std::numeric_limits<double>::infinity();
 			for (const auto& o : s.objects)
 				for (const auto& p : o.parts)
@@ -717,17 +724,17 @@ TEST(SceneDatasets, TrajectoryKeepsClearOfObjects)
 			const auto& a = s.trajectory[i];
 			int line = 0;
 			EXPECT_GE(clearance(a.x, a.y, line), 0.5)
-				<< f.string() << " pose " << i << " near object at line "
-				<< line;
+			    << f.string() << " pose " << i << " near object at line "
+			    << line;
 			if (i + 1 == s.trajectory.size()) continue;
 			const auto& b = s.trajectory[i + 1];
 			for (int k = 1; k < 50; k++)
 			{
 				const double t = k / 50.0;
 				const double d = clearance(
-					a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), line);
+				    a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), line);
 				EXPECT_GE(d, 0.3) << f.string() << " move " << i << " -> "
-								  << i + 1 << " near object at line " << line;
+				                  << i + 1 << " near object at line " << line;
 			}
 		}
 	}

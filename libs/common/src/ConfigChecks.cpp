@@ -14,9 +14,9 @@ namespace
 {
 std::string lower(std::string s)
 {
-	std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) {
-		return static_cast<char>(std::tolower(c));
-	});
+	std::transform(
+	    s.begin(), s.end(), s.begin(),
+	    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
 	return s;
 }
 
@@ -35,29 +35,29 @@ std::string trimmed(const std::string& s)
 }  // namespace
 
 void checkKnownKeys(
-	const mrpt::config::CConfigFileBase& cfg, const std::string& section,
-	const std::vector<std::string>& known)
+    const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+    const std::vector<std::string>& known)
 {
 	std::vector<std::string> keys;
 	cfg.getAllKeys(section, keys);
 	for (const auto& k : keys)
 	{
 		const bool ok = std::any_of(
-			known.begin(), known.end(),
-			[&](const std::string& n) { return lower(n) == lower(k); });
+		    known.begin(), known.end(),
+		    [&](const std::string& n) { return lower(n) == lower(k); });
 		if (!ok)
 		{
 			std::string list;
 			for (const auto& n : known) list += (list.empty() ? "" : ", ") + n;
 			throw ConfigError(
-				"unknown key " + where(section, k) + " (known: " + list + ")");
+			    "unknown key " + where(section, k) + " (known: " + list + ")");
 		}
 	}
 }
 
 double readChecked(
-	const mrpt::config::CConfigFileBase& cfg, const std::string& section,
-	const std::string& key, double current, double lo, double hi)
+    const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+    const std::string& key, double current, double lo, double hi)
 {
 	const std::string text = trimmed(cfg.read_string(section, key, "", false));
 	if (text.empty()) return current;
@@ -73,20 +73,20 @@ double readChecked(
 	}
 	if (used != text.size())
 		throw ConfigError(
-			where(section, key) + " = '" + text + "' is not a number");
+		    where(section, key) + " = '" + text + "' is not a number");
 	if (!(v >= lo && v <= hi))
 	{
 		std::ostringstream os;
-		os << where(section, key) << " = " << text << " is out of range ["
-		   << lo << ", " << hi << "]";
+		os << where(section, key) << " = " << text << " is out of range [" << lo
+		   << ", " << hi << "]";
 		throw ConfigError(os.str());
 	}
 	return v;
 }
 
 int readCheckedInt(
-	const mrpt::config::CConfigFileBase& cfg, const std::string& section,
-	const std::string& key, int current, int lo, int hi)
+    const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+    const std::string& key, int current, int lo, int hi)
 {
 	const double v = readChecked(cfg, section, key, current, lo, hi);
 	if (v != static_cast<double>(static_cast<int>(v)))
@@ -95,20 +95,19 @@ int readCheckedInt(
 }
 
 bool readCheckedBool(
-	const mrpt::config::CConfigFileBase& cfg, const std::string& section,
-	const std::string& key, bool current)
+    const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+    const std::string& key, bool current)
 {
 	const std::string t =
-		lower(trimmed(cfg.read_string(section, key, "", false)));
+	    lower(trimmed(cfg.read_string(section, key, "", false)));
 	if (t.empty()) return current;
 	if (t == "true" || t == "1" || t == "yes") return true;
 	if (t == "false" || t == "0" || t == "no") return false;
-	throw ConfigError(
-		where(section, key) + " = '" + t + "' is not true/false");
+	throw ConfigError(where(section, key) + " = '" + t + "' is not true/false");
 }
 
 std::unique_ptr<mrpt::config::CConfigFile> openIniFile(
-	const std::string& path, const std::vector<std::string>& knownSections)
+    const std::string& path, const std::vector<std::string>& knownSections)
 {
 	if (!mrpt::system::fileExists(path))
 		throw ConfigError("config file not found: " + path);
@@ -119,15 +118,15 @@ std::unique_ptr<mrpt::config::CConfigFile> openIniFile(
 	{
 		if (s.empty()) continue;
 		const bool ok = std::any_of(
-			knownSections.begin(), knownSections.end(),
-			[&](const std::string& n) { return lower(n) == lower(s); });
+		    knownSections.begin(), knownSections.end(),
+		    [&](const std::string& n) { return lower(n) == lower(s); });
 		if (!ok)
 		{
 			std::string list;
 			for (const auto& n : knownSections)
 				list += (list.empty() ? "" : ", ") + n;
 			throw ConfigError(
-				path + ": unknown section [" + s + "] (known: " + list + ")");
+			    path + ": unknown section [" + s + "] (known: " + list + ")");
 		}
 	}
 	return cfg;

@@ -8,13 +8,14 @@ namespace semnav
 namespace
 {
 const std::array<std::string, kLabelCount> kNames = {
-	"unknown", "floor",		"ceiling",	  "wall",		"door",	 "sidewalk",
-	"grass",   "stairs",	"washbasin", "wastebasket", "obstacle"};
+    "unknown", "floor",  "ceiling",   "wall",        "door",    "sidewalk",
+    "grass",   "stairs", "washbasin", "wastebasket", "obstacle"};
 }
 
 const std::array<Label, kLabelCount>& allLabels()
 {
-	static const std::array<Label, kLabelCount> all = [] {
+	static const std::array<Label, kLabelCount> all = []
+	{
 		std::array<Label, kLabelCount> a{};
 		for (std::size_t i = 0; i < kLabelCount; i++)
 			a[i] = static_cast<Label>(i);
@@ -46,15 +47,15 @@ Label labelFromName(const std::string& name)
 	for (std::size_t i = 0; i < kLabelCount; i++)
 		if (kNames[i] == name) return static_cast<Label>(i);
 	throw UnknownLabelError(
-		"unknown label '" + name + "' (known: " + knownLabelNames() + ")");
+	    "unknown label '" + name + "' (known: " + knownLabelNames() + ")");
 }
 
 Label labelFromId(unsigned id)
 {
 	if (id >= kLabelCount)
 		throw UnknownLabelError(
-			"unknown label id " + std::to_string(id) + " (known: 0.." +
-			std::to_string(kLabelCount - 1) + ")");
+		    "unknown label id " + std::to_string(id) + " (known: 0.." +
+		    std::to_string(kLabelCount - 1) + ")");
 	return static_cast<Label>(id);
 }
 

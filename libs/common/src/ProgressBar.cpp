@@ -7,11 +7,14 @@
 namespace semnav
 {
 ProgressBar::ProgressBar(std::size_t total, std::string what)
-	: m_total(total), m_what(std::move(what)), m_enabled(::isatty(2) == 1)
+    : m_total(total), m_what(std::move(what)), m_enabled(::isatty(2) == 1)
 {
 }
 
-ProgressBar::~ProgressBar() { finish(); }
+ProgressBar::~ProgressBar()
+{
+	finish();
+}
 
 void ProgressBar::update(std::size_t done)
 {

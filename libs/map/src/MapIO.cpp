@@ -1,19 +1,18 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <fcntl.h>
 #include <octomap/OcTree.h>
 #include <semnav/common/AtomicFile.h>
 #include <semnav/common/Error.h>
 #include <semnav/map/MapIO.h>
 #include <semnav/map/MapRenderer.h>
-#include <yaml-cpp/yaml.h>
-
-#include <fcntl.h>
 #include <unistd.h>
+#include <yaml-cpp/yaml.h>
 
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
@@ -30,7 +29,7 @@ constexpr int kFormatVersion = 1;
  * one line. */
 class QuietStderr
 {
-   public:
+public:
 	QuietStderr()
 	{
 		std::fflush(stderr);
@@ -54,13 +53,15 @@ class QuietStderr
 		}
 	}
 
-   private:
+private:
 	int m_saved = -1;
 };
 
 /** Layer vector -> image with map_server orientation (row 0 = top). */
 template <typename T>
-cv::Mat toImage(const GridGeometry& g, int type, const std::vector<float>& v, T (*conv)(float))
+cv::Mat toImage(
+    const GridGeometry& g, int type, const std::vector<float>& v,
+    T (*conv)(float))
 {
 	cv::Mat img(std::max(g.rows, 1), std::max(g.cols, 1), type, cv::Scalar(0));
 	for (int cy = 0; cy < g.rows; cy++)
@@ -73,8 +74,7 @@ void writeImage(const std::string& path, const cv::Mat& img)
 {
 	std::vector<uchar> buf;
 	const std::string ext = fs::path(path).extension().string();
-	if (!cv::imencode(ext, img, buf))
-		throw IoError("cannot encode " + path);
+	if (!cv::imencode(ext, img, buf)) throw IoError("cannot encode " + path);
 	writeFileAtomically(path, std::string(buf.begin(), buf.end()));
 }
 
@@ -87,9 +87,9 @@ cv::Mat readImage(const std::string& path, int type, const GridGeometry& g)
 		throw IoError("map image " + path + " has the wrong pixel type");
 	if (img.cols != std::max(g.cols, 1) || img.rows != std::max(g.rows, 1))
 		throw IoError(
-			"map image " + path + " is " + std::to_string(img.cols) + "x" +
-			std::to_string(img.rows) + ", map.yaml says " +
-			std::to_string(g.cols) + "x" + std::to_string(g.rows));
+		    "map image " + path + " is " + std::to_string(img.cols) + "x" +
+		    std::to_string(img.rows) + ", map.yaml says " +
+		    std::to_string(g.cols) + "x" + std::to_string(g.rows));
 	return img;
 }
 
@@ -99,16 +99,20 @@ std::vector<float> fromImage(const GridGeometry& g, const cv::Mat& img)
 	std::vector<float> v(g.cellCount());
 	for (int cy = 0; cy < g.rows; cy++)
 		for (int cx = 0; cx < g.cols; cx++)
-			v[g.index(cy, cx)] = static_cast<float>(img.at<T>(g.rows - 1 - cy, cx));
+			v[g.index(cy, cx)] =
+			    static_cast<float>(img.at<T>(g.rows - 1 - cy, cx));
 	return v;
 }
 
-std::string where(const std::string& file, const YAML::Node& n, const std::string& key)
+std::string where(
+    const std::string& file, const YAML::Node& n, const std::string& key)
 {
 	return file + ":" + std::to_string(n.Mark().line + 1) + ": " + key;
 }
 
-YAML::Node need(const YAML::Node& parent, const std::string& key, const std::string& file, const std::string& path)
+YAML::Node need(
+    const YAML::Node& parent, const std::string& key, const std::string& file,
+    const std::string& path)
 {
 	const YAML::Node n = parent[key];
 	if (!n) throw IoError(where(file, parent, path + key) + ": missing");
@@ -128,10 +132,14 @@ T as(const YAML::Node& n, const std::string& file, const std::string& key)
 	}
 }
 
-mrpt::math::TPoint3D point3(const YAML::Node& n, const std::string& file, const std::string& key)
+mrpt::math::TPoint3D point3(
+    const YAML::Node& n, const std::string& file, const std::string& key)
 {
-	if (!n.IsSequence() || n.size() != 3) throw IoError(where(file, n, key) + ": expected 3 numbers");
-	return {as<double>(n[0], file, key), as<double>(n[1], file, key), as<double>(n[2], file, key)};
+	if (!n.IsSequence() || n.size() != 3)
+		throw IoError(where(file, n, key) + ": expected 3 numbers");
+	return {
+	    as<double>(n[0], file, key), as<double>(n[1], file, key),
+	    as<double>(n[2], file, key)};
 }
 
 void emitPoint(YAML::Emitter& e, const mrpt::math::TPoint3D& p)
@@ -148,58 +156,78 @@ void MapIO::save(const SemanticMap& map, const std::string& dir)
 	const double L = map.costModel().options().lethalCost;
 
 	// map_server occupancy image.
-	cv::Mat occ(std::max(g.rows, 1), std::max(g.cols, 1), CV_8UC1, cv::Scalar(205));
+	cv::Mat occ(
+	    std::max(g.rows, 1), std::max(g.cols, 1), CV_8UC1, cv::Scalar(205));
 	for (int cy = 0; cy < g.rows; cy++)
 		for (int cx = 0; cx < g.cols; cx++)
 		{
 			uint8_t v = 205;
 			switch (map.cellState(cx, cy))
 			{
-				case SemanticMap::CellState::Occupied: v = 0; break;
-				case SemanticMap::CellState::Free: v = 254; break;
-				default: v = 205;
+				case SemanticMap::CellState::Occupied:
+					v = 0;
+					break;
+				case SemanticMap::CellState::Free:
+					v = 254;
+					break;
+				default:
+					v = 205;
 			}
 			occ.at<uint8_t>(g.rows - 1 - cy, cx) = v;
 		}
 	writeImage((fs::path(dir) / "occupancy.png").string(), occ);
 	writeImage(
-		(fs::path(dir) / "labels.png").string(),
-		toImage<uint16_t>(g, CV_16UC1, map.get("labels"), [](float f) { return static_cast<uint16_t>(f); }));
+	    (fs::path(dir) / "labels.png").string(),
+	    toImage<uint16_t>(
+	        g, CV_16UC1, map.get("labels"),
+	        [](float f) { return static_cast<uint16_t>(f); }));
 	writeImage(
-		(fs::path(dir) / "objects.png").string(),
-		toImage<uint16_t>(g, CV_16UC1, map.get("objects"), [](float f) { return static_cast<uint16_t>(f); }));
+	    (fs::path(dir) / "objects.png").string(),
+	    toImage<uint16_t>(
+	        g, CV_16UC1, map.get("objects"),
+	        [](float f) { return static_cast<uint16_t>(f); }));
 	std::vector<float> scaled = map.get("cost");
-	for (auto& v : scaled) v = static_cast<float>(std::round(std::min<double>(v, L) / L * 65535.0));
+	for (auto& v : scaled)
+		v = static_cast<float>(
+		    std::round(std::min<double>(v, L) / L * 65535.0));
 	writeImage(
-		(fs::path(dir) / "cost.png").string(),
-		toImage<uint16_t>(g, CV_16UC1, scaled, [](float f) { return static_cast<uint16_t>(f); }));
+	    (fs::path(dir) / "cost.png").string(),
+	    toImage<uint16_t>(
+	        g, CV_16UC1, scaled,
+	        [](float f) { return static_cast<uint16_t>(f); }));
 	writeImage((fs::path(dir) / "map.png").string(), MapRenderer::render(map));
 
 	// Exact state.
 	std::vector<float> logodds(g.cellCount());
 	const auto& raw = map.occupancyGrid().getRawMap();
-	for (std::size_t i = 0; i < logodds.size(); i++) logodds[i] = static_cast<float>(raw[i]);
+	for (std::size_t i = 0; i < logodds.size(); i++)
+		logodds[i] = static_cast<float>(raw[i]);
 	writeImage(
-		(fs::path(dir) / "layers" / "occupancy_logodds.pfm").string(),
-		toImage<float>(g, CV_32FC1, logodds, [](float f) { return f; }));
+	    (fs::path(dir) / "layers" / "occupancy_logodds.pfm").string(),
+	    toImage<float>(g, CV_32FC1, logodds, [](float f) { return f; }));
 	for (const auto& name : map.layers())
 		writeImage(
-			(fs::path(dir) / "layers" / (name + ".pfm")).string(),
-			toImage<float>(g, CV_32FC1, map.get(name), [](float f) { return f; }));
+		    (fs::path(dir) / "layers" / (name + ".pfm")).string(),
+		    toImage<float>(
+		        g, CV_32FC1, map.get(name), [](float f) { return f; }));
 
 	// OctoMap (binary, opens in octovis).
-	writeAtomically((fs::path(dir) / "octomap.bt").string(), [&](const std::string& tmp) {
-		std::ofstream f(tmp, std::ios::binary);
-		const QuietStderr quiet;
-		if (!f || !map.octree().writeBinaryConst(f)) throw IoError("cannot write " + tmp);
-	});
+	writeAtomically(
+	    (fs::path(dir) / "octomap.bt").string(),
+	    [&](const std::string& tmp)
+	    {
+		    std::ofstream f(tmp, std::ios::binary);
+		    const QuietStderr quiet;
+		    if (!f || !map.octree().writeBinaryConst(f))
+			    throw IoError("cannot write " + tmp);
+	    });
 
 	YAML::Emitter e;
 	e << YAML::BeginMap;
 	e << YAML::Key << "image" << YAML::Value << "occupancy.png";
 	e << YAML::Key << "resolution" << YAML::Value << g.resolution;
-	e << YAML::Key << "origin" << YAML::Value << YAML::Flow << YAML::BeginSeq << g.originX << g.originY << 0.0
-	  << YAML::EndSeq;
+	e << YAML::Key << "origin" << YAML::Value << YAML::Flow << YAML::BeginSeq
+	  << g.originX << g.originY << 0.0 << YAML::EndSeq;
 	// The image is trinary (0 / 254 / 205): map_server's usual thresholds
 	// read it back exactly (205 is p = 0.196, not below free_thresh).
 	e << YAML::Key << "occupied_thresh" << YAML::Value << 0.65;
@@ -207,7 +235,8 @@ void MapIO::save(const SemanticMap& map, const std::string& dir)
 	e << YAML::Key << "negate" << YAML::Value << 0;
 	e << YAML::Key << "semnav" << YAML::Value << YAML::BeginMap;
 	e << YAML::Key << "format_version" << YAML::Value << kFormatVersion;
-	e << YAML::Key << "size" << YAML::Value << YAML::Flow << YAML::BeginSeq << g.cols << g.rows << YAML::EndSeq;
+	e << YAML::Key << "size" << YAML::Value << YAML::Flow << YAML::BeginSeq
+	  << g.cols << g.rows << YAML::EndSeq;
 	e << YAML::Key << "sweeps" << YAML::Value << map.sweepsInserted();
 	e << YAML::Key << "lethal_cost" << YAML::Value << L;
 	e << YAML::Key << "files" << YAML::Value << YAML::BeginMap;
@@ -216,7 +245,8 @@ void MapIO::save(const SemanticMap& map, const std::string& dir)
 	e << YAML::Key << "cost" << YAML::Value << "cost.png";
 	e << YAML::Key << "render" << YAML::Value << "map.png";
 	e << YAML::Key << "octomap" << YAML::Value << "octomap.bt";
-	e << YAML::Key << "occupancy_logodds" << YAML::Value << "layers/occupancy_logodds.pfm";
+	e << YAML::Key << "occupancy_logodds" << YAML::Value
+	  << "layers/occupancy_logodds.pfm";
 	e << YAML::EndMap;
 	e << YAML::Key << "layers" << YAML::Value << YAML::Flow << YAML::BeginSeq;
 	for (const auto& name : map.layers()) e << name;
@@ -241,13 +271,15 @@ void MapIO::save(const SemanticMap& map, const std::string& dir)
 	e << YAML::EndSeq;
 	e << YAML::EndMap;
 	e << YAML::EndMap;
-	writeFileAtomically((fs::path(dir) / "map.yaml").string(), std::string(e.c_str()) + "\n");
+	writeFileAtomically(
+	    (fs::path(dir) / "map.yaml").string(), std::string(e.c_str()) + "\n");
 }
 
 void MapIO::load(const std::string& dir, SemanticMap& map)
 {
 	const std::string file = (fs::path(dir) / "map.yaml").string();
-	if (!fs::exists(file)) throw IoError("not a map directory (no map.yaml): " + dir);
+	if (!fs::exists(file))
+		throw IoError("not a map directory (no map.yaml): " + dir);
 	YAML::Node root;
 	try
 	{
@@ -255,39 +287,54 @@ void MapIO::load(const std::string& dir, SemanticMap& map)
 	}
 	catch (const YAML::Exception& ex)
 	{
-		throw IoError(file + ":" + std::to_string(ex.mark.line + 1) + ": " + ex.msg);
+		throw IoError(
+		    file + ":" + std::to_string(ex.mark.line + 1) + ": " + ex.msg);
 	}
 	if (!root.IsMap()) throw IoError(file + ": not a map.yaml");
 	GridGeometry g;
-	g.resolution = as<double>(need(root, "resolution", file, ""), file, "resolution");
+	g.resolution =
+	    as<double>(need(root, "resolution", file, ""), file, "resolution");
 	const YAML::Node origin = need(root, "origin", file, "");
-	if (!origin.IsSequence() || origin.size() < 2) throw IoError(where(file, origin, "origin") + ": expected [x, y, yaw]");
+	if (!origin.IsSequence() || origin.size() < 2)
+		throw IoError(where(file, origin, "origin") + ": expected [x, y, yaw]");
 	g.originX = as<double>(origin[0], file, "origin");
 	g.originY = as<double>(origin[1], file, "origin");
 	const YAML::Node sem = need(root, "semnav", file, "");
-	const int version = as<int>(need(sem, "format_version", file, "semnav."), file, "semnav.format_version");
+	const int version = as<int>(
+	    need(sem, "format_version", file, "semnav."), file,
+	    "semnav.format_version");
 	if (version != kFormatVersion)
-		throw IoError(where(file, sem, "semnav.format_version") + ": unsupported version " + std::to_string(version));
+		throw IoError(
+		    where(file, sem, "semnav.format_version") +
+		    ": unsupported version " + std::to_string(version));
 	const YAML::Node size = need(sem, "size", file, "semnav.");
-	if (!size.IsSequence() || size.size() != 2) throw IoError(where(file, size, "semnav.size") + ": expected [sx, sy]");
+	if (!size.IsSequence() || size.size() != 2)
+		throw IoError(where(file, size, "semnav.size") + ": expected [sx, sy]");
 	g.cols = as<int>(size[0], file, "semnav.size");
 	g.rows = as<int>(size[1], file, "semnav.size");
 	if (!(g.resolution > 0) || g.cols < 0 || g.rows < 0)
 		throw IoError(where(file, size, "semnav.size") + ": bad geometry");
 	if (std::abs(g.resolution - map.options().resolution) > 1e-9)
-		throw IoError(where(file, root, "resolution") + ": map resolution differs from the configured one");
+		throw IoError(
+		    where(file, root, "resolution") +
+		    ": map resolution differs from the configured one");
 
 	std::map<std::string, std::vector<float>> layers;
 	const YAML::Node names = need(sem, "layers", file, "semnav.");
 	for (const auto& n : names)
 	{
 		const std::string name = as<std::string>(n, file, "semnav.layers");
-		const std::string p = (fs::path(dir) / "layers" / (name + ".pfm")).string();
+		const std::string p =
+		    (fs::path(dir) / "layers" / (name + ".pfm")).string();
 		layers[name] = fromImage<float>(g, readImage(p, CV_32FC1, g));
 	}
-	const auto lo = fromImage<float>(g, readImage((fs::path(dir) / "layers" / "occupancy_logodds.pfm").string(), CV_32FC1, g));
+	const auto lo = fromImage<float>(
+	    g, readImage(
+	           (fs::path(dir) / "layers" / "occupancy_logodds.pfm").string(),
+	           CV_32FC1, g));
 	std::vector<int8_t> logodds(lo.size());
-	for (std::size_t i = 0; i < lo.size(); i++) logodds[i] = static_cast<int8_t>(lo[i]);
+	for (std::size_t i = 0; i < lo.size(); i++)
+		logodds[i] = static_cast<int8_t>(lo[i]);
 	// The contract images must be there and agree in size.
 	readImage((fs::path(dir) / "occupancy.png").string(), CV_8UC1, g);
 	readImage((fs::path(dir) / "labels.png").string(), CV_16UC1, g);
@@ -299,19 +346,27 @@ void MapIO::load(const std::string& dir, SemanticMap& map)
 		o.id = as<int>(need(n, "id", file, "semnav.objects[]."), file, "id");
 		try
 		{
-			o.label = labelFromName(as<std::string>(need(n, "label", file, "semnav.objects[]."), file, "label"));
+			o.label = labelFromName(as<std::string>(
+			    need(n, "label", file, "semnav.objects[]."), file, "label"));
 		}
 		catch (const UnknownLabelError& ex)
 		{
-			throw IoError(where(file, n, "semnav.objects[].label") + ": " + ex.what());
+			throw IoError(
+			    where(file, n, "semnav.objects[].label") + ": " + ex.what());
 		}
-		o.centroid = point3(need(n, "centroid", file, "semnav.objects[]."), file, "centroid");
-		o.minCorner = point3(need(n, "min", file, "semnav.objects[]."), file, "min");
-		o.maxCorner = point3(need(n, "max", file, "semnav.objects[]."), file, "max");
-		o.observations = as<std::size_t>(need(n, "observations", file, "semnav.objects[]."), file, "observations");
+		o.centroid = point3(
+		    need(n, "centroid", file, "semnav.objects[]."), file, "centroid");
+		o.minCorner =
+		    point3(need(n, "min", file, "semnav.objects[]."), file, "min");
+		o.maxCorner =
+		    point3(need(n, "max", file, "semnav.objects[]."), file, "max");
+		o.observations = as<std::size_t>(
+		    need(n, "observations", file, "semnav.objects[]."), file,
+		    "observations");
 		objs.push_back(o);
 	}
-	const auto sweeps = as<std::size_t>(need(sem, "sweeps", file, "semnav."), file, "semnav.sweeps");
+	const auto sweeps = as<std::size_t>(
+	    need(sem, "sweeps", file, "semnav."), file, "semnav.sweeps");
 	map.restore(g, std::move(layers), logodds, std::move(objs), sweeps);
 
 	const std::string bt = (fs::path(dir) / "octomap.bt").string();

@@ -22,39 +22,40 @@ const char* kObservations = "observations";
 }  // namespace
 
 void SemanticMap::TOptions::loadFromConfigFile(
-	const mrpt::config::CConfigFileBase& c, const std::string& s)
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	checkKnownKeys(
-		c, s,
-		{"resolution_m", "grow_margin_m", "obstacle_min_height_m",
-		 "robot_height_m", "robot_radius_m", "hit_probability", "free_probability",
-		 "occupied_threshold", "free_threshold", "merge_distance_m",
-		 "min_observations", "door_min_height_m", "octomap"});
+	    c, s,
+	    {"resolution_m", "grow_margin_m", "obstacle_min_height_m",
+	     "robot_height_m", "robot_radius_m", "hit_probability",
+	     "free_probability", "occupied_threshold", "free_threshold",
+	     "merge_distance_m", "min_observations", "door_min_height_m",
+	     "octomap"});
 	resolution = readChecked(c, s, "resolution_m", resolution, 0.005, 1.0);
 	growMargin = readChecked(c, s, "grow_margin_m", growMargin, 0, 100);
-	obstacleMinHeight = readChecked(
-		c, s, "obstacle_min_height_m", obstacleMinHeight, 0, 1.0);
-	robotHeight = readChecked(
-		c, s, "robot_height_m", robotHeight, obstacleMinHeight, 10);
+	obstacleMinHeight =
+	    readChecked(c, s, "obstacle_min_height_m", obstacleMinHeight, 0, 1.0);
+	robotHeight =
+	    readChecked(c, s, "robot_height_m", robotHeight, obstacleMinHeight, 10);
 	robotRadius = readChecked(c, s, "robot_radius_m", robotRadius, 0, 5);
 	hitProbability =
-		readChecked(c, s, "hit_probability", hitProbability, 0.5, 0.99);
+	    readChecked(c, s, "hit_probability", hitProbability, 0.5, 0.99);
 	freeProbability =
-		readChecked(c, s, "free_probability", freeProbability, 0.01, 0.5);
+	    readChecked(c, s, "free_probability", freeProbability, 0.01, 0.5);
 	occupiedThreshold =
-		readChecked(c, s, "occupied_threshold", occupiedThreshold, 0.5, 1);
+	    readChecked(c, s, "occupied_threshold", occupiedThreshold, 0.5, 1);
 	freeThreshold = readChecked(c, s, "free_threshold", freeThreshold, 0, 0.5);
 	mergeDistance =
-		readChecked(c, s, "merge_distance_m", mergeDistance, 0.01, 10);
+	    readChecked(c, s, "merge_distance_m", mergeDistance, 0.01, 10);
 	minObservations =
-		readCheckedInt(c, s, "min_observations", minObservations, 1, 1000);
+	    readCheckedInt(c, s, "min_observations", minObservations, 1, 1000);
 	doorMinHeight =
-		readChecked(c, s, "door_min_height_m", doorMinHeight, 0, 10);
+	    readChecked(c, s, "door_min_height_m", doorMinHeight, 0, 10);
 	octomap = readCheckedBool(c, s, "octomap", octomap);
 }
 
 void SemanticMap::TOptions::saveToConfigFile(
-	mrpt::config::CConfigFileBase& c, const std::string& s) const
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
 {
 	c.write(s, "resolution_m", resolution);
 	c.write(s, "grow_margin_m", growMargin);
@@ -74,16 +75,16 @@ void SemanticMap::TOptions::saveToConfigFile(
 SemanticMap::SemanticMap() : SemanticMap(TOptions()) {}
 
 SemanticMap::SemanticMap(const TOptions& options)
-	: mrpt::system::COutputLogger("SemanticMap"),
-	  m_options(options),
-	  m_costModel(options.cost),
-	  m_octree(std::make_unique<octomap::OcTree>(options.resolution))
+    : mrpt::system::COutputLogger("SemanticMap"),
+      m_options(options),
+      m_costModel(options.cost),
+      m_octree(std::make_unique<octomap::OcTree>(options.resolution))
 {
 	m_geometry.resolution = options.resolution;
 	m_occupancy.setSize(
-		0, static_cast<float>(options.resolution), 0,
-		static_cast<float>(options.resolution),
-		static_cast<float>(options.resolution));
+	    0, static_cast<float>(options.resolution), 0,
+	    static_cast<float>(options.resolution),
+	    static_cast<float>(options.resolution));
 	add(kLabels, 0);
 	add(kCost, static_cast<float>(m_costModel.options().unknownCost));
 	add(kObjects, 0);
@@ -115,7 +116,7 @@ const std::vector<float>& SemanticMap::get(const std::string& layer) const
 std::vector<float>& SemanticMap::get(const std::string& layer)
 {
 	return const_cast<std::vector<float>&>(
-		static_cast<const SemanticMap*>(this)->get(layer));
+	    static_cast<const SemanticMap*>(this)->get(layer));
 }
 
 std::vector<std::string> SemanticMap::layers() const
@@ -145,66 +146,73 @@ SemanticMap::CellState SemanticMap::cellState(int cx, int cy) const
 }
 
 void SemanticMap::growToInclude(
-	double xmin, double ymin, double xmax, double ymax)
+    double xmin, double ymin, double xmax, double ymax)
 {
 	const double res = m_geometry.resolution;
 	const GridGeometry& old = m_geometry;
 	const bool empty = old.cellCount() == 0;
 	if (!empty && xmin >= old.originX && ymin >= old.originY &&
-		xmax < old.maxX() && ymax < old.maxY())
+	    xmax < old.maxX() && ymax < old.maxY())
 		return;
 	const double m = m_options.growMargin;
 	// Cell-aligned bounds: origins stay integer multiples of the resolution.
-	auto lo = [&](double v, double cur, bool has) {
+	auto lo = [&](double v, double cur, bool has)
+	{
 		const double want = std::floor((v - m) / res);
 		return has ? std::min(want, std::round(cur / res)) : want;
 	};
-	auto hi = [&](double v, double cur, bool has) {
+	auto hi = [&](double v, double cur, bool has)
+	{
 		const double want = std::ceil((v + m) / res);
 		return has ? std::max(want, std::round(cur / res)) : want;
 	};
 	const double x0 = lo(xmin, old.originX, !empty),
-				 y0 = lo(ymin, old.originY, !empty),
-				 x1 = hi(xmax, old.maxX(), !empty),
-				 y1 = hi(ymax, old.maxY(), !empty);
+	             y0 = lo(ymin, old.originY, !empty),
+	             x1 = hi(xmax, old.maxX(), !empty),
+	             y1 = hi(ymax, old.maxY(), !empty);
 	GridGeometry g;
 	g.resolution = res;
 	g.originX = x0 * res;
 	g.originY = y0 * res;
 	g.cols = static_cast<int>(x1 - x0);
 	g.rows = static_cast<int>(y1 - y0);
-	const int dx = empty ? 0 : static_cast<int>(std::round((old.originX - g.originX) / res));
-	const int dy = empty ? 0 : static_cast<int>(std::round((old.originY - g.originY) / res));
+	const int dx =
+	    empty ? 0
+	          : static_cast<int>(std::round((old.originX - g.originX) / res));
+	const int dy =
+	    empty ? 0
+	          : static_cast<int>(std::round((old.originY - g.originY) / res));
 
 	for (auto& kv : m_layers)
 	{
-		const float fill = kv.first == kCost
-			? static_cast<float>(m_costModel.options().unknownCost)
-			: kv.first == kRoughness ? std::numeric_limits<float>::quiet_NaN()
-									 : 0.0f;
+		const float fill =
+		    kv.first == kCost
+		        ? static_cast<float>(m_costModel.options().unknownCost)
+		    : kv.first == kRoughness ? std::numeric_limits<float>::quiet_NaN()
+		                             : 0.0f;
 		std::vector<float> grown(g.cellCount(), fill);
 		for (int cy = 0; cy < old.rows; cy++)
 			std::copy_n(
-				kv.second.begin() + static_cast<long>(old.index(cy, 0)),
-				old.cols,
-				grown.begin() + static_cast<long>(g.index(cy + dy, dx)));
+			    kv.second.begin() + static_cast<long>(old.index(cy, 0)),
+			    old.cols,
+			    grown.begin() + static_cast<long>(g.index(cy + dy, dx)));
 		kv.second = std::move(grown);
 	}
 	mrpt::maps::COccupancyGridMap2D grid;
 	grid.setSize(
-		static_cast<float>(g.originX), static_cast<float>(g.maxX()),
-		static_cast<float>(g.originY), static_cast<float>(g.maxY()),
-		static_cast<float>(res));
+	    static_cast<float>(g.originX), static_cast<float>(g.maxX()),
+	    static_cast<float>(g.originY), static_cast<float>(g.maxY()),
+	    static_cast<float>(res));
 	if (static_cast<int>(grid.getSizeX()) != g.cols ||
-		static_cast<int>(grid.getSizeY()) != g.rows)
+	    static_cast<int>(grid.getSizeY()) != g.rows)
 		throw Error("occupancy grid geometry mismatch after growing the map");
 	if (!empty)
 	{
 		const auto& raw = m_occupancy.getRawMap();
 		for (int cy = 0; cy < old.rows; cy++)
 			std::copy_n(
-				raw.begin() + static_cast<long>(old.index(cy, 0)), old.cols,
-				grid.getRow(cy + dy) + dx);
+			    raw.begin() + static_cast<long>(old.index(cy, 0)), old.cols,
+			    grid.getRow(cy + dy) + dx);
 	}
 	m_occupancy = std::move(grid);
 	m_geometry = g;
@@ -216,7 +224,7 @@ void SemanticMap::updateCosts()
 	const auto& labels = get(kLabels);
 	const auto& rough = get(kRoughness);
 	const bool walking =
-		m_costModel.options().robotType == TravelCostModel::RobotType::Walking;
+	    m_costModel.options().robotType == TravelCostModel::RobotType::Walking;
 	for (int cy = 0; cy < m_geometry.rows; cy++)
 		for (int cx = 0; cx < m_geometry.cols; cx++)
 		{
@@ -228,11 +236,14 @@ void SemanticMap::updateCosts()
 				case CellState::Occupied:
 					// Stairs are solid to the laser; a walking robot climbs.
 					occ = walking && ls.contains(Label::Stairs)
-						? TravelCostModel::Occupancy::Free
-						: TravelCostModel::Occupancy::Occupied;
+					          ? TravelCostModel::Occupancy::Free
+					          : TravelCostModel::Occupancy::Occupied;
 					break;
-				case CellState::Free: occ = TravelCostModel::Occupancy::Free; break;
-				default: break;
+				case CellState::Free:
+					occ = TravelCostModel::Occupancy::Free;
+					break;
+				default:
+					break;
 			}
 			cost[i] = static_cast<float>(m_costModel.cost(ls, rough[i], occ));
 		}
@@ -271,7 +282,7 @@ const ObjectInstance& SemanticMap::instance(int id) const
 }
 
 const ObjectInstance* SemanticMap::nearestInstance(
-	Label label, const mrpt::math::TPoint2D& p) const
+    Label label, const mrpt::math::TPoint2D& p) const
 {
 	const ObjectInstance* best = nullptr;
 	double bestD = std::numeric_limits<double>::infinity();
@@ -300,7 +311,7 @@ std::vector<std::pair<int, int>> SemanticMap::cellsOf(int id) const
 }
 
 std::vector<std::pair<int, int>> SemanticMap::goalRegion(
-	int id, double reach) const
+    int id, double reach) const
 {
 	const ObjectInstance& obj = instance(id);
 	auto cells = cellsOf(id);
@@ -310,8 +321,10 @@ std::vector<std::pair<int, int>> SemanticMap::goalRegion(
 		int x0, y0, x1, y1;
 		worldToCell(obj.minCorner.x, obj.minCorner.y, x0, y0);
 		worldToCell(obj.maxCorner.x, obj.maxCorner.y, x1, y1);
-		for (int cy = std::max(0, y0); cy <= std::min(m_geometry.rows - 1, y1); cy++)
-			for (int cx = std::max(0, x0); cx <= std::min(m_geometry.cols - 1, x1); cx++)
+		for (int cy = std::max(0, y0); cy <= std::min(m_geometry.rows - 1, y1);
+		     cy++)
+			for (int cx = std::max(0, x0);
+			     cx <= std::min(m_geometry.cols - 1, x1); cx++)
 				cells.emplace_back(cx, cy);
 	}
 	const int r = static_cast<int>(std::ceil(reach / m_geometry.resolution));
@@ -329,16 +342,16 @@ std::vector<std::pair<int, int>> SemanticMap::goalRegion(
 				if (mark[i]) continue;
 				mark[i] = 1;
 				if (cellState(cx, cy) == CellState::Free &&
-					cost(cx, cy) < m_costModel.options().lethalCost)
+				    cost(cx, cy) < m_costModel.options().lethalCost)
 					out.emplace_back(cx, cy);
 			}
 	return out;
 }
 
 void SemanticMap::restore(
-	const GridGeometry& g, std::map<std::string, std::vector<float>> layers,
-	const std::vector<int8_t>& logodds, std::vector<ObjectInstance> objs,
-	std::size_t sweeps)
+    const GridGeometry& g, std::map<std::string, std::vector<float>> layers,
+    const std::vector<int8_t>& logodds, std::vector<ObjectInstance> objs,
+    std::size_t sweeps)
 {
 	for (const auto& kv : layers)
 		if (kv.second.size() != g.cellCount())
@@ -351,13 +364,13 @@ void SemanticMap::restore(
 		if (kv.second.size() != g.cellCount())
 			kv.second.assign(g.cellCount(), 0.0f);
 	m_occupancy.setSize(
-		static_cast<float>(g.originX), static_cast<float>(g.maxX()),
-		static_cast<float>(g.originY), static_cast<float>(g.maxY()),
-		static_cast<float>(g.resolution));
+	    static_cast<float>(g.originX), static_cast<float>(g.maxX()),
+	    static_cast<float>(g.originY), static_cast<float>(g.maxY()),
+	    static_cast<float>(g.resolution));
 	for (int cy = 0; cy < g.rows; cy++)
 		std::copy_n(
-			logodds.begin() + static_cast<long>(g.index(cy, 0)), g.cols,
-			m_occupancy.getRow(cy));
+		    logodds.begin() + static_cast<long>(g.index(cy, 0)), g.cols,
+		    m_occupancy.getRow(cy));
 	m_instances = std::move(objs);
 	m_sweeps = sweeps;
 }

@@ -55,18 +55,17 @@ struct WorldPoint
 }  // namespace
 
 void SemanticMap::insert(
-	const Sweep& sweep, const LabeledSweep& ls,
-	const mrpt::poses::CPose2D& robotPose)
+    const Sweep& sweep, const LabeledSweep& ls,
+    const mrpt::poses::CPose2D& robotPose)
 {
 	const mrpt::poses::CPose3D robot(
-		robotPose.x(), robotPose.y(), 0, robotPose.phi(), 0, 0);
+	    robotPose.x(), robotPose.y(), 0, robotPose.phi(), 0, 0);
 	const int rows = ls.points.rows, cols = ls.points.cols;
 
 	// World points of the valid pixels.
 	std::vector<WorldPoint> pts;
 	pts.reserve(static_cast<std::size_t>(rows) * cols);
-	double xmin = robotPose.x(), xmax = xmin, ymin = robotPose.y(),
-		   ymax = ymin;
+	double xmin = robotPose.x(), xmax = xmin, ymin = robotPose.y(), ymax = ymin;
 	for (int r = 0; r < rows; r++)
 		for (int c = 0; c < cols; c++)
 		{
@@ -74,14 +73,14 @@ void SemanticMap::insert(
 				continue;
 			const auto& p = ls.points.at<cv::Vec3f>(r, c);
 			if (!std::isfinite(p[0]) || !std::isfinite(p[1]) ||
-				!std::isfinite(p[2]))
+			    !std::isfinite(p[2]))
 				continue;
 			double wx, wy, wz;
 			robot.composePoint(p[0], p[1], p[2], wx, wy, wz);
 			pts.push_back(
-				{static_cast<float>(wx), static_cast<float>(wy),
-				 static_cast<float>(wz),
-				 static_cast<float>(p[2] - ls.groundZ), r, c});
+			    {static_cast<float>(wx), static_cast<float>(wy),
+			     static_cast<float>(wz), static_cast<float>(p[2] - ls.groundZ),
+			     r, c});
 			xmin = std::min(xmin, wx);
 			xmax = std::max(xmax, wx);
 			ymin = std::min(ymin, wy);
@@ -102,7 +101,7 @@ void SemanticMap::insert(
 
 	// Per-sweep evidence.
 	std::vector<uint8_t> hit(g.cellCount(), 0), freeEnd(g.cellCount(), 0),
-		seenFree(g.cellCount(), 0);
+	    seenFree(g.cellCount(), 0);
 	auto& labelLayer = get("labels");
 	auto& roughLayer = get("roughness");
 	auto& obsLayer = get("observations");
@@ -115,8 +114,9 @@ void SemanticMap::insert(
 		if (!worldToCell(p.x, p.y, cx, cy)) continue;
 		const std::size_t i = g.index(cy, cx);
 		cellOfPixel[static_cast<std::size_t>(p.r) * cols + p.c] =
-			static_cast<int>(i);
-		const Label l = ls.label(static_cast<std::size_t>(p.r), static_cast<std::size_t>(p.c));
+		    static_cast<int>(i);
+		const Label l = ls.label(
+		    static_cast<std::size_t>(p.r), static_cast<std::size_t>(p.c));
 		if (l != Label::Unknown)
 		{
 			LabelSet s(static_cast<LabelSet::mask_t>(labelLayer[i]));
@@ -144,13 +144,17 @@ void SemanticMap::insert(
 	for (int cy = 0; cy < g.rows; cy++)
 		for (int cx = 0; cx < g.cols; cx++)
 			if (freeEnd[g.index(cy, cx)])
-				traceLine(scx, scy, cx, cy, [&](int x, int y) {
-					if (g.contains(y, x)) seenFree[g.index(y, x)] = 1;
-				});
+				traceLine(
+				    scx, scy, cx, cy,
+				    [&](int x, int y)
+				    {
+					    if (g.contains(y, x)) seenFree[g.index(y, x)] = 1;
+				    });
 
 	// The robot stands on its footprint: free, though the laser cannot
 	// see it.
-	const int rr = static_cast<int>(std::ceil(m_options.robotRadius / g.resolution));
+	const int rr =
+	    static_cast<int>(std::ceil(m_options.robotRadius / g.resolution));
 	int rcx, rcy;
 	worldToCell(robotPose.x(), robotPose.y(), rcx, rcy);
 	for (int dy = -rr; dy <= rr; dy++)
@@ -158,7 +162,8 @@ void SemanticMap::insert(
 		{
 			double x, y;
 			if (!cellToWorld(rcx + dx, rcy + dy, x, y)) continue;
-			if (std::hypot(x - robotPose.x(), y - robotPose.y()) <= m_options.robotRadius)
+			if (std::hypot(x - robotPose.x(), y - robotPose.y()) <=
+			    m_options.robotRadius)
 				seenFree[g.index(rcy + dy, rcx + dx)] = 1;
 		}
 
@@ -168,7 +173,8 @@ void SemanticMap::insert(
 		for (int cx = 0; cx < g.cols; cx++)
 		{
 			const std::size_t i = g.index(cy, cx);
-			if (hit[i]) m_occupancy.updateCell(cx, cy, pHit);
+			if (hit[i])
+				m_occupancy.updateCell(cx, cy, pHit);
 			else if (seenFree[i])
 				m_occupancy.updateCell(cx, cy, pFree);
 			else
@@ -178,8 +184,7 @@ void SemanticMap::insert(
 			{
 				const float mean = roughSum[i] / roughN[i];
 				const float prev = roughLayer[i];
-				roughLayer[i] =
-					std::isnan(prev) ? mean : 0.5f * (prev + mean);
+				roughLayer[i] = std::isnan(prev) ? mean : 0.5f * (prev + mean);
 			}
 		}
 
@@ -187,40 +192,51 @@ void SemanticMap::insert(
 	auto& objLayer = get("objects");
 	std::vector<int> seenThisSweep;
 	auto toWorldBox = [&](const mrpt::math::TPoint3D& a,
-						  const mrpt::math::TPoint3D& b,
-						  mrpt::math::TPoint3D& lo, mrpt::math::TPoint3D& hi) {
+	                      const mrpt::math::TPoint3D& b,
+	                      mrpt::math::TPoint3D& lo, mrpt::math::TPoint3D& hi)
+	{
 		lo = {1e18, 1e18, 1e18};
 		hi = {-1e18, -1e18, -1e18};
 		for (int k = 0; k < 8; k++)
 		{
 			double x, y, z;
 			robot.composePoint(
-				(k & 1) ? b.x : a.x, (k & 2) ? b.y : a.y, (k & 4) ? b.z : a.z,
-				x, y, z);
+			    (k & 1) ? b.x : a.x, (k & 2) ? b.y : a.y, (k & 4) ? b.z : a.z,
+			    x, y, z);
 			lo = {std::min(lo.x, x), std::min(lo.y, y), std::min(lo.z, z)};
 			hi = {std::max(hi.x, x), std::max(hi.y, y), std::max(hi.z, z)};
 		}
 	};
-	auto paint = [&](int id, const cv::Rect& box, auto&& belongs) {
+	auto paint = [&](int id, const cv::Rect& box, auto&& belongs)
+	{
 		const cv::Rect clip = box & cv::Rect(0, 0, cols, rows);
 		for (int r = clip.y; r < clip.y + clip.height; r++)
 			for (int c = clip.x; c < clip.x + clip.width; c++)
 			{
-				const int i = cellOfPixel[static_cast<std::size_t>(r) * cols + c];
-				if (i >= 0 && belongs(r, c)) objLayer[static_cast<std::size_t>(i)] = static_cast<float>(id);
+				const int i =
+				    cellOfPixel[static_cast<std::size_t>(r) * cols + c];
+				if (i >= 0 && belongs(r, c))
+					objLayer[static_cast<std::size_t>(i)] =
+					    static_cast<float>(id);
 			}
 	};
 	for (const auto& d : ls.detections)
 	{
-		const mrpt::math::TPoint3D half{d.extent.x / 2, d.extent.y / 2, d.extent.z / 2};
+		const mrpt::math::TPoint3D half{
+		    d.extent.x / 2, d.extent.y / 2, d.extent.z / 2};
 		mrpt::math::TPoint3D lo, hi, wc;
 		toWorldBox(d.centroid - half, d.centroid + half, lo, hi);
 		robot.composePoint(d.centroid, wc);
 		int id = 0;
 		mergeObject(d.label, wc, lo, hi, seenThisSweep, id);
-		paint(id, d.imageBox, [&](int r, int c) {
-			return ls.label(static_cast<std::size_t>(r), static_cast<std::size_t>(c)) == d.label;
-		});
+		paint(
+		    id, d.imageBox,
+		    [&](int r, int c)
+		    {
+			    return ls.label(
+			               static_cast<std::size_t>(r),
+			               static_cast<std::size_t>(c)) == d.label;
+		    });
 	}
 	for (const auto& reg : ls.regions)
 	{
@@ -230,9 +246,10 @@ void SemanticMap::insert(
 		robot.composePoint(reg.centroid, wc);
 		int id = 0;
 		mergeObject(Label::Door, wc, lo, hi, seenThisSweep, id);
-		paint(id, reg.imageBox, [&](int r, int c) {
-			return ls.regionIds.at<int32_t>(r, c) == reg.id;
-		});
+		paint(
+		    id, reg.imageBox,
+		    [&](int r, int c)
+		    { return ls.regionIds.at<int32_t>(r, c) == reg.id; });
 	}
 
 	// 3D: every point into the OctoMap (endpoints; free space stays 2D).
@@ -248,9 +265,10 @@ void SemanticMap::insert(
 }
 
 void SemanticMap::mergeObject(
-	Label label, const mrpt::math::TPoint3D& centroid,
-	const mrpt::math::TPoint3D& minCorner, const mrpt::math::TPoint3D& maxCorner,
-	std::vector<int>& seenThisSweep, int& id)
+    Label label, const mrpt::math::TPoint3D& centroid,
+    const mrpt::math::TPoint3D& minCorner,
+    const mrpt::math::TPoint3D& maxCorner, std::vector<int>& seenThisSweep,
+    int& id)
 {
 	ObjectInstance* best = nullptr;
 	double bestD = m_options.mergeDistance;
@@ -258,7 +276,7 @@ void SemanticMap::mergeObject(
 	{
 		if (o.label != label) continue;
 		const double d =
-			std::hypot(o.centroid.x - centroid.x, o.centroid.y - centroid.y);
+		    std::hypot(o.centroid.x - centroid.x, o.centroid.y - centroid.y);
 		if (d < bestD)
 		{
 			bestD = d;
@@ -279,8 +297,9 @@ void SemanticMap::mergeObject(
 		id = o.id;
 		return;
 	}
-	const bool again = std::find(seenThisSweep.begin(), seenThisSweep.end(),
-								 best->id) != seenThisSweep.end();
+	const bool again =
+	    std::find(seenThisSweep.begin(), seenThisSweep.end(), best->id) !=
+	    seenThisSweep.end();
 	if (!again)
 	{
 		const double n = static_cast<double>(best->observations);
@@ -288,12 +307,14 @@ void SemanticMap::mergeObject(
 		best->observations++;
 		seenThisSweep.push_back(best->id);
 	}
-	best->minCorner = {std::min(best->minCorner.x, minCorner.x),
-					   std::min(best->minCorner.y, minCorner.y),
-					   std::min(best->minCorner.z, minCorner.z)};
-	best->maxCorner = {std::max(best->maxCorner.x, maxCorner.x),
-					   std::max(best->maxCorner.y, maxCorner.y),
-					   std::max(best->maxCorner.z, maxCorner.z)};
+	best->minCorner = {
+	    std::min(best->minCorner.x, minCorner.x),
+	    std::min(best->minCorner.y, minCorner.y),
+	    std::min(best->minCorner.z, minCorner.z)};
+	best->maxCorner = {
+	    std::max(best->maxCorner.x, maxCorner.x),
+	    std::max(best->maxCorner.y, maxCorner.y),
+	    std::max(best->maxCorner.z, maxCorner.z)};
 	id = best->id;
 }
 

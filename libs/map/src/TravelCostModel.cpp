@@ -10,38 +10,38 @@
 namespace semnav
 {
 void TravelCostModel::TOptions::loadFromConfigFile(
-	const mrpt::config::CConfigFileBase& c, const std::string& s)
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	checkKnownKeys(
-		c, s,
-		{"lethal_cost", "floor_cost", "door_cost", "sidewalk_cost",
-		 "grass_cost", "grass_roughness_gain", "stairs_cost", "robot_type",
-		 "unknown_cost"});
+	    c, s,
+	    {"lethal_cost", "floor_cost", "door_cost", "sidewalk_cost",
+	     "grass_cost", "grass_roughness_gain", "stairs_cost", "robot_type",
+	     "unknown_cost"});
 	lethalCost = readChecked(c, s, "lethal_cost", lethalCost, 1, 1e9);
 	floorCost = readChecked(c, s, "floor_cost", floorCost, 0, lethalCost);
 	doorCost = readChecked(c, s, "door_cost", doorCost, 0, lethalCost);
 	sidewalkCost =
-		readChecked(c, s, "sidewalk_cost", sidewalkCost, 0, lethalCost);
+	    readChecked(c, s, "sidewalk_cost", sidewalkCost, 0, lethalCost);
 	grassCost = readChecked(c, s, "grass_cost", grassCost, 0, lethalCost);
 	grassRoughnessGain = readChecked(
-		c, s, "grass_roughness_gain", grassRoughnessGain, 0, lethalCost);
+	    c, s, "grass_roughness_gain", grassRoughnessGain, 0, lethalCost);
 	stairsCost = readChecked(c, s, "stairs_cost", stairsCost, 0, lethalCost);
-	unknownCost =
-		readChecked(c, s, "unknown_cost", unknownCost, 0, lethalCost);
+	unknownCost = readChecked(c, s, "unknown_cost", unknownCost, 0, lethalCost);
 	const std::string type = c.read_string(
-		s, "robot_type",
-		robotType == RobotType::Walking ? "walking" : "wheeled");
-	if (type == "wheeled") robotType = RobotType::Wheeled;
+	    s, "robot_type",
+	    robotType == RobotType::Walking ? "walking" : "wheeled");
+	if (type == "wheeled")
+		robotType = RobotType::Wheeled;
 	else if (type == "walking")
 		robotType = RobotType::Walking;
 	else
 		throw ConfigError(
-			"[" + s + "] robot_type = '" + type +
-			"' is not 'wheeled' or 'walking'");
+		    "[" + s + "] robot_type = '" + type +
+		    "' is not 'wheeled' or 'walking'");
 }
 
 void TravelCostModel::TOptions::saveToConfigFile(
-	mrpt::config::CConfigFileBase& c, const std::string& s) const
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
 {
 	c.write(s, "lethal_cost", lethalCost);
 	c.write(s, "floor_cost", floorCost);
@@ -51,8 +51,8 @@ void TravelCostModel::TOptions::saveToConfigFile(
 	c.write(s, "grass_roughness_gain", grassRoughnessGain);
 	c.write(s, "stairs_cost", stairsCost);
 	c.write(
-		s, "robot_type",
-		robotType == RobotType::Walking ? "walking" : "wheeled");
+	    s, "robot_type",
+	    robotType == RobotType::Walking ? "walking" : "wheeled");
 	c.write(s, "unknown_cost", unknownCost);
 }
 
@@ -60,14 +60,14 @@ TravelCostModel::TravelCostModel() : TravelCostModel(TOptions()) {}
 TravelCostModel::TravelCostModel(const TOptions& o) : m_options(o) {}
 
 double TravelCostModel::cost(
-	LabelSet labels, double roughness, Occupancy occupancy) const
+    LabelSet labels, double roughness, Occupancy occupancy) const
 {
 	const auto& o = m_options;
 	if (occupancy == Occupancy::Occupied) return o.lethalCost;
 	if (labels.empty())
 		return occupancy == Occupancy::Unknown ? o.unknownCost : o.floorCost;
 	const double obstacleCost =
-		occupancy == Occupancy::Free ? 0.0 : o.lethalCost;
+	    occupancy == Occupancy::Free ? 0.0 : o.lethalCost;
 	double u = 0;
 	for (Label l : allLabels())
 	{
@@ -75,26 +75,35 @@ double TravelCostModel::cost(
 		double lu = 0;
 		switch (l)
 		{
-			case Label::Floor: lu = o.floorCost; break;
-			case Label::Door: lu = o.doorCost; break;
-			case Label::Sidewalk: lu = o.sidewalkCost; break;
+			case Label::Floor:
+				lu = o.floorCost;
+				break;
+			case Label::Door:
+				lu = o.doorCost;
+				break;
+			case Label::Sidewalk:
+				lu = o.sidewalkCost;
+				break;
 			case Label::Grass:
-				lu = o.grassCost +
-					(std::isnan(roughness)
-						 ? 0.0
-						 : o.grassRoughnessGain *
-							 std::max(0.0, 1.0 - roughness));
+				lu = o.grassCost + (std::isnan(roughness)
+				                        ? 0.0
+				                        : o.grassRoughnessGain *
+				                              std::max(0.0, 1.0 - roughness));
 				break;
 			case Label::Stairs:
 				lu = o.robotType == RobotType::Walking ? o.stairsCost
-													   : o.lethalCost;
+				                                       : o.lethalCost;
 				break;
 			case Label::Wall:
 			case Label::Obstacle:
 			case Label::Washbasin:
-			case Label::Wastebasket: lu = obstacleCost; break;
+			case Label::Wastebasket:
+				lu = obstacleCost;
+				break;
 			case Label::Ceiling:
-			case Label::Unknown: lu = 0; break;
+			case Label::Unknown:
+				lu = 0;
+				break;
 		}
 		u = std::max(u, lu);
 	}

@@ -5,9 +5,9 @@
 namespace semnav
 {
 SemanticPlanner::SemanticPlanner(
-	const SemanticMap& map, const CnnPlanner::TOptions& cnn,
-	const TraversabilityBuilder::TOptions& traversability)
-	: m_map(map), m_cnn(cnn), m_builder(traversability)
+    const SemanticMap& map, const CnnPlanner::TOptions& cnn,
+    const TraversabilityBuilder::TOptions& traversability)
+    : m_map(map), m_cnn(cnn), m_builder(traversability)
 {
 }
 
@@ -29,18 +29,19 @@ TraversabilityGrid SemanticPlanner::traversability(CostProfile profile) const
 				case SemanticMap::CellState::Occupied:
 					occ[i] = CellOccupancy::Occupied;
 					break;
-				default: break;
+				default:
+					break;
 			}
 		}
 	// The map's cost layer already holds u_s (grass roughness, robot type,
 	// objects that left); the builder adds C-space and the profile.
 	return m_builder.buildFromCost(
-		g, m_map.get("cost"), m_map.costModel().options().lethalCost, labels,
-		occ, profile);
+	    g, m_map.get("cost"), m_map.costModel().options().lethalCost, labels,
+	    occ, profile);
 }
 
 GoalLayer SemanticPlanner::goalsOf(
-	const std::vector<int>& objectIds, CostProfile profile) const
+    const std::vector<int>& objectIds, CostProfile profile) const
 {
 	GoalLayer goals(m_map.geometry());
 	const double reach = m_builder.goalRegionRadius(profile);
@@ -55,7 +56,7 @@ GoalLayer SemanticPlanner::goalsOf(
 }
 
 SemanticPlanner::Plan SemanticPlanner::toLabel(
-	double x, double y, Label label, CostProfile profile) const
+    double x, double y, Label label, CostProfile profile) const
 {
 	const auto objs = m_map.instances(label);
 	if (objs.empty())
@@ -63,10 +64,10 @@ SemanticPlanner::Plan SemanticPlanner::toLabel(
 		std::string known;
 		for (const auto& o : m_map.instances())
 			known += (known.empty() ? "" : ", ") + labelName(o.label) + " " +
-				std::to_string(o.id);
+			         std::to_string(o.id);
 		throw NoInstanceError(
-			"the map has no " + labelName(label) + " (objects: " +
-			(known.empty() ? "none" : known) + ")");
+		    "the map has no " + labelName(label) +
+		    " (objects: " + (known.empty() ? "none" : known) + ")");
 	}
 	std::vector<int> ids;
 	for (const auto& o : objs) ids.push_back(o.id);
@@ -74,28 +75,28 @@ SemanticPlanner::Plan SemanticPlanner::toLabel(
 }
 
 SemanticPlanner::Plan SemanticPlanner::toObject(
-	double x, double y, int objectId, CostProfile profile) const
+    double x, double y, int objectId, CostProfile profile) const
 {
 	const Label label = m_map.instance(objectId).label;
 	return run(
-		x, y, traversability(profile), goalsOf({objectId}, profile), label);
+	    x, y, traversability(profile), goalsOf({objectId}, profile), label);
 }
 
 SemanticPlanner::Plan SemanticPlanner::toPoint(
-	double x, double y, double gx, double gy, CostProfile profile) const
+    double x, double y, double gx, double gy, CostProfile profile) const
 {
 	GoalLayer goals(m_map.geometry());
 	if (!m_map.geometry().cellOf(gx, gy))
 		throw PlanningError(
-			"goal (" + std::to_string(gx) + ", " + std::to_string(gy) +
-			") is outside the map");
+		    "goal (" + std::to_string(gx) + ", " + std::to_string(gy) +
+		    ") is outside the map");
 	goals.addDisc(gx, gy, m_builder.options().goalReach);
 	return run(x, y, traversability(profile), std::move(goals), Label::Unknown);
 }
 
 SemanticPlanner::Plan SemanticPlanner::run(
-	double x, double y, TraversabilityGrid u, GoalLayer goals,
-	Label label) const
+    double x, double y, TraversabilityGrid u, GoalLayer goals,
+    Label label) const
 {
 	Plan p;
 	p.start = CnnPlanner::startCell(u.geometry(), x, y);

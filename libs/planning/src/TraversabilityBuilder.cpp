@@ -161,7 +161,9 @@ void TraversabilityBuilder::TOptions::saveToConfigFile(
 	c.write(s, "safe_radius_m", num(safeRadius));
 	c.write(s, "safe_ring_cost", costText(safeRingCost, L));
 	c.write(s, "u_unobserved", costText(uUnobserved, L));
-	c.write(s, "inflate_unobserved", std::string(inflateUnobserved ? "true" : "false"));
+	c.write(
+	    s, "inflate_unobserved",
+	    std::string(inflateUnobserved ? "true" : "false"));
 	c.write(s, "goal_reach_m", num(goalReach));
 	for (Label l : allLabels())
 		c.write(

@@ -12,8 +12,8 @@ namespace semnav
 namespace fs = std::filesystem;
 
 GroundTruthLog::GroundTruthLog(const std::string& dir, const std::string& name)
-	: m_file((fs::path(dir) / (name + ".gt.txt")).string()),
-	  m_labelsDir((fs::path(dir) / (name + ".labels")).string())
+    : m_file((fs::path(dir) / (name + ".gt.txt")).string()),
+      m_labelsDir((fs::path(dir) / (name + ".labels")).string())
 {
 	std::ifstream f(m_file);
 	if (!f) throw IoError("cannot open ground truth " + m_file);
@@ -29,8 +29,8 @@ GroundTruthLog::GroundTruthLog(const std::string& dir, const std::string& name)
 		double t, x, y, yaw;
 		if (!(is >> index >> t >> x >> y >> yaw) || index < 0)
 			throw IoError(
-				m_file + ":" + std::to_string(lineNo) +
-				": expected 'index timestamp x y yaw_rad'");
+			    m_file + ":" + std::to_string(lineNo) +
+			    ": expected 'index timestamp x y yaw_rad'");
 		const auto i = static_cast<std::size_t>(index);
 		if (i >= m_poses.size())
 		{
@@ -43,7 +43,7 @@ GroundTruthLog::GroundTruthLog(const std::string& dir, const std::string& name)
 }
 
 GroundTruthLog GroundTruthLog::forRawlog(
-	const std::string& gtDir, const std::string& rawlogPath)
+    const std::string& gtDir, const std::string& rawlogPath)
 {
 	return GroundTruthLog(gtDir, fs::path(rawlogPath).stem().string());
 }
@@ -51,8 +51,7 @@ GroundTruthLog GroundTruthLog::forRawlog(
 const mrpt::poses::CPose2D& GroundTruthLog::pose(std::size_t i) const
 {
 	if (i >= m_poses.size() || !m_has[i])
-		throw IoError(
-			m_file + " has no pose for sweep " + std::to_string(i));
+		throw IoError(m_file + " has no pose for sweep " + std::to_string(i));
 	return m_poses[i];
 }
 

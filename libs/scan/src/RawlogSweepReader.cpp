@@ -12,8 +12,8 @@
 namespace semnav
 {
 RawlogSweepReader::RawlogSweepReader(
-	const std::string& path, const SweepAssembler::TOptions& options)
-	: m_path(path), m_assembler(options)
+    const std::string& path, const SweepAssembler::TOptions& options)
+    : m_path(path), m_assembler(options)
 {
 	if (!mrpt::system::fileExists(path))
 		throw RawlogError("cannot open rawlog " + path + ": no such file");
@@ -44,27 +44,26 @@ void RawlogSweepReader::readMore()
 		{
 			const std::string what = CommandLine::firstLine(e.what());
 			m_error = "rawlog " + m_path + " is corrupt or truncated after " +
-				std::to_string(m_objects) + " objects (" +
-				std::to_string(m_assembler.sweepsEmitted()) +
-				" sweeps read): " + what;
+			          std::to_string(m_objects) + " objects (" +
+			          std::to_string(m_assembler.sweepsEmitted()) +
+			          " sweeps read): " + what;
 			m_eof = true;
 			break;
 		}
 		m_objects++;
-		if (auto obs =
-				std::dynamic_pointer_cast<mrpt::obs::CObservation>(obj))
+		if (auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation>(obj))
 			m_assembler.push(obs);
 		else if (
-			auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(obj))
+		    auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(obj))
 			for (const auto& o : *sf) m_assembler.push(o);
 		else if (
-			auto acts =
-				std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(obj))
+		    auto acts =
+		        std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(obj))
 		{
 			if (auto mv = acts->getBestMovementEstimation())
 			{
 				m_actionOdometry =
-					m_actionOdometry + mv->rawOdometryIncrementReading;
+				    m_actionOdometry + mv->rawOdometryIncrementReading;
 				m_assembler.pushOdometry(m_actionOdometry);
 			}
 		}
@@ -90,7 +89,7 @@ bool RawlogSweepReader::next(Sweep& out)
 }
 
 std::vector<Sweep> readRawlogSweeps(
-	const std::string& path, const SweepAssembler::TOptions& options)
+    const std::string& path, const SweepAssembler::TOptions& options)
 {
 	RawlogSweepReader reader(path, options);
 	std::vector<Sweep> out;

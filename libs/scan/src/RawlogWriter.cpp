@@ -10,13 +10,12 @@
 namespace semnav
 {
 RawlogWriter::RawlogWriter(std::string path, int compressLevel)
-	: m_path(std::move(path))
+    : m_path(std::move(path))
 {
 	const std::filesystem::path p(m_path);
-	m_tmpPath = (p.parent_path() /
-				 ("." + p.filename().string() + ".tmp" +
-				  std::to_string(::getpid())))
-					.string();
+	m_tmpPath = (p.parent_path() / ("." + p.filename().string() + ".tmp" +
+	                                std::to_string(::getpid())))
+	                .string();
 	m_out = std::make_unique<mrpt::io::CFileGZOutputStream>();
 	std::string err;
 	if (!m_out->open(m_tmpPath, compressLevel, err))

@@ -7,15 +7,15 @@
 namespace semnav
 {
 Sweep::Sweep(std::size_t rows, std::size_t cols)
-	: m_rows(rows),
-	  m_cols(cols),
-	  m_range(rows * cols, 0.0f),
-	  m_valid(rows * cols, 0),
-	  m_theta(rows, 0.0),
-	  m_phi(cols, 0.0),
-	  m_cosPhi(cols, 1.0),
-	  m_sinPhi(cols, 0.0),
-	  m_sensorPose(rows)
+    : m_rows(rows),
+      m_cols(cols),
+      m_range(rows * cols, 0.0f),
+      m_valid(rows * cols, 0),
+      m_theta(rows, 0.0),
+      m_phi(cols, 0.0),
+      m_cosPhi(cols, 1.0),
+      m_sinPhi(cols, 0.0),
+      m_sensorPose(rows)
 {
 }
 
@@ -27,7 +27,7 @@ std::size_t Sweep::validCount() const
 }
 
 void Sweep::setRow(
-	std::size_t r, double theta, const mrpt::poses::CPose3D& sensorPose)
+    std::size_t r, double theta, const mrpt::poses::CPose3D& sensorPose)
 {
 	m_theta[r] = theta;
 	m_sensorPose[r] = sensorPose;
@@ -50,9 +50,9 @@ mrpt::math::TPoint3Df Sweep::point(std::size_t r, std::size_t c) const
 	const double d = range(r, c);
 	double x, y, z;
 	m_sensorPose[r].composePoint(
-		d * m_cosPhi[c], d * m_sinPhi[c], 0.0, x, y, z);
-	return {static_cast<float>(x), static_cast<float>(y),
-			static_cast<float>(z)};
+	    d * m_cosPhi[c], d * m_sinPhi[c], 0.0, x, y, z);
+	return {
+	    static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)};
 }
 
 std::vector<mrpt::math::TPoint3Df> Sweep::points() const

@@ -15,31 +15,31 @@ using mrpt::DEG2RAD;
 using mrpt::RAD2DEG;
 
 void SweepAssembler::TOptions::loadFromConfigFile(
-	const mrpt::config::CConfigFileBase& c, const std::string& s)
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	checkKnownKeys(
-		c, s,
-		{"sensor_label", "same_tilt_tolerance_deg", "min_valid_range_m",
-		 "nominal_span_deg", "complete_span_fraction", "split_on_motion",
-		 "motion_tolerance_m", "motion_tolerance_deg"});
+	    c, s,
+	    {"sensor_label", "same_tilt_tolerance_deg", "min_valid_range_m",
+	     "nominal_span_deg", "complete_span_fraction", "split_on_motion",
+	     "motion_tolerance_m", "motion_tolerance_deg"});
 	sensorLabel = c.read_string(s, "sensor_label", sensorLabel);
 	sameTiltTolerance = DEG2RAD(readChecked(
-		c, s, "same_tilt_tolerance_deg", RAD2DEG(sameTiltTolerance), 0, 5));
+	    c, s, "same_tilt_tolerance_deg", RAD2DEG(sameTiltTolerance), 0, 5));
 	minValidRange =
-		readChecked(c, s, "min_valid_range_m", minValidRange, 0, 10);
+	    readChecked(c, s, "min_valid_range_m", minValidRange, 0, 10);
 	nominalSpan = DEG2RAD(
-		readChecked(c, s, "nominal_span_deg", RAD2DEG(nominalSpan), 0, 180));
-	completeSpanFraction = readChecked(
-		c, s, "complete_span_fraction", completeSpanFraction, 0, 1);
+	    readChecked(c, s, "nominal_span_deg", RAD2DEG(nominalSpan), 0, 180));
+	completeSpanFraction =
+	    readChecked(c, s, "complete_span_fraction", completeSpanFraction, 0, 1);
 	splitOnMotion = readCheckedBool(c, s, "split_on_motion", splitOnMotion);
 	motionTolerance =
-		readChecked(c, s, "motion_tolerance_m", motionTolerance, 0, 10);
+	    readChecked(c, s, "motion_tolerance_m", motionTolerance, 0, 10);
 	motionToleranceYaw = DEG2RAD(readChecked(
-		c, s, "motion_tolerance_deg", RAD2DEG(motionToleranceYaw), 0, 180));
+	    c, s, "motion_tolerance_deg", RAD2DEG(motionToleranceYaw), 0, 180));
 }
 
 void SweepAssembler::TOptions::saveToConfigFile(
-	mrpt::config::CConfigFileBase& c, const std::string& s) const
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
 {
 	c.write(s, "sensor_label", sensorLabel);
 	c.write(s, "same_tilt_tolerance_deg", RAD2DEG(sameTiltTolerance));
@@ -54,9 +54,9 @@ void SweepAssembler::TOptions::saveToConfigFile(
 SweepAssembler::SweepAssembler() : SweepAssembler(TOptions()) {}
 
 SweepAssembler::SweepAssembler(const TOptions& options)
-	: mrpt::system::COutputLogger("SweepAssembler"),
-	  m_options(options),
-	  m_label(options.sensorLabel)
+    : mrpt::system::COutputLogger("SweepAssembler"),
+      m_options(options),
+      m_label(options.sensorLabel)
 {
 }
 
@@ -64,7 +64,7 @@ void SweepAssembler::push(const mrpt::obs::CObservation::Ptr& obs)
 {
 	if (!obs) return;
 	if (auto scan =
-			std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(obs))
+	        std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(obs))
 	{
 		if (m_label.empty()) m_label = scan->sensorLabel;
 		if (scan->sensorLabel != m_label)
@@ -75,8 +75,8 @@ void SweepAssembler::push(const mrpt::obs::CObservation::Ptr& obs)
 		pushLine(scan);
 	}
 	else if (
-		auto odo =
-			std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs))
+	    auto odo =
+	        std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs))
 	{
 		pushOdometry(odo->odometry);
 	}
@@ -88,18 +88,17 @@ void SweepAssembler::pushOdometry(const mrpt::poses::CPose2D& odometry)
 	{
 		const auto d = odometry - *m_odometry;
 		if (d.norm() > m_options.motionTolerance ||
-			std::abs(mrpt::math::wrapToPi(d.phi())) >
-				m_options.motionToleranceYaw)
+		    std::abs(mrpt::math::wrapToPi(d.phi())) >
+		        m_options.motionToleranceYaw)
 			closeSweep(EndReason::Motion);
 	}
 	m_odometry = odometry;
 }
 
 void SweepAssembler::pushLine(
-	const mrpt::obs::CObservation2DRangeScan::Ptr& scan)
+    const mrpt::obs::CObservation2DRangeScan::Ptr& scan)
 {
-	const Line line{
-		tiltOfSensorPose(scan->sensorPose), scan};
+	const Line line{tiltOfSensorPose(scan->sensorPose), scan};
 	if (m_lines.empty())
 	{
 		startSweep({line});
@@ -108,9 +107,9 @@ void SweepAssembler::pushLine(
 	if (scan->getScanSize() != m_lines.front().scan->getScanSize())
 	{
 		MRPT_LOG_WARN_FMT(
-			"scan line with %u beams in a sweep of %u beams: sweep ended",
-			static_cast<unsigned>(scan->getScanSize()),
-			static_cast<unsigned>(m_lines.front().scan->getScanSize()));
+		    "scan line with %u beams in a sweep of %u beams: sweep ended",
+		    static_cast<unsigned>(scan->getScanSize()),
+		    static_cast<unsigned>(m_lines.front().scan->getScanSize()));
 		closeSweep(EndReason::Other);
 		startSweep({line});
 		return;
@@ -153,7 +152,10 @@ void SweepAssembler::startSweep(std::vector<Line> lines)
 	m_sweepOdometry = m_odometry;
 }
 
-void SweepAssembler::finish() { closeSweep(EndReason::Other); }
+void SweepAssembler::finish()
+{
+	closeSweep(EndReason::Other);
+}
 
 void SweepAssembler::closeSweep(EndReason why)
 {
@@ -179,9 +181,9 @@ Sweep SweepAssembler::pop()
 Sweep SweepAssembler::build(const std::vector<Line>& lines, EndReason why)
 {
 	std::vector<Line> sorted = lines;
-	std::sort(sorted.begin(), sorted.end(), [](const Line& a, const Line& b) {
-		return a.theta < b.theta;
-	});
+	std::sort(
+	    sorted.begin(), sorted.end(),
+	    [](const Line& a, const Line& b) { return a.theta < b.theta; });
 	const double span = sorted.back().theta - sorted.front().theta;
 
 	// Nominal tilt step: median gap between consecutive lines.
@@ -192,11 +194,11 @@ Sweep SweepAssembler::build(const std::vector<Line>& lines, EndReason why)
 		for (std::size_t i = 1; i < sorted.size(); i++)
 			gaps.push_back(sorted[i].theta - sorted[i - 1].theta);
 		std::nth_element(
-			gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+		    gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
 		step = gaps[gaps.size() / 2];
 	}
 	const std::size_t rows =
-		step > 0 ? static_cast<std::size_t>(std::lround(span / step)) + 1 : 1;
+	    step > 0 ? static_cast<std::size_t>(std::lround(span / step)) + 1 : 1;
 
 	const auto& first = *lines.front().scan;
 	const std::size_t cols = first.getScanSize();
@@ -219,9 +221,9 @@ Sweep SweepAssembler::build(const std::vector<Line>& lines, EndReason why)
 	for (const Line& l : sorted)
 	{
 		const std::size_t r =
-			step > 0 ? static_cast<std::size_t>(std::lround(
-						   (l.theta - sorted.front().theta) / step))
-					 : 0;
+		    step > 0 ? static_cast<std::size_t>(
+		                   std::lround((l.theta - sorted.front().theta) / step))
+		             : 0;
 		if (r >= rows || filled[r])
 		{
 			repeated++;
@@ -236,7 +238,7 @@ Sweep SweepAssembler::build(const std::vector<Line>& lines, EndReason why)
 			const std::size_t b = s.rightToLeft ? c : cols - 1 - c;
 			const float rg = s.getScanRange(b);
 			const bool ok = s.getScanRangeValidity(b) && rg > 0 &&
-				rg < s.maxRange && rg >= m_options.minValidRange;
+			                rg < s.maxRange && rg >= m_options.minValidRange;
 			sw.setRange(r, c, rg, ok);
 		}
 	}
@@ -249,14 +251,14 @@ Sweep SweepAssembler::build(const std::vector<Line>& lines, EndReason why)
 		missing++;
 		const double theta = sorted.front().theta + r * step;
 		sw.setRow(
-			r, theta,
-			tiltedSensorPose(
-				sorted.front().scan->sensorPose.translation(), theta));
+		    r, theta,
+		    tiltedSensorPose(
+		        sorted.front().scan->sensorPose.translation(), theta));
 	}
 
 	m_largestSpan = std::max(m_largestSpan, span);
 	const double reference =
-		m_options.nominalSpan > 0 ? m_options.nominalSpan : m_largestSpan;
+	    m_options.nominalSpan > 0 ? m_options.nominalSpan : m_largestSpan;
 	auto& q = sw.quality();
 	q.ascending = lines.back().theta >= lines.front().theta;
 	q.missingLines = missing;
@@ -264,16 +266,15 @@ Sweep SweepAssembler::build(const std::vector<Line>& lines, EndReason why)
 	q.complete = span >= m_options.completeSpanFraction * reference - 1e-9;
 	if (!q.complete)
 		MRPT_LOG_WARN_FMT(
-			"sweep %u incomplete: tilt span %.1f deg of %.1f deg (%s)",
-			static_cast<unsigned>(m_emitted), RAD2DEG(span),
-			RAD2DEG(reference),
-			why == EndReason::Motion	   ? "robot moved"
-				: why == EndReason::Reversal ? "head reversed early"
-											 : "stream ended");
+		    "sweep %u incomplete: tilt span %.1f deg of %.1f deg (%s)",
+		    static_cast<unsigned>(m_emitted), RAD2DEG(span), RAD2DEG(reference),
+		    why == EndReason::Motion     ? "robot moved"
+		    : why == EndReason::Reversal ? "head reversed early"
+		                                 : "stream ended");
 	if (missing > 0)
 		MRPT_LOG_WARN_FMT(
-			"sweep %u: %u missing scan lines", static_cast<unsigned>(m_emitted),
-			static_cast<unsigned>(missing));
+		    "sweep %u: %u missing scan lines", static_cast<unsigned>(m_emitted),
+		    static_cast<unsigned>(missing));
 	m_emitted++;
 	return sw;
 }

@@ -17,24 +17,24 @@ using mrpt::DEG2RAD;
 using mrpt::RAD2DEG;
 
 void ThreeDtkReader::TOptions::loadFromConfigFile(
-	const mrpt::config::CConfigFileBase& c, const std::string& s)
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	checkKnownKeys(
-		c, s,
-		{"cols", "beam_step_deg", "no_return_range_m", "min_range_m",
-		 "max_range_m"});
+	    c, s,
+	    {"cols", "beam_step_deg", "no_return_range_m", "min_range_m",
+	     "max_range_m"});
 	cols = static_cast<std::size_t>(
-		readCheckedInt(c, s, "cols", static_cast<int>(cols), 1, 10000));
+	    readCheckedInt(c, s, "cols", static_cast<int>(cols), 1, 10000));
 	beamStep =
-		DEG2RAD(readChecked(c, s, "beam_step_deg", RAD2DEG(beamStep), 0.01, 5));
+	    DEG2RAD(readChecked(c, s, "beam_step_deg", RAD2DEG(beamStep), 0.01, 5));
 	noReturnRange =
-		readChecked(c, s, "no_return_range_m", noReturnRange, 0.1, 1000);
+	    readChecked(c, s, "no_return_range_m", noReturnRange, 0.1, 1000);
 	minRange = readChecked(c, s, "min_range_m", minRange, 0, 100);
 	maxRange = readChecked(c, s, "max_range_m", maxRange, 0.1, 1000);
 }
 
 void ThreeDtkReader::TOptions::saveToConfigFile(
-	mrpt::config::CConfigFileBase& c, const std::string& s) const
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
 {
 	c.write(s, "cols", static_cast<int>(cols));
 	c.write(s, "beam_step_deg", RAD2DEG(beamStep));
@@ -45,9 +45,7 @@ void ThreeDtkReader::TOptions::saveToConfigFile(
 
 ThreeDtkReader::ThreeDtkReader() : ThreeDtkReader(TOptions()) {}
 
-ThreeDtkReader::ThreeDtkReader(const TOptions& options) : m_options(options)
-{
-}
+ThreeDtkReader::ThreeDtkReader(const TOptions& options) : m_options(options) {}
 
 namespace
 {
@@ -73,24 +71,22 @@ Sweep ThreeDtkReader::read(const std::string& path) const
 		RawPoint p{};
 		if (!(is >> p.x >> p.y >> p.z))
 			throw IoError(
-				path + ":" + std::to_string(lineNo) +
-				": expected 'x y z' in cm, got '" + line + "'");
+			    path + ":" + std::to_string(lineNo) +
+			    ": expected 'x y z' in cm, got '" + line + "'");
 		pts.push_back({p.x / 100, p.y / 100, p.z / 100});
 	}
 	const std::size_t cols = m_options.cols;
 	if (pts.empty() || pts.size() % cols != 0)
 		throw IoError(
-			path + ": " + std::to_string(pts.size()) +
-			" points is not a whole number of " + std::to_string(cols) +
-			"-beam scan lines");
+		    path + ": " + std::to_string(pts.size()) +
+		    " points is not a whole number of " + std::to_string(cols) +
+		    "-beam scan lines");
 	const std::size_t rows = pts.size() / cols;
 
-	auto rangeOf = [](const RawPoint& p) {
-		return std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
-	};
-	auto isValid = [&](double r) {
-		return r >= m_options.minRange && r < m_options.noReturnRange;
-	};
+	auto rangeOf = [](const RawPoint& p)
+	{ return std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z); };
+	auto isValid = [&](double r)
+	{ return r >= m_options.minRange && r < m_options.noReturnRange; };
 
 	// Tilt of each file row, from the beams that are well off the tilt axis.
 	std::vector<double> theta(rows, std::nan(""));
@@ -119,12 +115,13 @@ Sweep ThreeDtkReader::read(const std::string& path) const
 		while (b + 1 < rows && std::isnan(theta[b])) b++;
 		if (std::isnan(theta[a]) && std::isnan(theta[b]))
 			throw IoError(path + ": no valid readings to find the tilt");
-		if (std::isnan(theta[a])) theta[r] = theta[b];
+		if (std::isnan(theta[a]))
+			theta[r] = theta[b];
 		else if (std::isnan(theta[b]))
 			theta[r] = theta[a];
 		else
 			theta[r] = theta[a] +
-				(theta[b] - theta[a]) * double(r - a) / double(b - a);
+			           (theta[b] - theta[a]) * double(r - a) / double(b - a);
 	}
 
 	const bool ascending = theta.back() >= theta.front();
@@ -148,7 +145,7 @@ Sweep ThreeDtkReader::read(const std::string& path) const
 	sw.quality().ascending = ascending;
 
 	const auto posePath =
-		std::filesystem::path(path).replace_extension(".pose").string();
+	    std::filesystem::path(path).replace_extension(".pose").string();
 	if (std::filesystem::exists(posePath))
 	{
 		const auto p = readPose(posePath);
@@ -167,7 +164,7 @@ mrpt::poses::CPose3D ThreeDtkReader::readPose(const std::string& path)
 	// Left-handed (x right, y up, z forward) -> x forward, y left, z up. A
 	// positive rotation about 3DTK's up axis turns toward the right.
 	return mrpt::poses::CPose3D(
-		z / 100, -x / 100, y / 100, DEG2RAD(-ry), DEG2RAD(-rx), DEG2RAD(rz));
+	    z / 100, -x / 100, y / 100, DEG2RAD(-ry), DEG2RAD(-rx), DEG2RAD(rz));
 }
 
 }  // namespace semnav

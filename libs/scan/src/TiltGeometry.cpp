@@ -6,7 +6,7 @@
 namespace semnav
 {
 mrpt::poses::CPose3D tiltedSensorPose(
-	const mrpt::math::TPoint3D& mount, double theta, double phiCenter)
+    const mrpt::math::TPoint3D& mount, double theta, double phiCenter)
 {
 	// MRPT pitch is positive nose-down, so a head raised by theta has
 	// pitch = -theta. The scanner's own yaw inside the scan plane comes last.

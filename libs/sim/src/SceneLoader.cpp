@@ -20,10 +20,10 @@ constexpr double kDegToRad = M_PI / 180;
 constexpr std::size_t kMaxObjects = 255;
 
 const std::vector<std::string> kSceneKeys = {
-	"name",	  "bounds",	  "ceiling_height", "objects",
-	"sensor", "odometry", "trajectory"};
+    "name",   "bounds",   "ceiling_height", "objects",
+    "sensor", "odometry", "trajectory"};
 const std::vector<std::string> kPrimitiveKeys = {
-	"box", "cylinder", "stairs", "terrain"};
+    "box", "cylinder", "stairs", "terrain"};
 
 std::string joined(const std::vector<std::string>& v, const std::string& sep)
 {
@@ -108,11 +108,11 @@ struct Field
  * the key path (list indices 0-based), on one line. */
 class Parser
 {
-   public:
+public:
 	explicit Parser(const std::string& source) : m_source(source) {}
 
 	[[noreturn]] void fail(
-		int line, const std::string& path, const std::string& what) const
+	    int line, const std::string& path, const std::string& what) const
 	{
 		std::string msg = m_source;
 		if (line > 0) msg += ":" + std::to_string(line);
@@ -138,7 +138,7 @@ class Parser
 
 	Scene scene(const YAML::Node& root) const;
 
-   private:
+private:
 	std::string m_source;
 
 	/** Child `key` of the map `f`; its line is the key's line. */
@@ -177,19 +177,22 @@ class Parser
 	}
 
 	/** Rejects unknown and duplicate keys of the map `f`. */
-	void checkKeys(const Field& f, const std::vector<std::string>& allowed) const
+	void checkKeys(
+	    const Field& f, const std::vector<std::string>& allowed) const
 	{
 		std::set<std::string> seen;
 		for (const auto& kv : f.node)
 		{
 			const int line = lineOf(kv.first, lineOf(f));
 			if (!kv.first.IsScalar())
-				fail(line, f.path, "expected a key name, got " + describe(kv.first));
+				fail(
+				    line, f.path,
+				    "expected a key name, got " + describe(kv.first));
 			const std::string key = kv.first.Scalar();
 			if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
 				fail(
-					line, child(f.path, key),
-					"unknown key (allowed: " + joined(allowed, ", ") + ")");
+				    line, child(f.path, key),
+				    "unknown key (allowed: " + joined(allowed, ", ") + ")");
 			if (!seen.insert(key).second)
 				fail(line, child(f.path, key), "duplicate key");
 		}
@@ -239,11 +242,13 @@ class Parser
 	{
 		const std::string expected = std::to_string(count) + " numbers";
 		if (!f.present() || !f.node.IsSequence())
-			fail(f, "expected a list of " + expected + ", got " + describe(f.node));
+			fail(
+			    f,
+			    "expected a list of " + expected + ", got " + describe(f.node));
 		if (f.node.size() != count)
 			fail(
-				f, "expected " + expected + ", got " +
-					   std::to_string(f.node.size()));
+			    f, "expected " + expected + ", got " +
+			           std::to_string(f.node.size()));
 		std::vector<double> v;
 		for (std::size_t i = 0; i < count; i++)
 			v.push_back(number(element(f, i)));
@@ -271,20 +276,19 @@ class Parser
 
 	/** Reads [min, max, step] in degrees, within [-limit, limit]. */
 	void angleRange(
-		const Field& f, double limitDeg, double& lo, double& hi,
-		double& step) const
+	    const Field& f, double limitDeg, double& lo, double& hi,
+	    double& step) const
 	{
 		const auto v = numbers(f, 3);
 		if (!(v[0] < v[1]))
 			fail(
-				f, "min must be < max, got min " + fmt(v[0]) + ", max " +
-					   fmt(v[1]));
+			    f, "min must be < max, got min " + fmt(v[0]) + ", max " +
+			           fmt(v[1]));
 		if (!(v[2] > 0)) fail(f, "step must be > 0, got " + fmt(v[2]));
 		if (v[0] < -limitDeg || v[1] > limitDeg)
 			fail(
-				f, "must lie within [" + fmt(-limitDeg) + ", " +
-					   fmt(limitDeg) + "] deg, got [" + fmt(v[0]) + ", " +
-					   fmt(v[1]) + "]");
+			    f, "must lie within [" + fmt(-limitDeg) + ", " + fmt(limitDeg) +
+			           "] deg, got [" + fmt(v[0]) + ", " + fmt(v[1]) + "]");
 		lo = v[0] * kDegToRad;
 		hi = v[1] * kDegToRad;
 		step = v[2] * kDegToRad;
@@ -301,8 +305,8 @@ class Parser
 		catch (const UnknownLabelError&)
 		{
 			fail(
-				f, "unknown label '" + name + "' (known: " +
-					   labelNamesForObjects() + ")");
+			    f, "unknown label '" + name +
+			           "' (known: " + labelNamesForObjects() + ")");
 		}
 		if (lab == Label::Unknown)
 			fail(f, "label 'unknown' is not allowed for an object");
@@ -362,8 +366,8 @@ class Parser
 		expectList(poly);
 		if (poly.node.size() < 3)
 			fail(
-				poly, "expected at least 3 vertices, got " +
-						  std::to_string(poly.node.size()));
+			    poly, "expected at least 3 vertices, got " +
+			              std::to_string(poly.node.size()));
 		for (std::size_t i = 0; i < poly.node.size(); i++)
 			t.polygon.push_back(point2(element(poly, i)));
 		if (!(polygonArea(t.polygon) > 1e-9))
@@ -386,8 +390,8 @@ class Parser
 			fail(owner, "missing shape: expected one of " + list);
 		if (present.size() > 1)
 			fail(
-				owner, "expected exactly one of " + list + ", got " +
-						   joined(present, " and "));
+			    owner, "expected exactly one of " + list + ", got " +
+			               joined(present, " and "));
 		return present.front();
 	}
 
@@ -405,7 +409,7 @@ class Parser
 		expectMap(f);
 		std::vector<std::string> allowed = {"label"};
 		allowed.insert(
-			allowed.end(), kPrimitiveKeys.begin(), kPrimitiveKeys.end());
+		    allowed.end(), kPrimitiveKeys.begin(), kPrimitiveKeys.end());
 		allowed.push_back("parts");
 		checkKeys(f, allowed);
 		SceneObject o;
@@ -419,7 +423,8 @@ class Parser
 		}
 		const Field parts = field(f, "parts");
 		expectList(parts);
-		if (parts.node.size() == 0) fail(parts, "expected at least 1 part, got 0");
+		if (parts.node.size() == 0)
+			fail(parts, "expected at least 1 part, got 0");
 		for (std::size_t i = 0; i < parts.node.size(); i++)
 		{
 			const Field p = element(parts, i);
@@ -449,7 +454,7 @@ class Parser
 	{
 		expectMap(f);
 		checkKeys(
-			f, {"trans_noise", "rot_noise_deg_per_m", "rot_bias_deg_per_m"});
+		    f, {"trans_noise", "rot_noise_deg_per_m", "rot_bias_deg_per_m"});
 		if (const Field v = field(f, "trans_noise"); v.present())
 			o.transNoise = nonNegative(v);
 		if (const Field v = field(f, "rot_noise_deg_per_m"); v.present())
@@ -464,31 +469,33 @@ Scene Parser::scene(const YAML::Node& rootNode) const
 	const Field root{rootNode, "", 1};
 	if (!rootNode.IsDefined() || !rootNode.IsMap())
 		fail(
-			root, "expected a scene map (keys: " + joined(kSceneKeys, ", ") +
-					  "), got " + describe(rootNode));
+		    root, "expected a scene map (keys: " + joined(kSceneKeys, ", ") +
+		              "), got " + describe(rootNode));
 	checkKeys(root, kSceneKeys);
 	Scene sc;
 
 	const Field name = required(root, "name");
 	sc.name = text(name);
-	const bool nameOk = !sc.name.empty() && sc.name[0] != '.' &&
-		std::all_of(sc.name.begin(), sc.name.end(), [](unsigned char c) {
-							return std::isalnum(c) || c == '_' || c == '-' ||
-								c == '.';
-						});
+	const bool nameOk =
+	    !sc.name.empty() && sc.name[0] != '.' &&
+	    std::all_of(
+	        sc.name.begin(), sc.name.end(),
+	        [](unsigned char c)
+	        { return std::isalnum(c) || c == '_' || c == '-' || c == '.'; });
 	if (!nameOk)
 		fail(
-			name, "'" + sc.name +
-					  "' is not a valid file name (use letters, digits, _ - .)");
+		    name,
+		    "'" + sc.name +
+		        "' is not a valid file name (use letters, digits, _ - .)");
 
 	const Field bounds = required(root, "bounds");
 	const auto b = numbers(bounds, 4);
 	sc.bounds = {b[0], b[1], b[2], b[3]};
 	if (!(b[2] > b[0]) || !(b[3] > b[1]))
 		fail(
-			bounds, "expected xmin < xmax and ymin < ymax, got [" + fmt(b[0]) +
-						", " + fmt(b[1]) + ", " + fmt(b[2]) + ", " +
-						fmt(b[3]) + "]");
+		    bounds, "expected xmin < xmax and ymin < ymax, got [" + fmt(b[0]) +
+		                ", " + fmt(b[1]) + ", " + fmt(b[2]) + ", " + fmt(b[3]) +
+		                "]");
 
 	if (const Field c = field(root, "ceiling_height"); c.present())
 		sc.ceilingHeight = positive(c);
@@ -498,10 +505,10 @@ Scene Parser::scene(const YAML::Node& rootNode) const
 		expectList(objs);
 		if (objs.node.size() > kMaxObjects)
 			fail(
-				element(objs, kMaxObjects),
-				"too many objects: " + std::to_string(objs.node.size()) +
-					", at most " + std::to_string(kMaxObjects) +
-					" (instance ids are stored in a byte)");
+			    element(objs, kMaxObjects),
+			    "too many objects: " + std::to_string(objs.node.size()) +
+			        ", at most " + std::to_string(kMaxObjects) +
+			        " (instance ids are stored in a byte)");
 		for (std::size_t i = 0; i < objs.node.size(); i++)
 		{
 			SceneObject o = object(element(objs, i));
@@ -524,8 +531,8 @@ Scene Parser::scene(const YAML::Node& rootNode) const
 		const auto p = numbers(pose, 3);
 		if (!sc.bounds.contains(p[0], p[1]))
 			fail(
-				pose, "pose (" + fmt(p[0]) + ", " + fmt(p[1]) +
-						  ") is outside the bounds");
+			    pose, "pose (" + fmt(p[0]) + ", " + fmt(p[1]) +
+			              ") is outside the bounds");
 		sc.trajectory.emplace_back(p[0], p[1], p[2] * kDegToRad);
 	}
 	return sc;
@@ -547,7 +554,7 @@ Scene SceneLoader::loadFile(const std::string& path)
 }
 
 Scene SceneLoader::parse(
-	const std::string& yamlText, const std::string& sourceName)
+    const std::string& yamlText, const std::string& sourceName)
 {
 	const Parser parser(sourceName);
 	std::vector<YAML::Node> docs;
@@ -558,14 +565,14 @@ Scene SceneLoader::parse(
 	catch (const YAML::Exception& e)
 	{
 		parser.fail(
-			e.mark.is_null() ? 0 : e.mark.line + 1, "",
-			"YAML syntax error: " + e.msg);
+		    e.mark.is_null() ? 0 : e.mark.line + 1, "",
+		    "YAML syntax error: " + e.msg);
 	}
 	if (docs.empty()) parser.fail(1, "", "empty scene file");
 	if (docs.size() > 1)
 		parser.fail(
-			Parser::lineOf(docs[1], 0), "",
-			"expected one YAML document, got " + std::to_string(docs.size()));
+		    Parser::lineOf(docs[1], 0), "",
+		    "expected one YAML document, got " + std::to_string(docs.size()));
 	try
 	{
 		return parser.scene(docs.front());
@@ -574,8 +581,7 @@ Scene SceneLoader::parse(
 	{
 		// Not expected: the parser checks types before converting.
 		parser.fail(
-			e.mark.is_null() ? 0 : e.mark.line + 1, "",
-			"YAML error: " + e.msg);
+		    e.mark.is_null() ? 0 : e.mark.line + 1, "", "YAML error: " + e.msg);
 	}
 }
 

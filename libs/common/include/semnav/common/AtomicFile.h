@@ -11,8 +11,8 @@ namespace semnav
  * over `path`, on any exception it is removed and the exception rethrown.
  * A reader never sees a half-written file and an old file is never lost. */
 void writeAtomically(
-	const std::string& path,
-	const std::function<void(const std::string& tmpPath)>& write);
+    const std::string& path,
+    const std::function<void(const std::string& tmpPath)>& write);
 
 /** writeAtomically() for a text or binary blob. */
 void writeFileAtomically(const std::string& path, const std::string& content);

@@ -10,7 +10,7 @@ namespace semnav
  * what() as one line and exit with a non-zero code. */
 class Error : public std::runtime_error
 {
-   public:
+public:
 	explicit Error(const std::string& what) : std::runtime_error(what) {}
 };
 

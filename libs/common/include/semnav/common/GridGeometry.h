@@ -71,7 +71,7 @@ struct GridGeometry
 	bool operator==(const GridGeometry& o) const
 	{
 		return resolution == o.resolution && originX == o.originX &&
-		    originY == o.originY && cols == o.cols && rows == o.rows;
+		       originY == o.originY && cols == o.cols && rows == o.rows;
 	}
 	double maxX() const { return originX + cols * resolution; }
 	double maxY() const { return originY + rows * resolution; }

@@ -12,7 +12,7 @@ namespace semnav
  * labels attached to each cell". */
 class LabelSet
 {
-   public:
+public:
 	using mask_t = uint16_t;
 
 	LabelSet() = default;
@@ -28,7 +28,7 @@ class LabelSet
 	bool operator==(const LabelSet& o) const { return m_mask == o.m_mask; }
 	bool operator!=(const LabelSet& o) const { return m_mask != o.m_mask; }
 
-   private:
+private:
 	static mask_t bit(Label l)
 	{
 		return static_cast<mask_t>(1u << static_cast<unsigned>(l));

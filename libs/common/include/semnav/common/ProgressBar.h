@@ -10,7 +10,7 @@ namespace semnav
  * (so logs and --json output stay clean). */
 class ProgressBar
 {
-   public:
+public:
 	/** total = 0: the total is unknown, a counter is shown. */
 	ProgressBar(std::size_t total, std::string what);
 	~ProgressBar();
@@ -22,7 +22,7 @@ class ProgressBar
 
 	bool enabled() const { return m_enabled; }
 
-   private:
+private:
 	std::size_t m_total;
 	std::string m_what;
 	bool m_enabled;

@@ -21,7 +21,7 @@ namespace semnav
  * Every file is written atomically. */
 class MapIO
 {
-   public:
+public:
 	static void save(const SemanticMap& map, const std::string& dir);
 	/** Loads into `map` (whose options are kept); throws IoError naming the
 	 * file (and the line for map.yaml) on anything missing or corrupt. */

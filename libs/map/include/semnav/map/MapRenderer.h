@@ -1,9 +1,10 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #pragma once
 
-#include <opencv2/core/mat.hpp>
 #include <semnav/common/Label.h>
 #include <semnav/map/SemanticMap.h>
+
+#include <opencv2/core/mat.hpp>
 
 namespace semnav
 {
@@ -14,7 +15,7 @@ namespace semnav
  * and a 1 m scale bar. */
 class MapRenderer
 {
-   public:
+public:
 	/** BGR image; each cell is `pixelsPerCell` pixels wide. */
 	static cv::Mat render(const SemanticMap& map, int pixelsPerCell = 3);
 	/** BGR colour of a label in renderings. */

@@ -24,8 +24,9 @@ struct ObjectInstance
 
 	mrpt::math::TPoint3D extent() const
 	{
-		return {maxCorner.x - minCorner.x, maxCorner.y - minCorner.y,
-				maxCorner.z - minCorner.z};
+		return {
+		    maxCorner.x - minCorner.x, maxCorner.y - minCorner.y,
+		    maxCorner.z - minCorner.z};
 	}
 };
 

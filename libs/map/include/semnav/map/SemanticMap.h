@@ -6,8 +6,8 @@
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/system/COutputLogger.h>
-#include <semnav/common/LabelSet.h>
 #include <semnav/common/GridGeometry.h>
+#include <semnav/common/LabelSet.h>
 #include <semnav/map/ObjectInstance.h>
 #include <semnav/map/TravelCostModel.h>
 
@@ -43,15 +43,15 @@ class LabeledSweep;
  * World frame: x, y on the floor, z up. */
 class SemanticMap : public mrpt::system::COutputLogger
 {
-   public:
+public:
 	struct TOptions : public mrpt::config::CLoadableOptions
 	{
 		void loadFromConfigFile(
-			const mrpt::config::CConfigFileBase& c,
-			const std::string& section) override;
+		    const mrpt::config::CConfigFileBase& c,
+		    const std::string& section) override;
 		void saveToConfigFile(
-			mrpt::config::CConfigFileBase& c,
-			const std::string& section) const override;
+		    mrpt::config::CConfigFileBase& c,
+		    const std::string& section) const override;
 
 		double resolution = 0.05;
 		/** Extra room added around new points when the grid grows (m). */
@@ -145,8 +145,8 @@ class SemanticMap : public mrpt::system::COutputLogger
 	// ---- insertion ------------------------------------------------------
 	/** Inserts a classified sweep taken at `robotPose` (world frame). */
 	void insert(
-		const Sweep& sweep, const LabeledSweep& labeled,
-		const mrpt::poses::CPose2D& robotPose);
+	    const Sweep& sweep, const LabeledSweep& labeled,
+	    const mrpt::poses::CPose2D& robotPose);
 	/** Recomputes the cost layer of every cell from its labels, roughness
 	 * and occupancy. */
 	void updateCosts();
@@ -169,7 +169,7 @@ class SemanticMap : public mrpt::system::COutputLogger
 	/** Nearest reported instance of `label` to a point (Euclidean), or
 	 * nullptr. */
 	const ObjectInstance* nearestInstance(
-		Label label, const mrpt::math::TPoint2D& p) const;
+	    Label label, const mrpt::math::TPoint2D& p) const;
 	/** Cells whose "objects" layer holds the instance. */
 	std::vector<std::pair<int, int>> cellsOf(int id) const;
 	/** Goal region of an instance: free cells within `reach` metres of its
@@ -185,16 +185,16 @@ class SemanticMap : public mrpt::system::COutputLogger
 
 	/** Replaces the contents (used by the loader). */
 	void restore(
-		const GridGeometry& g, std::map<std::string, std::vector<float>> layers,
-		const std::vector<int8_t>& logodds, std::vector<ObjectInstance> objs,
-		std::size_t sweeps);
+	    const GridGeometry& g, std::map<std::string, std::vector<float>> layers,
+	    const std::vector<int8_t>& logodds, std::vector<ObjectInstance> objs,
+	    std::size_t sweeps);
 
-   private:
+private:
 	void mergeObject(
-		Label label, const mrpt::math::TPoint3D& centroid,
-		const mrpt::math::TPoint3D& minCorner,
-		const mrpt::math::TPoint3D& maxCorner, std::vector<int>& seenThisSweep,
-		int& id);
+	    Label label, const mrpt::math::TPoint3D& centroid,
+	    const mrpt::math::TPoint3D& minCorner,
+	    const mrpt::math::TPoint3D& maxCorner, std::vector<int>& seenThisSweep,
+	    int& id);
 
 	TOptions m_options;
 	TravelCostModel m_costModel;

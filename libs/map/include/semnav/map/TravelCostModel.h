@@ -14,7 +14,7 @@ namespace semnav
  * 1), stairs passable only for a walking robot, L for obstacles. */
 class TravelCostModel
 {
-   public:
+public:
 	enum class RobotType
 	{
 		Wheeled,
@@ -24,11 +24,11 @@ class TravelCostModel
 	struct TOptions : public mrpt::config::CLoadableOptions
 	{
 		void loadFromConfigFile(
-			const mrpt::config::CConfigFileBase& c,
-			const std::string& section) override;
+		    const mrpt::config::CConfigFileBase& c,
+		    const std::string& section) override;
 		void saveToConfigFile(
-			mrpt::config::CConfigFileBase& c,
-			const std::string& section) const override;
+		    mrpt::config::CConfigFileBase& c,
+		    const std::string& section) const override;
 
 		/** Cost of a blocked cell (the paper's L). */
 		double lethalCost = 1000;
@@ -65,7 +65,7 @@ class TravelCostModel
 
 	const TOptions& options() const { return m_options; }
 
-   private:
+private:
 	TOptions m_options;
 };
 

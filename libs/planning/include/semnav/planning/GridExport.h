@@ -13,12 +13,13 @@ namespace semnav
  * `<prefix>_meta.json` {"resolution", "origin_x", "origin_y", "L",
  * "start": [row, col], "path": [[row, col], ...]}. Files are written
  * atomically. */
-void exportPlanGrids(const std::string& prefix, const SemanticPlanner::Plan& plan);
+void exportPlanGrids(
+    const std::string& prefix, const SemanticPlanner::Plan& plan);
 
 /** An .npy (format 1.0) image of a row-major array; `descr` is NumPy's
  * type string ("<f4", "|u1"). */
 std::string npyBytes(
-	const void* data, std::size_t elementSize, const std::string& descr,
-	int rows, int cols);
+    const void* data, std::size_t elementSize, const std::string& descr,
+    int rows, int cols);
 
 }  // namespace semnav

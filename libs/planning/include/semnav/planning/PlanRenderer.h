@@ -1,8 +1,9 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #pragma once
 
-#include <opencv2/core/mat.hpp>
 #include <semnav/planning/SemanticPlanner.h>
+
+#include <opencv2/core/mat.hpp>
 
 namespace semnav
 {
@@ -12,10 +13,10 @@ namespace semnav
  * (cost-to-go, colour-mapped; unreachable black) with the path. */
 class PlanRenderer
 {
-   public:
+public:
 	static cv::Mat render(
-		const SemanticMap& map, const SemanticPlanner::Plan& plan,
-		int pixelsPerCell = 3);
+	    const SemanticMap& map, const SemanticPlanner::Plan& plan,
+	    int pixelsPerCell = 3);
 };
 
 }  // namespace semnav

@@ -27,7 +27,7 @@ class NoInstanceError : public PlanningError
  * layer, so the diffusion picks the least expensive one by itself. */
 class SemanticPlanner
 {
-   public:
+public:
 	struct Plan
 	{
 		PlannedPath path;
@@ -42,8 +42,8 @@ class SemanticPlanner
 	};
 
 	SemanticPlanner(
-		const SemanticMap& map, const CnnPlanner::TOptions& cnn,
-		const TraversabilityBuilder::TOptions& traversability);
+	    const SemanticMap& map, const CnnPlanner::TOptions& cnn,
+	    const TraversabilityBuilder::TOptions& traversability);
 
 	/** Least-cost path from (x, y) to any instance of `label`. Throws
 	 * NoInstanceError, StartOutsideMapError, StartBlockedError,
@@ -53,17 +53,17 @@ class SemanticPlanner
 	Plan toObject(double x, double y, int objectId, CostProfile profile) const;
 	/** Path to the cells within goal_reach_m of (gx, gy). */
 	Plan toPoint(
-		double x, double y, double gx, double gy, CostProfile profile) const;
+	    double x, double y, double gx, double gy, CostProfile profile) const;
 
 	/** u of the whole map for a profile. */
 	TraversabilityGrid traversability(CostProfile profile) const;
 
-   private:
+private:
 	Plan run(
-		double x, double y, TraversabilityGrid u, GoalLayer goals,
-		Label label) const;
+	    double x, double y, TraversabilityGrid u, GoalLayer goals,
+	    Label label) const;
 	GoalLayer goalsOf(
-		const std::vector<int>& objectIds, CostProfile profile) const;
+	    const std::vector<int>& objectIds, CostProfile profile) const;
 
 	const SemanticMap& m_map;
 	CnnPlanner m_cnn;

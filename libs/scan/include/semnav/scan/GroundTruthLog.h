@@ -13,14 +13,14 @@ namespace semnav
  * and `<name>.labels/sweep_NNNN.png`. */
 class GroundTruthLog
 {
-   public:
+public:
 	/** Opens `<dir>/<name>.gt.txt`; throws IoError naming the file (and
 	 * the line of a malformed entry). */
 	GroundTruthLog(const std::string& dir, const std::string& name);
 
 	/** The ground truth of a rawlog: name = the rawlog's file stem. */
 	static GroundTruthLog forRawlog(
-		const std::string& gtDir, const std::string& rawlogPath);
+	    const std::string& gtDir, const std::string& rawlogPath);
 
 	std::size_t size() const { return m_poses.size(); }
 	/** True pose of sweep i; throws IoError when there is none. */
@@ -29,7 +29,7 @@ class GroundTruthLog
 	std::string labelImagePath(std::size_t i) const;
 	const std::string& labelsDir() const { return m_labelsDir; }
 
-   private:
+private:
 	std::string m_file, m_labelsDir;
 	std::vector<mrpt::poses::CPose2D> m_poses;
 	std::vector<bool> m_has;

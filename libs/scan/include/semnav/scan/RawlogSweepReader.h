@@ -23,11 +23,11 @@ namespace semnav
  * got. */
 class RawlogSweepReader
 {
-   public:
+public:
 	/** Throws RawlogError when the file cannot be opened. */
 	explicit RawlogSweepReader(
-		const std::string& path,
-		const SweepAssembler::TOptions& options = SweepAssembler::TOptions());
+	    const std::string& path,
+	    const SweepAssembler::TOptions& options = SweepAssembler::TOptions());
 	~RawlogSweepReader();
 
 	/** Next sweep; false at the end of the file. */
@@ -38,7 +38,7 @@ class RawlogSweepReader
 	const SweepAssembler& assembler() const { return m_assembler; }
 	const std::string& path() const { return m_path; }
 
-   private:
+private:
 	void readMore();
 
 	std::string m_path;
@@ -52,7 +52,7 @@ class RawlogSweepReader
 
 /** Reads all sweeps of a rawlog; throws RawlogError on a corrupt file. */
 std::vector<Sweep> readRawlogSweeps(
-	const std::string& path,
-	const SweepAssembler::TOptions& options = SweepAssembler::TOptions());
+    const std::string& path,
+    const SweepAssembler::TOptions& options = SweepAssembler::TOptions());
 
 }  // namespace semnav

@@ -20,7 +20,7 @@ namespace semnav
  * rawlog under the final name. */
 class RawlogWriter
 {
-   public:
+public:
 	/** Opens the temporary file; throws IoError. compressLevel 0..9. */
 	explicit RawlogWriter(std::string path, int compressLevel = 1);
 	~RawlogWriter();
@@ -35,7 +35,7 @@ class RawlogWriter
 	std::size_t count() const { return m_count; }
 	const std::string& path() const { return m_path; }
 
-   private:
+private:
 	std::string m_path, m_tmpPath;
 	std::unique_ptr<mrpt::io::CFileGZOutputStream> m_out;
 	std::size_t m_count = 0;

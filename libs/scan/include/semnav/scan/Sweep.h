@@ -23,7 +23,7 @@ namespace semnav
  * return, too close, missing line) have valid() == false. */
 class Sweep
 {
-   public:
+public:
 	Sweep() = default;
 	/** All pixels invalid, theta/phi zero, poses identity. */
 	Sweep(std::size_t rows, std::size_t cols);
@@ -61,7 +61,7 @@ class Sweep
 		return m_sensorPose[r];
 	}
 	void setRow(
-		std::size_t r, double theta, const mrpt::poses::CPose3D& sensorPose);
+	    std::size_t r, double theta, const mrpt::poses::CPose3D& sensorPose);
 	/** Bearings; the beam at phi(c) has direction (cos, sin, 0) in the
 	 * scanner frame of its row. */
 	void setPhis(const std::vector<double>& phi);
@@ -96,7 +96,7 @@ class Sweep
 	const SweepQuality& quality() const { return m_quality; }
 	SweepQuality& quality() { return m_quality; }
 
-   private:
+private:
 	std::size_t m_rows = 0, m_cols = 0;
 	std::vector<float> m_range;
 	std::vector<uint8_t> m_valid;

@@ -31,15 +31,15 @@ namespace semnav
  * finish() at the end of the stream to flush the last sweep. */
 class SweepAssembler : public mrpt::system::COutputLogger
 {
-   public:
+public:
 	struct TOptions : public mrpt::config::CLoadableOptions
 	{
 		void loadFromConfigFile(
-			const mrpt::config::CConfigFileBase& c,
-			const std::string& section) override;
+		    const mrpt::config::CConfigFileBase& c,
+		    const std::string& section) override;
 		void saveToConfigFile(
-			mrpt::config::CConfigFileBase& c,
-			const std::string& section) const override;
+		    mrpt::config::CConfigFileBase& c,
+		    const std::string& section) const override;
 
 		/** Only lines with this sensorLabel; empty = the first seen. */
 		std::string sensorLabel;
@@ -83,7 +83,7 @@ class SweepAssembler : public mrpt::system::COutputLogger
 
 	const TOptions& options() const { return m_options; }
 
-   private:
+private:
 	struct Line
 	{
 		double theta;

@@ -20,15 +20,15 @@ namespace semnav
  * invalid. Rows are ordered by increasing tilt as every Sweep. */
 class ThreeDtkReader
 {
-   public:
+public:
 	struct TOptions : public mrpt::config::CLoadableOptions
 	{
 		void loadFromConfigFile(
-			const mrpt::config::CConfigFileBase& c,
-			const std::string& section) override;
+		    const mrpt::config::CConfigFileBase& c,
+		    const std::string& section) override;
 		void saveToConfigFile(
-			mrpt::config::CConfigFileBase& c,
-			const std::string& section) const override;
+		    mrpt::config::CConfigFileBase& c,
+		    const std::string& section) const override;
 
 		std::size_t cols = 360;
 		double beamStep = 0.5 * M_PI / 180;
@@ -52,7 +52,7 @@ class ThreeDtkReader
 	 * (x forward, y left, z up; metres, radians). */
 	static mrpt::poses::CPose3D readPose(const std::string& path);
 
-   private:
+private:
 	TOptions m_options;
 };
 

@@ -17,7 +17,7 @@ namespace semnav
  * This is the `sensorPose` stored in each CObservation2DRangeScan of a
  * semnav rawlog. */
 mrpt::poses::CPose3D tiltedSensorPose(
-	const mrpt::math::TPoint3D& mount, double theta, double phiCenter = 0);
+    const mrpt::math::TPoint3D& mount, double theta, double phiCenter = 0);
 
 /** Inverse of tiltedSensorPose(): the tilt theta (rad) of a scan's
  * sensorPose, read from the direction of the sensor's z axis (independent

@@ -56,7 +56,7 @@ struct TerrainShape
 };
 
 using ScenePrimitive =
-	std::variant<BoxShape, CylinderShape, StairsShape, TerrainShape>;
+    std::variant<BoxShape, CylinderShape, StairsShape, TerrainShape>;
 
 /** One labelled object: one primitive, or several (`parts:`). */
 struct SceneObject
@@ -77,7 +77,7 @@ struct SensorSpec
 	mrpt::math::TPoint3D mount{0.0, 0.0, 0.45};
 	double phiMin = -M_PI / 2, phiMax = M_PI / 2, phiStep = 0.5 * M_PI / 180;
 	double thetaMin = -15 * M_PI / 180, thetaMax = 90 * M_PI / 180,
-		   thetaStep = 0.5 * M_PI / 180;
+	       thetaStep = 0.5 * M_PI / 180;
 	double maxRange = 8.0;
 	/** Gaussian range noise std dev, m (LMS200 mm mode). */
 	double rangeNoise = 0.005;

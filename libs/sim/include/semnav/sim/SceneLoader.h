@@ -16,11 +16,12 @@ namespace semnav
  * unknown labels, polygons with < 3 vertices, ...) are errors. */
 class SceneLoader
 {
-   public:
+public:
 	/** Loads a scene file; throws SceneError (also for a missing file). */
 	static Scene loadFile(const std::string& path);
 	/** Parses YAML text; `sourceName` prefixes error messages. */
-	static Scene parse(const std::string& yamlText, const std::string& sourceName);
+	static Scene parse(
+	    const std::string& yamlText, const std::string& sourceName);
 };
 
 }  // namespace semnav
