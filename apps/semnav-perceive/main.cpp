@@ -8,6 +8,8 @@
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
 #include <semnav/common/ProgressBar.h>
+#include <semnav/detection/CascadeDetector.h>
+#include <semnav/detection/ObjectScorer.h>
 #include <semnav/perception/GroundTruthScorer.h>
 #include <semnav/perception/PerceptionImages.h>
 #include <semnav/perception/PerceptionPipeline.h>
@@ -21,6 +23,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -73,9 +76,31 @@ double median(std::vector<double> v)
 	return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+/** The labels image (viewer layout) with the detection boxes. */
+cv::Mat drawDetections(
+    const cv::Mat& labelsViewer, cv::Size sweepSize,
+    const std::vector<semnav::Detection>& dets)
+{
+	cv::Mat out = labelsViewer.clone();
+	for (const auto& d : dets)
+	{
+		// Sweep layout -> viewer layout: rotated by 180 degrees.
+		const cv::Rect b = d.imageBox;
+		const cv::Rect v(
+		    sweepSize.width - b.x - b.width, sweepSize.height - b.y - b.height,
+		    b.width, b.height);
+		cv::rectangle(out, v, cv::Scalar(0, 0, 0), 1);
+		cv::putText(
+		    out, semnav::labelName(d.label),
+		    cv::Point(v.x, std::max(8, v.y - 2)), cv::FONT_HERSHEY_PLAIN, 0.7,
+		    cv::Scalar(0, 0, 0));
+	}
+	return out;
+}
+
 struct Args
 {
-	std::string rawlog, tdtk, out, gtDir, config;
+	std::string rawlog, tdtk, out, gtDir, config, cascades;
 	bool json = false;
 };
 
@@ -96,6 +121,18 @@ int perceive(const Args& a)
 	}
 	semnav::PerceptionPipeline pipeline(opts);
 	pipeline.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+	// Haar cascade detection (sec. 2.2.2) after the rule classifier.
+	std::unique_ptr<semnav::CascadeDetector> detector;
+	std::vector<semnav::Label> objectLabels;
+	if (!a.cascades.empty())
+	{
+		detector = std::make_unique<semnav::CascadeDetector>(
+		    semnav::CascadeDetector::TOptions::fromIniFile(a.cascades));
+		for (const auto& k : detector->options().classes)
+			objectLabels.push_back(k.label);
+	}
+	semnav::ObjectScorer objectScorer;
+	std::vector<double> detectionTimes;
 
 	const std::string input = a.rawlog.empty() ? a.tdtk : a.rawlog;
 	const std::string stem = fs::path(input).stem().string();
@@ -151,6 +188,11 @@ int perceive(const Args& a)
 		}
 		pipeline.process(sweep, ls);
 		times.push_back(pipeline.lastTimings().total);
+		if (detector)
+		{
+			detector->detect(sweep, ls);
+			detectionTimes.push_back(detector->lastTimings().total);
+		}
 
 		const std::string base =
 		    (fs::path(a.out) / sweepName(sweep.index())).string();
@@ -161,9 +203,15 @@ int perceive(const Args& a)
 		writePng(
 		    base + "_segments.png",
 		    semnav::perception_images::segments(ls.areaIds));
-		writePng(
-		    base + "_labels.png",
-		    semnav::perception_images::labels(ls.labels, ls.validMask));
+		const cv::Mat labelsPng =
+		    semnav::perception_images::labels(ls.labels, ls.validMask);
+		writePng(base + "_labels.png", labelsPng);
+		if (detector)
+			writePng(
+			    base + "_detections.png",
+			    drawDetections(
+			        labelsPng, cv::Size(ls.labels.cols, ls.labels.rows),
+			        ls.detections));
 		if (!labelsDir.empty())
 		{
 			const std::string gtPath =
@@ -176,6 +224,15 @@ int perceive(const Args& a)
 			const cv::Mat gt =
 			    semnav::GroundTruthScorer::readLabelImage(gtPath);
 			scorer.add(ls.labels, gt, ls.validMask);
+			if (detector)
+			{
+				// Objects need the instance ids (high byte).
+				const cv::Mat gt16 = cv::imread(gtPath, cv::IMREAD_UNCHANGED);
+				if (gt16.type() != CV_16UC1)
+					throw semnav::IoError(
+					    gtPath + " is not a 16-bit semnav-sim label image");
+				objectScorer.add(ls.detections, gt16, objectLabels);
+			}
 			writePng(
 			    base + "_gt.png",
 			    semnav::perception_images::labels(gt, ls.validMask));
@@ -206,7 +263,21 @@ int perceive(const Args& a)
 				    {"f1", s.f1},
 				    {"pixels", s.groundTruthPixels}};
 			}
-		j["objects"] = nlohmann::json::object();  // filled by the cascade stage
+		// Object detection (issue 4's rule: an object counts when >= 150 of
+		// its pixels are visible; IoU >= 0.3 with a not yet matched object
+		// of the label is a true positive).
+		j["objects"] = nlohmann::json::object();
+		if (!labelsDir.empty())
+			for (const auto l : objectLabels)
+			{
+				const auto s = objectScorer.score(l);
+				j["objects"][semnav::labelName(l)] = {
+				    {"tp", s.tp},         {"fp", s.fp},
+				    {"fn", s.fn},         {"precision", s.precision},
+				    {"recall", s.recall}, {"ignored", s.ignored}};
+			}
+		if (detector)
+			j["ms_detection_per_sweep_median"] = median(detectionTimes);
 		std::cout << j.dump() << std::endl;
 		return 0;
 	}
@@ -223,6 +294,15 @@ int perceive(const Args& a)
 			std::printf(
 			    "%-12s %9.4f %9.4f %9.4f %10zu\n", semnav::labelName(l).c_str(),
 			    s.precision, s.recall, s.f1, s.groundTruthPixels);
+		}
+		for (const auto l : objectLabels)
+		{
+			const auto s = objectScorer.score(l);
+			std::printf(
+			    "objects %-12s tp %zu fp %zu fn %zu precision %.3f recall "
+			    "%.3f\n",
+			    semnav::labelName(l).c_str(), s.tp, s.fp, s.fn, s.precision,
+			    s.recall);
 		}
 	}
 	return 0;
@@ -262,10 +342,17 @@ int main(int argc, char** argv)
 	    "[ThreeDtkReader]); see config/perception.ini. Default: built-in "
 	    "values",
 	    false, "", "C.ini", cmd);
+	TCLAP::ValueArg<std::string> argCascades(
+	    "", "cascades",
+	    "Detect washbasins, wastebaskets and stairs with the Haar cascades "
+	    "of this INI file (see config/cascade.ini); with --gt-dir the JSON "
+	    "summary scores them per label (\"objects\")",
+	    false, "", "C.ini", cmd);
 	TCLAP::SwitchArg argJson(
 	    "", "json", "Print a JSON summary on stdout", cmd, false);
 	if (const auto code = cli.parse(argc, argv)) return *code;
 	Args a;
+	a.cascades = argCascades.getValue();
 	a.rawlog = argRawlog.getValue();
 	a.tdtk = argTdtk.getValue();
 	a.out = argOut.getValue();

@@ -673,7 +673,8 @@ TEST(SceneDatasets, AllShippedScenesLoad)
 
 TEST(SceneDatasets, ObjectsInsideBoundsAndUnderCeiling)
 {
-	constexpr double eps = 1e-9;
+	// Scene files give lengths to the millimetre.
+	constexpr double eps = 1e-3;
 	for (const auto& f : datasetScenes())
 	{
 		const Scene s = SceneLoader::loadFile(f.string());
@@ -697,12 +698,20 @@ TEST(SceneDatasets, ObjectsInsideBoundsAndUnderCeiling)
 	}
 }
 
+/** datasets/cascade-scenes/ are viewpoint sets for detector training (their
+ * odometry is not used), not drives. */
+bool isViewpointSet(const std::filesystem::path& f)
+{
+	return f.parent_path().filename() == "cascade-scenes";
+}
+
 TEST(SceneDatasets, TrajectoryKeepsClearOfObjects)
 {
-	// Poses at least 0.5 m from any object; the straight moves between them
-	// at least 0.3 m.
+	// Poses at least 0.5 m from any object (0.3 m, the robot's radius, for a
+	// viewpoint set); the straight moves between them at least 0.3 m.
 	for (const auto& f : datasetScenes())
 	{
+		const bool viewpoints = isViewpointSet(f);
 		const Scene s = SceneLoader::loadFile(f.string());
 		auto clearance = [&](double x, double y, int& line)
 		{
@@ -723,10 +732,10 @@ TEST(SceneDatasets, TrajectoryKeepsClearOfObjects)
 		{
 			const auto& a = s.trajectory[i];
 			int line = 0;
-			EXPECT_GE(clearance(a.x, a.y, line), 0.5)
+			EXPECT_GE(clearance(a.x, a.y, line), viewpoints ? 0.3 : 0.5)
 			    << f.string() << " pose " << i << " near object at line "
 			    << line;
-			if (i + 1 == s.trajectory.size()) continue;
+			if (viewpoints || i + 1 == s.trajectory.size()) continue;
 			const auto& b = s.trajectory[i + 1];
 			for (int k = 1; k < 50; k++)
 			{

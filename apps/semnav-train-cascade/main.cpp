@@ -1,0 +1,192 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// semnav-train-cascade: trains one class's Haar cascade from simulated
+// datasets and writes it in OpenCV's XML format (DESIGN.md, "Apps").
+#include <semnav/cascade/CascadeXml.h>
+#include <semnav/common/AtomicFile.h>
+#include <semnav/common/CommandLine.h>
+#include <semnav/common/Error.h>
+#include <semnav/common/ProgressBar.h>
+#include <semnav/detection/CascadeTraining.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+std::optional<uint64_t> parseSeed(const std::string& s)
+{
+	if (s.empty() || s.size() > 19 ||
+	    s.find_first_not_of("0123456789") != std::string::npos)
+		return std::nullopt;
+	return std::stoull(s);
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+	semnav::CommandLine cli(
+	    "semnav-train-cascade",
+	    "Trains a Haar cascade (Viola-Jones with Lienhart's rotated features, "
+	    "Gentle AdaBoost) for one object class on the normal images of "
+	    "simulated sweeps, and writes it as OpenCV cascade XML.");
+	auto& cmd = cli.cmd();
+	TCLAP::ValueArg<std::string> argLabel(
+	    "", "label", "Object class: washbasin, wastebasket or stairs; required",
+	    false, "", "L", cmd);
+	TCLAP::ValueArg<std::string> argDatasets(
+	    "", "datasets",
+	    "Dataset directories written by semnav-sim (rawlog + labels); the "
+	    "first one follows --datasets, more may follow it; required",
+	    false, "", "D1 [D2...]", cmd);
+	TCLAP::UnlabeledMultiArg<std::string> argMore(
+	    "more", "more dataset directories (after --datasets D1)", false,
+	    "D2...", cmd);
+	TCLAP::ValueArg<std::string> argOut(
+	    "", "out", "Output cascade XML; required", false, "", "L.xml", cmd);
+	TCLAP::ValueArg<std::string> argSeed(
+	    "", "seed", "Random seed (samples, negatives); default 1", false, "1",
+	    "N", cmd);
+	TCLAP::ValueArg<std::string> argConfig(
+	    "", "config",
+	    "INI file with [CascadeDetector], [CascadeDetector.<label>], "
+	    "[SampleGenerator], [CascadeTrainer] (see config/cascade.ini); "
+	    "default: built-in values",
+	    false, "", "C.ini", cmd);
+	TCLAP::ValueArg<std::string> argSamples(
+	    "", "samples",
+	    "Also write a mosaic of the first 400 positive samples to this PNG",
+	    false, "", "P.png", cmd);
+	TCLAP::SwitchArg argJson(
+	    "", "json", "Print a JSON summary on stdout", cmd, false);
+	if (const auto code = cli.parse(argc, argv)) return *code;
+	for (auto* a : {&argLabel, &argDatasets, &argOut})
+		if (a->getValue().empty())
+			return cli.usageError("missing --" + a->getName());
+	const auto seed = parseSeed(argSeed.getValue());
+	if (!seed)
+		return cli.usageError(
+		    "--seed must be a non-negative integer, got '" +
+		    argSeed.getValue() + "'");
+	std::vector<std::string> datasets{argDatasets.getValue()};
+	for (const auto& d : argMore.getValue()) datasets.push_back(d);
+
+	return cli.run(
+	    [&]
+	    {
+		    const semnav::Label label =
+		        semnav::labelFromName(argLabel.getValue());
+		    semnav::CascadeTraining::TOptions opts;
+		    if (!argConfig.getValue().empty())
+			    opts = semnav::CascadeTraining::TOptions::fromIniFile(
+			        argConfig.getValue());
+		    const semnav::CascadeTraining training(opts);
+		    semnav::ProgressBar bar(
+		        2 + static_cast<std::size_t>(opts.trainerFor(label).numStages),
+		        "training " + argLabel.getValue());
+		    const auto res = training.run(
+		        label, datasets, *seed,
+		        [&](std::size_t done, std::size_t, const std::string&)
+		        { bar.update(done); });
+		    bar.finish();
+
+		    // The XML says how to make it again (no times: same command,
+		    // same bytes).
+		    std::ostringstream how;
+		    how << "semnav " << argLabel.getValue()
+		        << " cascade, made by: semnav-train-cascade --label "
+		        << argLabel.getValue() << " --datasets";
+		    for (const auto& d : datasets) how << " " << d;
+		    how << " --out " << argOut.getValue() << " --seed " << *seed;
+		    if (!argConfig.getValue().empty())
+			    how << " --config " << argConfig.getValue();
+		    semnav::HaarCascade cascade = res.cascade;
+		    cascade.note = how.str();
+		    semnav::CascadeXml::writeFile(argOut.getValue(), cascade);
+
+		    if (!argSamples.getValue().empty())
+		    {
+			    const int n = 20, w = res.cascade.windowSize.width,
+			              h = res.cascade.windowSize.height;
+			    cv::Mat mosaic(
+			        n * (h + 1), n * (w + 1), CV_8UC1, cv::Scalar(0));
+			    for (int i = 0;
+			         i < n * n && i < int(res.positiveSamples.size()); i++)
+				    res.positiveSamples[i].copyTo(mosaic(
+				        cv::Rect((i % n) * (w + 1), (i / n) * (h + 1), w, h)));
+			    cv::resize(mosaic, mosaic, cv::Size(), 2, 2, cv::INTER_NEAREST);
+			    semnav::writeAtomically(
+			        argSamples.getValue(),
+			        [&](const std::string& tmp)
+			        {
+				        if (!cv::imwrite(tmp + ".png", mosaic) ||
+				            std::rename((tmp + ".png").c_str(), tmp.c_str()) !=
+				                0)
+					        throw semnav::IoError(
+					            "cannot write " + argSamples.getValue());
+			        });
+		    }
+		    const auto& rep = res.report;
+		    if (argJson.getValue())
+		    {
+			    nlohmann::json j;
+			    j["label"] = argLabel.getValue();
+			    j["out"] = argOut.getValue();
+			    j["seed"] = *seed;
+			    j["sweeps"] = res.sweeps;
+			    j["object_views"] = res.views;
+			    j["positives"] = res.positives;
+			    j["positives_low_contrast"] = rep.positivesLowContrast;
+			    j["negative_images"] = res.negativeImages;
+			    j["feature_pool"] = rep.featurePool;
+			    j["stages"] = res.cascade.stages.size();
+			    j["stumps"] = res.cascade.stumpCount();
+			    j["features"] = res.cascade.features.size();
+			    j["tilted_features"] = res.cascade.hasTiltedFeatures();
+			    j["final_acceptance_ratio"] = rep.finalAcceptanceRatio;
+			    j["stop_reason"] = rep.stopReason;
+			    j["seconds"] = res.seconds();
+			    j["seconds_load"] = res.secondsLoad;
+			    j["seconds_samples"] = res.secondsSamples;
+			    j["seconds_training"] = res.secondsTraining;
+			    nlohmann::json stages = nlohmann::json::array();
+			    for (const auto& s : rep.stages)
+				    stages.push_back(
+				        {{"positives", s.positives},
+				         {"negatives", s.negatives},
+				         {"stumps", s.weakCount},
+				         {"hit_rate", s.hitRate},
+				         {"false_alarm", s.falseAlarm},
+				         {"acceptance_ratio", s.acceptanceRatio},
+				         {"seconds", s.seconds},
+				         {"seconds_negatives", s.secondsNegatives},
+				         {"seconds_binning", s.secondsBinning},
+				         {"seconds_boosting", s.secondsBoosting}});
+			    j["stage_details"] = stages;
+			    std::cout << j.dump() << std::endl;
+		    }
+		    else
+		    {
+			    std::cout << argLabel.getValue() << ": "
+			              << res.cascade.stages.size() << " stages, "
+			              << res.cascade.stumpCount() << " stumps ("
+			              << rep.stopReason << "), from " << res.positives
+			              << " positives (" << res.views << " object views in "
+			              << res.sweeps << " sweeps); negative acceptance "
+			              << rep.finalAcceptanceRatio << "\n"
+			              << "  training time: " << res.seconds() << " s (load "
+			              << res.secondsLoad << " s, samples "
+			              << res.secondsSamples << " s, boosting "
+			              << res.secondsTraining << " s)\n"
+			              << "  written: " << argOut.getValue() << "\n";
+		    }
+		    return 0;
+	    });
+}

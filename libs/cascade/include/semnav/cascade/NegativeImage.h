@@ -1,0 +1,22 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+
+#include <opencv2/core/mat.hpp>
+#include <vector>
+
+namespace semnav
+{
+/** An image negative training windows are drawn from: the 8-bit image as
+ * the detector sees it, boxes of objects of the class being trained
+ * (windows overlapping one of them too much are not negatives), and the
+ * pyramid scales the detector searches in it. */
+struct NegativeImage
+{
+	cv::Mat image;
+	std::vector<cv::Rect> exclude;
+	/** Pyramid scales (window side / training window side) used; maxScale
+	 * 0 = up to the image size. */
+	double minScale = 1.0, maxScale = 0.0;
+};
+
+}  // namespace semnav

@@ -1,0 +1,850 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <mrpt/config/CConfigFileBase.h>
+#include <omp.h>
+#include <semnav/cascade/CascadeError.h>
+#include <semnav/cascade/CascadeEvaluator.h>
+#include <semnav/cascade/CascadeTrainer.h>
+#include <semnav/cascade/IntegralImages.h>
+#include <semnav/common/ConfigChecks.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numeric>
+#include <opencv2/imgproc.hpp>
+#include <set>
+
+#include "CompiledFeature.h"
+#include "Random.h"
+
+namespace semnav
+{
+// ---------------------------------------------------------------- options
+const std::vector<std::string>& CascadeTrainer::TOptions::knownKeys()
+{
+	static const std::vector<std::string> keys{
+	    "window_width",
+	    "window_height",
+	    "feature_mode",
+	    "num_stages",
+	    "min_hit_rate",
+	    "max_false_alarm",
+	    "target_false_alarm",
+	    "max_weak_count",
+	    "weight_trim_rate",
+	    "negatives_per_stage",
+	    "feature_bins",
+	    "feature_fraction",
+	    "round_feature_fraction",
+	    "negative_scale_factor",
+	    "negative_max_iou",
+	    "min_negatives",
+	    "threads"};
+	return keys;
+}
+
+void CascadeTrainer::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+	checkKnownKeys(c, s, knownKeys());
+	TOptions o = *this;
+	o.windowWidth = readCheckedInt(c, s, "window_width", windowWidth, 8, 64);
+	o.windowHeight = readCheckedInt(c, s, "window_height", windowHeight, 8, 64);
+	const std::string mode =
+	    c.read_string(s, "feature_mode", haarModeName(this->mode), false);
+	try
+	{
+		o.mode = haarModeFromName(mode);
+	}
+	catch (const CascadeError& e)
+	{
+		throw ConfigError("[" + s + "] feature_mode: " + e.what());
+	}
+	o.numStages = readCheckedInt(c, s, "num_stages", numStages, 1, 100);
+	o.minHitRate = readChecked(c, s, "min_hit_rate", minHitRate, 0.5, 1.0);
+	o.maxFalseAlarm =
+	    readChecked(c, s, "max_false_alarm", maxFalseAlarm, 0.01, 0.99);
+	o.targetFalseAlarm =
+	    readChecked(c, s, "target_false_alarm", targetFalseAlarm, 0.0, 1.0);
+	o.maxWeakCount =
+	    readCheckedInt(c, s, "max_weak_count", maxWeakCount, 1, 10000);
+	o.weightTrimRate =
+	    readChecked(c, s, "weight_trim_rate", weightTrimRate, 0.5, 1.0);
+	o.negativesPerStage = readCheckedInt(
+	    c, s, "negatives_per_stage", negativesPerStage, 10, 1000000);
+	o.featureBins = readCheckedInt(c, s, "feature_bins", featureBins, 2, 256);
+	o.featureFraction =
+	    readChecked(c, s, "feature_fraction", featureFraction, 0.001, 1.0);
+	o.roundFeatureFraction = readChecked(
+	    c, s, "round_feature_fraction", roundFeatureFraction, 0.001, 1.0);
+	o.negativeScaleFactor = readChecked(
+	    c, s, "negative_scale_factor", negativeScaleFactor, 1.01, 4.0);
+	o.negativeMaxIou =
+	    readChecked(c, s, "negative_max_iou", negativeMaxIou, 0.0, 1.0);
+	o.minNegatives =
+	    readCheckedInt(c, s, "min_negatives", minNegatives, 1, 1000000);
+	o.threads = readCheckedInt(c, s, "threads", threads, 0, 1024);
+	*this = o;
+}
+
+namespace
+{
+std::string num(double v)
+{
+	char buf[64];
+	std::snprintf(buf, sizeof(buf), "%.12g", v);
+	return buf;
+}
+}  // namespace
+
+void CascadeTrainer::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
+{
+	c.write(s, "window_width", std::to_string(windowWidth));
+	c.write(s, "window_height", std::to_string(windowHeight));
+	c.write(s, "feature_mode", haarModeName(mode));
+	c.write(s, "num_stages", std::to_string(numStages));
+	c.write(s, "min_hit_rate", num(minHitRate));
+	c.write(s, "max_false_alarm", num(maxFalseAlarm));
+	c.write(s, "target_false_alarm", num(targetFalseAlarm));
+	c.write(s, "max_weak_count", std::to_string(maxWeakCount));
+	c.write(s, "weight_trim_rate", num(weightTrimRate));
+	c.write(s, "negatives_per_stage", std::to_string(negativesPerStage));
+	c.write(s, "feature_bins", std::to_string(featureBins));
+	c.write(s, "feature_fraction", num(featureFraction));
+	c.write(s, "round_feature_fraction", num(roundFeatureFraction));
+	c.write(s, "negative_scale_factor", num(negativeScaleFactor));
+	c.write(s, "negative_max_iou", num(negativeMaxIou));
+	c.write(s, "min_negatives", std::to_string(minNegatives));
+	c.write(s, "threads", std::to_string(threads));
+}
+
+CascadeTrainer::CascadeTrainer() : CascadeTrainer(TOptions()) {}
+
+CascadeTrainer::CascadeTrainer(const TOptions& options)
+    : mrpt::system::COutputLogger("CascadeTrainer"), m_options(options)
+{
+	logging_enable_console_output = false;
+}
+
+// --------------------------------------------------------------- helpers
+namespace
+{
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0)
+{
+	return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/** Training windows with their integral images (window size + 1 square)
+ * and variance normalisation factors. After finish(), the integral images
+ * are stored transposed (entry-major: one row of all samples per integral
+ * image entry), so that a feature's values over all samples stream through
+ * a dozen contiguous rows. */
+class SampleSet
+{
+public:
+	explicit SampleSet(cv::Size win)
+	    : m_win(win),
+	      m_stride(win.width + 1),
+	      m_area((win.width + 1) * (win.height + 1))
+	{
+	}
+	/** Adds a window; false (not added) when OpenCV would skip it. */
+	bool add(const cv::Mat& window, int label)
+	{
+		m_ii.compute(window, true);
+		float nf = 1;
+		if (!detail::varianceNormFactor(
+		        m_ii.sum().ptr<int32_t>(), m_ii.sqsum().ptr<double>(), m_stride,
+		        m_stride, m_win, nf))
+			return false;
+		m_sum.insert(
+		    m_sum.end(), m_ii.sum().ptr<int32_t>(),
+		    m_ii.sum().ptr<int32_t>() + m_area);
+		m_tilt.insert(
+		    m_tilt.end(), m_ii.tilted().ptr<int32_t>(),
+		    m_ii.tilted().ptr<int32_t>() + m_area);
+		m_nf.push_back(nf);
+		m_label.push_back(static_cast<int8_t>(label));
+		return true;
+	}
+	/** Transposes the integral images; call once after the last add(). */
+	void finish()
+	{
+		const std::size_t N = size();
+		m_sumT.resize(std::size_t(m_area) * N);
+		m_tiltT.resize(std::size_t(m_area) * N);
+		for (std::size_t i = 0; i < N; i++)
+			for (int p = 0; p < m_area; p++)
+			{
+				m_sumT[std::size_t(p) * N + i] = m_sum[i * m_area + p];
+				m_tiltT[std::size_t(p) * N + i] = m_tilt[i * m_area + p];
+			}
+		m_sum.clear();
+		m_sum.shrink_to_fit();
+		m_tilt.clear();
+		m_tilt.shrink_to_fit();
+	}
+	std::size_t size() const { return m_nf.size(); }
+	int stride() const { return m_stride; }
+	int label(std::size_t i) const { return m_label[i]; }
+	/** Normalised values of a feature (compiled with stride()) for all
+	 * samples, computed as the detector computes them: float(w0 * s0) +
+	 * float(w1 * s1) [+ w2 * s2], times the normalisation factor. */
+	void values(const detail::CompiledFeature& f, float* out) const
+	{
+		const std::size_t N = size();
+		const std::vector<int32_t>& T = f.tilted ? m_tiltT : m_sumT;
+		const auto row = [&](int ofs) { return &T[std::size_t(ofs) * N]; };
+		for (int j = 0; j < 3; j++)
+		{
+			if (j == 2 && f.weight[2] == 0.0f) break;
+			const int32_t *a = row(f.ofs[j][0]), *b = row(f.ofs[j][1]),
+			              *c = row(f.ofs[j][2]), *d = row(f.ofs[j][3]);
+			const float w = f.weight[j];
+			if (j == 0)
+				for (std::size_t i = 0; i < N; i++)
+					out[i] = w * static_cast<float>(a[i] - b[i] - c[i] + d[i]);
+			else
+				for (std::size_t i = 0; i < N; i++)
+					out[i] += w * static_cast<float>(a[i] - b[i] - c[i] + d[i]);
+		}
+		for (std::size_t i = 0; i < N; i++) out[i] *= m_nf[i];
+	}
+
+private:
+	cv::Size m_win;
+	int m_stride, m_area;
+	IntegralImages m_ii;
+	std::vector<int32_t> m_sum, m_tilt, m_sumT, m_tiltT;
+	std::vector<float> m_nf;
+	std::vector<int8_t> m_label;
+};
+
+/** One pyramid level of a negative image. */
+struct Level
+{
+	int image = 0;
+	double scale = 1;
+	cv::Mat img;
+	int nx = 0, ny = 0;
+	std::size_t windows() const { return std::size_t(nx) * std::size_t(ny); }
+};
+
+double iou(const cv::Rect2d& a, const cv::Rect2d& b)
+{
+	const double i = (a & b).area();
+	const double u = a.area() + b.area() - i;
+	return u > 0 ? i / u : 0;
+}
+
+uint64_t gcd64(uint64_t a, uint64_t b)
+{
+	while (b)
+	{
+		const uint64_t t = a % b;
+		a = b;
+		b = t;
+	}
+	return a;
+}
+
+struct MiningResult
+{
+	std::vector<cv::Mat> windows;
+	std::size_t tried = 0, accepted = 0;
+	double acceptanceRatio() const
+	{
+		return tried ? double(accepted) / double(tried) : 0.0;
+	}
+};
+
+/** Windows the cascade accepts among all windows of all pyramid levels
+ * (at the positions detectMultiScale visits: every 2nd below scale 2,
+ * every one above; not those excluded): a first pass counts them per
+ * level, `wanted` of them are drawn at random (seeded; all when there are
+ * fewer), a second pass cuts those out. Levels run in parallel; results are
+ * merged in level order, so they do not depend on the thread count. */
+MiningResult mineNegatives(
+    const HaarCascade& cascade, const std::vector<Level>& levels,
+    const std::vector<NegativeImage>& negatives, double maxIou,
+    std::size_t wanted, detail::Random& rng, int threads)
+{
+	MiningResult res;
+	const cv::Size win = cascade.windowSize;
+	const std::size_t L = levels.size();
+	std::vector<std::size_t> accepted(L, 0), tried(L, 0);
+	// Scans one level; calls take(localRank, x, y) for accepted windows.
+	const auto scan = [&](std::size_t l, CascadeEvaluator& ev, const auto& take)
+	{
+		const Level& lv = levels[l];
+		const auto& excl = negatives[lv.image].exclude;
+		ev.setImage(lv.img);
+		std::size_t rank = 0, n = 0;
+		// The positions detectMultiScale evaluates: step 2 below scale 2.
+		const int step = lv.scale >= 2 ? 1 : 2;
+		for (int y = 0; y < lv.ny; y += step)
+			for (int x = 0; x < lv.nx; x += step)
+			{
+				if (!excl.empty())
+				{
+					const cv::Rect2d box(
+					    x * lv.scale, y * lv.scale, win.width * lv.scale,
+					    win.height * lv.scale);
+					bool skip = false;
+					for (const auto& e : excl)
+						if (iou(box, cv::Rect2d(e)) > maxIou)
+						{
+							skip = true;
+							break;
+						}
+					if (skip) continue;
+				}
+				n++;
+				if (ev.accepted(ev.evaluate({x, y}))) take(rank++, x, y);
+			}
+		return std::make_pair(rank, n);
+	};
+#pragma omp parallel num_threads(threads)
+	{
+		CascadeEvaluator ev(cascade);
+#pragma omp for schedule(dynamic, 1)
+		for (std::size_t l = 0; l < L; l++)
+		{
+			const auto r = scan(l, ev, [](std::size_t, int, int) {});
+			accepted[l] = r.first;
+			tried[l] = r.second;
+		}
+	}
+	std::size_t total = 0;
+	for (std::size_t l = 0; l < L; l++)
+	{
+		res.accepted += accepted[l];
+		res.tried += tried[l];
+	}
+	total = res.accepted;
+	if (total == 0) return res;
+	// Which accepted windows to keep: all, or `wanted` distinct ranks
+	// (Floyd's sampling), in increasing order.
+	std::vector<std::size_t> chosen;
+	if (total <= wanted)
+	{
+		chosen.resize(total);
+		std::iota(chosen.begin(), chosen.end(), std::size_t(0));
+	}
+	else
+	{
+		std::set<std::size_t> pick;
+		for (std::size_t j = total - wanted; j < total; j++)
+		{
+			const std::size_t t = rng.below(j + 1);
+			if (!pick.insert(t).second) pick.insert(j);
+		}
+		chosen.assign(pick.begin(), pick.end());
+	}
+	// Second pass over the levels holding chosen windows.
+	std::vector<std::size_t> offset(L + 1, 0);
+	for (std::size_t l = 0; l < L; l++) offset[l + 1] = offset[l] + accepted[l];
+	std::vector<std::vector<cv::Mat>> found(L);
+#pragma omp parallel num_threads(threads)
+	{
+		CascadeEvaluator ev(cascade);
+#pragma omp for schedule(dynamic, 1)
+		for (std::size_t l = 0; l < L; l++)
+		{
+			auto it = std::lower_bound(chosen.begin(), chosen.end(), offset[l]);
+			if (it == chosen.end() || *it >= offset[l + 1]) continue;
+			scan(
+			    l, ev,
+			    [&](std::size_t rank, int x, int y)
+			    {
+				    if (it != chosen.end() && *it == offset[l] + rank)
+				    {
+					    found[l].push_back(
+					        levels[l]
+					            .img(cv::Rect(x, y, win.width, win.height))
+					            .clone());
+					    ++it;
+				    }
+			    });
+		}
+	}
+	for (auto& f : found)
+		for (auto& w : f) res.windows.push_back(std::move(w));
+	return res;
+}
+
+/** Gentle AdaBoost on regression stumps for one stage. */
+struct StageTrainer
+{
+	const SampleSet& samples;
+	const std::vector<HaarFeature>& pool;
+	std::vector<int> candidates;  // pool indices usable in this stage
+	const CascadeTrainer::TOptions& opt;
+	int threads;
+
+	std::vector<uint8_t> codes;  // candidates x samples
+	std::vector<detail::CompiledFeature> compiled;
+
+	void binFeatures()
+	{
+		const std::size_t N = samples.size(), F = candidates.size();
+		codes.assign(F * N, 0);
+		compiled.resize(F);
+		const int bins = opt.featureBins;
+		// Equal-frequency bins from a fine uniform histogram of the values:
+		// the code is a monotone (non-decreasing) function of the value, so
+		// every sample with code <= k has a smaller value than every sample
+		// with a larger code, and equal values share a code. The split
+		// threshold is then the smallest value above (thresholdOf()).
+		constexpr int kFine = 4096;
+#pragma omp parallel num_threads(threads)
+		{
+			std::vector<float> v(N);
+			std::vector<int> fine(N);
+			std::vector<uint32_t> hist(kFine);
+			std::vector<uint8_t> map(kFine);
+#pragma omp for schedule(dynamic, 256)
+			for (std::size_t f = 0; f < F; f++)
+			{
+				compiled[f] = detail::CompiledFeature(
+				    pool[candidates[f]], samples.stride());
+				samples.values(compiled[f], v.data());
+				float mn = v[0], mx = v[0];
+				for (std::size_t i = 1; i < N; i++)
+				{
+					mn = std::min(mn, v[i]);
+					mx = std::max(mx, v[i]);
+				}
+				uint8_t* c = &codes[f * N];
+				if (!(mx > mn)) continue;  // constant: one bin
+				const float inv = float(kFine) / (mx - mn);
+				std::fill(hist.begin(), hist.end(), 0u);
+				for (std::size_t i = 0; i < N; i++)
+				{
+					const int b = std::min(
+					    kFine - 1, static_cast<int>((v[i] - mn) * inv));
+					fine[i] = b;
+					hist[std::size_t(b)]++;
+				}
+				std::size_t before = 0;
+				for (int b = 0; b < kFine; b++)
+				{
+					map[std::size_t(b)] =
+					    static_cast<uint8_t>(std::min<std::size_t>(
+					        std::size_t(bins) - 1,
+					        before * std::size_t(bins) / N));
+					before += hist[std::size_t(b)];
+				}
+				for (std::size_t i = 0; i < N; i++)
+					c[i] = map[std::size_t(fine[i])];
+			}
+		}
+	}
+
+	/** Threshold of split "code <= k": the smallest value with a larger
+	 * code. */
+	float thresholdOf(std::size_t f, int k) const
+	{
+		const std::size_t N = samples.size();
+		std::vector<float> v(N);
+		samples.values(compiled[f], v.data());
+		float t = std::numeric_limits<float>::infinity();
+		for (std::size_t i = 0; i < N; i++)
+			if (codes[f * N + i] > k) t = std::min(t, v[i]);
+		return t;
+	}
+
+	HaarCascade::Stage train(
+	    CascadeTrainer::StageReport& rep, std::vector<int>& usedPoolIdx,
+	    detail::Random& rng)
+	{
+		const std::size_t N = samples.size(), F = candidates.size();
+		std::vector<double> w(N, 1.0 / double(N)), sums(N, 0.0);
+		std::vector<int> y(N);
+		std::size_t P = 0;
+		for (std::size_t i = 0; i < N; i++)
+		{
+			y[i] = samples.label(i);
+			if (y[i] > 0) P++;
+		}
+		const std::size_t Nn = N - P;
+		HaarCascade::Stage stage;
+		std::vector<double> bestScore(F);
+		std::vector<int> bestSplit(F);
+		std::vector<uint32_t> active;
+		std::vector<double> posSums;
+		for (int t = 0; t < opt.maxWeakCount; t++)
+		{
+			// Weight trimming: drop the lightest samples holding
+			// (1 - rate) of the mass.
+			active.clear();
+			{
+				std::vector<double> sorted(w);
+				std::sort(sorted.begin(), sorted.end());
+				const double total =
+				    std::accumulate(sorted.begin(), sorted.end(), 0.0);
+				double acc = 0, thr = 0;
+				for (double s : sorted)
+				{
+					acc += s;
+					if (acc > (1.0 - opt.weightTrimRate) * total)
+					{
+						thr = s;
+						break;
+					}
+				}
+				for (std::size_t i = 0; i < N; i++)
+					if (w[i] >= thr) active.push_back(uint32_t(i));
+			}
+			std::vector<double> wy(N);
+			for (std::size_t i = 0; i < N; i++) wy[i] = w[i] * y[i];
+
+			// Features tried for this stump (seeded draw).
+			std::fill(bestSplit.begin(), bestSplit.end(), -1);
+			std::vector<uint32_t> tryF;
+			tryF.reserve(F);
+			for (std::size_t f = 0; f < F; f++)
+				if (opt.roundFeatureFraction >= 1.0 ||
+				    rng.uniform() < opt.roundFeatureFraction)
+					tryF.push_back(uint32_t(f));
+			const std::size_t T = tryF.size();
+#pragma omp parallel num_threads(threads)
+			{
+				std::vector<double> hw(256), hs(256);
+#pragma omp for schedule(dynamic, 256)
+				for (std::size_t t2 = 0; t2 < T; t2++)
+				{
+					const std::size_t f = tryF[t2];
+					std::fill(hw.begin(), hw.end(), 0.0);
+					std::fill(hs.begin(), hs.end(), 0.0);
+					const uint8_t* c = &codes[f * N];
+					int maxCode = 0;
+					for (uint32_t i : active)
+					{
+						const int b = c[i];
+						hw[b] += w[i];
+						hs[b] += wy[i];
+						maxCode = std::max(maxCode, b);
+					}
+					double W = 0, S = 0;
+					for (int b = 0; b <= maxCode; b++)
+					{
+						W += hw[b];
+						S += hs[b];
+					}
+					double wl = 0, sl = 0, best = -1;
+					int split = -1;
+					for (int k = 0; k < maxCode; k++)
+					{
+						wl += hw[k];
+						sl += hs[k];
+						const double wr = W - wl, sr = S - sl;
+						if (wl <= 0 || wr <= 0) continue;
+						const double score = sl * sl / wl + sr * sr / wr;
+						if (score > best)
+						{
+							best = score;
+							split = k;
+						}
+					}
+					bestScore[f] = best;
+					bestSplit[f] = split;
+				}
+			}
+			std::size_t fb = F;
+			for (std::size_t f = 0; f < F; f++)
+				if (bestSplit[f] >= 0 &&
+				    (fb == F || bestScore[f] > bestScore[fb]))
+					fb = f;
+			if (fb == F) break;  // nothing separates the samples
+			const int k = bestSplit[fb];
+			const uint8_t* c = &codes[fb * N];
+			double wl = 0, sl = 0, wr = 0, sr = 0;
+			for (uint32_t i : active)
+			{
+				if (c[i] <= k)
+				{
+					wl += w[i];
+					sl += wy[i];
+				}
+				else
+				{
+					wr += w[i];
+					sr += wy[i];
+				}
+			}
+			HaarCascade::Stump st;
+			st.featureIdx = candidates[fb];  // pool index for now
+			st.threshold = thresholdOf(fb, k);
+			st.left = static_cast<float>(wl > 0 ? sl / wl : 0.0);
+			st.right = static_cast<float>(wr > 0 ? sr / wr : 0.0);
+			stage.stumps.push_back(st);
+			usedPoolIdx.push_back(candidates[fb]);
+
+			// Update sums (as the detector: double += float leaf) and
+			// weights: w *= exp(-y f(x)).
+			double total = 0;
+			for (std::size_t i = 0; i < N; i++)
+			{
+				const float leaf = c[i] <= k ? st.left : st.right;
+				sums[i] += leaf;
+				w[i] *= std::exp(-double(y[i]) * double(leaf));
+				total += w[i];
+			}
+			for (auto& wi : w) wi /= total;
+
+			// Stage threshold keeping minHitRate of the positives
+			// (opencv_traincascade's CvCascadeBoost::isErrDesired).
+			posSums.clear();
+			for (std::size_t i = 0; i < N; i++)
+				if (y[i] > 0) posSums.push_back(sums[i]);
+			std::sort(posSums.begin(), posSums.end());
+			const std::size_t idx = std::min(
+			    P - 1, std::size_t((1.0 - opt.minHitRate) * double(P)));
+			float thr = static_cast<float>(posSums[idx]);
+			const auto passes = [&](double s, float th)
+			{ return !(s < th - detail::kStageThresholdEps); };
+			const auto hits = [&](float th)
+			{
+				std::size_t h = 0;
+				for (double s : posSums) h += passes(s, th);
+				return h;
+			};
+			// Rounding to float must not lose positives the rank promised.
+			while (hits(thr) < P - idx)
+				thr = std::nextafter(
+				    thr, -std::numeric_limits<float>::infinity());
+			std::size_t fa = 0;
+			for (std::size_t i = 0; i < N; i++)
+				if (y[i] < 0 && passes(sums[i], thr)) fa++;
+			stage.threshold = thr;
+			rep.hitRate = double(hits(thr)) / double(P);
+			rep.falseAlarm = Nn ? double(fa) / double(Nn) : 0.0;
+			rep.weakCount = stage.stumps.size();
+			rep.threshold = thr;
+			if (rep.falseAlarm <= opt.maxFalseAlarm) break;
+		}
+		return stage;
+	}
+};
+
+}  // namespace
+
+// ------------------------------------------------------------------ train
+HaarCascade CascadeTrainer::train(
+    const std::vector<cv::Mat>& positives,
+    const std::vector<NegativeImage>& negatives, uint64_t seed,
+    const Progress& progress)
+{
+	const auto t0 = Clock::now();
+	const TOptions& opt = m_options;
+	m_report = Report();
+	const int threads = opt.threads > 0 ? opt.threads : omp_get_num_procs();
+	const cv::Size win(opt.windowWidth, opt.windowHeight);
+
+	// Positives: all must be window-sized 8-bit; low-contrast ones are
+	// dropped (the detector never evaluates such windows).
+	std::vector<IntegralImages> posII;
+	std::vector<int> posIndex;
+	m_report.positivesGiven = positives.size();
+	for (std::size_t i = 0; i < positives.size(); i++)
+	{
+		const cv::Mat& p = positives[i];
+		if (p.type() != CV_8UC1 || p.size() != win)
+			throw CascadeError(
+			    "positive " + std::to_string(i) + " is not an 8-bit " +
+			    std::to_string(win.width) + "x" + std::to_string(win.height) +
+			    " window");
+		IntegralImages ii(p, true);
+		float nf;
+		if (!detail::varianceNormFactor(
+		        ii.sum().ptr<int32_t>(), ii.sqsum().ptr<double>(),
+		        ii.sum().cols, ii.sqsum().cols, win, nf))
+		{
+			m_report.positivesLowContrast++;
+			continue;
+		}
+		posII.push_back(std::move(ii));
+		posIndex.push_back(static_cast<int>(i));
+	}
+	if (posII.empty())
+		throw CascadeError(
+		    "no usable positive sample (" + std::to_string(positives.size()) +
+		    " given, all with grey-level standard deviation <= 10)");
+
+	// Negative pyramids, as detectMultiScale scales an image.
+	std::vector<Level> levels;
+	for (std::size_t i = 0; i < negatives.size(); i++)
+	{
+		const cv::Mat& img = negatives[i].image;
+		if (img.empty()) continue;
+		if (img.type() != CV_8UC1)
+			throw CascadeError(
+			    "negative image " + std::to_string(i) + " is not 8-bit grey");
+		const NegativeImage& neg = negatives[i];
+		for (double s = 1;; s *= opt.negativeScaleFactor)
+		{
+			const cv::Size sz(cvRound(img.cols / s), cvRound(img.rows / s));
+			if (sz.width < win.width || sz.height < win.height) break;
+			if (neg.maxScale > 0 && s > neg.maxScale * (1 + 1e-9)) break;
+			if (s < neg.minScale * (1 - 1e-9)) continue;
+			Level L;
+			L.image = static_cast<int>(i);
+			L.scale = s;
+			if (sz == img.size())
+				L.img = img;
+			else
+				cv::resize(img, L.img, sz, 0, 0, cv::INTER_LINEAR);
+			L.nx = sz.width - win.width + 1;
+			L.ny = sz.height - win.height + 1;
+			levels.push_back(std::move(L));
+		}
+	}
+	if (levels.empty())
+		throw CascadeError(
+		    "no negative image is at least as large as the " +
+		    std::to_string(win.width) + "x" + std::to_string(win.height) +
+		    " window");
+
+	const std::vector<HaarFeature> pool = generateHaarFeatures(win, opt.mode);
+	m_report.featurePool = pool.size();
+	detail::Random rng(seed);
+	const double targetFA = opt.targetFalseAlarm > 0
+	                            ? opt.targetFalseAlarm
+	                            : std::pow(opt.maxFalseAlarm, opt.numStages);
+
+	// The cascade during training holds only the features it uses.
+	HaarCascade cascade;
+	cascade.windowSize = win;
+	cascade.params.minHitRate = opt.minHitRate;
+	cascade.params.maxFalseAlarm = opt.maxFalseAlarm;
+	cascade.params.weightTrimRate = opt.weightTrimRate;
+	cascade.params.maxWeakCount = opt.maxWeakCount;
+	cascade.params.mode = opt.mode;
+	std::map<int, int> poolToCascade;
+
+	for (int s = 0; s < opt.numStages; s++)
+	{
+		const auto ts = Clock::now();
+		if (progress)
+			progress(
+			    std::size_t(s), std::size_t(opt.numStages),
+			    "stage " + std::to_string(s + 1) + ": drawing samples");
+		StageReport rep;
+		// Positives the cascade so far still accepts.
+		std::vector<char> keep(posII.size(), 0);
+#pragma omp parallel num_threads(threads)
+		{
+			CascadeEvaluator ev(cascade);
+#pragma omp for schedule(static)
+			for (std::size_t i = 0; i < posII.size(); i++)
+			{
+				ev.setIntegralImages(posII[i]);
+				keep[i] = ev.accepted(ev.evaluate({0, 0}));
+			}
+		}
+		SampleSet samples(win);
+		for (std::size_t i = 0; i < posII.size(); i++)
+			if (keep[i])
+			{
+				samples.add(positives[posIndex[i]], +1);
+				rep.positiveIndices.push_back(posIndex[i]);
+			}
+		rep.positives = rep.positiveIndices.size();
+		if (rep.positives == 0)
+		{
+			m_report.stopReason = "no positive left";
+			break;
+		}
+
+		const auto tn = Clock::now();
+		MiningResult neg = mineNegatives(
+		    cascade, levels, negatives, opt.negativeMaxIou,
+		    std::size_t(opt.negativesPerStage), rng, threads);
+		rep.secondsNegatives = secondsSince(tn);
+		rep.acceptanceRatio = neg.acceptanceRatio();
+		m_report.finalAcceptanceRatio = rep.acceptanceRatio;
+		MRPT_LOG_INFO_FMT(
+		    "stage %d: %zu positives, %zu/%zu negative windows accepted "
+		    "(ratio %.3g)",
+		    s + 1, rep.positives, neg.accepted, neg.tried, rep.acceptanceRatio);
+		if (neg.tried > 0 && rep.acceptanceRatio <= targetFA)
+		{
+			m_report.stopReason = "target false-alarm rate reached";
+			break;
+		}
+		if (neg.windows.size() < std::size_t(opt.minNegatives))
+		{
+			m_report.stopReason =
+			    "negative windows exhausted (the cascade accepts " +
+			    std::to_string(neg.windows.size()) + " of " +
+			    std::to_string(neg.tried) + " negative windows)";
+			break;
+		}
+		for (const auto& w : neg.windows)
+			if (!samples.add(w, -1))
+				throw CascadeError("internal: mined a low-contrast window");
+		rep.negatives = neg.windows.size();
+		samples.finish();
+
+		if (progress)
+			progress(
+			    std::size_t(s), std::size_t(opt.numStages),
+			    "stage " + std::to_string(s + 1) + ": boosting");
+		StageTrainer st{samples, pool, {}, opt, threads, {}, {}};
+		st.candidates.resize(pool.size());
+		std::iota(st.candidates.begin(), st.candidates.end(), 0);
+		if (opt.featureFraction < 1.0)
+		{
+			std::vector<int> sub;
+			for (int f : st.candidates)
+				if (rng.uniform() < opt.featureFraction) sub.push_back(f);
+			if (!sub.empty()) st.candidates = std::move(sub);
+		}
+		const auto tb = Clock::now();
+		st.binFeatures();
+		rep.secondsBinning = secondsSince(tb);
+		const auto tt = Clock::now();
+		std::vector<int> used;
+		HaarCascade::Stage stage = st.train(rep, used, rng);
+		rep.secondsBoosting = secondsSince(tt);
+		// Pool indices -> cascade feature indices.
+		for (auto& stump : stage.stumps)
+		{
+			auto it = poolToCascade.find(stump.featureIdx);
+			if (it == poolToCascade.end())
+			{
+				it = poolToCascade
+				         .emplace(
+				             stump.featureIdx,
+				             static_cast<int>(cascade.features.size()))
+				         .first;
+				cascade.features.push_back(pool[stump.featureIdx]);
+			}
+			stump.featureIdx = it->second;
+		}
+		cascade.stages.push_back(std::move(stage));
+		rep.seconds = secondsSince(ts);
+		MRPT_LOG_INFO_FMT(
+		    "stage %d: %zu stumps, hit rate %.4f, false alarm %.4f, %.1f s",
+		    s + 1, rep.weakCount, rep.hitRate, rep.falseAlarm, rep.seconds);
+		m_report.stages.push_back(std::move(rep));
+		if (progress)
+			progress(
+			    std::size_t(s + 1), std::size_t(opt.numStages),
+			    "stage " + std::to_string(s + 1) + " done");
+	}
+	if (m_report.stopReason.empty())
+		m_report.stopReason = "stage count reached";
+	if (cascade.stages.empty())
+		throw CascadeError(
+		    "training produced no stage: " + m_report.stopReason);
+	m_report.seconds = secondsSince(t0);
+	return cascade;
+}
+
+}  // namespace semnav

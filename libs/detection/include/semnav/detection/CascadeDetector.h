@@ -1,0 +1,224 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+
+#include <mrpt/config/CLoadableOptions.h>
+#include <semnav/common/Label.h>
+#include <semnav/detection/DetectionImage.h>
+#include <semnav/detection/DetectionPass.h>
+#include <semnav/detection/PanoramicProjection.h>
+#include <semnav/perception/Detection.h>
+#include <semnav/perception/LabeledSweep.h>
+#include <semnav/scan/Sweep.h>
+
+#include <memory>
+#include <opencv2/core/mat.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace semnav
+{
+/** Finds washbasins, wastebaskets and stairs in a sweep with one trained
+ * Haar cascade per class (paper sec. 2.2.2), run by OpenCV's
+ * cv::CascadeClassifier::detectMultiScale on the sweep's detection image
+ * (DetectionImage of its normals) scaled by the class's `upscale` (a
+ * wastebasket 3 m away is about 11 x 14 pixels, below the 20 x 20 window).
+ * By default the detection image is resampled to azimuth x elevation
+ * (PanoramicProjection) so that objects beside the robot keep their shape.
+ * Every detection is then measured in 3D from the range data inside its box
+ * and rejected when its size is implausible for the class (the paper:
+ * "having direct geometrical information about a detected object we can
+ * often reject false classifications just by analysing its real size"). */
+class CascadeDetector
+{
+public:
+	/** One class, INI section [CascadeDetector.<label>]. */
+	struct TClassOptions : public mrpt::config::CLoadableOptions
+	{
+		TClassOptions();
+		explicit TClassOptions(Label l);
+		void loadFromConfigFile(
+		    const mrpt::config::CConfigFileBase& c,
+		    const std::string& section) override;
+		void saveToConfigFile(
+		    mrpt::config::CConfigFileBase& c,
+		    const std::string& section) const override;
+		static const std::vector<std::string>& knownKeys();
+
+		Label label = Label::Unknown;
+		/** cascade: the cascade XML; a relative path is relative to the
+		 * INI file's directory. */
+		std::string cascade;
+		/** upscale: the detection image (rows between min_elevation_deg
+		 * and max_elevation_deg) is scaled by this before the cascade runs
+		 * (the "near" pass). */
+		double upscale = 1.0;
+		double minElevation = -M_PI / 2, maxElevation = M_PI / 2;
+		/** far_upscale (0 = no far pass), far_below_px: objects smaller
+		 * than far_below_px (box side, detection-image pixels) are searched
+		 * in the rows between far_min_elevation_deg and
+		 * far_max_elevation_deg scaled by far_upscale (small objects are
+		 * far, hence near the horizon). */
+		double farUpscale = 0, farBelowPx = 0;
+		double farMinElevation = -0.2, farMaxElevation = 0.2;
+		/** scale_factor, min_neighbors: detectMultiScale's. */
+		double scaleFactor = 1.1;
+		int minNeighbors = 3;
+		/** max_size_px: largest box side searched (detection-image
+		 * pixels; 0: the image). */
+		double maxSizePx = 0;
+
+		/** The passes for a detection image whose rows span elevations
+		 * [el0, el1] (rad) evenly, for a cascade window of `window`. */
+		std::vector<DetectionPass> passes(
+		    int rows, double el0, double el1, cv::Size window) const;
+		/** min_width_m, max_width_m: extent across the line of sight of
+		 * the object's points. */
+		double minWidth = 0.0, maxWidth = 100.0;
+		/** min_top_m, max_top_m: height of the object's top (95th
+		 * percentile of z) above the ground. */
+		double minTop = 0.0, maxTop = 100.0;
+		/** max_depth_m: object points lie at most this far (horizontally)
+		 * behind its nearest part in the box's centre. */
+		double maxDepth = 1.0;
+		/** min_points: fewer object points than this: rejected. */
+		int minPoints = 15;
+	};
+
+	/** INI section [CascadeDetector] plus one [CascadeDetector.<label>]
+	 * per class listed in `classes`. */
+	struct TOptions : public mrpt::config::CLoadableOptions
+	{
+		TOptions();
+		void loadFromConfigFile(
+		    const mrpt::config::CConfigFileBase& c,
+		    const std::string& section) override;
+		void saveToConfigFile(
+		    mrpt::config::CConfigFileBase& c,
+		    const std::string& section) const override;
+		static const std::vector<std::string>& knownKeys();
+		/** Loads [section] and its class sections from an INI file and
+		 * sets baseDir to the file's directory. Throws ConfigError. */
+		static TOptions fromIniFile(
+		    const std::string& path,
+		    const std::string& section = "CascadeDetector");
+		/** The class options of `l`; throws ConfigError if not listed. */
+		const TClassOptions& classOptions(Label l) const;
+		/** Resolves a class's cascade path against baseDir. */
+		std::string cascadePath(const TClassOptions& c) const;
+
+		/** channel: grey, red, green or blue (DetectionImage). */
+		DetectionChannel channel = DetectionChannel::Grey;
+		/** normal_smoothing_px: half width of the normal averaging before
+		 * the image is made (DetectionImage), 0 = none. */
+		int normalSmoothing = 1;
+		/** projection: "panoramic" (azimuth x elevation,
+		 * PanoramicProjection) or "sweep" (the sweep's own rows and
+		 * columns, as the paper). */
+		bool panoramic = true;
+		/** classes: labels with a cascade (space separated). */
+		std::vector<TClassOptions> classes;
+		/** label_pixels: the object points of a detection get its label in
+		 * LabeledSweep::labels. */
+		bool labelPixels = true;
+		/** floor_tolerance_m: points this close to the ground are floor,
+		 * not object. */
+		double floorTolerance = 0.04;
+		/** measure_margin: the object is measured in its box grown by this
+		 * fraction of the box side on every side. */
+		double measureMargin = 0.5;
+		/** connected_object: the object is the candidate points connected
+		 * (in the sweep, without a gap in 3D) to those of the box's centre,
+		 * so that a box cutting an object still measures all of it. */
+		bool connectedObject = true;
+		/** Directory relative cascade paths are resolved against. */
+		std::string baseDir = ".";
+	};
+
+	/** A detection's 3D measurement (robot frame). */
+	struct Measure
+	{
+		std::size_t points = 0;
+		double width = 0, top = 0;
+		mrpt::math::TPoint3D centroid{0, 0, 0}, extent{0, 0, 0};
+		/** Sweep pixels (x = col, y = row) of the object points and their
+		 * bounding box. */
+		std::vector<cv::Point> pixels;
+		cv::Rect box;
+	};
+	/** A cascade detection and what became of it. */
+	struct Candidate
+	{
+		Label label = Label::Unknown;
+		/** In detection-image coordinates (panoramic or sweep). */
+		cv::Rect box;
+		int neighbours = 0;
+		std::optional<Measure> measure;
+		bool accepted = false;
+		std::string rejection;
+	};
+	/** Wall-clock times of the last detect(), ms. */
+	struct Timings
+	{
+		double image = 0, cascades = 0, sizeCheck = 0, total = 0;
+	};
+
+	/** Loads every class's cascade (CascadeXml validates it, then
+	 * cv::CascadeClassifier). Throws CascadeError or ConfigError. */
+	explicit CascadeDetector(const TOptions& options);
+	~CascadeDetector();
+
+	/** Runs every class on a perceived sweep (uses the sweep's bearing and
+	 * tilt grid and the perceived normals, normal mask, points and ground
+	 * height), appends the accepted detections to `out.detections` (box =
+	 * the bounding box of the object's pixels in the sweep) and, with
+	 * label_pixels, labels their object pixels. */
+	void detect(const Sweep& sweep, LabeledSweep& out);
+
+	/** The same on raw inputs; returns every candidate (accepted or not).
+	 * `points` CV_32FC3 robot frame (NaN where invalid); `labels` (CV_8U
+	 * rule-classifier labels, may be empty): pixels already labelled as a
+	 * surface (floor, ceiling, wall, door, sidewalk, grass) are not object
+	 * points. */
+	std::vector<Candidate> detectCandidates(
+	    const std::vector<double>& phis, const std::vector<double>& thetas,
+	    const cv::Mat& normals, const cv::Mat& normalMask,
+	    const cv::Mat& points, double groundZ,
+	    const cv::Mat& labels = cv::Mat());
+	/** The image the cascades see (8-bit, panoramic or sweep layout). */
+	cv::Mat detectionImage(
+	    const std::vector<double>& phis, const std::vector<double>& thetas,
+	    const cv::Mat& normals, const cv::Mat& normalMask);
+	/** The projection of the last grid used (empty in sweep mode). */
+	const PanoramicProjection& projection() const;
+	/** Runs one class's cascade on a detection image; boxes in its pixels,
+	 * with detectMultiScale's neighbour counts. */
+	void runCascade(
+	    std::size_t classIndex, const cv::Mat& detectionImage,
+	    std::vector<cv::Rect>& boxes, std::vector<int>& neighbours);
+
+	/** Measures the object among `pixels` (sweep pixels of a detection
+	 * box, grown): the points that are not floor (within floorTolerance of
+	 * the ground) nor labelled as a surface in `labels` (if not empty),
+	 * within max_depth_m (horizontally) behind the nearest part (10th
+	 * percentile) of those among `centre` (the box's central half) and,
+	 * with `connected`, connected to those of the centre; nothing when
+	 * fewer than min_points. */
+	static std::optional<Measure> measure(
+	    const cv::Mat& points, const cv::Mat& labels,
+	    const std::vector<cv::Point>& pixels,
+	    const std::vector<cv::Point>& centre, double groundZ,
+	    double floorTolerance, double maxDepth, int minPoints,
+	    bool connected = false);
+
+	const TOptions& options() const { return m_options; }
+	const Timings& lastTimings() const { return m_timings; }
+
+private:
+	struct Impl;
+	TOptions m_options;
+	std::unique_ptr<Impl> m_impl;
+	Timings m_timings;
+};
+
+}  // namespace semnav

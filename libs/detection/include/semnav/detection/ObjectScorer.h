@@ -1,0 +1,56 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+
+#include <semnav/common/Label.h>
+#include <semnav/perception/Detection.h>
+
+#include <array>
+#include <opencv2/core/mat.hpp>
+#include <vector>
+
+namespace semnav
+{
+/** Object-level precision and recall of detections against ground truth,
+ * accumulated over sweeps (issue 4's rule): a ground-truth object counts
+ * in a sweep when at least `minPixels` (150) of its pixels are visible; a
+ * detection is a true positive when its box has IoU >= `minIou` (0.3) with
+ * a not yet matched counted object of its label (detections taken by
+ * decreasing score), otherwise a false positive, except that a detection
+ * of an object too small to count (IoU >= minIou with an uncounted object
+ * of its label) is ignored rather than called false: it found something
+ * real that the rule does not ask for. Counted objects left unmatched are
+ * false negatives. */
+class ObjectScorer
+{
+public:
+	struct Score
+	{
+		std::size_t tp = 0, fp = 0, fn = 0;
+		/** Detections of too-small objects (neither tp nor fp). */
+		std::size_t ignored = 0;
+		/** 0 when undefined. */
+		double precision = 0, recall = 0;
+	};
+
+	explicit ObjectScorer(int minPixels = 150, double minIou = 0.3);
+
+	/** Adds one sweep: its detections and its CV_16U ground-truth image
+	 * (low byte label, high byte instance). Only labels in `labels` are
+	 * scored. */
+	void add(
+	    const std::vector<Detection>& detections, const cv::Mat& groundTruth,
+	    const std::vector<Label>& labels);
+
+	Score score(Label l) const;
+	std::size_t sweeps() const { return m_sweeps; }
+
+	static double iou(const cv::Rect& a, const cv::Rect& b);
+
+private:
+	int m_minPixels;
+	double m_minIou;
+	std::array<Score, kLabelCount> m_scores{};
+	std::size_t m_sweeps = 0;
+};
+
+}  // namespace semnav

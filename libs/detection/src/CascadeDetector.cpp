@@ -1,0 +1,714 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/config/CConfigFileBase.h>
+#include <semnav/cascade/CascadeError.h>
+#include <semnav/cascade/CascadeXml.h>
+#include <semnav/common/ConfigChecks.h>
+#include <semnav/common/Error.h>
+#include <semnav/detection/CascadeDetector.h>
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/objdetect.hpp>
+#include <sstream>
+#include <tuple>
+
+namespace semnav
+{
+namespace
+{
+std::string num(double v)
+{
+	char buf[64];
+	std::snprintf(buf, sizeof(buf), "%.12g", v);
+	return buf;
+}
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0)
+{
+	return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+/** p-th percentile (0..1) of v (reorders v). */
+double percentile(std::vector<double>& v, double p)
+{
+	const std::size_t k = std::min(
+	    v.size() - 1, static_cast<std::size_t>(p * double(v.size() - 1) + 0.5));
+	std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
+	return v[k];
+}
+}  // namespace
+
+// ------------------------------------------------------------ options
+CascadeDetector::TClassOptions::TClassOptions() = default;
+CascadeDetector::TClassOptions::TClassOptions(Label l) : label(l)
+{
+	cascade = labelName(l) + ".xml";
+}
+
+const std::vector<std::string>& CascadeDetector::TClassOptions::knownKeys()
+{
+	static const std::vector<std::string> keys{
+	    "cascade",
+	    "upscale",
+	    "min_elevation_deg",
+	    "max_elevation_deg",
+	    "far_upscale",
+	    "far_below_px",
+	    "far_min_elevation_deg",
+	    "far_max_elevation_deg",
+	    "scale_factor",
+	    "min_neighbors",
+	    "max_size_px",
+	    "min_width_m",
+	    "max_width_m",
+	    "min_top_m",
+	    "max_top_m",
+	    "max_depth_m",
+	    "min_points"};
+	return keys;
+}
+
+void CascadeDetector::TClassOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+	checkKnownKeys(c, s, knownKeys());
+	TClassOptions o = *this;
+	o.cascade = c.read_string(s, "cascade", cascade, false);
+	if (o.cascade.empty())
+		throw ConfigError("[" + s + "] cascade must name a cascade XML file");
+	constexpr double deg = M_PI / 180.0;
+	o.upscale = readChecked(c, s, "upscale", upscale, 0.25, 8.0);
+	o.minElevation =
+	    readChecked(c, s, "min_elevation_deg", minElevation / deg, -90, 90) *
+	    deg;
+	o.maxElevation =
+	    readChecked(c, s, "max_elevation_deg", maxElevation / deg, -90, 90) *
+	    deg;
+	o.farUpscale = readChecked(c, s, "far_upscale", farUpscale, 0, 8.0);
+	o.farBelowPx = readChecked(c, s, "far_below_px", farBelowPx, 0, 10000);
+	o.farMinElevation =
+	    readChecked(
+	        c, s, "far_min_elevation_deg", farMinElevation / deg, -90, 90) *
+	    deg;
+	o.farMaxElevation =
+	    readChecked(
+	        c, s, "far_max_elevation_deg", farMaxElevation / deg, -90, 90) *
+	    deg;
+	o.scaleFactor = readChecked(c, s, "scale_factor", scaleFactor, 1.01, 3.0);
+	o.minNeighbors =
+	    readCheckedInt(c, s, "min_neighbors", minNeighbors, 0, 100);
+	o.maxSizePx = readChecked(c, s, "max_size_px", maxSizePx, 0, 10000);
+	o.minWidth = readChecked(c, s, "min_width_m", minWidth, 0, 100);
+	o.maxWidth = readChecked(c, s, "max_width_m", maxWidth, 0, 100);
+	o.minTop = readChecked(c, s, "min_top_m", minTop, -10, 100);
+	o.maxTop = readChecked(c, s, "max_top_m", maxTop, -10, 100);
+	o.maxDepth = readChecked(c, s, "max_depth_m", maxDepth, 0.01, 100);
+	o.minPoints = readCheckedInt(c, s, "min_points", minPoints, 1, 1000000);
+	if (o.minWidth > o.maxWidth || o.minTop > o.maxTop ||
+	    o.minElevation >= o.maxElevation ||
+	    (o.farUpscale > 0 && o.farMinElevation >= o.farMaxElevation))
+		throw ConfigError("[" + s + "] a minimum exceeds its maximum");
+	*this = o;
+}
+
+void CascadeDetector::TClassOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
+{
+	c.write(s, "cascade", cascade);
+	constexpr double deg = M_PI / 180.0;
+	c.write(s, "upscale", num(upscale));
+	c.write(s, "min_elevation_deg", num(minElevation / deg));
+	c.write(s, "max_elevation_deg", num(maxElevation / deg));
+	c.write(s, "far_upscale", num(farUpscale));
+	c.write(s, "far_below_px", num(farBelowPx));
+	c.write(s, "far_min_elevation_deg", num(farMinElevation / deg));
+	c.write(s, "far_max_elevation_deg", num(farMaxElevation / deg));
+	c.write(s, "scale_factor", num(scaleFactor));
+	c.write(s, "min_neighbors", std::to_string(minNeighbors));
+	c.write(s, "max_size_px", num(maxSizePx));
+	c.write(s, "min_width_m", num(minWidth));
+	c.write(s, "max_width_m", num(maxWidth));
+	c.write(s, "min_top_m", num(minTop));
+	c.write(s, "max_top_m", num(maxTop));
+	c.write(s, "max_depth_m", num(maxDepth));
+	c.write(s, "min_points", std::to_string(minPoints));
+}
+
+std::vector<DetectionPass> CascadeDetector::TClassOptions::passes(
+    int rows, double el0, double el1, cv::Size window) const
+{
+	const auto row = [&](double el)
+	{
+		if (rows < 2 || el1 <= el0) return el < el0 ? 0 : rows;
+		const double v = (el - el0) / (el1 - el0) * (rows - 1);
+		return std::clamp(static_cast<int>(std::lround(v)), 0, rows);
+	};
+	const double win = std::max(window.width, window.height);
+	std::vector<DetectionPass> out;
+	DetectionPass nearPass;
+	nearPass.upscale = upscale;
+	nearPass.rowBegin = row(minElevation);
+	nearPass.rowEnd = std::max(nearPass.rowBegin, row(maxElevation) + 1);
+	nearPass.minSide = win / upscale;
+	nearPass.maxSide = maxSizePx;
+	if (farUpscale > 0 && farBelowPx > 0)
+	{
+		DetectionPass farPass;
+		farPass.upscale = farUpscale;
+		farPass.rowBegin = row(farMinElevation);
+		farPass.rowEnd = std::max(farPass.rowBegin, row(farMaxElevation) + 1);
+		farPass.minSide = win / farUpscale;
+		farPass.maxSide = std::max(farBelowPx, farPass.minSide);
+		nearPass.minSide = std::max(nearPass.minSide, farBelowPx);
+		out.push_back(farPass);
+	}
+	out.insert(out.begin(), nearPass);
+	return out;
+}
+
+CascadeDetector::TOptions::TOptions()
+{
+	// Built-in defaults for the paper's three classes (config/cascade.ini
+	// holds the tuned values).
+	TClassOptions wb(Label::Washbasin);
+	wb.upscale = 1.0;
+	wb.farUpscale = 2.5;
+	wb.farBelowPx = 24;
+	wb.minWidth = 0.25;
+	wb.maxWidth = 0.9;
+	wb.minTop = 0.6;
+	wb.maxTop = 1.1;
+	wb.maxDepth = 0.6;
+	TClassOptions bin(Label::Wastebasket);
+	bin.upscale = 1.0;
+	bin.farUpscale = 3.0;
+	bin.farBelowPx = 24;
+	bin.minWidth = 0.12;
+	bin.maxWidth = 0.55;
+	bin.minTop = 0.2;
+	bin.maxTop = 0.65;
+	bin.maxDepth = 0.45;
+	TClassOptions st(Label::Stairs);
+	st.upscale = 1.0;
+	st.minWidth = 0.6;
+	st.maxWidth = 2.2;
+	st.minTop = 0.25;
+	st.maxTop = 2.0;
+	st.maxDepth = 2.5;
+	classes = {wb, bin, st};
+}
+
+const std::vector<std::string>& CascadeDetector::TOptions::knownKeys()
+{
+	static const std::vector<std::string> keys{
+	    "channel",        "normal_smoothing_px", "projection",
+	    "classes",        "label_pixels",        "floor_tolerance_m",
+	    "measure_margin", "connected_object"};
+	return keys;
+}
+
+void CascadeDetector::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+	checkKnownKeys(c, s, knownKeys());
+	TOptions o = *this;
+	try
+	{
+		o.channel = channelFromName(
+		    c.read_string(s, "channel", channelName(channel), false));
+	}
+	catch (const ConfigError& e)
+	{
+		throw ConfigError("[" + s + "] channel: " + e.what());
+	}
+	o.normalSmoothing =
+	    readCheckedInt(c, s, "normal_smoothing_px", normalSmoothing, 0, 10);
+	const std::string proj = c.read_string(
+	    s, "projection", panoramic ? "panoramic" : "sweep", false);
+	if (proj != "panoramic" && proj != "sweep")
+		throw ConfigError(
+		    "[" + s + "] projection = '" + proj +
+		    "' must be panoramic or sweep");
+	o.panoramic = proj == "panoramic";
+	o.labelPixels = readCheckedBool(c, s, "label_pixels", labelPixels);
+	o.floorTolerance =
+	    readChecked(c, s, "floor_tolerance_m", floorTolerance, 0, 1);
+	o.measureMargin = readChecked(c, s, "measure_margin", measureMargin, 0, 2);
+	o.connectedObject =
+	    readCheckedBool(c, s, "connected_object", connectedObject);
+	std::string list;
+	for (const auto& k : classes) list += labelName(k.label) + " ";
+	list = c.read_string(s, "classes", list, false);
+	std::istringstream in(list);
+	std::vector<TClassOptions> loaded;
+	for (std::string name; in >> name;)
+	{
+		Label l;
+		try
+		{
+			l = labelFromName(name);
+		}
+		catch (const Error& e)
+		{
+			throw ConfigError("[" + s + "] classes: " + e.what());
+		}
+		for (const auto& k : loaded)
+			if (k.label == l)
+				throw ConfigError(
+				    "[" + s + "] classes lists " + name + " twice");
+		TClassOptions k(l);
+		for (const auto& d : classes)
+			if (d.label == l) k = d;  // defaults of a known class
+		k.loadFromConfigFile(c, s + "." + name);
+		loaded.push_back(k);
+	}
+	o.classes = loaded;
+	*this = o;
+}
+
+void CascadeDetector::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
+{
+	c.write(s, "channel", channelName(channel));
+	c.write(s, "normal_smoothing_px", std::to_string(normalSmoothing));
+	c.write(s, "projection", std::string(panoramic ? "panoramic" : "sweep"));
+	std::string list;
+	for (const auto& k : classes)
+		list += (list.empty() ? "" : " ") + labelName(k.label);
+	c.write(s, "classes", list);
+	c.write(s, "label_pixels", std::string(labelPixels ? "true" : "false"));
+	c.write(s, "floor_tolerance_m", num(floorTolerance));
+	c.write(s, "measure_margin", num(measureMargin));
+	c.write(
+	    s, "connected_object", std::string(connectedObject ? "true" : "false"));
+	for (const auto& k : classes)
+		k.saveToConfigFile(c, s + "." + labelName(k.label));
+}
+
+CascadeDetector::TOptions CascadeDetector::TOptions::fromIniFile(
+    const std::string& path, const std::string& section)
+{
+	std::vector<std::string> sections{
+	    section, "SampleGenerator", "CascadeTrainer", "NormalImage"};
+	for (Label l : allLabels())
+	{
+		sections.push_back(section + "." + labelName(l));
+		sections.push_back("CascadeTrainer." + labelName(l));
+	}
+	const auto cfg = openIniFile(path, sections);
+	TOptions o;
+	o.loadFromConfigFile(*cfg, section);
+	const auto dir = std::filesystem::path(path).parent_path();
+	o.baseDir = dir.empty() ? "." : dir.string();
+	return o;
+}
+
+const CascadeDetector::TClassOptions& CascadeDetector::TOptions::classOptions(
+    Label l) const
+{
+	for (const auto& k : classes)
+		if (k.label == l) return k;
+	throw ConfigError("no cascade is configured for " + labelName(l));
+}
+
+std::string CascadeDetector::TOptions::cascadePath(const TClassOptions& c) const
+{
+	const std::filesystem::path p(c.cascade);
+	if (p.is_absolute()) return p.string();
+	return (std::filesystem::path(baseDir) / p).lexically_normal().string();
+}
+
+// ------------------------------------------------------------ detector
+struct CascadeDetector::Impl
+{
+	std::vector<cv::CascadeClassifier> classifiers;
+	std::vector<cv::Size> windows;
+	/** Scaled detection images by upscale, shared by the classes within
+	 * one detectCandidates() call. */
+	std::map<std::tuple<double, int, int>, cv::Mat> scaled;
+	bool keepScaled = false;
+	PanoramicProjection projection;
+	/** Elevations of the first and last row of the detection image. */
+	double el0 = -M_PI / 2, el1 = M_PI / 2;
+};
+
+CascadeDetector::CascadeDetector(const TOptions& options)
+    : m_options(options), m_impl(std::make_unique<Impl>())
+{
+	for (const auto& k : m_options.classes)
+	{
+		const std::string path = m_options.cascadePath(k);
+		// Our reader gives clear errors; OpenCV then loads the same file.
+		const HaarCascade c = CascadeXml::readFile(path);
+		cv::CascadeClassifier cc;
+		if (!cc.load(path))
+			throw CascadeError("cv::CascadeClassifier cannot load " + path);
+		m_impl->classifiers.push_back(std::move(cc));
+		m_impl->windows.push_back(c.windowSize);
+	}
+}
+
+CascadeDetector::~CascadeDetector() = default;
+
+void CascadeDetector::runCascade(
+    std::size_t i, const cv::Mat& image, std::vector<cv::Rect>& boxes,
+    std::vector<int>& neighbours)
+{
+	const TClassOptions& k = m_options.classes.at(i);
+	const cv::Size win = m_impl->windows[i];
+	const auto passes = k.passes(image.rows, m_impl->el0, m_impl->el1, win);
+	boxes.clear();
+	neighbours.clear();
+	const cv::Rect all(0, 0, image.cols, image.rows);
+	for (std::size_t pi = 0; pi < passes.size(); pi++)
+	{
+		const DetectionPass& p = passes[pi];
+		if (p.rowEnd <= p.rowBegin) continue;
+		// Bands are shared between classes with the same pass.
+		const auto key = std::make_tuple(p.upscale, p.rowBegin, p.rowEnd);
+		cv::Mat& band = m_impl->scaled[key];
+		if (band.empty()) band = p.apply(image);
+		const cv::Size minSize(
+		    std::max(
+		        win.width,
+		        static_cast<int>(std::lround(p.minSide * p.upscale))),
+		    std::max(
+		        win.height,
+		        static_cast<int>(std::lround(p.minSide * p.upscale))));
+		cv::Size maxSize;
+		if (p.maxSide > 0)
+		{
+			const int s = static_cast<int>(std::lround(p.maxSide * p.upscale));
+			maxSize = cv::Size(s, s);
+		}
+		std::vector<cv::Rect> found;
+		std::vector<int> n;
+		m_impl->classifiers[i].detectMultiScale(
+		    band, found, n, k.scaleFactor, k.minNeighbors, 0, minSize, maxSize);
+		n.resize(found.size(), 0);
+		// detectMultiScale runs in parallel: its output order varies. A
+		// fixed order keeps everything after it deterministic.
+		std::vector<std::size_t> order(found.size());
+		for (std::size_t j = 0; j < order.size(); j++) order[j] = j;
+		std::sort(
+		    order.begin(), order.end(),
+		    [&](std::size_t a, std::size_t b)
+		    {
+			    const cv::Rect &ra = found[a], &rb = found[b];
+			    return std::tie(ra.y, ra.x, ra.height, ra.width, n[a]) <
+			           std::tie(rb.y, rb.x, rb.height, rb.width, n[b]);
+		    });
+		for (std::size_t j : order)
+		{
+			boxes.push_back(p.toImage(found[j]) & all);
+			neighbours.push_back(n[j]);
+		}
+	}
+	if (!m_impl->keepScaled) m_impl->scaled.clear();
+}
+
+std::optional<CascadeDetector::Measure> CascadeDetector::measure(
+    const cv::Mat& points, const cv::Mat& labels,
+    const std::vector<cv::Point>& pixels, const std::vector<cv::Point>& centre,
+    double groundZ, double floorTolerance, double maxDepth, int minPoints,
+    bool connected)
+{
+	const auto isSurface = [&](const cv::Point& px)
+	{
+		if (labels.empty()) return false;
+		switch (static_cast<Label>(labels.at<uint8_t>(px)))
+		{
+			case Label::Floor:
+			case Label::Ceiling:
+			case Label::Wall:
+			case Label::Door:
+			case Label::Sidewalk:
+			case Label::Grass:
+				return true;
+			default:
+				return false;
+		}
+	};
+	const auto nonFloor = [&](const cv::Point& px, cv::Vec3f& p)
+	{
+		p = points.at<cv::Vec3f>(px);
+		return std::isfinite(p[0]) && p[2] >= groundZ + floorTolerance &&
+		       !isSurface(px);
+	};
+	// How far the object is: the nearest part (10th percentile of the
+	// horizontal distance) of the box's centre.
+	std::vector<double> centreD;
+	cv::Vec3f p;
+	for (const auto& px : centre)
+		if (nonFloor(px, p))
+			centreD.push_back(std::hypot(double(p[0]), double(p[1])));
+	if (centreD.empty())
+		for (const auto& px : pixels)
+			if (nonFloor(px, p))
+				centreD.push_back(std::hypot(double(p[0]), double(p[1])));
+	if (centreD.empty()) return std::nullopt;
+	const double near = percentile(centreD, 0.1);
+	// Candidates: non-floor, non-surface points not too far behind.
+	int x0 = INT_MAX, y0 = INT_MAX, x1 = -1, y1 = -1;
+	for (const auto& px : pixels)
+	{
+		x0 = std::min(x0, px.x);
+		y0 = std::min(y0, px.y);
+		x1 = std::max(x1, px.x);
+		y1 = std::max(y1, px.y);
+	}
+	const cv::Rect region(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
+	cv::Mat cand(region.size(), CV_8U, cv::Scalar(0));
+	for (const auto& px : pixels)
+		if (nonFloor(px, p) &&
+		    std::hypot(double(p[0]), double(p[1])) <= near + maxDepth)
+			cand.at<uint8_t>(px - region.tl()) = 1;
+	if (connected)
+	{
+		// Keep the candidates connected to the centre's: 8-neighbours
+		// closer in 3D than a gap growing with the range.
+		cv::Mat keep(region.size(), CV_8U, cv::Scalar(0));
+		std::vector<cv::Point> queue;
+		for (const auto& px : centre)
+			if (region.contains(px) && cand.at<uint8_t>(px - region.tl()) &&
+			    !keep.at<uint8_t>(px - region.tl()))
+			{
+				keep.at<uint8_t>(px - region.tl()) = 1;
+				queue.push_back(px);
+			}
+		for (std::size_t i = 0; i < queue.size(); i++)
+		{
+			const cv::Point a = queue[i];
+			const cv::Vec3f pa = points.at<cv::Vec3f>(a);
+			const double gap = 0.08 + 0.03 * std::sqrt(pa.dot(pa));
+			for (int dy = -1; dy <= 1; dy++)
+				for (int dx = -1; dx <= 1; dx++)
+				{
+					const cv::Point b(a.x + dx, a.y + dy);
+					if (!region.contains(b)) continue;
+					const cv::Point l = b - region.tl();
+					if (!cand.at<uint8_t>(l) || keep.at<uint8_t>(l)) continue;
+					const cv::Vec3f d = points.at<cv::Vec3f>(b) - pa;
+					if (std::sqrt(d.dot(d)) > gap) continue;
+					keep.at<uint8_t>(l) = 1;
+					queue.push_back(b);
+				}
+		}
+		cand = keep;
+	}
+	Measure m;
+	std::vector<double> xs, ys, zs;
+	double sx = 0, sy = 0, sz = 0;
+	int c0 = INT_MAX, r0 = INT_MAX, c1 = -1, r1 = -1;
+	for (const auto& px : pixels)
+	{
+		if (!cand.at<uint8_t>(px - region.tl())) continue;
+		p = points.at<cv::Vec3f>(px);
+		xs.push_back(p[0]);
+		ys.push_back(p[1]);
+		zs.push_back(p[2]);
+		sx += p[0];
+		sy += p[1];
+		sz += p[2];
+		m.pixels.push_back(px);
+		c0 = std::min(c0, px.x);
+		c1 = std::max(c1, px.x);
+		r0 = std::min(r0, px.y);
+		r1 = std::max(r1, px.y);
+	}
+	m.points = xs.size();
+	if (static_cast<int>(m.points) < minPoints) return std::nullopt;
+	m.box = cv::Rect(c0, r0, c1 - c0 + 1, r1 - r0 + 1);
+	const double n = double(m.points);
+	m.centroid = {sx / n, sy / n, sz / n};
+	// Extent across the line of sight to the centroid.
+	const double bearing = std::atan2(m.centroid.y, m.centroid.x);
+	std::vector<double> lateral(m.points);
+	for (std::size_t i = 0; i < m.points; i++)
+		lateral[i] = -std::sin(bearing) * xs[i] + std::cos(bearing) * ys[i];
+	m.width = percentile(lateral, 0.95) - percentile(lateral, 0.05);
+	const double zTop = percentile(zs, 0.95);
+	m.top = zTop - groundZ;
+	m.extent = {
+	    percentile(xs, 0.95) - percentile(xs, 0.05),
+	    percentile(ys, 0.95) - percentile(ys, 0.05),
+	    zTop - percentile(zs, 0.05)};
+	return m;
+}
+
+namespace
+{
+/** One object, several boxes (detectMultiScale groups similar boxes only):
+ * of accepted candidates sharing most object pixels, the one with the
+ * most neighbours (then the most points) stays. */
+void suppressDuplicates(
+    std::vector<CascadeDetector::Candidate>& cands, std::size_t first,
+    cv::Size size)
+{
+	std::vector<std::size_t> order;
+	for (std::size_t i = first; i < cands.size(); i++)
+		if (cands[i].accepted) order.push_back(i);
+	std::stable_sort(
+	    order.begin(), order.end(),
+	    [&](std::size_t a, std::size_t b)
+	    {
+		    if (cands[a].neighbours != cands[b].neighbours)
+			    return cands[a].neighbours > cands[b].neighbours;
+		    return cands[a].measure->points > cands[b].measure->points;
+	    });
+	cv::Mat taken(size, CV_8U, cv::Scalar(0));
+	for (std::size_t i : order)
+	{
+		auto& c = cands[i];
+		std::size_t shared = 0;
+		for (const auto& p : c.measure->pixels)
+			shared += taken.at<uint8_t>(p) != 0;
+		if (2 * shared > c.measure->pixels.size())
+		{
+			c.accepted = false;
+			c.rejection = "duplicate";
+			continue;
+		}
+		for (const auto& p : c.measure->pixels) taken.at<uint8_t>(p) = 1;
+	}
+}
+}  // namespace
+
+const PanoramicProjection& CascadeDetector::projection() const
+{
+	return m_impl->projection;
+}
+
+cv::Mat CascadeDetector::detectionImage(
+    const std::vector<double>& phis, const std::vector<double>& thetas,
+    const cv::Mat& normals, const cv::Mat& normalMask)
+{
+	cv::Mat image = DetectionImage::fromNormals(
+	    normals, normalMask, m_options.channel, m_options.normalSmoothing);
+	if (!thetas.empty())
+	{
+		m_impl->el0 = thetas.front();
+		m_impl->el1 = thetas.back();
+	}
+	if (!m_options.panoramic) return image;
+	if (!m_impl->projection.sameGrid(phis, thetas))
+		m_impl->projection = PanoramicProjection(phis, thetas);
+	return m_impl->projection.toPanoramic(image, cv::INTER_LINEAR);
+}
+
+std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
+    const std::vector<double>& phis, const std::vector<double>& thetas,
+    const cv::Mat& normals, const cv::Mat& normalMask, const cv::Mat& points,
+    double groundZ, const cv::Mat& labels)
+{
+	const auto t0 = Clock::now();
+	m_timings = Timings();
+	const cv::Mat image = detectionImage(phis, thetas, normals, normalMask);
+	m_impl->scaled.clear();
+	m_impl->keepScaled = true;
+	m_timings.image = msSince(t0);
+	std::vector<Candidate> out;
+	std::vector<cv::Rect> boxes;
+	std::vector<int> neighbours;
+	std::vector<cv::Point> pixels, centre;
+	for (std::size_t i = 0; i < m_options.classes.size(); i++)
+	{
+		const TClassOptions& k = m_options.classes[i];
+		const auto tc = Clock::now();
+		runCascade(i, image, boxes, neighbours);
+		m_timings.cascades += msSince(tc);
+		const auto tm = Clock::now();
+		const std::size_t first = out.size();
+		for (std::size_t j = 0; j < boxes.size(); j++)
+		{
+			Candidate c;
+			c.label = k.label;
+			c.box = boxes[j];
+			c.neighbours = neighbours[j];
+			// The object is measured in the box grown by measure_margin on
+			// every side (grouped boxes may cut an object); how far it is, in
+			// the box's central half.
+			const cv::Rect2d inner(
+			    c.box.x + c.box.width / 4.0, c.box.y + c.box.height / 4.0,
+			    c.box.width / 2.0, c.box.height / 2.0);
+			const double mg = m_options.measureMargin;
+			const cv::Rect2d b(
+			    c.box.x - mg * c.box.width, c.box.y - mg * c.box.height,
+			    c.box.width * (1 + 2 * mg), c.box.height * (1 + 2 * mg));
+			if (m_options.panoramic)
+			{
+				pixels = m_impl->projection.sweepPixelsIn(b);
+				centre = m_impl->projection.sweepPixelsIn(inner);
+			}
+			else
+			{
+				pixels.clear();
+				centre.clear();
+				const cv::Rect bi =
+				    cv::Rect(b) & cv::Rect(0, 0, points.cols, points.rows);
+				for (int r = bi.y; r < bi.y + bi.height; r++)
+					for (int col = bi.x; col < bi.x + bi.width; col++)
+					{
+						pixels.emplace_back(col, r);
+						if (inner.contains(cv::Point2d(col + 0.5, r + 0.5)))
+							centre.emplace_back(col, r);
+					}
+			}
+			c.measure = measure(
+			    points, labels, pixels, centre, groundZ,
+			    m_options.floorTolerance, k.maxDepth, k.minPoints,
+			    m_options.connectedObject);
+			if (!c.measure)
+				c.rejection = "too few points";
+			else if (c.measure->width < k.minWidth)
+				c.rejection = "too narrow";
+			else if (c.measure->width > k.maxWidth)
+				c.rejection = "too wide";
+			else if (c.measure->top < k.minTop)
+				c.rejection = "too low";
+			else if (c.measure->top > k.maxTop)
+				c.rejection = "too high";
+			else
+				c.accepted = true;
+			out.push_back(std::move(c));
+		}
+		suppressDuplicates(out, first, points.size());
+		m_timings.sizeCheck += msSince(tm);
+	}
+	m_impl->scaled.clear();
+	m_impl->keepScaled = false;
+	m_timings.total = msSince(t0);
+	return out;
+}
+
+void CascadeDetector::detect(const Sweep& sweep, LabeledSweep& ls)
+{
+	if (ls.normals.empty()) return;
+	const auto cands = detectCandidates(
+	    sweep.phis(), sweep.thetas(), ls.normals, ls.normalMask, ls.points,
+	    ls.groundZ, ls.labels);
+	for (const auto& c : cands)
+	{
+		if (!c.accepted) continue;
+		Detection d;
+		d.label = c.label;
+		d.imageBox = c.measure->box;
+		d.centroid = c.measure->centroid;
+		d.extent = c.measure->extent;
+		d.score = c.neighbours;
+		ls.detections.push_back(d);
+		if (m_options.labelPixels && !ls.labels.empty())
+			for (const auto& p : c.measure->pixels)
+				ls.labels.at<uint8_t>(p) = static_cast<uint8_t>(c.label);
+	}
+}
+
+}  // namespace semnav

@@ -1,0 +1,83 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/detection/GroundTruthObject.h>
+#include <semnav/detection/ObjectScorer.h>
+
+#include <algorithm>
+
+namespace semnav
+{
+ObjectScorer::ObjectScorer(int minPixels, double minIou)
+    : m_minPixels(minPixels), m_minIou(minIou)
+{
+}
+
+double ObjectScorer::iou(const cv::Rect& a, const cv::Rect& b)
+{
+	const double i = (a & b).area();
+	const double u = double(a.area()) + double(b.area()) - i;
+	return u > 0 ? i / u : 0.0;
+}
+
+void ObjectScorer::add(
+    const std::vector<Detection>& detections, const cv::Mat& groundTruth,
+    const std::vector<Label>& labels)
+{
+	m_sweeps++;
+	const auto objects = GroundTruthObject::fromLabelImage(groundTruth, labels);
+	for (Label l : labels)
+	{
+		Score& s = m_scores[static_cast<std::size_t>(l)];
+		std::vector<const GroundTruthObject*> counted, small;
+		for (const auto& o : objects)
+			if (o.label == l)
+				(o.pixels >= m_minPixels ? counted : small).push_back(&o);
+		std::vector<const Detection*> dets;
+		for (const auto& d : detections)
+			if (d.label == l) dets.push_back(&d);
+		std::stable_sort(
+		    dets.begin(), dets.end(),
+		    [](const Detection* a, const Detection* b)
+		    { return a->score > b->score; });
+		std::vector<bool> matched(counted.size(), false);
+		for (const Detection* d : dets)
+		{
+			int best = -1;
+			double bestIou = 0;
+			for (std::size_t g = 0; g < counted.size(); g++)
+			{
+				if (matched[g]) continue;
+				const double v = iou(d->imageBox, counted[g]->box);
+				if (v >= m_minIou && v > bestIou)
+				{
+					bestIou = v;
+					best = static_cast<int>(g);
+				}
+			}
+			if (best >= 0)
+			{
+				matched[std::size_t(best)] = true;
+				s.tp++;
+				continue;
+			}
+			bool ofSmall = false;
+			for (const auto* o : small)
+				if (iou(d->imageBox, o->box) >= m_minIou) ofSmall = true;
+			if (ofSmall)
+				s.ignored++;
+			else
+				s.fp++;
+		}
+		for (bool m : matched)
+			if (!m) s.fn++;
+	}
+}
+
+ObjectScorer::Score ObjectScorer::score(Label l) const
+{
+	Score s = m_scores[static_cast<std::size_t>(l)];
+	s.precision = s.tp + s.fp ? double(s.tp) / double(s.tp + s.fp) : 0.0;
+	s.recall = s.tp + s.fn ? double(s.tp) / double(s.tp + s.fn) : 0.0;
+	return s;
+}
+
+}  // namespace semnav

@@ -1,0 +1,136 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/Error.h>
+#include <semnav/detection/PanoramicProjection.h>
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+namespace semnav
+{
+namespace
+{
+/** Fractional index of x in increasing v; -1 outside. */
+float fractionalIndex(const std::vector<double>& v, double x)
+{
+	if (v.size() < 2 || x < v.front() || x > v.back()) return -1.f;
+	const auto it = std::upper_bound(v.begin(), v.end(), x);
+	if (it == v.end()) return static_cast<float>(v.size() - 1);
+	const std::size_t i = static_cast<std::size_t>(it - v.begin()) - 1;
+	const double d = v[i + 1] - v[i];
+	return static_cast<float>(double(i) + (d > 0 ? (x - v[i]) / d : 0.0));
+}
+}  // namespace
+
+PanoramicProjection::PanoramicProjection(
+    const std::vector<double>& phis, const std::vector<double>& thetas)
+    : m_phis(phis), m_thetas(thetas)
+{
+	const int cols = static_cast<int>(phis.size());
+	const int rows = static_cast<int>(thetas.size());
+	if (cols < 2 || rows < 2) return;
+	for (std::size_t i = 1; i < phis.size(); i++)
+		if (!(phis[i] > phis[i - 1]))
+			throw Error("PanoramicProjection: bearings must increase");
+	for (std::size_t i = 1; i < thetas.size(); i++)
+		if (!(thetas[i] >= thetas[i - 1]))
+			throw Error("PanoramicProjection: tilts must not decrease");
+	m_size = cv::Size(cols, rows);
+	const double az0 = phis.front(), daz = (phis.back() - az0) / (cols - 1);
+	const double el0 = thetas.front(),
+	             del = (thetas.back() - el0) / std::max(1, rows - 1);
+	m_forward.create(rows, cols, CV_32FC2);
+	for (int r = 0; r < rows; r++)
+	{
+		const double th = thetas[std::size_t(r)];
+		auto* f = m_forward.ptr<cv::Vec2f>(r);
+		for (int c = 0; c < cols; c++)
+		{
+			const double ph = phis[std::size_t(c)];
+			const double az =
+			    std::atan2(std::sin(ph), std::cos(ph) * std::cos(th));
+			const double el = std::asin(std::cos(ph) * std::sin(th));
+			f[c] = cv::Vec2f(
+			    static_cast<float>((az - az0) / daz),
+			    static_cast<float>(del > 0 ? (el - el0) / del : 0.0));
+		}
+	}
+	m_invX.create(rows, cols, CV_32FC1);
+	m_invY.create(rows, cols, CV_32FC1);
+	for (int v = 0; v < rows; v++)
+	{
+		const double el = el0 + del * v;
+		auto* X = m_invX.ptr<float>(v);
+		auto* Y = m_invY.ptr<float>(v);
+		for (int u = 0; u < cols; u++)
+		{
+			const double az = az0 + daz * u;
+			const double ph = std::asin(std::cos(el) * std::sin(az));
+			const double th =
+			    std::atan2(std::sin(el), std::cos(el) * std::cos(az));
+			const float c = fractionalIndex(phis, ph);
+			const float r = fractionalIndex(thetas, th);
+			X[u] = (c < 0 || r < 0) ? -1.f : c;
+			Y[u] = (c < 0 || r < 0) ? -1.f : r;
+		}
+	}
+}
+
+bool PanoramicProjection::sameGrid(
+    const std::vector<double>& phis, const std::vector<double>& thetas) const
+{
+	return !empty() && phis == m_phis && thetas == m_thetas;
+}
+
+cv::Mat PanoramicProjection::toPanoramic(
+    const cv::Mat& sweepImage, int interpolation) const
+{
+	if (sweepImage.size() != m_size)
+		throw Error("PanoramicProjection: image size differs from the grid");
+	cv::Mat out;
+	cv::remap(
+	    sweepImage, out, m_invX, m_invY, interpolation, cv::BORDER_CONSTANT,
+	    cv::Scalar::all(0));
+	return out;
+}
+
+std::vector<cv::Point> PanoramicProjection::sweepPixelsIn(
+    const cv::Rect2d& box) const
+{
+	std::vector<cv::Point> out;
+	if (empty()) return out;
+	// Sweep region to search: the sources of the box's pixels, widened.
+	const cv::Rect pano = cv::Rect(
+	                          static_cast<int>(std::floor(box.x)),
+	                          static_cast<int>(std::floor(box.y)),
+	                          static_cast<int>(std::ceil(box.width)) + 1,
+	                          static_cast<int>(std::ceil(box.height)) + 1) &
+	                      cv::Rect(0, 0, m_size.width, m_size.height);
+	float x0 = 1e9f, y0 = 1e9f, x1 = -1e9f, y1 = -1e9f;
+	for (int v = pano.y; v < pano.y + pano.height; v++)
+		for (int u = pano.x; u < pano.x + pano.width; u++)
+		{
+			const float x = m_invX.at<float>(v, u), y = m_invY.at<float>(v, u);
+			if (x < 0) continue;
+			x0 = std::min(x0, x);
+			x1 = std::max(x1, x);
+			y0 = std::min(y0, y);
+			y1 = std::max(y1, y);
+		}
+	if (x1 < x0) return out;
+	const int c0 = std::max(0, static_cast<int>(x0) - 3),
+	          c1 = std::min(m_size.width - 1, static_cast<int>(x1) + 4);
+	const int r0 = std::max(0, static_cast<int>(y0) - 3),
+	          r1 = std::min(m_size.height - 1, static_cast<int>(y1) + 4);
+	for (int r = r0; r <= r1; r++)
+	{
+		const auto* f = m_forward.ptr<cv::Vec2f>(r);
+		for (int c = c0; c <= c1; c++)
+			if (f[c][0] >= box.x && f[c][0] < box.x + box.width &&
+			    f[c][1] >= box.y && f[c][1] < box.y + box.height)
+				out.emplace_back(c, r);
+	}
+	return out;
+}
+
+}  // namespace semnav

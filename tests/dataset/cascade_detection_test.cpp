@@ -1,0 +1,155 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// The shipped cascades (datasets/cascades/, scripts/train-cascades) on a
+// held-out simulated scene: they load in cv::CascadeClassifier, semnav's
+// evaluator agrees with OpenCV window by window on a real detection image,
+// detections fill LabeledSweep and score above a floor (the full figures
+// are in datasets/cascades/README.md).
+#include <gtest/gtest.h>
+#include <semnav/cascade/CascadeEvaluator.h>
+#include <semnav/cascade/CascadeXml.h>
+#include <semnav/detection/CascadeDetector.h>
+#include <semnav/detection/ObjectScorer.h>
+#include <semnav/perception/PerceptionPipeline.h>
+#include <semnav/sim/RayCaster.h>
+#include <semnav/sim/SceneLoader.h>
+#include <semnav/sim/SimulationRunner.h>
+#include <semnav/sim/TiltingLaserSimulator.h>
+
+#include <filesystem>
+#include <map>
+#include <opencv2/objdetect.hpp>
+
+using namespace semnav;
+
+namespace
+{
+const std::string kSource = SEMNAV_SOURCE_DIR;
+
+struct Simulated
+{
+	std::vector<Sweep> sweeps;
+	std::vector<cv::Mat> groundTruth;
+};
+
+/** The held-out scene test_c, every sweep. */
+const Simulated& scene()
+{
+	static const Simulated s = []
+	{
+		Simulated out;
+		const Scene sc = SceneLoader::loadFile(
+		    kSource + "/datasets/cascade-scenes/test_c.yaml");
+		RayCaster rc(sc, 1);
+		TiltingLaserSimulator sim(rc, sc.sensor, 1);
+		for (std::size_t k = 0; k < sc.trajectory.size(); k++)
+		{
+			const auto sw = sim.simulate(
+			    sc.trajectory[k], k, SimulationRunner::epoch(), 1 / 37.5);
+			out.sweeps.push_back(sw.toSweep());
+			out.groundTruth.push_back(sw.labels);
+		}
+		return out;
+	}();
+	return s;
+}
+
+bool shippedCascadesExist(const CascadeDetector::TOptions& o)
+{
+	for (const auto& k : o.classes)
+		if (!std::filesystem::exists(o.cascadePath(k))) return false;
+	return true;
+}
+}  // namespace
+
+TEST(CascadeDetection, ShippedCascadesAgreeWithOpenCvOnASweep)
+{
+	const auto opts =
+	    CascadeDetector::TOptions::fromIniFile(kSource + "/config/cascade.ini");
+	if (!shippedCascadesExist(opts))
+		GTEST_SKIP()
+		    << "datasets/cascades/*.xml missing (scripts/train-cascades)";
+	const Simulated& s = scene();
+	PerceptionPipeline p;
+	const LabeledSweep ls = p.process(s.sweeps[3]);
+	CascadeDetector det(opts);
+	const cv::Mat img = det.detectionImage(
+	    s.sweeps[3].phis(), s.sweeps[3].thetas(), ls.normals, ls.normalMask);
+	for (const auto& k : opts.classes)
+	{
+		const HaarCascade c = CascadeXml::readFile(opts.cascadePath(k));
+		EXPECT_TRUE(c.hasTiltedFeatures()) << labelName(k.label);
+		EXPECT_GE(c.stages.size(), 10u) << labelName(k.label);
+		cv::CascadeClassifier cc;
+		ASSERT_TRUE(cc.load(opts.cascadePath(k)));
+		// Windows passing the first stage, the first half, and all stages.
+		for (std::size_t n :
+		     {std::size_t(1), c.stages.size() / 2, c.stages.size()})
+		{
+			const HaarCascade part = c.firstStages(n);
+			cv::CascadeClassifier partCv;
+			const std::string xml = CascadeXml::toString(part);
+			cv::FileStorage fs(
+			    xml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+			ASSERT_TRUE(partCv.read(fs.getFirstTopLevelNode()));
+			std::vector<cv::Rect> found;
+			partCv.detectMultiScale(
+			    img, found, 1.1, 0, 0, c.windowSize, c.windowSize);
+			std::map<std::pair<int, int>, int> cvSet;
+			for (const auto& r : found) cvSet[{r.x, r.y}]++;
+			CascadeEvaluator ev(part);
+			ev.setImage(img);
+			std::size_t mine = 0;
+			for (const auto& w : ev.scanScaleOne())
+				if (ev.accepted(w.result))
+				{
+					mine++;
+					EXPECT_TRUE(cvSet.count({w.origin.x, w.origin.y}))
+					    << labelName(k.label) << " " << n << " stages at "
+					    << w.origin;
+				}
+			EXPECT_EQ(mine, found.size()) << labelName(k.label) << " " << n;
+		}
+	}
+}
+
+TEST(CascadeDetection, HeldOutSceneScoresAboveAFloor)
+{
+	const auto opts =
+	    CascadeDetector::TOptions::fromIniFile(kSource + "/config/cascade.ini");
+	if (!shippedCascadesExist(opts))
+		GTEST_SKIP()
+		    << "datasets/cascades/*.xml missing (scripts/train-cascades)";
+	const Simulated& s = scene();
+	PerceptionPipeline p;
+	CascadeDetector det(opts);
+	ObjectScorer scorer;
+	const std::vector<Label> labels{
+	    Label::Washbasin, Label::Wastebasket, Label::Stairs};
+	std::size_t labelled = 0;
+	for (std::size_t i = 0; i < s.sweeps.size(); i++)
+	{
+		LabeledSweep ls = p.process(s.sweeps[i]);
+		det.detect(s.sweeps[i], ls);
+		for (const auto& d : ls.detections)
+		{
+			EXPECT_TRUE(
+			    d.label == Label::Washbasin || d.label == Label::Wastebasket ||
+			    d.label == Label::Stairs);
+			EXPECT_GT(d.imageBox.area(), 0);
+			EXPECT_GT(d.extent.z, 0.0);
+			labelled += ls.count(d.label) > 0;
+		}
+		scorer.add(ls.detections, s.groundTruth[i], labels);
+	}
+	for (Label l : labels)
+	{
+		const auto sc = scorer.score(l);
+		std::printf(
+		    "%-12s tp %zu fp %zu fn %zu precision %.3f recall %.3f\n",
+		    labelName(l).c_str(), sc.tp, sc.fp, sc.fn, sc.precision, sc.recall);
+		// A regression floor well below the measured figures.
+		EXPECT_GE(sc.precision, 0.5) << labelName(l);
+		EXPECT_GE(sc.recall, 0.4) << labelName(l);
+	}
+	EXPECT_GT(labelled, 0u) << "detections label their pixels";
+}

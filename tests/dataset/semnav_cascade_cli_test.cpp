@@ -1,0 +1,157 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// The cascade command lines end to end on one simulated held-out scene:
+// semnav-train-cascade (exit codes, one-line errors, --json, same seed ->
+// same XML bytes, the XML loads in cv::CascadeClassifier), semnav-detect
+// and semnav-perceive --cascades (the "objects" scores). Training is tiny
+// here (2 stages, 60 positives); scripts/train-cascades makes the real ones.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/objdetect.hpp>
+#include <sstream>
+#include <string>
+
+#include "AppRunner.h"
+
+namespace fs = std::filesystem;
+using semnav::test::AppRun;
+using semnav::test::lineCount;
+using semnav::test::runApp;
+
+namespace
+{
+const std::string kSource = SEMNAV_SOURCE_DIR;
+const fs::path kTmp = fs::temp_directory_path() /
+                      ("semnav_cascade_cli_" + std::to_string(::getpid()));
+
+/** test_a simulated once (26 sweeps). */
+const fs::path& sim()
+{
+	static const fs::path dir = []
+	{
+		const fs::path d = kTmp / "test_a";
+		const AppRun r = runApp(
+		    "semnav-sim", "--scene " + kSource +
+		                      "/datasets/cascade-scenes/test_a.yaml --out " +
+		                      d.string() + " --seed 1");
+		EXPECT_EQ(r.code, 0) << r.err;
+		return d;
+	}();
+	return dir;
+}
+
+/** A small training configuration whose cascade goes to kTmp. */
+std::string config()
+{
+	const fs::path ini = kTmp / "tiny.ini";
+	if (!fs::exists(ini))
+	{
+		std::ofstream o(ini);
+		o << "[CascadeDetector]\nclasses = washbasin\n"
+		     "[CascadeDetector.washbasin]\ncascade = washbasin.xml\n"
+		     "far_upscale = 0\nmin_neighbors = 1\n"
+		     "[SampleGenerator]\npositives = 60\n"
+		     "[CascadeTrainer]\nnum_stages = 2\nnegatives_per_stage = 120\n"
+		     "max_weak_count = 10\nround_feature_fraction = 0.05\n"
+		     "target_false_alarm = 1e-9\n";
+	}
+	return ini.string();
+}
+
+std::string readFile(const fs::path& p)
+{
+	std::ifstream in(p, std::ios::binary);
+	std::ostringstream s;
+	s << in.rdbuf();
+	return s.str();
+}
+
+class SemnavCascadeCli : public ::testing::Test
+{
+protected:
+	static void SetUpTestSuite() { fs::create_directories(kTmp); }
+	static void TearDownTestSuite() { fs::remove_all(kTmp); }
+};
+}  // namespace
+
+TEST_F(SemnavCascadeCli, BadUsageIsExit2AndErrorsExit1WithOneLine)
+{
+	for (const std::string args :
+	     {"", "--label washbasin --out x.xml", "--label washbasin --datasets d",
+	      "--label washbasin --datasets d --out x.xml --seed -3", "--bogus"})
+	{
+		const AppRun r = runApp("semnav-train-cascade", args);
+		EXPECT_EQ(r.code, 2) << args;
+		EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;
+	}
+	const AppRun help = runApp("semnav-train-cascade", "--help");
+	EXPECT_EQ(help.code, 0);
+	for (const std::string args :
+	     {"--label sofa --datasets " + sim().string() + " --out " +
+	          (kTmp / "x.xml").string(),
+	      "--label washbasin --datasets /nonexistent --out " +
+	          (kTmp / "x.xml").string(),
+	      "--label washbasin --datasets " + sim().string() + " --out " +
+	          (kTmp / "x.xml").string() + " --config /nonexistent.ini"})
+	{
+		const AppRun r = runApp("semnav-train-cascade", args);
+		EXPECT_EQ(r.code, 1) << args;
+		EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;
+	}
+	EXPECT_FALSE(fs::exists(kTmp / "x.xml"));
+	const AppRun d = runApp("semnav-detect", "--datasets " + sim().string());
+	EXPECT_EQ(d.code, 2);
+}
+
+TEST_F(SemnavCascadeCli, TrainDetectAndPerceive)
+{
+	const std::string out = (kTmp / "washbasin.xml").string();
+	const std::string args = "--label washbasin --datasets " + sim().string() +
+	                         " --out " + out + " --seed 5 --config " + config();
+	const AppRun r = runApp("semnav-train-cascade", args + " --json");
+	ASSERT_EQ(r.code, 0) << r.err;
+	const auto j = nlohmann::json::parse(r.out);
+	EXPECT_EQ(j.at("label"), "washbasin");
+	EXPECT_EQ(j.at("stages"), 2);
+	EXPECT_EQ(j.at("positives"), 60);
+	EXPECT_TRUE(j.at("tilted_features").is_boolean());
+	EXPECT_GT(j.at("seconds").get<double>(), 0.0);
+	EXPECT_EQ(j.at("stage_details").size(), 2u);
+	const std::string first = readFile(out);
+	EXPECT_NE(
+	    first.find("semnav-train-cascade --label washbasin"), std::string::npos)
+	    << "the XML says how it was made";
+	cv::CascadeClassifier cc;
+	EXPECT_TRUE(cc.load(out));
+	// Same command, same bytes.
+	const AppRun again = runApp("semnav-train-cascade", args);
+	ASSERT_EQ(again.code, 0) << again.err;
+	EXPECT_EQ(readFile(out), first);
+
+	const AppRun det = runApp(
+	    "semnav-detect",
+	    "--datasets " + sim().string() + " --config " + config() + " --json");
+	ASSERT_EQ(det.code, 0) << det.err;
+	const auto dj = nlohmann::json::parse(det.out);
+	EXPECT_EQ(dj.at("sweeps"), 26);
+	for (const char* k : {"tp", "fp", "fn", "precision", "recall"})
+		EXPECT_TRUE(dj.at("objects").at("washbasin").contains(k)) << k;
+
+	const std::string rawlog = (sim() / "test_a.rawlog").string();
+	const AppRun p = runApp(
+	    "semnav-perceive", "--rawlog " + rawlog + " --gt-dir " +
+	                           sim().string() + " --out " +
+	                           (kTmp / "perceive").string() + " --cascades " +
+	                           config() + " --json");
+	ASSERT_EQ(p.code, 0) << p.err;
+	const auto pj = nlohmann::json::parse(p.out);
+	const auto& o = pj.at("objects").at("washbasin");
+	for (const char* k : {"tp", "fp", "fn", "precision", "recall"})
+		EXPECT_TRUE(o.contains(k)) << k;
+	// Same detector, same scene, same rule: the same counts as semnav-detect.
+	EXPECT_EQ(o.at("tp"), dj.at("objects").at("washbasin").at("tp"));
+	EXPECT_EQ(o.at("fn"), dj.at("objects").at("washbasin").at("fn"));
+	EXPECT_TRUE(fs::exists(kTmp / "perceive" / "sweep_0000_detections.png"));
+}

@@ -1,0 +1,197 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <semnav/cascade/CascadeError.h>
+#include <semnav/common/Error.h>
+#include <semnav/detection/CascadeDetector.h>
+#include <semnav/detection/CascadeTraining.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+using namespace semnav;
+
+namespace
+{
+const std::string kSource = SEMNAV_SOURCE_DIR;
+
+/** Points of a 40 x 60 sweep patch: a wall 3 m ahead (x = 3), a box
+ * 0.4 m wide, 0.84 m high at x = 2 in rows/cols [20, 40) x [20, 40),
+ * floor in the lowest rows. */
+cv::Mat scene(cv::Mat& labels)
+{
+	cv::Mat p(40, 60, CV_32FC3);
+	labels = cv::Mat(40, 60, CV_8U, cv::Scalar(static_cast<int>(Label::Wall)));
+	for (int r = 0; r < 40; r++)
+		for (int c = 0; c < 60; c++)
+		{
+			const float y = 0.02f * (30 - c);  // left positive
+			if (r < 5)
+			{
+				p.at<cv::Vec3f>(r, c) = {1.5f + 0.1f * r, y, 0.0f};
+				labels.at<uint8_t>(r, c) = static_cast<uint8_t>(Label::Floor);
+			}
+			else if (r >= 20 && c >= 20 && c < 40)
+			{
+				const float z = 0.04f * (r - 18);  // 0.08 .. 0.84
+				p.at<cv::Vec3f>(r, c) = {2.0f, y, z};
+				labels.at<uint8_t>(r, c) =
+				    static_cast<uint8_t>(Label::Obstacle);
+			}
+			else
+				p.at<cv::Vec3f>(r, c) = {3.0f, y, 0.04f * r};
+		}
+	return p;
+}
+}  // namespace
+
+TEST(CascadeDetector, MeasureSeparatesObjectFromFloorAndWall)
+{
+	cv::Mat labels;
+	const cv::Mat pts = scene(labels);
+	std::vector<cv::Point> all, centre;
+	for (int r = 0; r < 40; r++)
+		for (int c = 10; c < 50; c++)
+		{
+			all.emplace_back(c, r);
+			if (r >= 20 && c >= 25 && c < 35) centre.emplace_back(c, r);
+		}
+	// With the rule labels: the wall is excluded by label and depth.
+	const auto m =
+	    CascadeDetector::measure(pts, labels, all, centre, 0.0, 0.04, 0.5, 10);
+	ASSERT_TRUE(m.has_value());
+	EXPECT_EQ(m->box, cv::Rect(20, 20, 20, 20));
+	EXPECT_EQ(m->points, 400u);
+	EXPECT_NEAR(m->width, 0.34, 0.021);  // 5th..95th percentile
+	EXPECT_NEAR(m->top, 0.82, 0.021);
+	EXPECT_NEAR(m->centroid.x, 2.0, 1e-6);
+	// Without labels, depth alone keeps the wall out (1 m behind).
+	const auto d = CascadeDetector::measure(
+	    pts, cv::Mat(), all, centre, 0.0, 0.04, 0.5, 10);
+	ASSERT_TRUE(d.has_value());
+	EXPECT_EQ(d->points, 400u);
+	// A deep tolerance takes the wall too.
+	const auto w = CascadeDetector::measure(
+	    pts, cv::Mat(), all, centre, 0.0, 0.04, 2.0, 10);
+	EXPECT_GT(w->points, 400u);
+	// Too few points.
+	EXPECT_FALSE(
+	    CascadeDetector::measure(pts, labels, all, centre, 0.0, 0.04, 0.5, 500)
+	        .has_value());
+}
+
+TEST(CascadeDetector, PassesCoverNearAndFarObjects)
+{
+	CascadeDetector::TClassOptions k(Label::Wastebasket);
+	k.upscale = 1;
+	k.farUpscale = 3;
+	k.farBelowPx = 24;
+	k.farMinElevation = -16 * M_PI / 180;
+	k.farMaxElevation = 8 * M_PI / 180;
+	const auto p = k.passes(211, -15 * M_PI / 180, 90 * M_PI / 180, {20, 20});
+	ASSERT_EQ(p.size(), 2u);
+	EXPECT_DOUBLE_EQ(p[0].upscale, 1);
+	EXPECT_EQ(p[0].rowBegin, 0);
+	EXPECT_EQ(p[0].rowEnd, 211);
+	EXPECT_DOUBLE_EQ(p[0].minSide, 24);
+	EXPECT_DOUBLE_EQ(p[1].upscale, 3);
+	EXPECT_EQ(p[1].rowBegin, 0);  // -16 deg is below the sweep
+	EXPECT_EQ(p[1].rowEnd, 47);   // 8 deg = row 46
+	EXPECT_NEAR(p[1].minSide, 20.0 / 3, 1e-12);
+	EXPECT_DOUBLE_EQ(p[1].maxSide, 24);
+	EXPECT_EQ(&DetectionPass::forSide(p, 10), &p[1]);
+	EXPECT_EQ(&DetectionPass::forSide(p, 30), &p[0]);
+	EXPECT_EQ(&DetectionPass::forSide(p, 3), &p[1]);
+	// Box mapping of a pass.
+	EXPECT_EQ(
+	    p[1].toImage(p[1].toPass({30, 20, 9, 12})), cv::Rect(30, 20, 9, 12));
+}
+
+TEST(CascadeDetector, ShippedConfigLoads)
+{
+	const auto o =
+	    CascadeDetector::TOptions::fromIniFile(kSource + "/config/cascade.ini");
+	ASSERT_EQ(o.classes.size(), 3u);
+	EXPECT_EQ(o.classes[0].label, Label::Washbasin);
+	EXPECT_EQ(o.classes[1].label, Label::Wastebasket);
+	EXPECT_EQ(o.classes[2].label, Label::Stairs);
+	EXPECT_EQ(
+	    std::filesystem::path(o.cascadePath(o.classes[1])).lexically_normal(),
+	    std::filesystem::path(kSource + "/datasets/cascades/wastebasket.xml")
+	        .lexically_normal());
+	const auto t =
+	    CascadeTraining::TOptions::fromIniFile(kSource + "/config/cascade.ini");
+	EXPECT_EQ(t.trainer.windowWidth, 20);
+	EXPECT_EQ(t.trainer.mode, HaarMode::All);
+	EXPECT_DOUBLE_EQ(t.trainer.minHitRate, 0.995);
+	EXPECT_DOUBLE_EQ(t.trainer.maxFalseAlarm, 0.5);
+}
+
+TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
+{
+	const auto load = [](const std::string& text)
+	{
+		mrpt::config::CConfigFileMemory c(text);
+		CascadeDetector::TOptions o;
+		o.loadFromConfigFile(c, "CascadeDetector");
+		return o;
+	};
+	EXPECT_EQ(load("[CascadeDetector]\nclasses = stairs\n").classes.size(), 1u);
+	try
+	{
+		load(
+		    "[CascadeDetector]\nclasses = "
+		    "stairs\n[CascadeDetector.stairs]\nupscal = 2\n");
+		FAIL();
+	}
+	catch (const ConfigError& e)
+	{
+		EXPECT_NE(
+		    std::string(e.what()).find("CascadeDetector.stairs"),
+		    std::string::npos);
+		EXPECT_NE(std::string(e.what()).find("upscal"), std::string::npos);
+	}
+	EXPECT_THROW(load("[CascadeDetector]\nclasses = sofa\n"), ConfigError);
+	EXPECT_THROW(
+	    load("[CascadeDetector]\nprojection = fisheye\n"), ConfigError);
+	EXPECT_THROW(
+	    load(
+	        "[CascadeDetector]\nclasses = "
+	        "stairs\n[CascadeDetector.stairs]\nmin_top_m = 3\nmax_top_m = 2\n"),
+	    ConfigError);
+	// Round trip through save.
+	mrpt::config::CConfigFileMemory out;
+	CascadeDetector::TOptions o;
+	o.saveToConfigFile(out, "CascadeDetector");
+	CascadeDetector::TOptions back;
+	back.loadFromConfigFile(out, "CascadeDetector");
+	ASSERT_EQ(back.classes.size(), o.classes.size());
+	EXPECT_DOUBLE_EQ(back.classes[1].farUpscale, o.classes[1].farUpscale);
+	EXPECT_NEAR(
+	    back.classes[0].farMaxElevation, o.classes[0].farMaxElevation, 1e-12);
+}
+
+TEST(CascadeDetector, MissingOrCorruptCascadeIsAClearError)
+{
+	CascadeDetector::TOptions o;
+	o.baseDir = "/nonexistent";
+	EXPECT_THROW(CascadeDetector{o}, CascadeError);
+	const auto dir = std::filesystem::temp_directory_path() / "semnav_det_test";
+	std::filesystem::create_directories(dir);
+	std::ofstream(dir / "washbasin.xml")
+	    << "<?xml version=\"1.0\"?>\n<opencv_storage><cascade>";
+	o.baseDir = dir.string();
+	o.classes.resize(1);
+	try
+	{
+		CascadeDetector d(o);
+		FAIL();
+	}
+	catch (const CascadeError& e)
+	{
+		EXPECT_NE(
+		    std::string(e.what()).find("washbasin.xml"), std::string::npos);
+	}
+	std::filesystem::remove_all(dir);
+}

@@ -1,0 +1,89 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <gtest/gtest.h>
+#include <semnav/common/Error.h>
+#include <semnav/detection/DetectionImage.h>
+#include <semnav/perception/NormalImage.h>
+
+#include <opencv2/imgproc.hpp>
+
+using namespace semnav;
+
+namespace
+{
+/** 3 x 4 normals: floor, wall facing the robot, left wall, none. */
+void sample(cv::Mat& n, cv::Mat& m)
+{
+	n = cv::Mat(3, 4, CV_32FC3, cv::Scalar::all(0));
+	m = cv::Mat(3, 4, CV_8U, cv::Scalar(1));
+	for (int r = 0; r < 3; r++)
+	{
+		n.at<cv::Vec3f>(r, 0) = {0, 0, 1};   // up: floor
+		n.at<cv::Vec3f>(r, 1) = {-1, 0, 0};  // toward the robot
+		n.at<cv::Vec3f>(r, 2) = {0, -1, 0};  // wall on the left
+		m.at<uint8_t>(r, 3) = 0;
+	}
+}
+}  // namespace
+
+TEST(DetectionImage, ChannelsOfTheNormalImage)
+{
+	cv::Mat n, m;
+	sample(n, m);
+	const cv::Mat red =
+	    DetectionImage::fromNormals(n, m, DetectionChannel::Red);
+	const cv::Mat green =
+	    DetectionImage::fromNormals(n, m, DetectionChannel::Green);
+	const cv::Mat blue =
+	    DetectionImage::fromNormals(n, m, DetectionChannel::Blue);
+	const cv::Mat grey =
+	    DetectionImage::fromNormals(n, m, DetectionChannel::Grey);
+	ASSERT_EQ(red.type(), CV_8UC1);
+	for (int c = 0; c < 3; c++)
+	{
+		const cv::Vec3b rgb = NormalImage::rgbOf(n.at<cv::Vec3f>(0, c));
+		EXPECT_EQ(red.at<uint8_t>(1, c), rgb[0]);
+		EXPECT_EQ(green.at<uint8_t>(1, c), rgb[1]);
+		EXPECT_EQ(blue.at<uint8_t>(1, c), rgb[2]);
+		cv::Mat px(1, 1, CV_8UC3, cv::Scalar(rgb[2], rgb[1], rgb[0])), g;
+		cv::cvtColor(px, g, cv::COLOR_BGR2GRAY);
+		EXPECT_EQ(grey.at<uint8_t>(1, c), g.at<uint8_t>(0, 0));
+	}
+	EXPECT_EQ(blue.at<uint8_t>(0, 0), 255);  // floor: blue
+	EXPECT_EQ(green.at<uint8_t>(0, 1), 1);   // facing the robot: purple
+	EXPECT_EQ(red.at<uint8_t>(0, 2), 255);   // left wall: pink
+	for (const cv::Mat& img : {red, green, blue, grey})
+		EXPECT_EQ(img.at<uint8_t>(1, 3), 0) << "no normal: black";
+}
+
+TEST(DetectionImage, SmoothingAveragesNeighbourNormals)
+{
+	cv::Mat n(5, 5, CV_32FC3, cv::Scalar::all(0)),
+	    m(5, 5, CV_8U, cv::Scalar(1));
+	for (int r = 0; r < 5; r++)
+		for (int c = 0; c < 5; c++) n.at<cv::Vec3f>(r, c) = {-1, 0, 0};
+	n.at<cv::Vec3f>(2, 2) = {0, 0, 1};  // one noisy normal
+	const cv::Mat raw =
+	    DetectionImage::fromNormals(n, m, DetectionChannel::Blue, 0);
+	const cv::Mat smooth =
+	    DetectionImage::fromNormals(n, m, DetectionChannel::Blue, 1);
+	EXPECT_EQ(raw.at<uint8_t>(2, 2), 255);
+	EXPECT_LT(smooth.at<uint8_t>(2, 2), 160);  // mostly the 8 neighbours
+	EXPECT_EQ(smooth.at<uint8_t>(0, 4), raw.at<uint8_t>(0, 4));
+	// The input normals are left alone: the same call, the same image.
+	EXPECT_EQ(n.at<cv::Vec3f>(2, 2), cv::Vec3f(0, 0, 1));
+	const cv::Mat again =
+	    DetectionImage::fromNormals(n, m, DetectionChannel::Blue, 1);
+	EXPECT_EQ(cv::norm(smooth, again, cv::NORM_INF), 0);
+}
+
+TEST(DetectionImage, NamesAndErrors)
+{
+	EXPECT_EQ(channelFromName("green"), DetectionChannel::Green);
+	EXPECT_EQ(channelName(DetectionChannel::Grey), "grey");
+	EXPECT_THROW(channelFromName("gray"), ConfigError);
+	EXPECT_THROW(
+	    DetectionImage::fromNormals(
+	        cv::Mat(2, 2, CV_32FC1), cv::Mat(2, 2, CV_8U),
+	        DetectionChannel::Grey),
+	    Error);
+}
