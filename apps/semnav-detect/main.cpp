@@ -68,6 +68,84 @@ cv::Mat drawSweep(
 	}
 	return out;
 }
+double iou(const cv::Rect& a, const cv::Rect& b)
+{
+	const double i = (a & b).area();
+	return i > 0 ? i / (a.area() + b.area() - i) : 0.0;
+}
+
+/** One stderr line per counted object without a matching accepted
+ * detection: its box, pixels, range and bearing, and the candidate of its
+ * label that overlaps it most (IoU of the measured box, fate). */
+void listMisses(
+    const std::string& dir, std::size_t sweep, const cv::Mat& groundTruth,
+    const cv::Mat& points, const std::vector<semnav::Label>& labels,
+    const std::vector<semnav::CascadeDetector::Candidate>& cands)
+{
+	const auto objects =
+	    semnav::GroundTruthObject::fromLabelImage(groundTruth, labels);
+	for (const auto& c : cands)
+	{
+		if (!c.accepted) continue;
+		bool matches = false;
+		for (const auto& g : objects)
+			matches |= g.label == c.label && iou(c.measure->box, g.box) >= 0.3;
+		if (matches) continue;
+		const auto& m = *c.measure;
+		std::fprintf(
+		    stderr,
+		    "false %s sweep %zu %s box %dx%d+%d+%d, range %.2f m, bearing "
+		    "%.0f deg, width %.2f m, top %.2f m, %zu points\n",
+		    std::filesystem::path(dir).filename().c_str(), sweep,
+		    semnav::labelName(c.label).c_str(), m.box.width, m.box.height,
+		    m.box.x, m.box.y, std::hypot(m.centroid.x, m.centroid.y),
+		    std::atan2(m.centroid.y, m.centroid.x) * 180 / M_PI, m.width, m.top,
+		    m.points);
+	}
+	for (const auto& g : objects)
+	{
+		if (g.pixels < 150) continue;
+		double bestAccepted = 0, best = 0;
+		const semnav::CascadeDetector::Candidate* nearest = nullptr;
+		for (const auto& c : cands)
+		{
+			if (c.label != g.label || !c.measure) continue;
+			const double v = iou(c.measure->box, g.box);
+			if (c.accepted) bestAccepted = std::max(bestAccepted, v);
+			if (v > best)
+			{
+				best = v;
+				nearest = &c;
+			}
+		}
+		if (bestAccepted >= 0.3) continue;
+		const cv::Mat mask = g.mask(groundTruth);
+		cv::Vec3d sum(0, 0, 0);
+		int n = 0;
+		for (int r = 0; r < mask.rows; r++)
+			for (int c = 0; c < mask.cols; c++)
+			{
+				const auto& p = points.at<cv::Vec3f>(r, c);
+				if (!mask.at<uint8_t>(r, c) || std::isnan(p[0])) continue;
+				sum += cv::Vec3d(p[0], p[1], p[2]);
+				n++;
+			}
+		const cv::Vec3d m = n ? sum / n : sum;
+		std::fprintf(
+		    stderr,
+		    "miss %s sweep %zu %s #%d box %dx%d+%d+%d %d px, range %.2f m, "
+		    "bearing %.0f deg, height %.2f m; nearest candidate IoU %.2f "
+		    "%s\n",
+		    std::filesystem::path(dir).filename().c_str(), sweep,
+		    semnav::labelName(g.label).c_str(), g.instance, g.box.width,
+		    g.box.height, g.box.x, g.box.y, g.pixels, std::hypot(m[0], m[1]),
+		    std::atan2(m[1], m[0]) * 180 / M_PI, m[2], best,
+		    !nearest ? "(no measured candidate)"
+		    : nearest->accepted
+		        ? "(accepted)"
+		        : ("(rejected: " + nearest->rejection + ")").c_str());
+	}
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -93,6 +171,12 @@ int main(int argc, char** argv)
 	    "DIR", cmd);
 	TCLAP::SwitchArg argJson(
 	    "", "json", "Print a JSON summary on stdout", cmd, false);
+	TCLAP::SwitchArg argMisses(
+	    "", "misses",
+	    "List on stderr every accepted detection that matches no object and "
+	    "every counted object no accepted detection matches (where it is, "
+	    "and the nearest candidate's IoU and fate)",
+	    cmd, false);
 	if (const auto code = cli.parse(argc, argv)) return *code;
 	for (auto* a : {&argDatasets, &argConfig})
 		if (a->getValue().empty())
@@ -145,6 +229,10 @@ int main(int argc, char** argv)
 					    dets.push_back(d);
 				    }
 				    scorer.add(dets, sweeps[i].groundTruth, labels);
+				    if (argMisses.getValue())
+					    listMisses(
+					        dir, i, sweeps[i].groundTruth, ls.points, labels,
+					        cands);
 				    if (!argOut.getValue().empty())
 				    {
 					    const cv::Mat img = detector.detectionImage(

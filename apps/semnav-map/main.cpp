@@ -5,6 +5,9 @@
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
 #include <semnav/common/ProgressBar.h>
+#include <semnav/detection/SweepPerception.h>
+#include <semnav/localization/MappingLocalizer.h>
+#include <semnav/localization/TrajectoryError.h>
 #include <semnav/map/MapIO.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/perception/GroundTruthScorer.h>
@@ -40,11 +43,21 @@ int main(int argc, char** argv)
 	    cmd);
 	TCLAP::ValueArg<std::string> argConfig(
 	    "", "config", "INI file (see config/map.ini)", false, "", "C.ini", cmd);
+	TCLAP::ValueArg<std::string> argCascades(
+	    "", "cascades",
+	    "Detect washbasins, wastebaskets and stairs with the Haar cascades "
+	    "of this detector INI file (config/cascade.ini); without it the map "
+	    "has doors but no such objects",
+	    false, "", "C.ini", cmd);
 	TCLAP::ValueArg<std::string> argPoses(
 	    "", "poses",
 	    "Robot poses: odometry (default), gt (needs --gt-dir or the gt file "
 	    "next to the rawlog) or pf",
 	    false, "odometry", "odometry|gt|pf", cmd);
+	TCLAP::ValueArg<std::string> argLocConfig(
+	    "", "loc-config",
+	    "Localization INI file for --poses pf (see config/localization.ini)",
+	    false, "", "C.ini", cmd);
 	TCLAP::ValueArg<std::string> argGt(
 	    "", "gt-dir",
 	    "Directory written by semnav-sim (<name>.gt.txt, <name>.labels/): "
@@ -64,10 +77,6 @@ int main(int argc, char** argv)
 	return cli.run(
 	    [&]
 	    {
-		    if (poses == "pf")
-			    throw semnav::Error(
-			        "--poses pf: particle-filter localization is not built yet "
-			        "(localization issue); use --poses odometry or gt");
 		    namespace fs = std::filesystem;
 		    semnav::SemanticMap::TOptions mapOpts;
 		    semnav::PerceptionPipeline::TOptions percOpts;
@@ -109,8 +118,27 @@ int main(int argc, char** argv)
 			    s.setIndex(next3dtk++);
 			    return true;
 		    };
-		    semnav::PerceptionPipeline pipeline(percOpts);
+		    std::optional<semnav::CascadeDetector::TOptions> cascadeOpts;
+		    if (!argCascades.getValue().empty())
+			    cascadeOpts = semnav::CascadeDetector::TOptions::fromIniFile(
+			        argCascades.getValue());
+		    semnav::SweepPerception perception(percOpts, cascadeOpts);
 		    semnav::SemanticMap map(mapOpts);
+		    // --poses pf: each sweep localized against the map so far.
+		    std::unique_ptr<semnav::MappingLocalizer> localizer;
+		    if (poses == "pf")
+		    {
+			    semnav::MappingLocalizer::TOptions locOpts;
+			    if (!argLocConfig.getValue().empty())
+				    locOpts.loadFromConfigFile(
+				        *semnav::openIniFile(
+				            argLocConfig.getValue(),
+				            semnav::MappingLocalizer::TOptions::sections()),
+				        "");
+			    localizer = std::make_unique<semnav::MappingLocalizer>(locOpts);
+		    }
+		    semnav::TrajectoryError poseError, odometryError;
+		    std::vector<double> locMs;
 		    semnav::GroundTruthScorer scorer;
 		    semnav::ProgressBar bar(gt ? gt->size() : 0, "mapping");
 		    std::vector<double> ms;
@@ -128,7 +156,7 @@ int main(int argc, char** argv)
 				    break;
 			    }
 			    const auto t0 = std::chrono::steady_clock::now();
-			    const semnav::LabeledSweep ls = pipeline.process(sweep);
+			    const semnav::LabeledSweep ls = perception.process(sweep);
 			    mrpt::poses::CPose2D pose = sweep.odometry();
 			    if (poses == "gt")
 			    {
@@ -138,7 +166,20 @@ int main(int argc, char** argv)
 					        "--gt-dir)");
 				    pose = gt->pose(sweep.index());
 			    }
-			    map.insert(sweep, ls, pose);
+			    if (localizer)
+			    {
+				    pose = localizer->process(sweep, ls, map);
+				    if (map.sweepsInserted() > 1)
+					    locMs.push_back(localizer->lastUpdate().ms);
+			    }
+			    else
+				    map.insert(sweep, ls, pose);
+			    if (gt && !argGt.getValue().empty())
+			    {
+				    const auto& truth = gt->pose(sweep.index());
+				    poseError.add(pose, truth);
+				    odometryError.add(sweep.odometry(), truth);
+			    }
 			    ms.push_back(std::chrono::duration<double, std::milli>(
 			                     std::chrono::steady_clock::now() - t0)
 			                     .count());
@@ -182,6 +223,26 @@ int main(int argc, char** argv)
 			        {"pixels", s.groundTruthPixels}};
 		    }
 		    j["ms_per_sweep_median"] = median;
+		    if (poseError.size() > 0)
+		    {
+			    double locMedian = 0;
+			    if (!locMs.empty())
+			    {
+				    std::nth_element(
+				        locMs.begin(), locMs.begin() + locMs.size() / 2,
+				        locMs.end());
+				    locMedian = locMs[locMs.size() / 2];
+			    }
+			    j["localization"] = {
+			        {"poses", poses},
+			        {"rmse_xy_m", poseError.rmseXY()},
+			        {"final_yaw_err_deg", mrpt::RAD2DEG(poseError.finalYaw())},
+			        {"max_yaw_err_deg", mrpt::RAD2DEG(poseError.maxYaw())},
+			        {"odometry_final_yaw_err_deg",
+			         mrpt::RAD2DEG(odometryError.finalYaw())},
+			        {"odometry_rmse_xy_m", odometryError.rmseXY()},
+			        {"ms_per_update_median", locMedian}};
+		    }
 		    j["map"] = argOut.getValue();
 		    if (argJson.getValue())
 			    std::cout << j.dump() << std::endl;
@@ -196,6 +257,18 @@ int main(int argc, char** argv)
 				              << semnav::labelName(o.label) << " at ("
 				              << o.centroid.x << ", " << o.centroid.y
 				              << "), seen " << o.observations << "x\n";
+			    if (j.contains("localization"))
+			    {
+				    const auto& l = j["localization"];
+				    std::cout << "  localization (" << poses << "): RMSE xy "
+				              << l["rmse_xy_m"].get<double>()
+				              << " m, final yaw error "
+				              << l["final_yaw_err_deg"].get<double>()
+				              << " deg (odometry: "
+				              << l["odometry_rmse_xy_m"].get<double>() << " m, "
+				              << l["odometry_final_yaw_err_deg"].get<double>()
+				              << " deg)\n";
+			    }
 			    std::cout << "  map: " << argOut.getValue()
 			              << "/map.yaml, rendering " << argOut.getValue()
 			              << "/map.png\n";

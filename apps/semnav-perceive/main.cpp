@@ -8,8 +8,8 @@
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
 #include <semnav/common/ProgressBar.h>
-#include <semnav/detection/CascadeDetector.h>
 #include <semnav/detection/ObjectScorer.h>
+#include <semnav/detection/SweepPerception.h>
 #include <semnav/perception/GroundTruthScorer.h>
 #include <semnav/perception/PerceptionImages.h>
 #include <semnav/perception/PerceptionPipeline.h>
@@ -119,18 +119,14 @@ int perceive(const Args& a)
 		asmOpts.loadFromConfigFile(*cfg, "SweepAssembler");
 		tdtkOpts.loadFromConfigFile(*cfg, "ThreeDtkReader");
 	}
-	semnav::PerceptionPipeline pipeline(opts);
-	pipeline.setMinLoggingLevel(mrpt::system::LVL_ERROR);
-	// Haar cascade detection (sec. 2.2.2) after the rule classifier.
-	std::unique_ptr<semnav::CascadeDetector> detector;
-	std::vector<semnav::Label> objectLabels;
+	// Rules, then the Haar cascades (sec. 2.2.2) when given.
+	std::optional<semnav::CascadeDetector::TOptions> cascadeOpts;
 	if (!a.cascades.empty())
-	{
-		detector = std::make_unique<semnav::CascadeDetector>(
-		    semnav::CascadeDetector::TOptions::fromIniFile(a.cascades));
-		for (const auto& k : detector->options().classes)
-			objectLabels.push_back(k.label);
-	}
+		cascadeOpts =
+		    semnav::CascadeDetector::TOptions::fromIniFile(a.cascades);
+	semnav::SweepPerception perception(opts, cascadeOpts);
+	perception.pipeline().setMinLoggingLevel(mrpt::system::LVL_ERROR);
+	const std::vector<semnav::Label> objectLabels = perception.objectLabels();
 	semnav::ObjectScorer objectScorer;
 	std::vector<double> detectionTimes;
 
@@ -186,13 +182,10 @@ int perceive(const Args& a)
 			if (done > 0) break;
 			sweep = *single;
 		}
-		pipeline.process(sweep, ls);
-		times.push_back(pipeline.lastTimings().total);
-		if (detector)
-		{
-			detector->detect(sweep, ls);
-			detectionTimes.push_back(detector->lastTimings().total);
-		}
+		perception.process(sweep, ls);
+		times.push_back(perception.lastTimings().rules);
+		if (perception.detectsObjects())
+			detectionTimes.push_back(perception.lastTimings().detection);
 
 		const std::string base =
 		    (fs::path(a.out) / sweepName(sweep.index())).string();
@@ -206,7 +199,7 @@ int perceive(const Args& a)
 		const cv::Mat labelsPng =
 		    semnav::perception_images::labels(ls.labels, ls.validMask);
 		writePng(base + "_labels.png", labelsPng);
-		if (detector)
+		if (perception.detectsObjects())
 			writePng(
 			    base + "_detections.png",
 			    drawDetections(
@@ -224,7 +217,7 @@ int perceive(const Args& a)
 			const cv::Mat gt =
 			    semnav::GroundTruthScorer::readLabelImage(gtPath);
 			scorer.add(ls.labels, gt, ls.validMask);
-			if (detector)
+			if (perception.detectsObjects())
 			{
 				// Objects need the instance ids (high byte).
 				const cv::Mat gt16 = cv::imread(gtPath, cv::IMREAD_UNCHANGED);
@@ -276,7 +269,7 @@ int perceive(const Args& a)
 				    {"fn", s.fn},         {"precision", s.precision},
 				    {"recall", s.recall}, {"ignored", s.ignored}};
 			}
-		if (detector)
+		if (perception.detectsObjects())
 			j["ms_detection_per_sweep_median"] = median(detectionTimes);
 		std::cout << j.dump() << std::endl;
 		return 0;

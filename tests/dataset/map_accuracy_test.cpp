@@ -1,7 +1,11 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-// Mapping with true poses on the simulated office: occupied cells lie on
-// real obstacles, doors appear once near their true centres.
+// Mapping with true poses on simulated scenes: occupied cells lie on real
+// obstacles; doors, washbasins, wastebaskets and stairs appear once near their
+// true centres.
 #include <gtest/gtest.h>
+#include <mrpt/config/CConfigFile.h>
+#include <semnav/common/ConfigChecks.h>
+#include <semnav/detection/SweepPerception.h>
 #include <semnav/map/MapIO.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/perception/PerceptionPipeline.h>
@@ -50,54 +54,141 @@ double footprintDistance(const ScenePrimitive& prim, double x, double y)
 	return std::numeric_limits<double>::infinity();  // terrain is ground
 }
 
-struct MappedOffice
+/** The true centre (x, y) of an object: its first part's footprint
+ * centre (a washbasin's basin, a staircase's flight). */
+mrpt::math::TPoint2D trueCentre(const SceneObject& obj)
+{
+	const auto& p = obj.parts.at(0);
+	if (const auto* b = std::get_if<BoxShape>(&p))
+		return {b->center.x, b->center.y};
+	if (const auto* c = std::get_if<CylinderShape>(&p))
+		return {c->center.x, c->center.y};
+	const auto& st = std::get<StairsShape>(p);
+	const double len = st.steps * st.run;
+	return {
+	    st.origin.x + std::cos(st.yaw) * len / 2,
+	    st.origin.y + std::sin(st.yaw) * len / 2};
+}
+
+struct MappedScene
 {
 	Scene scene;
 	fs::path dir;
 	std::unique_ptr<SemanticMap> map;
-	std::vector<int>
-	    doorPixelsSeen;  // per scene object id: max pixels in one sweep
+	/** Per scene object id: sweeps that saw >= 150 of its pixels (the
+	 * detection rule of issue 4). */
+	std::vector<int> sweepsSeen;
 };
 
-const MappedOffice& office()
+/** Simulates a scene (seed 1), perceives every sweep with the shipped
+ * rules and cascades, maps it at the true poses. */
+MappedScene mapScene(const std::string& yaml)
 {
-	static const MappedOffice m = []
+	MappedScene o;
+	o.scene = SceneLoader::loadFile(std::string(SEMNAV_SOURCE_DIR) + yaml);
+	o.dir = fs::temp_directory_path() / ("semnav_mapacc_" + o.scene.name + "_" +
+	                                     std::to_string(::getpid()));
+	fs::remove_all(o.dir);
+	const auto res = SimulationRunner(o.scene, SimulationRunner::TOptions(), 1)
+	                     .run(o.dir.string());
+	const auto gt = GroundTruthLog::forRawlog(o.dir.string(), res.rawlogPath);
+	// The shipped map configuration.
+	SemanticMap::TOptions mapOpts;
+	const auto cfg = openIniFile(
+	    std::string(SEMNAV_SOURCE_DIR) + "/config/map.ini",
+	    {"SemanticMap", "TravelCost", "SweepAssembler"});
+	mapOpts.loadFromConfigFile(*cfg, "SemanticMap");
+	mapOpts.cost.loadFromConfigFile(*cfg, "TravelCost");
+	o.map = std::make_unique<SemanticMap>(mapOpts);
+	SweepPerception perception(
+	    PerceptionPipeline::TOptions(),
+	    CascadeDetector::TOptions::fromIniFile(
+	        std::string(SEMNAV_SOURCE_DIR) + "/config/cascade.ini"));
+	RawlogSweepReader reader(res.rawlogPath);
+	o.sweepsSeen.assign(o.scene.objects.size() + 1, 0);
+	Sweep s;
+	while (reader.next(s))
 	{
-		MappedOffice o;
-		o.scene = SceneLoader::loadFile(
-		    std::string(SEMNAV_SOURCE_DIR) + "/datasets/office/office.yaml");
-		o.dir = fs::temp_directory_path() /
-		        ("semnav_mapacc_" + std::to_string(::getpid()));
-		fs::remove_all(o.dir);
-		const auto res =
-		    SimulationRunner(o.scene, SimulationRunner::TOptions(), 1)
-		        .run(o.dir.string());
-		const auto gt =
-		    GroundTruthLog::forRawlog(o.dir.string(), res.rawlogPath);
-		o.map = std::make_unique<SemanticMap>();
-		PerceptionPipeline pipeline;
-		RawlogSweepReader reader(res.rawlogPath);
-		o.doorPixelsSeen.assign(o.scene.objects.size() + 1, 0);
-		Sweep s;
-		while (reader.next(s))
-		{
-			o.map->insert(s, pipeline.process(s), gt.pose(s.index()));
-			const cv::Mat lab =
-			    cv::imread(gt.labelImagePath(s.index()), cv::IMREAD_UNCHANGED);
-			std::vector<int> count(o.scene.objects.size() + 1, 0);
-			for (int r = 0; r < lab.rows; r++)
-				for (int c = 0; c < lab.cols; c++)
-				{
-					const uint16_t v = lab.at<uint16_t>(r, c);
-					if ((v & 0xFF) == static_cast<int>(Label::Door))
-						count[v >> 8]++;
-				}
-			for (std::size_t i = 0; i < count.size(); i++)
-				o.doorPixelsSeen[i] = std::max(o.doorPixelsSeen[i], count[i]);
-		}
-		return o;
-	}();
+		o.map->insert(s, perception.process(s), gt.pose(s.index()));
+		const cv::Mat lab =
+		    cv::imread(gt.labelImagePath(s.index()), cv::IMREAD_UNCHANGED);
+		std::vector<int> count(o.scene.objects.size() + 1, 0);
+		for (int r = 0; r < lab.rows; r++)
+			for (int c = 0; c < lab.cols; c++)
+				count[lab.at<uint16_t>(r, c) >> 8]++;
+		for (std::size_t i = 1; i < count.size(); i++)
+			o.sweepsSeen[i] += count[i] >= 150;
+	}
+	return o;
+}
+
+const MappedScene& office()
+{
+	static const MappedScene m = mapScene("/datasets/office/office.yaml");
 	return m;
+}
+
+struct ObjectScore
+{
+	std::size_t seen = 0, foundOnce = 0, instances = 0, spurious = 0;
+};
+
+/** Objects of `labels` seen by as many sweeps as the map needs to report
+ * them (min_observations; >= 150 pixels make a sweep see it, the detection
+ * rule of issue 4) and found once within 0.3 m of their true centre;
+ * instances of those labels further than 0.3 m from every true object of
+ * their label (spurious). Prints every failure. */
+ObjectScore scoreObjects(const MappedScene& o, const std::vector<Label>& labels)
+{
+	ObjectScore score;
+	const auto& opts = o.map->options();
+	for (const Label l : labels)
+	{
+		const int needed =
+		    l == Label::Door ? opts.doorMinObservations : opts.minObservations;
+		const auto inst = o.map->instances(l);
+		std::vector<bool> explained(inst.size(), false);
+		std::size_t seen = 0;
+		for (const auto& obj : o.scene.objects)
+		{
+			if (obj.label != l) continue;
+			const auto c = trueCentre(obj);
+			int matches = 0;
+			for (std::size_t k = 0; k < inst.size(); k++)
+				if (std::hypot(
+				        inst[k].centroid.x - c.x, inst[k].centroid.y - c.y) <=
+				    0.3)
+				{
+					matches++;
+					explained[k] = true;
+				}
+			if (o.sweepsSeen[obj.id] < needed) continue;
+			seen++;
+			if (matches == 1)
+				score.foundOnce++;
+			else
+				std::cout << "  " << o.scene.name << ": " << labelName(l)
+				          << " #" << obj.id << " at (" << c.x << ", " << c.y
+				          << "), seen by " << o.sweepsSeen[obj.id]
+				          << " sweeps, has " << matches
+				          << " instances within 0.3 m\n";
+		}
+		for (std::size_t k = 0; k < inst.size(); k++)
+			if (!explained[k])
+			{
+				score.spurious++;
+				std::cout << "  " << o.scene.name << ": spurious "
+				          << labelName(l) << " #" << inst[k].id << " at ("
+				          << inst[k].centroid.x << ", " << inst[k].centroid.y
+				          << "), detected " << inst[k].observations << "x in "
+				          << inst[k].views << " views\n";
+			}
+		std::cout << "[ MEASURED ] " << o.scene.name << " " << labelName(l)
+		          << ": " << seen << " seen, " << inst.size() << " instances\n";
+		score.seen += seen;
+		score.instances += inst.size();
+	}
+	return score;
 }
 }  // namespace
 
@@ -128,28 +219,44 @@ TEST(MapAccuracy, OccupiedCellsLieOnRealObstacles)
 	EXPECT_GE(fraction, 0.95);
 }
 
-TEST(MapAccuracy, EverySeenDoorAppearsOnceNearItsCentre)
+TEST(MapAccuracy, OfficeObjectsAppearOnceNearTheirCentres)
 {
 	const auto& o = office();
-	std::size_t seenDoors = 0;
-	for (const auto& obj : o.scene.objects)
+	const auto s = scoreObjects(
+	    o, {Label::Door, Label::Washbasin, Label::Wastebasket, Label::Stairs});
+	EXPECT_EQ(s.foundOnce, s.seen);
+	EXPECT_EQ(s.spurious, 0u);
+	EXPECT_EQ(o.map->instances(Label::Door).size(), 2u)
+	    << "the office trajectory sees both doors";
+	EXPECT_EQ(o.map->instances(Label::Wastebasket).size(), 2u)
+	    << "the office trajectory looks at wastebaskets 2 and 3";
+}
+
+TEST(MapAccuracy, HeldOutSceneObjects)
+{
+	// The cascade test scenes (not used in training). The target is every
+	// object once and nothing spurious; measured (README): 20 of 26 found
+	// once, 6 spurious of 26 instances. Asserted: not worse than that.
+	ObjectScore all;
+	for (const char* name : {"test_a", "test_b", "test_c"})
 	{
-		if (obj.label != Label::Door || o.doorPixelsSeen[obj.id] < 150)
-			continue;
-		seenDoors++;
-		const auto& b = std::get<BoxShape>(obj.parts.at(0));
-		int matches = 0;
-		for (const auto& inst : o.map->instances(Label::Door))
-			if (std::hypot(
-			        inst.centroid.x - b.center.x,
-			        inst.centroid.y - b.center.y) <= 0.3)
-				matches++;
-		EXPECT_EQ(matches, 1) << "door #" << obj.id << " at (" << b.center.x
-		                      << ", " << b.center.y << ")";
+		const auto o =
+		    mapScene(std::string("/datasets/cascade-scenes/") + name + ".yaml");
+		const auto s = scoreObjects(
+		    o, {Label::Washbasin, Label::Wastebasket, Label::Stairs});
+		all.seen += s.seen;
+		all.foundOnce += s.foundOnce;
+		all.instances += s.instances;
+		all.spurious += s.spurious;
+		fs::remove_all(o.dir);
 	}
-	EXPECT_GE(seenDoors, 2u) << "the office trajectory sees both doors";
-	EXPECT_EQ(o.map->instances(Label::Door).size(), seenDoors)
-	    << "spurious door instances";
+	std::cout << "[ MEASURED ] held-out scenes: " << all.foundOnce << " of "
+	          << all.seen << " seen objects found once within 0.3 m, "
+	          << all.spurious << " spurious of " << all.instances
+	          << " instances\n";
+	ASSERT_GE(all.seen, 24u);
+	EXPECT_GE(all.foundOnce, 20u);
+	EXPECT_LE(all.spurious, 6u);
 }
 
 TEST(MapAccuracy, SavedMapLoadsBack)

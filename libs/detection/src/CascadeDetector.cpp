@@ -72,7 +72,8 @@ const std::vector<std::string>& CascadeDetector::TClassOptions::knownKeys()
 	    "min_top_m",
 	    "max_top_m",
 	    "max_depth_m",
-	    "min_points"};
+	    "min_points",
+	    "channel"};
 	return keys;
 }
 
@@ -112,6 +113,17 @@ void CascadeDetector::TClassOptions::loadFromConfigFile(
 	o.maxTop = readChecked(c, s, "max_top_m", maxTop, -10, 100);
 	o.maxDepth = readChecked(c, s, "max_depth_m", maxDepth, 0.01, 100);
 	o.minPoints = readCheckedInt(c, s, "min_points", minPoints, 1, 1000000);
+	if (c.keyExists(s, "channel"))
+	{
+		try
+		{
+			o.channel = channelFromName(c.read_string(s, "channel", "", true));
+		}
+		catch (const ConfigError& e)
+		{
+			throw ConfigError("[" + s + "] channel: " + e.what());
+		}
+	}
 	if (o.minWidth > o.maxWidth || o.minTop > o.maxTop ||
 	    o.minElevation >= o.maxElevation ||
 	    (o.farUpscale > 0 && o.farMinElevation >= o.farMaxElevation))
@@ -140,6 +152,7 @@ void CascadeDetector::TClassOptions::saveToConfigFile(
 	c.write(s, "max_top_m", num(maxTop));
 	c.write(s, "max_depth_m", num(maxDepth));
 	c.write(s, "min_points", std::to_string(minPoints));
+	if (channel) c.write(s, "channel", channelName(*channel));
 }
 
 std::vector<DetectionPass> CascadeDetector::TClassOptions::passes(
@@ -333,7 +346,7 @@ struct CascadeDetector::Impl
 	std::vector<cv::Size> windows;
 	/** Scaled detection images by upscale, shared by the classes within
 	 * one detectCandidates() call. */
-	std::map<std::tuple<double, int, int>, cv::Mat> scaled;
+	std::map<std::tuple<DetectionChannel, double, int, int>, cv::Mat> scaled;
 	bool keepScaled = false;
 	PanoramicProjection projection;
 	/** Elevations of the first and last row of the detection image. */
@@ -373,7 +386,8 @@ void CascadeDetector::runCascade(
 		const DetectionPass& p = passes[pi];
 		if (p.rowEnd <= p.rowBegin) continue;
 		// Bands are shared between classes with the same pass.
-		const auto key = std::make_tuple(p.upscale, p.rowBegin, p.rowEnd);
+		const auto key = std::make_tuple(
+		    m_options.channelOf(k), p.upscale, p.rowBegin, p.rowEnd);
 		cv::Mat& band = m_impl->scaled[key];
 		if (band.empty()) band = p.apply(image);
 		const cv::Size minSize(
@@ -421,17 +435,16 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
     double groundZ, double floorTolerance, double maxDepth, int minPoints,
     bool connected)
 {
+	// Ground labels (floor, sidewalk, grass) are left to the height test:
+	// the rules' ground areas can swallow the top of a low object.
 	const auto isSurface = [&](const cv::Point& px)
 	{
 		if (labels.empty()) return false;
 		switch (static_cast<Label>(labels.at<uint8_t>(px)))
 		{
-			case Label::Floor:
 			case Label::Ceiling:
 			case Label::Wall:
 			case Label::Door:
-			case Label::Sidewalk:
-			case Label::Grass:
 				return true;
 			default:
 				return false;
@@ -589,10 +602,12 @@ const PanoramicProjection& CascadeDetector::projection() const
 
 cv::Mat CascadeDetector::detectionImage(
     const std::vector<double>& phis, const std::vector<double>& thetas,
-    const cv::Mat& normals, const cv::Mat& normalMask)
+    const cv::Mat& normals, const cv::Mat& normalMask,
+    std::optional<DetectionChannel> channel)
 {
 	cv::Mat image = DetectionImage::fromNormals(
-	    normals, normalMask, m_options.channel, m_options.normalSmoothing);
+	    normals, normalMask, channel ? *channel : m_options.channel,
+	    m_options.normalSmoothing, phis, thetas);
 	if (!thetas.empty())
 	{
 		m_impl->el0 = thetas.front();
@@ -611,7 +626,14 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 {
 	const auto t0 = Clock::now();
 	m_timings = Timings();
-	const cv::Mat image = detectionImage(phis, thetas, normals, normalMask);
+	// One detection image per channel in use.
+	std::map<DetectionChannel, cv::Mat> images;
+	for (const auto& k : m_options.classes)
+	{
+		const DetectionChannel ch = m_options.channelOf(k);
+		if (!images.count(ch))
+			images[ch] = detectionImage(phis, thetas, normals, normalMask, ch);
+	}
 	m_impl->scaled.clear();
 	m_impl->keepScaled = true;
 	m_timings.image = msSince(t0);
@@ -623,7 +645,7 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	{
 		const TClassOptions& k = m_options.classes[i];
 		const auto tc = Clock::now();
-		runCascade(i, image, boxes, neighbours);
+		runCascade(i, images.at(m_options.channelOf(k)), boxes, neighbours);
 		m_timings.cascades += msSince(tc);
 		const auto tm = Clock::now();
 		const std::size_t first = out.size();

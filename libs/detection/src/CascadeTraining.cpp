@@ -51,7 +51,7 @@ CascadeTraining::CascadeTraining(const TOptions& options) : m_options(options)
 }
 
 std::vector<TrainingSweep> CascadeTraining::loadSweeps(
-    const std::vector<std::string>& dirs) const
+    const std::vector<std::string>& dirs, DetectionChannel channel) const
 {
 	std::vector<TrainingSweep> out;
 	NormalImage normals(m_options.normals);
@@ -63,8 +63,8 @@ std::vector<TrainingSweep> CascadeTraining::loadSweeps(
 			normals.compute(s.sweep);
 			TrainingSweep t;
 			t.image = DetectionImage::fromNormals(
-			    normals.normals(), normals.normalMask(), det.channel,
-			    det.normalSmoothing);
+			    normals.normals(), normals.normalMask(), channel,
+			    det.normalSmoothing, s.sweep.phis(), s.sweep.thetas());
 			t.groundTruth = s.groundTruth;
 			t.elevation0 = s.sweep.thetas().front();
 			t.elevation1 = s.sweep.thetas().back();
@@ -95,7 +95,8 @@ CascadeTraining::Result CascadeTraining::run(
 	Result res;
 	auto t0 = Clock::now();
 	if (progress) progress(0, steps, "reading datasets");
-	std::vector<TrainingSweep> sweeps = loadSweeps(dirs);
+	std::vector<TrainingSweep> sweeps =
+	    loadSweeps(dirs, m_options.detector.channelOf(cls));
 	res.sweeps = sweeps.size();
 	res.secondsLoad = secondsSince(t0);
 

@@ -10,7 +10,7 @@ namespace semnav
 {
 const std::string& channelName(DetectionChannel c)
 {
-	static const std::string names[] = {"grey", "red", "green", "blue"};
+	static const std::string names[] = {"grey", "red", "green", "blue", "view"};
 	return names[static_cast<int>(c)];
 }
 
@@ -18,21 +18,30 @@ DetectionChannel channelFromName(const std::string& name)
 {
 	for (auto c :
 	     {DetectionChannel::Grey, DetectionChannel::Red,
-	      DetectionChannel::Green, DetectionChannel::Blue})
+	      DetectionChannel::Green, DetectionChannel::Blue,
+	      DetectionChannel::View})
 		if (channelName(c) == name) return c;
 	throw ConfigError(
-	    "unknown detection channel '" + name + "' (grey, red, green, blue)");
+	    "unknown detection channel '" + name +
+	    "' (grey, red, green, blue, view)");
 }
 
 cv::Mat DetectionImage::fromNormals(
     const cv::Mat& normals, const cv::Mat& normalMask, DetectionChannel channel,
-    int smoothing)
+    int smoothing, const std::vector<double>& phis,
+    const std::vector<double>& thetas)
 {
 	if (normals.type() != CV_32FC3 || normalMask.type() != CV_8UC1 ||
 	    normals.size() != normalMask.size())
 		throw Error(
 		    "DetectionImage: expected CV_32FC3 normals and a CV_8U mask of "
 		    "the same size");
+	const bool view = channel == DetectionChannel::View;
+	if (view && (phis.size() != static_cast<std::size_t>(normals.cols) ||
+	             thetas.size() != static_cast<std::size_t>(normals.rows)))
+		throw Error(
+		    "DetectionImage: the view channel needs one bearing per column "
+		    "and one tilt per row");
 	// Never written in place: `normals` belongs to the caller.
 	cv::Mat sm;
 	if (smoothing <= 0)
@@ -61,10 +70,24 @@ cv::Mat DetectionImage::fromNormals(
 		const auto* n = sm.ptr<cv::Vec3f>(r);
 		const auto* m = normalMask.ptr<uint8_t>(r);
 		auto* o = bgr.ptr<cv::Vec3b>(r);
+		const double cosTheta = view ? std::cos(thetas[r]) : 1.0;
 		for (int c = 0; c < normals.cols; c++)
 		{
 			if (!m[c]) continue;
-			const cv::Vec3b rgb = NormalImage::rgbOf(n[c]);
+			cv::Vec3f v = n[c];
+			if (view)
+			{
+				// Turn by -azimuth of the line of sight (as
+				// PanoramicProjection): x along the ray, y to its left.
+				const double az =
+				    std::atan2(std::sin(phis[c]), std::cos(phis[c]) * cosTheta);
+				const float ca = static_cast<float>(std::cos(az));
+				const float sa = static_cast<float>(std::sin(az));
+				v = cv::Vec3f(
+				    ca * n[c][0] + sa * n[c][1], -sa * n[c][0] + ca * n[c][1],
+				    n[c][2]);
+			}
+			const cv::Vec3b rgb = NormalImage::rgbOf(v);
 			o[c] = cv::Vec3b(rgb[2], rgb[1], rgb[0]);
 		}
 	}
@@ -72,6 +95,7 @@ cv::Mat DetectionImage::fromNormals(
 	switch (channel)
 	{
 		case DetectionChannel::Grey:
+		case DetectionChannel::View:
 			cv::cvtColor(bgr, out, cv::COLOR_BGR2GRAY);
 			break;
 		case DetectionChannel::Red:

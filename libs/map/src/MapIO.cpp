@@ -266,6 +266,7 @@ void MapIO::save(const SemanticMap& map, const std::string& dir)
 		e << YAML::Key << "max" << YAML::Value;
 		emitPoint(e, o.maxCorner);
 		e << YAML::Key << "observations" << YAML::Value << o.observations;
+		e << YAML::Key << "views" << YAML::Value << o.views;
 		e << YAML::EndMap;
 	}
 	e << YAML::EndSeq;
@@ -363,6 +364,8 @@ void MapIO::load(const std::string& dir, SemanticMap& map)
 		o.observations = as<std::size_t>(
 		    need(n, "observations", file, "semnav.objects[]."), file,
 		    "observations");
+		o.views = n["views"] ? as<std::size_t>(n["views"], file, "views")
+		                     : o.observations;
 		objs.push_back(o);
 	}
 	const auto sweeps = as<std::size_t>(

@@ -29,7 +29,8 @@ void SemanticMap::TOptions::loadFromConfigFile(
 	    {"resolution_m", "grow_margin_m", "obstacle_min_height_m",
 	     "robot_height_m", "robot_radius_m", "hit_probability",
 	     "free_probability", "occupied_threshold", "free_threshold",
-	     "merge_distance_m", "min_observations", "door_min_height_m",
+	     "merge_distance_m", "min_observations", "door_min_observations",
+	     "min_detection_ratio", "view_min_pixels", "door_min_height_m",
 	     "octomap"});
 	resolution = readChecked(c, s, "resolution_m", resolution, 0.005, 1.0);
 	growMargin = readChecked(c, s, "grow_margin_m", growMargin, 0, 100);
@@ -49,6 +50,12 @@ void SemanticMap::TOptions::loadFromConfigFile(
 	    readChecked(c, s, "merge_distance_m", mergeDistance, 0.01, 10);
 	minObservations =
 	    readCheckedInt(c, s, "min_observations", minObservations, 1, 1000);
+	doorMinObservations = readCheckedInt(
+	    c, s, "door_min_observations", doorMinObservations, 1, 1000);
+	minDetectionRatio =
+	    readChecked(c, s, "min_detection_ratio", minDetectionRatio, 0, 1);
+	viewMinPixels =
+	    readCheckedInt(c, s, "view_min_pixels", viewMinPixels, 0, 1000000);
 	doorMinHeight =
 	    readChecked(c, s, "door_min_height_m", doorMinHeight, 0, 10);
 	octomap = readCheckedBool(c, s, "octomap", octomap);
@@ -68,6 +75,9 @@ void SemanticMap::TOptions::saveToConfigFile(
 	c.write(s, "free_threshold", freeThreshold);
 	c.write(s, "merge_distance_m", mergeDistance);
 	c.write(s, "min_observations", minObservations);
+	c.write(s, "door_min_observations", doorMinObservations);
+	c.write(s, "min_detection_ratio", minDetectionRatio);
+	c.write(s, "view_min_pixels", viewMinPixels);
 	c.write(s, "door_min_height_m", doorMinHeight);
 	c.write(s, "octomap", octomap ? "true" : "false");
 }
@@ -251,7 +261,12 @@ void SemanticMap::updateCosts()
 
 bool SemanticMap::reported(const ObjectInstance& o) const
 {
-	if (static_cast<int>(o.observations) < m_options.minObservations)
+	const int minObs = o.label == Label::Door ? m_options.doorMinObservations
+	                                          : m_options.minObservations;
+	if (static_cast<int>(o.observations) < minObs) return false;
+	if (o.label != Label::Door &&
+	    static_cast<double>(o.observations) <
+	        m_options.minDetectionRatio * static_cast<double>(o.views))
 		return false;
 	if (o.label == Label::Door && o.extent().z < m_options.doorMinHeight)
 		return false;
@@ -297,6 +312,34 @@ const ObjectInstance* SemanticMap::nearestInstance(
 		}
 	}
 	return best;
+}
+
+int SemanticMap::addInstance(
+    Label label, const mrpt::math::TPoint3D& minCorner,
+    const mrpt::math::TPoint3D& maxCorner, std::size_t observations)
+{
+	ObjectInstance o;
+	o.id = 1;
+	for (const auto& e : m_instances) o.id = std::max(o.id, e.id + 1);
+	o.label = label;
+	o.minCorner = minCorner;
+	o.maxCorner = maxCorner;
+	o.centroid = {
+	    0.5 * (minCorner.x + maxCorner.x), 0.5 * (minCorner.y + maxCorner.y),
+	    0.5 * (minCorner.z + maxCorner.z)};
+	o.observations = observations;
+	o.views = observations;
+	auto& objs = get(kObjects);
+	for (int cy = 0; cy < m_geometry.rows; cy++)
+		for (int cx = 0; cx < m_geometry.cols; cx++)
+		{
+			const double x = m_geometry.centerX(cx), y = m_geometry.centerY(cy);
+			if (x >= minCorner.x && x <= maxCorner.x && y >= minCorner.y &&
+			    y <= maxCorner.y)
+				objs[m_geometry.index(cy, cx)] = static_cast<float>(o.id);
+		}
+	m_instances.push_back(o);
+	return o.id;
 }
 
 std::vector<std::pair<int, int>> SemanticMap::cellsOf(int id) const

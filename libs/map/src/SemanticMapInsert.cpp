@@ -190,7 +190,8 @@ void SemanticMap::insert(
 
 	// Objects: detections and door regions, merged into instances.
 	auto& objLayer = get("objects");
-	std::vector<int> seenThisSweep;
+	std::vector<int> seenThisSweep, viewedThisSweep;
+	countViews(sweep, robot, viewedThisSweep);
 	auto toWorldBox = [&](const mrpt::math::TPoint3D& a,
 	                      const mrpt::math::TPoint3D& b,
 	                      mrpt::math::TPoint3D& lo, mrpt::math::TPoint3D& hi)
@@ -229,6 +230,15 @@ void SemanticMap::insert(
 		robot.composePoint(d.centroid, wc);
 		int id = 0;
 		mergeObject(d.label, wc, lo, hi, seenThisSweep, id);
+		if (std::find(viewedThisSweep.begin(), viewedThisSweep.end(), id) ==
+		    viewedThisSweep.end())
+		{
+			// Detected, so in view (a new instance, or a centroid the
+			// view test missed).
+			for (auto& o : m_instances)
+				if (o.id == id) o.views++;
+			viewedThisSweep.push_back(id);
+		}
 		paint(
 		    id, d.imageBox,
 		    [&](int r, int c)
@@ -264,20 +274,82 @@ void SemanticMap::insert(
 	m_sweeps++;
 }
 
+void SemanticMap::countViews(
+    const Sweep& sweep, const mrpt::poses::CPose3D& robot,
+    std::vector<int>& viewedThisSweep)
+{
+	if (sweep.empty()) return;
+	const auto& thetas = sweep.thetas();
+	const auto& phis = sweep.phis();
+	const auto nearest = [](const std::vector<double>& v, double x)
+	{
+		const auto it = std::lower_bound(v.begin(), v.end(), x);
+		if (it == v.begin()) return std::size_t(0);
+		if (it == v.end()) return v.size() - 1;
+		return static_cast<std::size_t>(
+		    (x - *(it - 1) < *it - x) ? it - 1 - v.begin() : it - v.begin());
+	};
+	// The tilt axis (rows differ by a few cm: the laser's offset from it).
+	const auto& axis = sweep.sensorPose(sweep.rows() / 2);
+	constexpr double kObjectDepth = 0.4;  // a return this short of it: seen
+	const double phiStep =
+	    phis.size() > 1 ? (phis.back() - phis.front()) / (phis.size() - 1) : 1;
+	const double thetaStep =
+	    thetas.size() > 1
+	        ? (thetas.back() - thetas.front()) / (thetas.size() - 1)
+	        : 1;
+	for (auto& o : m_instances)
+	{
+		if (o.label == Label::Door) continue;
+		mrpt::math::TPoint3D p;
+		robot.inverseComposePoint(o.centroid, p);
+		const double dx = p.x - axis.x(), dy = p.y - axis.y(),
+		             dz = p.z - axis.z();
+		const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+		if (d < 0.2 || d > sweep.maxRange() - kObjectDepth) continue;
+		const double theta = std::atan2(dz, dx), phi = std::asin(dy / d);
+		if (theta < thetas.front() || theta > thetas.back() ||
+		    phi < phis.front() || phi > phis.back())
+			continue;
+		// Pixels the object would cover at this distance.
+		const auto e = o.extent();
+		const double wide = std::max({e.x, e.y, 0.2}),
+		             high = std::max(e.z, 0.3);
+		const double px = (wide / d) / phiStep * (high / d) / thetaStep;
+		if (px < m_options.viewMinPixels) continue;
+		const std::size_t r0 = nearest(thetas, theta), c0 = nearest(phis, phi);
+		bool visible = false;
+		for (std::size_t r = r0 > 0 ? r0 - 1 : 0;
+		     r <= std::min(r0 + 1, sweep.rows() - 1) && !visible; r++)
+			for (std::size_t c = c0 > 0 ? c0 - 1 : 0;
+			     c <= std::min(c0 + 1, sweep.cols() - 1) && !visible; c++)
+				visible =
+				    !sweep.valid(r, c) || sweep.range(r, c) >= d - kObjectDepth;
+		if (!visible) continue;
+		o.views++;
+		viewedThisSweep.push_back(o.id);
+	}
+}
+
 void SemanticMap::mergeObject(
     Label label, const mrpt::math::TPoint3D& centroid,
     const mrpt::math::TPoint3D& minCorner,
     const mrpt::math::TPoint3D& maxCorner, std::vector<int>& seenThisSweep,
     int& id)
 {
+	// The nearest instance of the label within mergeDistance or whose
+	// footprint overlaps the detection's.
 	ObjectInstance* best = nullptr;
-	double bestD = m_options.mergeDistance;
+	double bestD = std::numeric_limits<double>::infinity();
 	for (auto& o : m_instances)
 	{
 		if (o.label != label) continue;
 		const double d =
 		    std::hypot(o.centroid.x - centroid.x, o.centroid.y - centroid.y);
-		if (d < bestD)
+		const bool overlap =
+		    o.minCorner.x <= maxCorner.x && minCorner.x <= o.maxCorner.x &&
+		    o.minCorner.y <= maxCorner.y && minCorner.y <= o.maxCorner.y;
+		if ((d < m_options.mergeDistance || overlap) && d < bestD)
 		{
 			bestD = d;
 			best = &o;

@@ -33,6 +33,9 @@ TraversabilityGrid SemanticPlanner::traversability(CostProfile profile) const
 					break;
 			}
 		}
+	for (const auto& p : m_extraObstacles)
+		if (const auto c = g.cellOf(p.x, p.y))
+			occ[g.index(*c)] = CellOccupancy::Occupied;
 	// The map's cost layer already holds u_s (grass roughness, robot type,
 	// objects that left); the builder adds C-space and the profile.
 	return m_builder.buildFromCost(

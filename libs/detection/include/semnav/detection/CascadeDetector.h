@@ -83,6 +83,9 @@ public:
 		double maxDepth = 1.0;
 		/** min_points: fewer object points than this: rejected. */
 		int minPoints = 15;
+		/** channel: this class's detection image (DetectionImage); unset:
+		 * the [CascadeDetector] channel. */
+		std::optional<DetectionChannel> channel;
 	};
 
 	/** INI section [CascadeDetector] plus one [CascadeDetector.<label>]
@@ -106,8 +109,13 @@ public:
 		const TClassOptions& classOptions(Label l) const;
 		/** Resolves a class's cascade path against baseDir. */
 		std::string cascadePath(const TClassOptions& c) const;
+		/** The channel a class's cascade sees. */
+		DetectionChannel channelOf(const TClassOptions& c) const
+		{
+			return c.channel ? *c.channel : channel;
+		}
 
-		/** channel: grey, red, green or blue (DetectionImage). */
+		/** channel: grey, red, green, blue or view (DetectionImage). */
 		DetectionChannel channel = DetectionChannel::Grey;
 		/** normal_smoothing_px: half width of the normal averaging before
 		 * the image is made (DetectionImage), 0 = none. */
@@ -185,10 +193,12 @@ public:
 	    const cv::Mat& normals, const cv::Mat& normalMask,
 	    const cv::Mat& points, double groundZ,
 	    const cv::Mat& labels = cv::Mat());
-	/** The image the cascades see (8-bit, panoramic or sweep layout). */
+	/** The image the cascades see (8-bit, panoramic or sweep layout), in
+	 * the [CascadeDetector] channel or in `channel`. */
 	cv::Mat detectionImage(
 	    const std::vector<double>& phis, const std::vector<double>& thetas,
-	    const cv::Mat& normals, const cv::Mat& normalMask);
+	    const cv::Mat& normals, const cv::Mat& normalMask,
+	    std::optional<DetectionChannel> channel = std::nullopt);
 	/** The projection of the last grid used (empty in sweep mode). */
 	const PanoramicProjection& projection() const;
 	/** Runs one class's cascade on a detection image; boxes in its pixels,

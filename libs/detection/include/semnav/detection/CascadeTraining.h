@@ -67,10 +67,11 @@ public:
 
 	explicit CascadeTraining(const TOptions& options);
 
-	/** The detection images and ground truth of every sweep of the
-	 * datasets. Throws IoError / RawlogError. */
+	/** The detection images (in `channel`) and ground truth of every sweep
+	 * of the datasets. Throws IoError / RawlogError. */
 	std::vector<TrainingSweep> loadSweeps(
-	    const std::vector<std::string>& datasetDirs) const;
+	    const std::vector<std::string>& datasetDirs,
+	    DetectionChannel channel) const;
 
 	/** Trains `label` (which must have a class section). Throws
 	 * ConfigError, IoError, RawlogError, CascadeError, Error. */

@@ -3,22 +3,28 @@
 
 #include <opencv2/core/mat.hpp>
 #include <string>
+#include <vector>
 
 namespace semnav
 {
 /** Which 8-bit image of the normal image the cascades see. The paper uses
  * the grey-scale version of the RGB normal image (sec. 2.2.2); the single
  * channels are R = 128 + 127 n_right, G = 128 + 127 n_forward, B = 128 +
- * 127 n_up (DESIGN.md). Pixels without a normal are 0 in every choice. */
+ * 127 n_up (DESIGN.md). View is the grey image of the normals turned by
+ * each pixel's azimuth, so that "forward" is the line of sight: an object
+ * then looks the same at every bearing (in the robot frame a wastebasket to
+ * the left and one ahead have different colours). Pixels without a normal
+ * are 0 in every choice. */
 enum class DetectionChannel
 {
 	Grey,
 	Red,
 	Green,
-	Blue
+	Blue,
+	View
 };
 
-/** "grey", "red", "green", "blue". */
+/** "grey", "red", "green", "blue", "view". */
 const std::string& channelName(DetectionChannel c);
 /** Parses a channel name; throws ConfigError listing the names. */
 DetectionChannel channelFromName(const std::string& name);
@@ -34,10 +40,14 @@ public:
 	 * the colour normal image (NormalImage::rgbOf). With `smoothing` k > 0
 	 * each normal is first replaced by the renormalised sum of the normals
 	 * in its (2k+1)^2 neighbourhood (range noise makes single normals of
-	 * near surfaces noisy, which the cascades would see as texture). */
+	 * near surfaces noisy, which the cascades would see as texture).
+	 * View needs the sweep's bearings `phis` (one per column) and tilts
+	 * `thetas` (one per row); the other channels ignore them. */
 	static cv::Mat fromNormals(
 	    const cv::Mat& normals, const cv::Mat& normalMask,
-	    DetectionChannel channel, int smoothing = 0);
+	    DetectionChannel channel, int smoothing = 0,
+	    const std::vector<double>& phis = {},
+	    const std::vector<double>& thetas = {});
 };
 
 }  // namespace semnav

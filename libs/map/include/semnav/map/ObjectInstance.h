@@ -21,6 +21,9 @@ struct ObjectInstance
 	mrpt::math::TPoint3D minCorner{0, 0, 0}, maxCorner{0, 0, 0};
 	/** Sweeps in which the object was detected. */
 	std::size_t observations = 0;
+	/** Sweeps that had it in view (line of sight to its centroid within
+	 * the sweep's field of view and range), detected or not. */
+	std::size_t views = 0;
 
 	mrpt::math::TPoint3D extent() const
 	{

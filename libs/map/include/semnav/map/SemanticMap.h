@@ -69,10 +69,23 @@ public:
 		/** cellState() thresholds on the occupancy probability. */
 		double occupiedThreshold = 0.65;
 		double freeThreshold = 0.35;
-		/** Detections of one label closer than this are one object (m). */
+		/** Detections of one label closer than this, or whose footprints
+		 * overlap (a staircase seen from several sides), are one object
+		 * (m). */
 		double mergeDistance = 0.6;
-		/** Objects seen fewer times are not reported (one-off detections). */
+		/** Cascade objects (washbasin, wastebasket, stairs) seen in fewer
+		 * sweeps are not reported (one-off detections). */
 		int minObservations = 1;
+		/** The same for doors (found by the rules, not a cascade). */
+		int doorMinObservations = 1;
+		/** Cascade objects detected in fewer than this fraction of the
+		 * sweeps that had them in view are not reported (furniture that a
+		 * cascade took for an object once in many looks). */
+		double minDetectionRatio = 0.6;
+		/** A sweep has an object in view when it has line of sight to its
+		 * centroid and the object would cover at least this many pixels
+		 * of it (from its extent and distance). */
+		int viewMinPixels = 150;
 		/** Doors whose merged extent is lower than this are not reported
 		 * (fragments of walls or furniture taken for a door) (m). */
 		double doorMinHeight = 1.2;
@@ -170,6 +183,13 @@ public:
 	 * nullptr. */
 	const ObjectInstance* nearestInstance(
 	    Label label, const mrpt::math::TPoint2D& p) const;
+	/** Adds an instance directly (ground truth, tests, an operator's
+	 * annotation) with the next free id; the cells whose centre lies in its
+	 * footprint [minCorner, maxCorner] (x, y) get the id in the "objects"
+	 * layer. The centroid is the box centre. Returns the id. */
+	int addInstance(
+	    Label label, const mrpt::math::TPoint3D& minCorner,
+	    const mrpt::math::TPoint3D& maxCorner, std::size_t observations = 1);
 	/** Cells whose "objects" layer holds the instance. */
 	std::vector<std::pair<int, int>> cellsOf(int id) const;
 	/** Goal region of an instance: free cells within `reach` metres of its
@@ -190,6 +210,10 @@ public:
 	    std::size_t sweeps);
 
 private:
+	/** Counts a view of every instance the sweep had in line of sight. */
+	void countViews(
+	    const Sweep& sweep, const mrpt::poses::CPose3D& robot,
+	    std::vector<int>& viewedThisSweep);
 	void mergeObject(
 	    Label label, const mrpt::math::TPoint3D& centroid,
 	    const mrpt::math::TPoint3D& minCorner,

@@ -1,6 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #pragma once
 
+#include <mrpt/math/TPoint2D.h>
 #include <semnav/common/Label.h>
 #include <semnav/planning/CnnPlanner.h>
 #include <semnav/planning/DiffusionField.h>
@@ -55,6 +56,18 @@ public:
 	Plan toPoint(
 	    double x, double y, double gx, double gy, CostProfile profile) const;
 
+	/** Obstacles the map does not hold (e.g. sensed by the robot while
+	 * driving), world frame: their cells count as occupied (inflated like
+	 * map obstacles) in every later plan. */
+	void setExtraObstacles(std::vector<mrpt::math::TPoint2D> points)
+	{
+		m_extraObstacles = std::move(points);
+	}
+	const std::vector<mrpt::math::TPoint2D>& extraObstacles() const
+	{
+		return m_extraObstacles;
+	}
+
 	/** u of the whole map for a profile. */
 	TraversabilityGrid traversability(CostProfile profile) const;
 
@@ -68,6 +81,7 @@ private:
 	const SemanticMap& m_map;
 	CnnPlanner m_cnn;
 	TraversabilityBuilder m_builder;
+	std::vector<mrpt::math::TPoint2D> m_extraObstacles;
 };
 
 }  // namespace semnav

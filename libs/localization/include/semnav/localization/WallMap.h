@@ -1,0 +1,127 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/core/bits_math.h>
+#include <mrpt/math/TPoint2D.h>
+#include <mrpt/poses/CPose2D.h>
+#include <semnav/common/GridGeometry.h>
+#include <semnav/localization/WallSegment.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace semnav
+{
+class SemanticMap;
+
+/** The walls of the map, for localization: world-frame wall segments and a
+ * likelihood field over them (per cell, log of
+ * hitWeight * exp(-d^2 / 2 sigma^2) + randomWeight, d = distance to the
+ * nearest wall), plus the map's main direction (modulo 90 deg).
+ *
+ * Built either from accumulated segments (mapping: each localized sweep's
+ * walls added at its pose) or from a SemanticMap's cells labelled wall
+ * (a known map; segments then come from a Hough transform of those cells).
+ * INI section [WallMap]. */
+class WallMap
+{
+public:
+	struct TOptions : public mrpt::config::CLoadableOptions
+	{
+		void loadFromConfigFile(
+		    const mrpt::config::CConfigFileBase& c,
+		    const std::string& section) override;
+		void saveToConfigFile(
+		    mrpt::config::CConfigFileBase& c,
+		    const std::string& section) const override;
+
+		/** Likelihood field cell size (m). */
+		double resolution = 0.05;
+		/** Std dev of a wall sample's distance to the map wall (m). */
+		double sigma = 0.08;
+		/** Distances are clamped here (m). */
+		double maxDistance = 0.5;
+		/** Mixture weights of the hit and random parts. */
+		double hitWeight = 0.9;
+		double randomWeight = 0.1;
+		/** Likelihood of a wall sample in a cell the map never observed
+		 * (mapping: walls beyond what was seen so far). */
+		double unknownWeight = 0.3;
+		/** Segments go on this far into never-observed cells (m): a wall
+		 * seen up to the edge of a view continues beyond it. */
+		double unknownExtension = 1.0;
+		/** Room around the walls (m). */
+		double margin = 1.0;
+		/** Main direction estimate (as WallExtractor). */
+		double directionTolerance = mrpt::DEG2RAD(5.0);
+		double directionMinLength = 1.5;
+		double directionMinFraction = 0.4;
+	};
+
+	WallMap() = default;
+	explicit WallMap(const TOptions& o) : m_options(o) {}
+
+	/** Adds world-frame segments; call rebuild() before scoring. */
+	void addSegments(const std::vector<WallSegment>& worldSegments);
+	/** Adds robot-frame segments seen at `pose`. */
+	void addObservation(
+	    const std::vector<WallSegment>& robotSegments,
+	    const mrpt::poses::CPose2D& pose);
+	/** Recomputes the likelihood field and main direction from the
+	 * segments. With `observed`, cells that map never observed score at
+	 * least `unknownWeight` (a wall seen there is new, not a mismatch);
+	 * without it every cell counts as observed. */
+	void rebuild(const SemanticMap* observed = nullptr);
+	/** Replaces the contents by the wall-labelled cells of a semantic map
+	 * (likelihood field from the cells, segments from a probabilistic Hough
+	 * transform of them). */
+	void buildFromSemanticMap(const SemanticMap& map);
+
+	bool empty() const { return m_field.empty(); }
+	const std::vector<WallSegment>& segments() const { return m_segments; }
+	/** Main direction of the walls, in [-pi/4, pi/4), if they have one. */
+	const std::optional<double>& mainDirection() const { return m_main; }
+	const GridGeometry& geometry() const { return m_geometry; }
+
+	/** Log-likelihood of one world point (outside the field: the
+	 * clamped-distance value, or the unknown-cell value when built with an
+	 * observed area). */
+	float logLikelihood(double x, double y) const
+	{
+		const int cx = static_cast<int>((x - m_x0) * m_invRes);
+		const int cy = static_cast<int>((y - m_y0) * m_invRes);
+		if (x < m_x0 || y < m_y0 || cx >= m_nx || cy >= m_ny) return m_outside;
+		return m_field[static_cast<std::size_t>(cy) * m_nx + cx];
+	}
+	/** Sum of logLikelihood over robot-frame points seen at a pose. */
+	double logLikelihood(
+	    double x, double y, double yaw,
+	    const std::vector<mrpt::math::TPoint2D>& robotPoints) const;
+	/** Fraction of the points within 2 sigma of a wall at the pose. */
+	double inlierFraction(
+	    const mrpt::poses::CPose2D& pose,
+	    const std::vector<mrpt::math::TPoint2D>& robotPoints) const;
+	/** Log-likelihood of a point on a wall / far from walls. */
+	float ceiling() const { return m_ceiling; }
+	float floorValue() const { return m_floor; }
+
+	const TOptions& options() const { return m_options; }
+
+private:
+	void buildField(
+	    const std::vector<uint8_t>& wallMask,
+	    const std::vector<uint8_t>* unknownMask = nullptr);
+
+	TOptions m_options;
+	std::vector<WallSegment> m_segments;
+	std::optional<double> m_main;
+	GridGeometry m_geometry;
+	std::vector<float> m_field, m_distance;
+	double m_x0 = 0, m_y0 = 0, m_invRes = 20;
+	int m_nx = 0, m_ny = 0;
+	float m_floor = 0, m_ceiling = 0, m_unknown = 0, m_outside = 0;
+};
+
+}  // namespace semnav

@@ -1,0 +1,380 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <mrpt/math/wrap2pi.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/random/RandomGenerators.h>
+#include <semnav/common/ConfigChecks.h>
+#include <semnav/common/Error.h>
+#include <semnav/localization/Localizer.h>
+#include <semnav/map/SemanticMap.h>
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+namespace semnav
+{
+using mrpt::DEG2RAD;
+using mrpt::RAD2DEG;
+
+void Localizer::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+	checkKnownKeys(
+	    c, s,
+	    {"particles",
+	     "global_particles",
+	     "adaptive_sample_size",
+	     "kld_bin_xy_m",
+	     "kld_bin_yaw_deg",
+	     "kld_delta",
+	     "kld_epsilon",
+	     "kld_min_samples",
+	     "kld_max_samples",
+	     "ess_threshold",
+	     "motion_xy_per_m",
+	     "motion_yaw_deg_per_m",
+	     "motion_yaw_per_rad",
+	     "motion_min_xy_m",
+	     "motion_min_yaw_deg",
+	     "initial_std_xy_m",
+	     "initial_std_yaw_deg",
+	     "main_directions",
+	     "heading_noise_deg",
+	     "max_correction_deg",
+	     "effective_points",
+	     "global_effective_points",
+	     "converged_std_xy_m",
+	     "converged_std_yaw_deg",
+	     "kidnap_detection",
+	     "kidnap_inlier_fraction",
+	     "kidnap_updates",
+	     "free_cell_threshold",
+	     "seed"});
+	particles = readCheckedInt(c, s, "particles", particles, 1, 10000000);
+	globalParticles =
+	    readCheckedInt(c, s, "global_particles", globalParticles, 1, 10000000);
+	adaptiveSampleSize =
+	    readCheckedBool(c, s, "adaptive_sample_size", adaptiveSampleSize);
+	kldBinXY = readChecked(c, s, "kld_bin_xy_m", kldBinXY, 0.001, 10);
+	kldBinYaw = DEG2RAD(
+	    readChecked(c, s, "kld_bin_yaw_deg", RAD2DEG(kldBinYaw), 0.01, 180));
+	kldDelta = readChecked(c, s, "kld_delta", kldDelta, 1e-6, 0.999);
+	kldEpsilon = readChecked(c, s, "kld_epsilon", kldEpsilon, 1e-6, 10);
+	kldMinSamples =
+	    readCheckedInt(c, s, "kld_min_samples", kldMinSamples, 1, 10000000);
+	kldMaxSamples = readCheckedInt(
+	    c, s, "kld_max_samples", kldMaxSamples, kldMinSamples, 10000000);
+	essThreshold = readChecked(c, s, "ess_threshold", essThreshold, 0, 1);
+	motionXYPerMeter =
+	    readChecked(c, s, "motion_xy_per_m", motionXYPerMeter, 0, 10);
+	motionYawPerMeter = DEG2RAD(readChecked(
+	    c, s, "motion_yaw_deg_per_m", RAD2DEG(motionYawPerMeter), 0, 180));
+	motionYawPerRad =
+	    readChecked(c, s, "motion_yaw_per_rad", motionYawPerRad, 0, 10);
+	motionMinXY = readChecked(c, s, "motion_min_xy_m", motionMinXY, 0, 10);
+	motionMinYaw = DEG2RAD(
+	    readChecked(c, s, "motion_min_yaw_deg", RAD2DEG(motionMinYaw), 0, 180));
+	initialStdXY = readChecked(c, s, "initial_std_xy_m", initialStdXY, 0, 100);
+	initialStdYaw = DEG2RAD(readChecked(
+	    c, s, "initial_std_yaw_deg", RAD2DEG(initialStdYaw), 0, 180));
+	mainDirections = readCheckedBool(c, s, "main_directions", mainDirections);
+	headingNoise = DEG2RAD(
+	    readChecked(c, s, "heading_noise_deg", RAD2DEG(headingNoise), 0, 45));
+	maxCorrection = DEG2RAD(
+	    readChecked(c, s, "max_correction_deg", RAD2DEG(maxCorrection), 0, 45));
+	effectivePoints =
+	    readChecked(c, s, "effective_points", effectivePoints, 0.01, 1e6);
+	globalEffectivePoints = readChecked(
+	    c, s, "global_effective_points", globalEffectivePoints, 0.01, 1e6);
+	convergedStdXY =
+	    readChecked(c, s, "converged_std_xy_m", convergedStdXY, 0, 100);
+	convergedStdYaw = DEG2RAD(readChecked(
+	    c, s, "converged_std_yaw_deg", RAD2DEG(convergedStdYaw), 0, 180));
+	kidnapDetection =
+	    readCheckedBool(c, s, "kidnap_detection", kidnapDetection);
+	kidnapInlierFraction =
+	    readChecked(c, s, "kidnap_inlier_fraction", kidnapInlierFraction, 0, 1);
+	kidnapUpdates =
+	    readCheckedInt(c, s, "kidnap_updates", kidnapUpdates, 1, 1000);
+	freeCellThreshold =
+	    readChecked(c, s, "free_cell_threshold", freeCellThreshold, 0, 1);
+	seed = readCheckedInt(c, s, "seed", seed, 0, 1 << 30);
+}
+
+void Localizer::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
+{
+	c.write(s, "particles", particles);
+	c.write(s, "global_particles", globalParticles);
+	c.write(s, "adaptive_sample_size", adaptiveSampleSize);
+	c.write(s, "kld_bin_xy_m", kldBinXY);
+	c.write(s, "kld_bin_yaw_deg", RAD2DEG(kldBinYaw));
+	c.write(s, "kld_delta", kldDelta);
+	c.write(s, "kld_epsilon", kldEpsilon);
+	c.write(s, "kld_min_samples", kldMinSamples);
+	c.write(s, "kld_max_samples", kldMaxSamples);
+	c.write(s, "ess_threshold", essThreshold);
+	c.write(s, "motion_xy_per_m", motionXYPerMeter);
+	c.write(s, "motion_yaw_deg_per_m", RAD2DEG(motionYawPerMeter));
+	c.write(s, "motion_yaw_per_rad", motionYawPerRad);
+	c.write(s, "motion_min_xy_m", motionMinXY);
+	c.write(s, "motion_min_yaw_deg", RAD2DEG(motionMinYaw));
+	c.write(s, "initial_std_xy_m", initialStdXY);
+	c.write(s, "initial_std_yaw_deg", RAD2DEG(initialStdYaw));
+	c.write(s, "main_directions", mainDirections);
+	c.write(s, "heading_noise_deg", RAD2DEG(headingNoise));
+	c.write(s, "max_correction_deg", RAD2DEG(maxCorrection));
+	c.write(s, "effective_points", effectivePoints);
+	c.write(s, "global_effective_points", globalEffectivePoints);
+	c.write(s, "converged_std_xy_m", convergedStdXY);
+	c.write(s, "converged_std_yaw_deg", RAD2DEG(convergedStdYaw));
+	c.write(s, "kidnap_detection", kidnapDetection);
+	c.write(s, "kidnap_inlier_fraction", kidnapInlierFraction);
+	c.write(s, "kidnap_updates", kidnapUpdates);
+	c.write(s, "free_cell_threshold", freeCellThreshold);
+	c.write(s, "seed", seed);
+}
+
+mrpt::bayes::CParticleFilter::TParticleFilterOptions Localizer::pfOptions(
+    const TOptions& o)
+{
+	mrpt::bayes::CParticleFilter::TParticleFilterOptions p;
+	p.PF_algorithm = mrpt::bayes::CParticleFilter::pfStandardProposal;
+	// MRPT draws KLD samples by multinomial resampling only.
+	p.resamplingMethod = o.adaptiveSampleSize
+	                         ? mrpt::bayes::CParticleFilter::prMultinomial
+	                         : mrpt::bayes::CParticleFilter::prSystematic;
+	p.adaptiveSampleSize = o.adaptiveSampleSize;
+	p.BETA = o.essThreshold;
+	return p;
+}
+
+mrpt::obs::CActionRobotMovement2D::TMotionModelOptions Localizer::motionOptions(
+    const TOptions& o)
+{
+	mrpt::obs::CActionRobotMovement2D::TMotionModelOptions m;
+	m.modelSelection = mrpt::obs::CActionRobotMovement2D::mmGaussian;
+	m.gaussianModel.a1 = o.motionXYPerMeter;
+	m.gaussianModel.a2 = 0;
+	m.gaussianModel.a3 = o.motionYawPerMeter;
+	m.gaussianModel.a4 = o.motionYawPerRad;
+	m.gaussianModel.minStdXY = o.motionMinXY;
+	m.gaussianModel.minStdPHI = o.motionMinYaw;
+	return m;
+}
+
+void Localizer::kldOptions(const TOptions& o, mrpt::slam::TKLDParams& k)
+{
+	k.KLD_binSize_XY = o.kldBinXY;
+	k.KLD_binSize_PHI = o.kldBinYaw;
+	k.KLD_delta = o.kldDelta;
+	k.KLD_epsilon = o.kldEpsilon;
+	k.KLD_minSampleSize = static_cast<unsigned>(o.kldMinSamples);
+	k.KLD_maxSampleSize = static_cast<unsigned>(o.kldMaxSamples);
+}
+
+LocalizationUpdate Localizer::summarize(
+    const mrpt::poses::CPosePDFParticles& pdf, const TOptions& o)
+{
+	LocalizationUpdate u;
+	const auto [cov, mean] = pdf.getCovarianceAndMean();
+	u.stdXY = std::sqrt(std::max(0.0, cov(0, 0) + cov(1, 1)));
+	u.stdYaw = std::sqrt(std::max(0.0, cov(2, 2)));
+	u.particles = pdf.size();
+	u.ess = pdf.ESS();
+	u.converged = u.stdXY <= o.convergedStdXY && u.stdYaw <= o.convergedStdYaw;
+	u.pose = mean;
+	if (u.converged || pdf.size() == 0) return u;
+	// Several hypotheses: the mean may lie between them. Take the heaviest
+	// cell of a coarse (0.25 m, 10 deg) histogram, then the weighted mean of
+	// the particles near it.
+	const double bxy = 0.25, byaw = mrpt::DEG2RAD(10);
+	std::map<std::tuple<int, int, int>, double> bins;
+	const auto key = [&](const mrpt::math::TPose2D& p)
+	{
+		return std::make_tuple(
+		    int(std::floor(p.x / bxy)), int(std::floor(p.y / bxy)),
+		    int(std::floor(mrpt::math::wrapTo2Pi(p.phi) / byaw)));
+	};
+	double best = -1;
+	std::tuple<int, int, int> bestKey;
+	for (std::size_t i = 0; i < pdf.size(); i++)
+	{
+		const auto k = key(pdf.m_particles[i].d);
+		const double w = (bins[k] += std::exp(pdf.getW(i)));
+		if (w > best) best = w, bestKey = k;
+	}
+	const mrpt::math::TPose2D c(
+	    (std::get<0>(bestKey) + 0.5) * bxy, (std::get<1>(bestKey) + 0.5) * bxy,
+	    (std::get<2>(bestKey) + 0.5) * byaw);
+	double sw = 0, sx = 0, sy = 0, ss = 0, sc = 0;
+	for (std::size_t i = 0; i < pdf.size(); i++)
+	{
+		const auto& p = pdf.m_particles[i].d;
+		const double dyaw = mrpt::math::wrapToPi(p.phi - c.phi);
+		if (std::hypot(p.x - c.x, p.y - c.y) > 2 * bxy ||
+		    std::abs(dyaw) > 2 * byaw)
+			continue;
+		const double w = std::exp(pdf.getW(i));
+		sw += w, sx += w * p.x, sy += w * p.y;
+		ss += w * std::sin(p.phi), sc += w * std::cos(p.phi);
+	}
+	if (sw > 0)
+		u.pose = mrpt::poses::CPose2D(sx / sw, sy / sw, std::atan2(ss, sc));
+	return u;
+}
+
+Localizer::Localizer() : Localizer(TOptions()) {}
+
+Localizer::Localizer(const TOptions& options)
+    : mrpt::system::COutputLogger("Localizer"), m_options(options)
+{
+	m_pf.m_options = pfOptions(m_options);
+	kldOptions(m_options, m_pdf.options.KLD_params);
+	mrpt::random::getRandomGenerator().randomize(
+	    static_cast<uint32_t>(m_options.seed));
+	m_pdf.seed(static_cast<uint32_t>(m_options.seed) + 1);
+}
+
+void Localizer::setWallMap(const WallMap* map)
+{
+	m_map = map;
+	m_pdf.setWallMap(map);
+}
+
+void Localizer::setKnownMap(const SemanticMap& map)
+{
+	m_knownWalls = WallMap();
+	m_knownWalls.buildFromSemanticMap(map);
+	m_freeCells.clear();
+	const auto& g = map.geometry();
+	m_freeCellSize = g.resolution;
+	for (int cy = 0; cy < g.rows; cy++)
+		for (int cx = 0; cx < g.cols; cx++)
+			if (map.at("observations", cx, cy) > 0 &&
+			    map.occupancy(cx, cy) < m_options.freeCellThreshold)
+				m_freeCells.push_back({g.centerX(cx), g.centerY(cy)});
+	if (m_freeCells.empty())
+		throw Error("Localizer: the known map has no free cell");
+	setWallMap(&m_knownWalls);
+}
+
+void Localizer::initialize(const mrpt::poses::CPose2D& pose)
+{
+	m_pdf.resetDeterministic(
+	    pose.asTPose(), static_cast<std::size_t>(m_options.particles));
+	auto& rng = mrpt::random::getRandomGenerator();
+	for (auto& p : m_pdf.m_particles)
+	{
+		p.d.x += rng.drawGaussian1D(0, m_options.initialStdXY);
+		p.d.y += rng.drawGaussian1D(0, m_options.initialStdXY);
+		p.d.phi = mrpt::math::wrapToPi(
+		    p.d.phi + rng.drawGaussian1D(0, m_options.initialStdYaw));
+	}
+	m_lowInlierUpdates = 0;
+}
+
+void Localizer::initializeGlobal()
+{
+	if (m_freeCells.empty())
+		throw Error("Localizer: global localization needs a known map");
+	auto& rng = mrpt::random::getRandomGenerator();
+	const std::size_t n = static_cast<std::size_t>(m_options.globalParticles);
+	m_pdf.resetDeterministic(mrpt::math::TPose2D(0, 0, 0), n);
+	const double h = m_freeCellSize / 2;
+	for (auto& p : m_pdf.m_particles)
+	{
+		const auto& c =
+		    m_freeCells[rng.drawUniform32bit() % m_freeCells.size()];
+		p.d.x = c.x + rng.drawUniform(-h, h);
+		p.d.y = c.y + rng.drawUniform(-h, h);
+		p.d.phi = rng.drawUniform(-M_PI, M_PI);
+	}
+	m_lowInlierUpdates = 0;
+	m_global = true;
+	m_globalUpdates = 0;
+	m_convergedAfter = -1;
+}
+
+LocalizationUpdate Localizer::update(
+    const mrpt::poses::CPose2D& odometryIncrement, const WallObservation& obs)
+{
+	const auto t0 = std::chrono::steady_clock::now();
+	mrpt::obs::CActionRobotMovement2D act;
+	act.computeFromOdometry(odometryIncrement, motionOptions(m_options));
+	mrpt::obs::CActionCollection acts;
+	acts.insert(act);
+	mrpt::obs::CSensoryFrame sf;  // the observation is set on m_pdf
+	const bool score = m_map && !m_map->empty() && !obs.empty();
+	const bool correct = score && m_options.mainDirections &&
+	                     m_map->mainDirection() && obs.dominantDirection;
+	m_pdf.setObservation(&obs);
+	m_pdf.setEffectivePoints(
+	    m_global ? m_options.globalEffectivePoints : m_options.effectivePoints);
+	m_pdf.setHeadingCorrection(
+	    correct ? m_map->mainDirection() : std::nullopt,
+	    correct ? obs.dominantDirection : std::nullopt, m_options.headingNoise,
+	    m_options.maxCorrection);
+	mrpt::bayes::CParticleFilter::TParticleFilterStats stats;
+	m_pf.executeOn(m_pdf, &acts, score ? &sf : nullptr, &stats);
+	m_pdf.setObservation(nullptr);
+	LocalizationUpdate u = summarize(m_pdf, m_options);
+	if (m_global && score)
+	{
+		m_globalUpdates++;
+		if (u.converged)
+		{
+			m_global = false;
+			m_convergedAfter = m_globalUpdates;
+			logFmt(
+			    mrpt::system::LVL_INFO,
+			    "global localization converged after %d updates at (%.2f, "
+			    "%.2f, %.1f deg), spread %.3f m %.2f deg, %zu particles",
+			    m_globalUpdates, u.pose.x(), u.pose.y(),
+			    mrpt::RAD2DEG(u.pose.phi()), u.stdXY, mrpt::RAD2DEG(u.stdYaw),
+			    u.particles);
+		}
+	}
+	u.headingCorrected = correct;
+	u.ms = std::chrono::duration<double, std::milli>(
+	           std::chrono::steady_clock::now() - t0)
+	           .count();
+	if (score) u.inlierFraction = m_map->inlierFraction(u.pose, obs.samples);
+
+	// Likelihood collapse while tracking in a known map: spread the particles
+	// over the free space and score the same sweep again.
+	if (score && !m_freeCells.empty() && m_options.kidnapDetection && !m_global)
+	{
+		if (u.inlierFraction < m_options.kidnapInlierFraction)
+			m_lowInlierUpdates++;
+		else
+			m_lowInlierUpdates = 0;
+		if (m_lowInlierUpdates >= m_options.kidnapUpdates)
+		{
+			m_kidnappings++;
+			logFmt(
+			    mrpt::system::LVL_WARN,
+			    "kidnapped robot: %.0f%% of wall samples fit at (%.2f, %.2f);"
+			    " global relocalization",
+			    100 * u.inlierFraction, u.pose.x(), u.pose.y());
+			initializeGlobal();
+			const double ms = u.ms;
+			const bool detect = m_options.kidnapDetection;
+			m_options.kidnapDetection = false;
+			u = update(mrpt::poses::CPose2D(), obs);
+			m_options.kidnapDetection = detect;
+			u.ms += ms;
+			u.kidnapped = true;
+		}
+	}
+	return u;
+}
+
+mrpt::poses::CPose2D Localizer::pose() const
+{
+	return summarize(m_pdf, m_options).pose;
+}
+
+}  // namespace semnav

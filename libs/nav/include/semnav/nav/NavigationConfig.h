@@ -1,0 +1,47 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+
+#include <mrpt/config/CConfigFileMemory.h>
+#include <semnav/map/SemanticMap.h>
+#include <semnav/nav/SemanticNavigator.h>
+#include <semnav/nav/SimulatedRobot.h>
+#include <semnav/planning/CnnPlanner.h>
+#include <semnav/planning/TraversabilityBuilder.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace semnav
+{
+/** Everything a navigation run is configured with:
+ * config/navigation.ini ([SemanticNavigator], [SimulatedRobot] and MRPT's
+ * reactive-navigation sections, based on MRPT's reactive2d_config.ini) and
+ * config/planning.ini ([CnnPlanner], [Traversability], optionally
+ * [SemanticMap], [TravelCost] for loading maps).
+ *
+ * Sections other than these are errors; keys of semnav's sections are
+ * checked by their TOptions; keys of MRPT's sections are checked against
+ * what MRPT's navigator itself writes back (saveConfigFile), so a typo is an
+ * error instead of a silently ignored key. */
+struct NavigationConfig
+{
+	SemanticNavigator::TOptions navigator;
+	SimulatedRobot::TOptions robot;
+	CnnPlanner::TOptions cnn;
+	TraversabilityBuilder::TOptions traversability;
+	SemanticMap::TOptions map;
+	/** MRPT's sections, as read (shared: MRPT's CConfigFileMemory must not
+	 * be copied). */
+	std::shared_ptr<const mrpt::config::CConfigFileMemory> mrptSections;
+
+	/** Sections of navigation.ini that belong to MRPT. */
+	static const std::vector<std::string>& mrptSectionNames();
+
+	/** Loads navigation.ini and (if not empty) planning.ini. Throws
+	 * ConfigError naming file, section and key. */
+	static NavigationConfig load(
+	    const std::string& navigationIni, const std::string& planningIni);
+};
+
+}  // namespace semnav

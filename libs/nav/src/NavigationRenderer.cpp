@@ -1,0 +1,91 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/map/MapRenderer.h>
+#include <semnav/map/SemanticMap.h>
+#include <semnav/nav/NavigationRenderer.h>
+
+#include <cstdio>
+#include <opencv2/imgproc.hpp>
+
+namespace semnav
+{
+namespace
+{
+struct Projector
+{
+	GridGeometry g;
+	int k;
+	cv::Point operator()(double x, double y) const
+	{
+		const double col = (x - g.originX) / g.resolution;
+		const double row = (y - g.originY) / g.resolution;
+		return {
+		    static_cast<int>(std::lround(col * k)),
+		    static_cast<int>(std::lround((g.rows - row) * k))};
+	}
+};
+
+void polyline(
+    cv::Mat& img, const Projector& P,
+    const std::vector<mrpt::math::TPoint2D>& pts, const cv::Scalar& c, int w)
+{
+	for (std::size_t i = 1; i < pts.size(); i++)
+		cv::line(
+		    img, P(pts[i - 1].x, pts[i - 1].y), P(pts[i].x, pts[i].y), c, w,
+		    cv::LINE_AA);
+}
+}  // namespace
+
+cv::Mat NavigationRenderer::render(
+    const SemanticMap& map, const SimulatedNavigation::Result& r, int k)
+{
+	cv::Mat img = MapRenderer::render(map, k);
+	const Projector P{map.geometry(), k};
+	const cv::Scalar orange(0, 140, 255), red(0, 0, 230), blue(200, 80, 0),
+	    green(0, 170, 0), purple(160, 0, 160), magenta(255, 0, 255);
+
+	for (const auto& p : r.sensedObstacles)
+		cv::circle(img, P(p.x, p.y), std::max(1, k / 2), purple, cv::FILLED);
+	for (std::size_t i = 0; i + 1 < r.plans.size(); i++)
+		polyline(img, P, r.plans[i].path, orange, 1);
+	if (!r.plans.empty())
+	{
+		polyline(img, P, r.plans.back().path, red, 1);
+		for (const auto& w : r.plans.back().waypoints)
+			cv::circle(img, P(w.x, w.y), k, red, 1, cv::LINE_AA);
+	}
+	std::vector<mrpt::math::TPoint2D> traj;
+	for (const auto& p : r.trajectory) traj.push_back({p.x, p.y});
+	polyline(img, P, traj, blue, 2);
+	cv::circle(
+	    img, P(r.start.x, r.start.y), 2 * k, green, cv::FILLED, cv::LINE_AA);
+	cv::circle(
+	    img, P(r.finalPose.x, r.finalPose.y), 2 * k, blue, cv::FILLED,
+	    cv::LINE_AA);
+	if (r.objectId || r.command.kind == NavCommand::Kind::Point)
+		cv::circle(
+		    img, P(r.objectXY.x, r.objectXY.y), 4 * k, red, 2, cv::LINE_AA);
+	for (const auto& c : r.collisionPoses)
+	{
+		const cv::Point q = P(c.x, c.y);
+		cv::line(
+		    img, q - cv::Point(3 * k, 3 * k), q + cv::Point(3 * k, 3 * k),
+		    magenta, 2);
+		cv::line(
+		    img, q - cv::Point(3 * k, -3 * k), q + cv::Point(3 * k, -3 * k),
+		    magenta, 2);
+	}
+
+	char buf[300];
+	std::snprintf(
+	    buf, sizeof(buf), "%s: %s, %d replans, %d collisions, %.1f s",
+	    r.command.text().c_str(), r.success ? "reached" : r.message.c_str(),
+	    r.replans, r.collisions, r.simTime);
+	cv::Mat out(img.rows + 28, img.cols, img.type(), cv::Scalar(255, 255, 255));
+	img.copyTo(out(cv::Rect(0, 28, img.cols, img.rows)));
+	cv::putText(
+	    out, buf, {6, 19}, cv::FONT_HERSHEY_SIMPLEX, 0.5, {0, 0, 0}, 1,
+	    cv::LINE_AA);
+	return out;
+}
+
+}  // namespace semnav

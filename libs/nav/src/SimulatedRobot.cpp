@@ -1,0 +1,212 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/kinematics/CVehicleVelCmd_DiffDriven.h>
+#include <mrpt/maps/CSimplePointsMap.h>
+#include <semnav/common/ConfigChecks.h>
+#include <semnav/common/Error.h>
+#include <semnav/nav/SimulatedRobot.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace semnav
+{
+namespace
+{
+std::vector<double> readList(
+    const mrpt::config::CConfigFileBase& c, const std::string& s,
+    const std::string& key, const std::vector<double>& current, double lo,
+    double hi)
+{
+	const std::string text = c.read_string(s, key, "");
+	if (text.empty()) return current;
+	std::istringstream is(text);
+	std::vector<double> out;
+	for (std::string t; is >> t;)
+	{
+		std::size_t n = 0;
+		double v = 0;
+		try
+		{
+			v = std::stod(t, &n);
+		}
+		catch (const std::exception&)
+		{
+			n = 0;
+		}
+		if (n != t.size() || !(v >= lo && v <= hi))
+			throw ConfigError(
+			    "[" + s + "] " + key + ": '" + t + "' is not a number in [" +
+			    std::to_string(lo) + ", " + std::to_string(hi) + "]");
+		out.push_back(v);
+	}
+	if (out.empty())
+		throw ConfigError("[" + s + "] " + key + ": expected numbers");
+	return out;
+}
+
+std::string listText(const std::vector<double>& v)
+{
+	std::ostringstream os;
+	for (std::size_t i = 0; i < v.size(); i++) os << (i ? " " : "") << v[i];
+	return os.str();
+}
+
+constexpr double kEpoch = 1577836800.0;  // 2020-01-01T00:00:00Z
+}  // namespace
+
+void SimulatedRobot::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+	checkKnownKeys(
+	    c, s,
+	    {"robot_radius_m", "scan_heights_m", "scan_fov_deg", "scan_beams",
+	     "scan_max_range_m", "collision_heights_m", "collision_rays",
+	     "time_step_s", "max_time_s"});
+	robotRadius = readChecked(c, s, "robot_radius_m", robotRadius, 0.05, 5);
+	scanHeights = readList(c, s, "scan_heights_m", scanHeights, 0.0, 10);
+	scanFovDeg = readChecked(c, s, "scan_fov_deg", scanFovDeg, 1, 360);
+	scanBeams = readCheckedInt(c, s, "scan_beams", scanBeams, 2, 100000);
+	scanMaxRange =
+	    readChecked(c, s, "scan_max_range_m", scanMaxRange, 0.1, 100);
+	collisionHeights =
+	    readList(c, s, "collision_heights_m", collisionHeights, 0.0, 10);
+	collisionRays =
+	    readCheckedInt(c, s, "collision_rays", collisionRays, 8, 100000);
+	timeStep = readChecked(c, s, "time_step_s", timeStep, 0.001, 10);
+	maxTime = readChecked(c, s, "max_time_s", maxTime, 0.1, 1e6);
+}
+
+void SimulatedRobot::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
+{
+	c.write(s, "robot_radius_m", robotRadius);
+	c.write(s, "scan_heights_m", listText(scanHeights));
+	c.write(s, "scan_fov_deg", scanFovDeg);
+	c.write(s, "scan_beams", scanBeams);
+	c.write(s, "scan_max_range_m", scanMaxRange);
+	c.write(s, "collision_heights_m", listText(collisionHeights));
+	c.write(s, "collision_rays", collisionRays);
+	c.write(s, "time_step_s", timeStep);
+	c.write(s, "max_time_s", maxTime);
+}
+
+mrpt::Clock::time_point SimulatedRobot::timestampOf(double t)
+{
+	return mrpt::Clock::fromDouble(kEpoch + t);
+}
+
+SimulatedRobot::SimulatedRobot(
+    const Scene& scene, const TOptions& options,
+    const mrpt::math::TPose2D& start)
+    : mrpt::nav::CRobot2NavInterfaceForSimulator_DiffDriven(m_vehicle),
+      m_options(options),
+      m_caster(scene),
+      m_previousClock(mrpt::Clock::getActiveClock())
+{
+	setLoggerName("SimulatedRobot");
+	m_vehicle.setCurrentGTPose(start);
+	m_vehicle.setCurrentOdometricPose(start);
+	mrpt::Clock::setSimulatedTime(timestampOf(0));
+	mrpt::Clock::setActiveClock(mrpt::Clock::Simulated);
+	resetNavigationTimer();
+	m_trajectory.push_back(start);
+	if (inCollision(start))
+	{
+		m_collisions = 1;
+		m_inContact = true;
+		m_collisionPoses.push_back(start);
+	}
+}
+
+SimulatedRobot::~SimulatedRobot()
+{
+	mrpt::Clock::setActiveClock(m_previousClock);
+}
+
+void SimulatedRobot::simulate(double dt)
+{
+	const mrpt::math::TPose2D before = m_vehicle.getCurrentGTPose();
+	const mrpt::math::TPose2D odoBefore = m_vehicle.getCurrentOdometricPose();
+	m_vehicle.simulateOneTimeStep(dt);
+	mrpt::Clock::setSimulatedTime(timestampOf(m_vehicle.getTime()));
+	const mrpt::math::TPose2D after = m_vehicle.getCurrentGTPose();
+	if (inCollision(after))
+	{
+		if (!m_inContact)
+		{
+			m_collisions++;
+			m_collisionPoses.push_back(after);
+			MRPT_LOG_WARN_FMT(
+			    "collision at (%.2f, %.2f), t = %.1f s", after.x, after.y,
+			    m_vehicle.getTime());
+		}
+		m_inContact = true;
+		// The obstacle stops the robot: undo the step.
+		m_vehicle.setCurrentGTPose(before);
+		m_vehicle.setCurrentOdometricPose(odoBefore);
+	}
+	else
+		m_inContact = false;
+	m_trajectory.push_back(m_vehicle.getCurrentGTPose());
+}
+
+mrpt::kinematics::CVehicleVelCmd::Ptr SimulatedRobot::getAlignCmd(
+    const double relativeHeading)
+{
+	auto cmd = std::make_shared<mrpt::kinematics::CVehicleVelCmd_DiffDriven>();
+	cmd->lin_vel = 0;
+	const double w = std::min(
+	    45.0, std::max(10.0, std::abs(relativeHeading) * 180 / M_PI * 2.25));
+	cmd->ang_vel = (relativeHeading >= 0 ? 1 : -1) * w * M_PI / 180;
+	return cmd;
+}
+
+bool SimulatedRobot::inCollision(const mrpt::math::TPose2D& p) const
+{
+	const double R = m_options.robotRadius;
+	const int n = m_options.collisionRays;
+	for (double h : m_options.collisionHeights)
+		for (int k = 0; k < n; k++)
+		{
+			const double a = 2 * M_PI * k / n;
+			const mrpt::math::TPoint3D d{std::cos(a), std::sin(a), 0};
+			const mrpt::math::TPoint3D c{p.x, p.y, h};
+			// Outward from the centre, and inward from the rim (catches a
+			// solid holding the centre).
+			if (m_caster.cast(c, d, R).hit) return true;
+			const mrpt::math::TPoint3D rim{c.x + R * d.x, c.y + R * d.y, h};
+			if (m_caster.cast(rim, {-d.x, -d.y, 0}, R).hit) return true;
+		}
+	return false;
+}
+
+bool SimulatedRobot::senseObstacles(
+    mrpt::maps::CSimplePointsMap& obstacles,
+    mrpt::system::TTimeStamp& timestamp)
+{
+	obstacles.clear();
+	timestamp = timestampOf(m_vehicle.getTime());
+	const mrpt::math::TPose2D p = m_vehicle.getCurrentGTPose();
+	const double fov = m_options.scanFovDeg * M_PI / 180;
+	const int n = m_options.scanBeams;
+	const bool full = m_options.scanFovDeg >= 360;
+	for (double h : m_options.scanHeights)
+		for (int k = 0; k < n; k++)
+		{
+			const double rel =
+			    full ? 2 * M_PI * k / n : -fov / 2 + fov * k / (n - 1);
+			const double a = p.phi + rel;
+			const RayHit hit = m_caster.cast(
+			    {p.x, p.y, h}, {std::cos(a), std::sin(a), 0},
+			    m_options.scanMaxRange);
+			if (!hit.hit) continue;
+			obstacles.insertPoint(
+			    static_cast<float>(hit.range * std::cos(rel)),
+			    static_cast<float>(hit.range * std::sin(rel)),
+			    static_cast<float>(h));
+		}
+	return true;
+}
+
+}  // namespace semnav

@@ -1,0 +1,124 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// One navigation step of semnav-nav on the office (ground-truth map from
+// datasets/office/office.yaml, 5 cm, safe profile, robot in the hall half
+// way to the nearest wastebasket):
+// - BM_Replan: SemanticNavigator::replan() = traversability u + CNN field +
+//   path + line-of-sight thinning + navigateWaypoints();
+// - BM_NavigatorStep: SemanticNavigator::step() = MRPT's reactive
+//   navigationStep() (ray-cast scan of 2 x 240 beams, TP-space transform of
+//   3 PTGs, holonomic method, motion decision) + the path-blocked check;
+// - BM_ReplanAndStep: both, the worst-case step (a step that replans);
+// - BM_SenseObstacles, BM_CollisionCheck: the simulator's share.
+// Run with
+//   bench_nav --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+#include <mrpt/maps/CSimplePointsMap.h>
+#include <semnav/map/SemanticMap.h>
+#include <semnav/nav/NavigationConfig.h>
+#include <semnav/nav/SceneMapBuilder.h>
+#include <semnav/nav/SemanticNavigator.h>
+#include <semnav/nav/SimulatedRobot.h>
+#include <semnav/sim/SceneLoader.h>
+
+#include <memory>
+
+using namespace semnav;
+
+namespace
+{
+struct Fixture
+{
+	NavigationConfig config;
+	Scene scene;
+	SemanticMap map;
+	std::unique_ptr<SimulatedRobot> robot;
+	std::unique_ptr<SemanticNavigator> nav;
+
+	Fixture()
+	    : config(NavigationConfig::load(
+	          std::string(SEMNAV_SOURCE_DIR) + "/config/navigation.ini",
+	          std::string(SEMNAV_SOURCE_DIR) + "/config/planning.ini")),
+	      scene(SceneLoader::loadFile(
+	          std::string(SEMNAV_SOURCE_DIR) + "/datasets/office/office.yaml")),
+	      map(config.map)
+	{
+		SceneMapBuilder::build(scene, map);
+		robot = std::make_unique<SimulatedRobot>(
+		    scene, config.robot, mrpt::math::TPose2D(5.0, 1.5, 0.8));
+		nav = std::make_unique<SemanticNavigator>(
+		    *robot, map, *config.mrptSections, config.cnn,
+		    config.traversability, config.navigator);
+		nav->setMinLoggingLevel(mrpt::system::LVL_ERROR);
+		robot->setMinLoggingLevel(mrpt::system::LVL_ERROR);
+		nav->start(NavCommand::nearest(Label::Washbasin));
+		// A few steps so the navigator is under way.
+		for (int i = 0; i < 20; i++)
+		{
+			nav->step();
+			robot->simulate();
+		}
+	}
+};
+
+Fixture& fixture()
+{
+	static Fixture f;
+	return f;
+}
+
+void BM_Replan(benchmark::State& st)
+{
+	auto& f = fixture();
+	for (auto _ : st)
+		benchmark::DoNotOptimize(
+		    f.nav->replan(SemanticNavigator::ReplanReason::MapChanged));
+	st.counters["cells"] = static_cast<double>(f.map.geometry().cellCount());
+}
+BENCHMARK(BM_Replan)->Unit(benchmark::kMillisecond);
+
+void BM_NavigatorStep(benchmark::State& st)
+{
+	auto& f = fixture();
+	f.nav->replan(SemanticNavigator::ReplanReason::MapChanged);
+	for (auto _ : st)
+	{
+		f.nav->step();
+		st.PauseTiming();
+		// Keep the scene still: the same situation every iteration.
+		f.robot->stop(false);
+		st.ResumeTiming();
+	}
+}
+BENCHMARK(BM_NavigatorStep)->Unit(benchmark::kMillisecond);
+
+void BM_ReplanAndStep(benchmark::State& st)
+{
+	auto& f = fixture();
+	for (auto _ : st)
+	{
+		f.nav->replan(SemanticNavigator::ReplanReason::MapChanged);
+		f.nav->step();
+	}
+}
+BENCHMARK(BM_ReplanAndStep)->Unit(benchmark::kMillisecond);
+
+void BM_SenseObstacles(benchmark::State& st)
+{
+	auto& f = fixture();
+	mrpt::maps::CSimplePointsMap obs;
+	mrpt::system::TTimeStamp t;
+	for (auto _ : st) f.robot->senseObstacles(obs, t);
+	st.counters["points"] = static_cast<double>(obs.size());
+}
+BENCHMARK(BM_SenseObstacles)->Unit(benchmark::kMillisecond);
+
+void BM_CollisionCheck(benchmark::State& st)
+{
+	auto& f = fixture();
+	for (auto _ : st)
+		benchmark::DoNotOptimize(f.robot->inCollision(f.robot->pose()));
+}
+BENCHMARK(BM_CollisionCheck)->Unit(benchmark::kMillisecond);
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,187 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// semnav-nav: JSON summary, navlog (read back by MRPT) and picture, on a
+// ground-truth map and on the map semnav's own pipeline builds from the
+// simulated office; one-line errors with exit codes.
+#include <gtest/gtest.h>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/nav/reactive/CLogFileRecord.h>
+#include <mrpt/serialization/CArchive.h>
+#include <semnav/map/MapIO.h>
+#include <semnav/map/SemanticMap.h>
+#include <semnav/perception/PerceptionPipeline.h>
+#include <semnav/scan/GroundTruthLog.h>
+#include <semnav/scan/RawlogSweepReader.h>
+#include <semnav/sim/SceneLoader.h>
+#include <semnav/sim/SimulationRunner.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "AppRunner.h"
+
+using namespace semnav;
+namespace fs = std::filesystem;
+using semnav::test::AppRun;
+using semnav::test::lineCount;
+using semnav::test::runApp;
+
+namespace
+{
+const std::string kSrc = SEMNAV_SOURCE_DIR;
+
+fs::path tmpDir(const std::string& name)
+{
+	const fs::path d =
+	    fs::temp_directory_path() /
+	    ("semnav_navcli_" + name + "_" + std::to_string(::getpid()));
+	fs::remove_all(d);
+	fs::create_directories(d);
+	return d;
+}
+
+/** The office mapped by semnav's pipeline (true poses, all 11 stops). */
+const fs::path& officeMap()
+{
+	static const fs::path dir = []
+	{
+		const fs::path d = tmpDir("officemap");
+		const Scene scene =
+		    SceneLoader::loadFile(kSrc + "/datasets/office/office.yaml");
+		const auto res =
+		    SimulationRunner(scene, SimulationRunner::TOptions(), 1)
+		        .run((d / "sim").string());
+		const auto gt =
+		    GroundTruthLog::forRawlog((d / "sim").string(), res.rawlogPath);
+		SemanticMap map;
+		PerceptionPipeline pipeline;
+		RawlogSweepReader reader(res.rawlogPath);
+		Sweep s;
+		while (reader.next(s))
+			map.insert(s, pipeline.process(s), gt.pose(s.index()));
+		MapIO::save(map, (d / "map").string());
+		return d / "map";
+	}();
+	return dir;
+}
+
+std::size_t navlogRecords(const fs::path& p)
+{
+	mrpt::io::CFileGZInputStream f(p.string());
+	auto arch = mrpt::serialization::archiveFrom(f);
+	std::size_t n = 0;
+	try
+	{
+		for (;;)
+		{
+			auto obj = arch.ReadObject();
+			if (!std::dynamic_pointer_cast<mrpt::nav::CLogFileRecord>(obj))
+				return 0;
+			n++;
+		}
+	}
+	catch (const std::exception&)
+	{
+	}
+	return n;
+}
+}  // namespace
+
+TEST(SemnavNavCli, JsonNavlogAndPictureOnAGroundTruthMap)
+{
+	const fs::path out = tmpDir("gt");
+	const std::string scene = kSrc + "/datasets/nav/utrap.yaml";
+	const AppRun r = runApp(
+	    "semnav-nav", "--gt-map " + scene + " --scene " + scene +
+	                      " --start 6.2,2.6,0 --command 'go to the nearest "
+	                      "wastebasket' --out " +
+	                      out.string() + " --json");
+	ASSERT_EQ(r.code, 0) << r.err << r.out;
+	const auto j = nlohmann::json::parse(r.out);
+	EXPECT_TRUE(j.at("success").get<bool>());
+	// Wastebasket 2 (north-west): nearer by path than wastebasket 1 behind
+	// the trap.
+	EXPECT_EQ(j.at("reached_object").at("id").get<int>(), 2);
+	EXPECT_EQ(j.at("reached_object").at("label"), "wastebasket");
+	EXPECT_NEAR(j.at("reached_object").at("x").get<double>(), 2.0, 1e-6);
+	EXPECT_EQ(j.at("final_pose").size(), 3u);
+	EXPECT_LT(j.at("distance_to_object_m").get<double>(), 1.0);
+	EXPECT_EQ(j.at("collisions").get<int>(), 0);
+	EXPECT_GT(j.at("sim_time_s").get<double>(), 1.0);
+	EXPECT_GE(j.at("replans").get<int>(), 0);
+	const cv::Mat png = cv::imread((out / "navigation.png").string());
+	EXPECT_GT(png.cols, 200);
+	EXPECT_GT(navlogRecords(out / "navigation.reactivenavlog"), 20u);
+	// Nothing else is left behind (temporary navlog directory).
+	std::size_t files = 0;
+	for ([[maybe_unused]] const auto& e : fs::directory_iterator(out)) files++;
+	EXPECT_EQ(files, 2u);
+}
+
+TEST(SemnavNavCli, GoesToTheNearestWastebasketOnThePipelinesMap)
+{
+	// The map of the simulated office as semnav-map builds it; its
+	// wastebaskets come from the detector when it finds them, else from the
+	// scene (--instances-from-scene adds a label only when the map has none).
+	const fs::path out = tmpDir("office");
+	const std::string scene = kSrc + "/datasets/office/office.yaml";
+	const AppRun r = runApp(
+	    "semnav-nav", "--map " + officeMap().string() + " --scene " + scene +
+	                      " --start 2.2,1.5,0 --goal wastebasket "
+	                      "--instances-from-scene wastebasket --json --out " +
+	                      out.string());
+	ASSERT_EQ(r.code, 0) << r.err << r.out;
+	const auto j = nlohmann::json::parse(r.out);
+	EXPECT_TRUE(j.at("success").get<bool>());
+	EXPECT_EQ(j.at("collisions").get<int>(), 0);
+	EXPECT_EQ(j.at("reached_object").at("label"), "wastebasket");
+	EXPECT_LT(j.at("distance_to_object_m").get<double>(), 1.0);
+}
+
+TEST(SemnavNavCli, ErrorsAreOneLineWithExitCodes)
+{
+	const std::string scene = kSrc + "/datasets/nav/utrap.yaml";
+	const std::string base = "--gt-map " + scene + " --scene " + scene;
+	struct Case
+	{
+		std::string args;
+		int code;
+		std::string mention;
+	};
+	const fs::path badIni = tmpDir("ini") / "nav.ini";
+	{
+		std::ifstream in(kSrc + "/config/navigation.ini");
+		std::stringstream ss;
+		ss << in.rdbuf();
+		std::string s = ss.str();
+		s.replace(s.find("max_replans"), 11, "max_replanz");
+		std::ofstream(badIni) << s;
+	}
+	const std::vector<Case> cases{
+	    {base + " --start 6.2,2.6,0 --command 'go to the nearest sofa'", 1,
+	     "known"},
+	    {base + " --start 6.2,2.6,0 --goal sofa", 1, "washbasin"},
+	    {base + " --start 6.2,2.6,0 --goal stairs", 1, "no stairs"},
+	    {base + " --start 6.2,2.6,0 --command 'fly to the moon'", 1,
+	     "go to the nearest"},
+	    {base + " --start 5.5,1.95,0 --goal wastebasket", 1, "obstacle"},
+	    {base + " --start 60,2,0 --goal wastebasket", 1, "outside"},
+	    {base + " --start 6.2,2.6,0 --goal wastebasket --config " +
+	         badIni.string(),
+	     1, "max_replanz"},
+	    {base + " --start 6.2,2.6 --goal wastebasket", 2, "--start"},
+	    {base + " --goal wastebasket", 2, "--start"},
+	    {"--scene " + scene + " --start 1,1,0 --goal wastebasket", 2, "--map"},
+	    {base + " --start 6.2,2.6,0", 2, "--goal"},
+	    {"--map /nonexistent --scene " + scene + " --start 1,1,0 --goal door",
+	     1, "nonexistent"},
+	};
+	for (const auto& c : cases)
+	{
+		const AppRun r = runApp("semnav-nav", c.args);
+		EXPECT_EQ(r.code, c.code) << c.args << "\n" << r.err;
+		EXPECT_EQ(lineCount(r.err), 1u) << c.args << "\n" << r.err;
+		EXPECT_NE(r.err.find(c.mention), std::string::npos) << c.args << "\n"
+		                                                    << r.err;
+	}
+}

@@ -1,0 +1,64 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// NavCommand: the accepted forms, and one-line errors for the rest.
+#include <gtest/gtest.h>
+#include <semnav/common/Error.h>
+#include <semnav/nav/NavCommand.h>
+#include <semnav/nav/NavigationErrors.h>
+
+using namespace semnav;
+
+TEST(NavCommand, NearestLabel)
+{
+	for (const char* t :
+	     {"go to the nearest wastebasket", "Go To The Nearest  WASTEBASKET",
+	      "go to nearest wastebasket"})
+	{
+		const auto c = NavCommand::parse(t);
+		EXPECT_EQ(c.kind, NavCommand::Kind::NearestLabel) << t;
+		EXPECT_EQ(c.label, Label::Wastebasket) << t;
+	}
+	EXPECT_EQ(
+	    NavCommand::parse("go to the nearest washbasin").text(),
+	    "go to the nearest washbasin");
+}
+
+TEST(NavCommand, ObjectAndPoint)
+{
+	const auto o = NavCommand::parse("go to wastebasket 3");
+	EXPECT_EQ(o.kind, NavCommand::Kind::Object);
+	EXPECT_EQ(o.label, Label::Wastebasket);
+	EXPECT_EQ(o.objectId, 3);
+	EXPECT_EQ(NavCommand::parse("go to door #2").objectId, 2);
+	const auto p = NavCommand::parse("go to 4.5 -1.25");
+	EXPECT_EQ(p.kind, NavCommand::Kind::Point);
+	EXPECT_DOUBLE_EQ(p.x, 4.5);
+	EXPECT_DOUBLE_EQ(p.y, -1.25);
+	EXPECT_EQ(NavCommand::parse("go to 4.5,2").kind, NavCommand::Kind::Point);
+}
+
+TEST(NavCommand, UnknownLabelListsTheKnownOnes)
+{
+	try
+	{
+		NavCommand::parse("go to the nearest sofa");
+		FAIL() << "no error";
+	}
+	catch (const UnknownLabelError& e)
+	{
+		const std::string m = e.what();
+		EXPECT_NE(m.find("sofa"), std::string::npos) << m;
+		EXPECT_NE(m.find("wastebasket"), std::string::npos) << m;
+		EXPECT_NE(m.find("washbasin"), std::string::npos) << m;
+		EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+	}
+	EXPECT_THROW(NavCommand::parse("go to sofa 2"), UnknownLabelError);
+}
+
+TEST(NavCommand, MalformedCommands)
+{
+	for (const char* t :
+	     {"", "go", "go to", "walk to the nearest door", "go to door 0",
+	      "go to the nearest", "go to 1 2 3", "go to the nearest door now",
+	      "go to door -1"})
+		EXPECT_THROW(NavCommand::parse(t), Error) << t;
+}
