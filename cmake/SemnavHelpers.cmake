@@ -20,13 +20,18 @@ function(semnav_add_app name)
   target_compile_options(${name} PRIVATE -Wall -Wextra)
 endfunction()
 
-# semnav_add_test(<name> SOURCES ... DEPENDS ...): a GoogleTest executable registered with ctest.
+# semnav_add_test(<name> [SERIAL] SOURCES ... DEPENDS ...): a GoogleTest executable registered
+# with ctest; SERIAL tests run alone (ctest RUN_SERIAL: timing against real-time devices).
 function(semnav_add_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS" ${ARGN})
+  cmake_parse_arguments(ARG "SERIAL" "" "SOURCES;DEPENDS" ${ARGN})
+  set(props "")
+  if(ARG_SERIAL)
+    set(props PROPERTIES RUN_SERIAL TRUE)
+  endif()
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} GTest::gtest GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE
     SEMNAV_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     SEMNAV_BINARY_DIR="${PROJECT_BINARY_DIR}")
-  gtest_discover_tests(${name} WORKING_DIRECTORY ${PROJECT_BINARY_DIR} DISCOVERY_TIMEOUT 60)
+  gtest_discover_tests(${name} WORKING_DIRECTORY ${PROJECT_BINARY_DIR} DISCOVERY_TIMEOUT 60 ${props})
 endfunction()

@@ -16,18 +16,6 @@
 #include <optional>
 #include <string>
 
-namespace
-{
-/** Strict unsigned parse of --seed; empty optional = bad usage. */
-std::optional<uint64_t> parseSeed(const std::string& s)
-{
-	if (s.empty() || s.size() > 19 ||
-	    s.find_first_not_of("0123456789") != std::string::npos)
-		return std::nullopt;
-	return std::stoull(s);
-}
-}  // namespace
-
 int main(int argc, char** argv)
 {
 	semnav::CommandLine cli(
@@ -54,7 +42,8 @@ int main(int argc, char** argv)
 	for (auto* a : {&argScene, &argOut})
 		if (a->getValue().empty())
 			return cli.usageError("missing --" + a->getName());
-	const auto seedValue = parseSeed(argSeed.getValue());
+	const auto seedValue =
+	    semnav::CommandLine::parseUnsigned(argSeed.getValue());
 	if (!seedValue)
 		return cli.usageError(
 		    "--seed must be a non-negative integer, got '" +

@@ -19,17 +19,6 @@
 #include <string>
 #include <vector>
 
-namespace
-{
-std::optional<uint64_t> parseSeed(const std::string& s)
-{
-	if (s.empty() || s.size() > 19 ||
-	    s.find_first_not_of("0123456789") != std::string::npos)
-		return std::nullopt;
-	return std::stoull(s);
-}
-}  // namespace
-
 int main(int argc, char** argv)
 {
 	semnav::CommandLine cli(
@@ -70,7 +59,7 @@ int main(int argc, char** argv)
 	for (auto* a : {&argLabel, &argDatasets, &argOut})
 		if (a->getValue().empty())
 			return cli.usageError("missing --" + a->getName());
-	const auto seed = parseSeed(argSeed.getValue());
+	const auto seed = semnav::CommandLine::parseUnsigned(argSeed.getValue());
 	if (!seed)
 		return cli.usageError(
 		    "--seed must be a non-negative integer, got '" +

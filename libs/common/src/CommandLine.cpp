@@ -62,6 +62,14 @@ int CommandLine::run(const std::function<int()>& body) const
 	}
 }
 
+std::optional<uint64_t> CommandLine::parseUnsigned(const std::string& s)
+{
+	if (s.empty() || s.size() > 19 ||
+	    s.find_first_not_of("0123456789") != std::string::npos)
+		return std::nullopt;
+	return std::stoull(s);
+}
+
 std::string CommandLine::firstLine(const std::string& msg)
 {
 	// The first line with content; MRPT's exceptions open with a

@@ -1,4 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <mrpt/core/bits_math.h>
+#include <semnav/common/ConfigChecks.h>
 #include <semnav/localization/MainDirections.h>
 
 #include <cmath>
@@ -11,6 +13,32 @@ double MainDirections::wrapQuarter(double a)
 	a = std::fmod(a + M_PI / 4, q);
 	if (a < 0) a += q;
 	return a - M_PI / 4;
+}
+
+void MainDirections::TEstimateOptions::load(
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+	tolerance = mrpt::DEG2RAD(readChecked(
+	    c, s, "direction_tolerance_deg", mrpt::RAD2DEG(tolerance), 0.1, 45));
+	minLength = readChecked(c, s, "direction_min_length_m", minLength, 0, 1000);
+	minFraction =
+	    readChecked(c, s, "direction_min_fraction", minFraction, 0, 1);
+}
+
+void MainDirections::TEstimateOptions::save(
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
+{
+	c.write(s, "direction_tolerance_deg", mrpt::RAD2DEG(tolerance));
+	c.write(s, "direction_min_length_m", minLength);
+	c.write(s, "direction_min_fraction", minFraction);
+}
+
+const std::vector<std::string>& MainDirections::TEstimateOptions::keys()
+{
+	static const std::vector<std::string> k{
+	    "direction_tolerance_deg", "direction_min_length_m",
+	    "direction_min_fraction"};
+	return k;
 }
 
 std::optional<double> MainDirections::estimate(

@@ -28,13 +28,7 @@ void WallExtractor::TOptions::loadFromConfigFile(
 	sampleSpacing =
 	    readChecked(c, s, "sample_spacing_m", sampleSpacing, 0.01, 10);
 	maxSamples = readCheckedInt(c, s, "max_samples", maxSamples, 1, 100000);
-	directionTolerance = mrpt::DEG2RAD(readChecked(
-	    c, s, "direction_tolerance_deg", mrpt::RAD2DEG(directionTolerance), 0.1,
-	    45));
-	directionMinLength = readChecked(
-	    c, s, "direction_min_length_m", directionMinLength, 0, 1000);
-	directionMinFraction =
-	    readChecked(c, s, "direction_min_fraction", directionMinFraction, 0, 1);
+	directions.load(c, s);
 }
 
 void WallExtractor::TOptions::saveToConfigFile(
@@ -47,9 +41,7 @@ void WallExtractor::TOptions::saveToConfigFile(
 	c.write(s, "endpoint_quantile", endpointQuantile);
 	c.write(s, "sample_spacing_m", sampleSpacing);
 	c.write(s, "max_samples", maxSamples);
-	c.write(s, "direction_tolerance_deg", mrpt::RAD2DEG(directionTolerance));
-	c.write(s, "direction_min_length_m", directionMinLength);
-	c.write(s, "direction_min_fraction", directionMinFraction);
+	directions.save(c, s);
 }
 
 WallObservation WallExtractor::extract(const LabeledSweep& ls) const
@@ -147,9 +139,8 @@ void WallExtractor::finish(WallObservation& obs) const
 		carry = std::fmod(carry - len, spacing);
 		if (carry < 0) carry += spacing;
 	}
-	obs.dominantDirection = MainDirections::estimate(
-	    obs.segments, m_options.directionTolerance,
-	    m_options.directionMinLength, m_options.directionMinFraction);
+	obs.dominantDirection =
+	    MainDirections::estimate(obs.segments, m_options.directions);
 }
 
 }  // namespace semnav

@@ -29,13 +29,7 @@ void WallMap::TOptions::loadFromConfigFile(
 	unknownExtension =
 	    readChecked(c, s, "unknown_extension_m", unknownExtension, 0, 100);
 	margin = readChecked(c, s, "margin_m", margin, 0, 100);
-	directionTolerance = mrpt::DEG2RAD(readChecked(
-	    c, s, "direction_tolerance_deg", mrpt::RAD2DEG(directionTolerance), 0.1,
-	    45));
-	directionMinLength = readChecked(
-	    c, s, "direction_min_length_m", directionMinLength, 0, 1000);
-	directionMinFraction =
-	    readChecked(c, s, "direction_min_fraction", directionMinFraction, 0, 1);
+	directions.load(c, s);
 }
 
 void WallMap::TOptions::saveToConfigFile(
@@ -49,9 +43,7 @@ void WallMap::TOptions::saveToConfigFile(
 	c.write(s, "unknown_weight", unknownWeight);
 	c.write(s, "unknown_extension_m", unknownExtension);
 	c.write(s, "margin_m", margin);
-	c.write(s, "direction_tolerance_deg", mrpt::RAD2DEG(directionTolerance));
-	c.write(s, "direction_min_length_m", directionMinLength);
-	c.write(s, "direction_min_fraction", directionMinFraction);
+	directions.save(c, s);
 }
 
 void WallMap::addSegments(const std::vector<WallSegment>& worldSegments)
@@ -139,9 +131,7 @@ void WallMap::rebuild(const SemanticMap* observed)
 	buildField(
 	    std::vector<uint8_t>(mask.datastart, mask.dataend),
 	    observed ? &unknown : nullptr);
-	m_main = MainDirections::estimate(
-	    m_segments, m_options.directionTolerance, m_options.directionMinLength,
-	    m_options.directionMinFraction);
+	m_main = MainDirections::estimate(m_segments, m_options.directions);
 }
 
 void WallMap::buildFromSemanticMap(const SemanticMap& map)
@@ -167,9 +157,7 @@ void WallMap::buildFromSemanticMap(const SemanticMap& map)
 		s.p1 = {m_geometry.centerX(l[2]), m_geometry.centerY(l[3])};
 		m_segments.push_back(s);
 	}
-	m_main = MainDirections::estimate(
-	    m_segments, m_options.directionTolerance, m_options.directionMinLength,
-	    m_options.directionMinFraction);
+	m_main = MainDirections::estimate(m_segments, m_options.directions);
 }
 
 void WallMap::buildField(

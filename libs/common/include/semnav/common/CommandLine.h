@@ -3,6 +3,7 @@
 
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -38,6 +39,10 @@ public:
 
 	/** First non-empty line of a message. */
 	static std::string firstLine(const std::string& msg);
+
+	/** Strict parse of an unsigned integer option such as --seed (digits
+	 * only, fits 64 bits); nothing when malformed. */
+	static std::optional<uint64_t> parseUnsigned(const std::string& s);
 
 private:
 	class OneLineOutput;

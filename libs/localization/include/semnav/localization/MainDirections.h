@@ -1,9 +1,11 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #pragma once
 
+#include <mrpt/config/CConfigFileBase.h>
 #include <semnav/localization/WallSegment.h>
 
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace semnav
@@ -13,6 +15,29 @@ namespace semnav
 class MainDirections
 {
 public:
+	/** Estimation parameters: keys direction_tolerance_deg,
+	 * direction_min_length_m, direction_min_fraction of the section of the
+	 * class that estimates (WallExtractor, WallMap). */
+	struct TEstimateOptions
+	{
+		/** Inlier tolerance (rad). */
+		double tolerance = 0.0872664626;  // 5 deg
+		/** Minimum inlier length (m) and fraction of the total length. */
+		double minLength = 1.5;
+		double minFraction = 0.5;
+
+		void load(const mrpt::config::CConfigFileBase& c, const std::string& s);
+		void save(mrpt::config::CConfigFileBase& c, const std::string& s) const;
+		static const std::vector<std::string>& keys();
+	};
+
+	/** estimate() with the options' parameters. */
+	static std::optional<double> estimate(
+	    const std::vector<WallSegment>& segments, const TEstimateOptions& o)
+	{
+		return estimate(segments, o.tolerance, o.minLength, o.minFraction);
+	}
+
 	/** Wraps an angle to [-pi/4, pi/4) (period 90 deg). */
 	static double wrapQuarter(double a);
 

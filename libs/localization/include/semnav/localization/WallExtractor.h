@@ -3,6 +3,7 @@
 
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/core/bits_math.h>
+#include <semnav/localization/MainDirections.h>
 #include <semnav/localization/WallObservation.h>
 
 #include <string>
@@ -47,9 +48,7 @@ public:
 		int maxSamples = 60;
 		/** Main direction: inlier tolerance (rad), minimum inlier length
 		 * (m) and fraction of the wall length. */
-		double directionTolerance = mrpt::DEG2RAD(5.0);
-		double directionMinLength = 1.5;
-		double directionMinFraction = 0.5;
+		MainDirections::TEstimateOptions directions;
 	};
 
 	WallExtractor() = default;

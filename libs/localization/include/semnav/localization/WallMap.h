@@ -6,6 +6,7 @@
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/poses/CPose2D.h>
 #include <semnav/common/GridGeometry.h>
+#include <semnav/localization/MainDirections.h>
 #include <semnav/localization/WallSegment.h>
 
 #include <optional>
@@ -55,9 +56,7 @@ public:
 		/** Room around the walls (m). */
 		double margin = 1.0;
 		/** Main direction estimate (as WallExtractor). */
-		double directionTolerance = mrpt::DEG2RAD(5.0);
-		double directionMinLength = 1.5;
-		double directionMinFraction = 0.4;
+		MainDirections::TEstimateOptions directions{0.0872664626, 1.5, 0.4};
 	};
 
 	WallMap() = default;
