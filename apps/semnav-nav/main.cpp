@@ -2,9 +2,13 @@
 // semnav-nav: headless simulated run of a semantic command ("go to the
 // nearest wastebasket") through MRPT's reactive navigator on a semantic map
 // (DESIGN.md, "Apps").
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/math/wrap2pi.h>
 #include <semnav/common/AtomicFile.h>
 #include <semnav/common/CommandLine.h>
+#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/localization/MappingLocalizer.h>
 #include <semnav/map/MapIO.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/nav/NavCommand.h>
@@ -12,11 +16,14 @@
 #include <semnav/nav/NavigationRenderer.h>
 #include <semnav/nav/SceneMapBuilder.h>
 #include <semnav/nav/SimulatedNavigation.h>
+#include <semnav/nav/StopAndScanLocalizer.h>
+#include <semnav/perception/PerceptionPipeline.h>
 #include <semnav/sim/SceneLoader.h>
 
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <optional>
@@ -99,6 +106,23 @@ int main(int argc, char** argv)
 	    "Instead of --map, the ground-truth map of this scene (usually the "
 	    "--scene file; another scene makes the map wrong on purpose)",
 	    false, "", "S.yaml", cmd);
+	TCLAP::ValueArg<std::string> argLocalize(
+	    "", "localize",
+	    "The robot does not know its pose: it localizes itself in the map "
+	    "by stop-and-scan sweeps (global: anywhere in the map's free space; "
+	    "tracking: around --start-guess) and navigates on that estimate and "
+	    "its odometry; --start stays the true pose",
+	    false, "", "global|tracking", cmd);
+	TCLAP::ValueArg<std::string> argStartGuess(
+	    "", "start-guess", "Rough start pose for --localize tracking", false,
+	    "", "X,Y,YAW_DEG", cmd);
+	TCLAP::ValueArg<std::string> argLocConfig(
+	    "", "loc-config", "Localization INI (default: config/localization.ini)",
+	    false, defaultConfig("localization.ini"), "L.ini", cmd);
+	TCLAP::ValueArg<std::string> argPerceptionConfig(
+	    "", "perception-config",
+	    "Perception INI for --localize (default: config/perception.ini)", false,
+	    defaultConfig("perception.ini"), "P.ini", cmd);
 	TCLAP::SwitchArg argJson(
 	    "", "json", "Print a JSON summary on stdout", cmd, false);
 	if (const auto code = cli.parse(argc, argv)) return *code;
@@ -112,6 +136,30 @@ int main(int argc, char** argv)
 		    "--start must be X,Y,YAW_DEG, got '" + argStart.getValue() + "'");
 	if (argCommand.getValue().empty() == argGoal.getValue().empty())
 		return cli.usageError("give exactly one of --command, --goal");
+	std::optional<semnav::StopAndScanLocalizer::Mode> locMode;
+	if (!argLocalize.getValue().empty())
+	{
+		if (argLocalize.getValue() != "global" &&
+		    argLocalize.getValue() != "tracking")
+			return cli.usageError(
+			    "--localize must be global or tracking, got '" +
+			    argLocalize.getValue() + "'");
+		locMode =
+		    semnav::StopAndScanLocalizer::modeFromName(argLocalize.getValue());
+	}
+	std::optional<mrpt::math::TPose2D> guess;
+	if (!argStartGuess.getValue().empty())
+	{
+		guess = parsePose(argStartGuess.getValue());
+		if (!guess)
+			return cli.usageError(
+			    "--start-guess must be X,Y,YAW_DEG, got '" +
+			    argStartGuess.getValue() + "'");
+	}
+	if (locMode == semnav::StopAndScanLocalizer::Mode::Tracking && !guess)
+		return cli.usageError("--localize tracking needs --start-guess");
+	if (guess && locMode != semnav::StopAndScanLocalizer::Mode::Tracking)
+		return cli.usageError("--start-guess needs --localize tracking");
 
 	const bool json = argJson.getValue();
 	return cli.run(
@@ -153,6 +201,25 @@ int main(int argc, char** argv)
 			              .string();
 		    }
 		    semnav::SimulatedNavigation sim(map, scene, config);
+		    std::unique_ptr<semnav::StopAndScanLocalizer> localizer;
+		    if (locMode)
+		    {
+			    semnav::MappingLocalizer::TOptions locOpts;
+			    locOpts.loadFromConfigFile(
+			        *semnav::openIniFile(
+			            argLocConfig.getValue(),
+			            semnav::MappingLocalizer::TOptions::sections()),
+			        "");
+			    semnav::PerceptionPipeline::TOptions percOpts;
+			    percOpts.loadFromConfigFile(
+			        *semnav::openIniFile(
+			            argPerceptionConfig.getValue(),
+			            semnav::PerceptionPipeline::sections()),
+			        "");
+			    localizer = std::make_unique<semnav::StopAndScanLocalizer>(
+			        scene, map, config.stopAndScan, locOpts, percOpts);
+			    sim.setLocalization(localizer.get(), *locMode, guess);
+		    }
 		    const auto r = sim.run(command, *start, navlog);
 		    if (!png.empty())
 		    {
@@ -225,6 +292,53 @@ int main(int argc, char** argv)
 			    }
 		    }
 		    j["instances_from_scene"] = added;
+		    if (r.localization)
+		    {
+			    const auto& l = *r.localization;
+			    nlohmann::json recs = nlohmann::json::array();
+			    for (const auto& x : l.records)
+				    recs.push_back(
+				        {{"segments", x.segments},
+				         {"std_xy_m", x.stdXY},
+				         {"std_yaw_deg", x.stdYaw * 180 / M_PI},
+				         {"error_xy_m", x.errorXY},
+				         {"error_yaw_deg", x.errorYaw * 180 / M_PI},
+				         {"particles", x.particles},
+				         {"weight_near", x.massNear},
+				         {"ms", x.ms}});
+			    nlohmann::json rescans = nlohmann::json::array();
+			    for (const auto& x : r.rescans)
+				    rescans.push_back(
+				        {{"segments", x.segments},
+				         {"error_xy_m", x.errorXY},
+				         {"error_yaw_deg", x.errorYaw * 180 / M_PI}});
+			    j["localization"] = {
+			        {"mode", semnav::StopAndScanLocalizer::modeName(l.mode)},
+			        {"sweeps", l.sweeps},
+			        {"converged", l.converged},
+			        {"estimate",
+			         {l.estimate.x, l.estimate.y, l.estimate.phi * 180 / M_PI}},
+			        {"truth", {l.truth.x, l.truth.y, l.truth.phi * 180 / M_PI}},
+			        {"error_xy_m", l.errorXY},
+			        {"error_yaw_deg", l.errorYaw * 180 / M_PI},
+			        {"ms", l.ms},
+			        {"per_sweep", recs},
+			        {"rescans", rescans}};
+			    if (!r.estimatedTrajectory.empty())
+			    {
+				    const auto& e = r.estimatedTrajectory.back();
+				    j["localization"]["final_estimate"] = {
+				        e.x, e.y, e.phi * 180 / M_PI};
+				    j["localization"]["final_error_xy_m"] =
+				        std::hypot(e.x - r.finalPose.x, e.y - r.finalPose.y);
+				    j["localization"]["final_error_yaw_deg"] =
+				        std::abs(
+				            mrpt::math::wrapToPi(e.phi - r.finalPose.phi)) *
+				        180 / M_PI;
+			    }
+		    }
+		    else
+			    j["localization"] = nullptr;
 		    if (json)
 			    std::cout << j.dump() << std::endl;
 		    else
@@ -249,6 +363,19 @@ int main(int argc, char** argv)
 			        r.finalPose.x, r.finalPose.y, r.finalPose.phi * 180 / M_PI,
 			        r.distanceToGoal, r.collisions, r.simTime, r.wallSeconds,
 			        r.replans);
+			    if (r.localization)
+				    std::printf(
+				        "  localization (%s): %d sweeps, estimate (%.2f, %.2f, "
+				        "%.1f deg), error %.3f m %.2f deg, %.0f ms\n",
+				        semnav::StopAndScanLocalizer::modeName(
+				            r.localization->mode)
+				            .c_str(),
+				        r.localization->sweeps, r.localization->estimate.x,
+				        r.localization->estimate.y,
+				        r.localization->estimate.phi * 180 / M_PI,
+				        r.localization->errorXY,
+				        r.localization->errorYaw * 180 / M_PI,
+				        r.localization->ms);
 			    if (!png.empty())
 				    std::printf(
 				        "  picture: %s\n  navlog (navlog-viewer): %s\n",

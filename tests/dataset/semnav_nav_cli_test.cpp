@@ -138,6 +138,46 @@ TEST(SemnavNavCli, GoesToTheNearestWastebasketOnThePipelinesMap)
 	EXPECT_LT(j.at("distance_to_object_m").get<double>(), 1.0);
 }
 
+TEST(SemnavNavCli, LocalizesGloballyInThePipelinesMapThenNavigates)
+{
+	// The robot is not told where it is: it sweeps, localizes in the map
+	// semnav-map built (walls from perception), turning on the spot while
+	// not converged, then drives to the nearest wastebasket on the estimate
+	// and its drifting odometry.
+	const fs::path out = tmpDir("officeloc");
+	const std::string scene = kSrc + "/datasets/office/office.yaml";
+	const AppRun r = runApp(
+	    "semnav-nav", "--map " + officeMap().string() + " --scene " + scene +
+	                      " --start 2.2,1.5,0 --goal wastebasket "
+	                      "--instances-from-scene wastebasket --localize "
+	                      "global --json --out " +
+	                      out.string());
+	ASSERT_EQ(r.code, 0) << r.err << r.out;
+	const auto j = nlohmann::json::parse(r.out);
+	const auto& l = j.at("localization");
+	EXPECT_EQ(l.at("mode"), "global");
+	EXPECT_TRUE(l.at("converged").get<bool>());
+	EXPECT_GE(l.at("sweeps").get<int>(), 1);
+	EXPECT_EQ(l.at("per_sweep").size(), l.at("sweeps").get<std::size_t>());
+	EXPECT_LT(l.at("error_xy_m").get<double>(), 0.15);
+	EXPECT_LT(l.at("error_yaw_deg").get<double>(), 3.0);
+	EXPECT_GT(l.at("ms").get<double>(), 0.0);
+	// The truth at the end of the start is where the robot stands.
+	EXPECT_NEAR(l.at("truth")[0].get<double>(), 2.2, 0.02);
+	EXPECT_NEAR(l.at("truth")[1].get<double>(), 1.5, 0.02);
+	EXPECT_TRUE(j.at("success").get<bool>()) << r.out;
+	EXPECT_EQ(j.at("collisions").get<int>(), 0);
+	EXPECT_EQ(j.at("reached_object").at("label"), "wastebasket");
+	EXPECT_LT(j.at("distance_to_object_m").get<double>(), 1.0);
+	EXPECT_TRUE(cv::imread((out / "navigation.png").string()).data);
+	// Without --localize the summary says so.
+	const AppRun plain = runApp(
+	    "semnav-nav", "--gt-map " + scene + " --scene " + scene +
+	                      " --start 6.2,2.6,0 --goal washbasin --json");
+	ASSERT_EQ(plain.code, 0) << plain.err;
+	EXPECT_TRUE(nlohmann::json::parse(plain.out).at("localization").is_null());
+}
+
 TEST(SemnavNavCli, ErrorsAreOneLineWithExitCodes)
 {
 	const std::string scene = kSrc + "/datasets/nav/utrap.yaml";
@@ -157,6 +197,15 @@ TEST(SemnavNavCli, ErrorsAreOneLineWithExitCodes)
 		s.replace(s.find("max_replans"), 11, "max_replanz");
 		std::ofstream(badIni) << s;
 	}
+	const fs::path badLocIni = tmpDir("locini") / "loc.ini";
+	{
+		std::ifstream in(kSrc + "/config/localization.ini");
+		std::stringstream ss;
+		ss << in.rdbuf();
+		std::string s = ss.str();
+		s.replace(s.find("global_particles"), 16, "global_particlez");
+		std::ofstream(badLocIni) << s;
+	}
 	const std::vector<Case> cases{
 	    {base + " --start 6.2,2.6,0 --command 'go to the nearest sofa'", 1,
 	     "known"},
@@ -175,6 +224,20 @@ TEST(SemnavNavCli, ErrorsAreOneLineWithExitCodes)
 	    {base + " --start 6.2,2.6,0", 2, "--goal"},
 	    {"--map /nonexistent --scene " + scene + " --start 1,1,0 --goal door",
 	     1, "nonexistent"},
+	    {base + " --start 6.2,2.6,0 --goal wastebasket --localize gps", 2,
+	     "--localize"},
+	    {base + " --start 6.2,2.6,0 --goal wastebasket --localize tracking", 2,
+	     "--start-guess"},
+	    {base + " --start 6.2,2.6,0 --goal wastebasket --start-guess 6,2,0", 2,
+	     "--localize tracking"},
+	    {base + " --start 6.2,2.6,0 --goal wastebasket --localize tracking "
+	            "--start-guess 6,2",
+	     2, "--start-guess"},
+	    {base +
+	         " --start 6.2,2.6,0 --goal wastebasket --localize global "
+	         "--loc-config " +
+	         badLocIni.string(),
+	     1, "global_particlez"},
 	};
 	for (const auto& c : cases)
 	{

@@ -106,3 +106,79 @@ TEST(SimulatedRobot, TimeIsSimulated)
 	}
 	EXPECT_EQ(mrpt::Clock::getActiveClock(), before);
 }
+
+TEST(SimulatedRobot, ReportsTheTruePoseUntilGivenAnEstimate)
+{
+	const Scene s = room();
+	SimulatedRobot robot(s, SimulatedRobot::TOptions(), {1.0, 2.0, 0.0});
+	mrpt::math::TPose2D pose, odo;
+	mrpt::math::TTwist2D vel;
+	mrpt::system::TTimeStamp t;
+	std::string frame;
+	robot.changeSpeeds(cmd(0.3, 0));
+	for (int i = 0; i < 10; i++) robot.simulate(0.1);
+	ASSERT_TRUE(robot.getCurrentPoseAndSpeeds(pose, vel, t, odo, frame));
+	EXPECT_NEAR(pose.x, robot.pose().x, 1e-9);
+	EXPECT_NEAR(pose.y, robot.pose().y, 1e-9);
+	EXPECT_NEAR(vel.vx, 0.3, 1e-3);
+	EXPECT_FALSE(robot.reportsEstimate());
+	// Noise-free odometry follows the truth.
+	EXPECT_NEAR(robot.odometry().x, robot.pose().x, 1e-9);
+	EXPECT_NEAR(robot.odometryDistance(), robot.pose().x - 1.0, 1e-9);
+
+	// The robot now believes it is 1 m further north and facing north: it
+	// reports that belief moved by its odometry (forward = +y), velocity
+	// in the belief's heading; the truth goes on east.
+	const mrpt::math::TPose2D truthBefore = robot.pose();
+	robot.setPoseEstimate({truthBefore.x, truthBefore.y + 1, M_PI / 2});
+	for (int i = 0; i < 10; i++) robot.simulate(0.1);
+	ASSERT_TRUE(robot.getCurrentPoseAndSpeeds(pose, vel, t, odo, frame));
+	const double moved = robot.pose().x - truthBefore.x;
+	EXPECT_GT(moved, 0.25);
+	EXPECT_NEAR(robot.pose().y, 2.0, 1e-6);
+	EXPECT_NEAR(pose.x, truthBefore.x, 1e-6);
+	EXPECT_NEAR(pose.y, truthBefore.y + 1 + moved, 1e-6);
+	EXPECT_NEAR(pose.phi, M_PI / 2, 1e-6);
+	EXPECT_NEAR(vel.vx, 0, 1e-3);
+	EXPECT_NEAR(vel.vy, 0.3, 1e-3);
+	EXPECT_EQ(frame, "map");
+	EXPECT_TRUE(robot.reportsEstimate());
+	EXPECT_EQ(robot.estimatedTrajectory().size(), 11u);
+	// The scan is still taken at the true pose (the box face at x = 4).
+	mrpt::maps::CSimplePointsMap pts;
+	ASSERT_TRUE(robot.senseObstacles(pts, t));
+	float x, y, z;
+	double ahead = 1e9;
+	for (std::size_t i = 0; i < pts.size(); i++)
+	{
+		pts.getPoint(i, x, y, z);
+		if (std::abs(y) < 0.05 && x > 0) ahead = std::min<double>(ahead, x);
+	}
+	EXPECT_NEAR(ahead, 4.0 - robot.pose().x, 0.05);
+}
+
+TEST(SimulatedRobot, OdometryNoiseDriftsTheHeadingByTheBias)
+{
+	const Scene s = room();
+	SimulatedRobot robot(s, SimulatedRobot::TOptions(), {0.5, 1.0, 0.0});
+	OdometrySpec spec;
+	spec.transNoise = 0;
+	spec.rotNoisePerM = 0;
+	spec.rotBiasPerM = 3.5 * M_PI / 180;
+	robot.setOdometryNoise(spec, 3);
+	robot.changeSpeeds(cmd(0.4, 0));
+	for (int i = 0; i < 75; i++) robot.simulate(0.1);  // ~3 m east
+	const double d = robot.pose().x - 0.5;
+	ASSERT_GT(d, 2.5);
+	EXPECT_NEAR(robot.pose().phi, 0, 1e-9);
+	EXPECT_NEAR(robot.odometry().phi, spec.rotBiasPerM * d, 1e-6);
+	EXPECT_NEAR(robot.odometryDistance(), d, 1e-6);
+	// The odometry curves left: it ends north of the truth.
+	EXPECT_GT(robot.odometry().y, robot.pose().y + 0.1);
+	// Turning on the spot by odometry.
+	const double phi0 = robot.odometry().phi;
+	robot.turnInPlace(M_PI / 3, M_PI / 4);
+	EXPECT_NEAR(robot.odometry().phi - phi0, M_PI / 3, 0.02);
+	EXPECT_NEAR(robot.pose().phi, M_PI / 3, 0.02);
+	EXPECT_NEAR(robot.pose().x, 0.5 + d, 0.01);
+}

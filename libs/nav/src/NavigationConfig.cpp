@@ -92,13 +92,15 @@ NavigationConfig NavigationConfig::load(
     const std::string& navigationIni, const std::string& planningIni)
 {
 	NavigationConfig c;
-	std::vector<std::string> known{"SemanticNavigator", "SimulatedRobot"};
+	std::vector<std::string> known{
+	    "SemanticNavigator", "SimulatedRobot", "StopAndScan"};
 	for (const auto& s : mrptSectionNames()) known.push_back(s);
 	const auto ini = openIniFile(navigationIni, known);
 	try
 	{
 		c.navigator.loadFromConfigFile(*ini, "SemanticNavigator");
 		c.robot.loadFromConfigFile(*ini, "SimulatedRobot");
+		c.stopAndScan.loadFromConfigFile(*ini, "StopAndScan");
 	}
 	catch (const ConfigError& e)
 	{
@@ -109,7 +111,9 @@ NavigationConfig NavigationConfig::load(
 	ini->getAllSections(sections);
 	for (const auto& s : sections)
 	{
-		if (s == "SemanticNavigator" || s == "SimulatedRobot") continue;
+		if (s == "SemanticNavigator" || s == "SimulatedRobot" ||
+		    s == "StopAndScan")
+			continue;
 		std::vector<std::string> keys;
 		ini->getAllKeys(s, keys);
 		for (const auto& k : keys)
@@ -122,7 +126,9 @@ NavigationConfig NavigationConfig::load(
 		mrptEcho(*mrptSections, echo);
 		for (const auto& s : sections)
 		{
-			if (s == "SemanticNavigator" || s == "SimulatedRobot") continue;
+			if (s == "SemanticNavigator" || s == "SimulatedRobot" ||
+			    s == "StopAndScan")
+				continue;
 			std::vector<std::string> keys, echoed;
 			ini->getAllKeys(s, keys);
 			echo.getAllKeys(s, echoed);

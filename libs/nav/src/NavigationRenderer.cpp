@@ -3,8 +3,10 @@
 #include <semnav/map/SemanticMap.h>
 #include <semnav/nav/NavigationRenderer.h>
 
+#include <cmath>
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
+#include <string>
 
 namespace semnav
 {
@@ -56,8 +58,29 @@ cv::Mat NavigationRenderer::render(
 	std::vector<mrpt::math::TPoint2D> traj;
 	for (const auto& p : r.trajectory) traj.push_back({p.x, p.y});
 	polyline(img, P, traj, blue, 2);
+	// What the navigator believed (localized runs): thin teal, and the
+	// localized start as a teal ring with its heading.
+	const cv::Scalar teal(160, 160, 0);
+	std::vector<mrpt::math::TPoint2D> est;
+	for (const auto& p : r.estimatedTrajectory) est.push_back({p.x, p.y});
+	polyline(img, P, est, teal, 1);
+	const auto heading = [&](const mrpt::math::TPose2D& p, const cv::Scalar& c)
+	{
+		const double len = 0.5;
+		cv::line(
+		    img, P(p.x, p.y),
+		    P(p.x + len * std::cos(p.phi), p.y + len * std::sin(p.phi)), c, 2,
+		    cv::LINE_AA);
+	};
 	cv::circle(
 	    img, P(r.start.x, r.start.y), 2 * k, green, cv::FILLED, cv::LINE_AA);
+	heading(r.start, green);
+	if (r.localization)
+	{
+		const auto& e = r.localization->estimate;
+		cv::circle(img, P(e.x, e.y), 3 * k, teal, 2, cv::LINE_AA);
+		heading(e, teal);
+	}
 	cv::circle(
 	    img, P(r.finalPose.x, r.finalPose.y), 2 * k, blue, cv::FILLED,
 	    cv::LINE_AA);
@@ -80,10 +103,21 @@ cv::Mat NavigationRenderer::render(
 	    buf, sizeof(buf), "%s: %s, %d replans, %d collisions, %.1f s",
 	    r.command.text().c_str(), r.success ? "reached" : r.message.c_str(),
 	    r.replans, r.collisions, r.simTime);
+	std::string text = buf;
+	if (r.localization)
+	{
+		std::snprintf(
+		    buf, sizeof(buf),
+		    "; localized (%s, %d sweeps): start error %.2f m %.1f deg",
+		    StopAndScanLocalizer::modeName(r.localization->mode).c_str(),
+		    r.localization->sweeps, r.localization->errorXY,
+		    r.localization->errorYaw * 180 / M_PI);
+		text += buf;
+	}
 	cv::Mat out(img.rows + 28, img.cols, img.type(), cv::Scalar(255, 255, 255));
 	img.copyTo(out(cv::Rect(0, 28, img.cols, img.rows)));
 	cv::putText(
-	    out, buf, {6, 19}, cv::FONT_HERSHEY_SIMPLEX, 0.5, {0, 0, 0}, 1,
+	    out, text, {6, 19}, cv::FONT_HERSHEY_SIMPLEX, 0.5, {0, 0, 0}, 1,
 	    cv::LINE_AA);
 	return out;
 }

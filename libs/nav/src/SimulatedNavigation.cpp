@@ -32,6 +32,15 @@ SimulatedNavigation::SimulatedNavigation(
 {
 }
 
+void SimulatedNavigation::setLocalization(
+    StopAndScanLocalizer* localizer, StopAndScanLocalizer::Mode mode,
+    const std::optional<mrpt::math::TPose2D>& guess)
+{
+	m_localizer = localizer;
+	m_mode = mode;
+	m_guess = guess;
+}
+
 SimulatedNavigation::Result SimulatedNavigation::run(
     const NavCommand& command, const mrpt::math::TPose2D& start,
     const std::string& navlogPath, const StepHook& hook)
@@ -47,6 +56,11 @@ SimulatedNavigation::Result SimulatedNavigation::run(
 		throw NavigationError(
 		    "start (" + std::to_string(start.x) + ", " +
 		    std::to_string(start.y) + ") is inside an obstacle of the scene");
+	if (m_localizer)
+		r.localization = m_localizer->start(robot, m_mode, m_guess);
+	const double rescanDistance =
+	    m_localizer ? m_localizer->options().rescanDistance : 0.0;
+	double lastScanAt = robot.odometryDistance();
 	SemanticNavigator nav(
 	    robot, m_map, *m_config.mrptSections, m_config.cnn,
 	    m_config.traversability, m_config.navigator);
@@ -78,6 +92,12 @@ SimulatedNavigation::Result SimulatedNavigation::run(
 		r.steps++;
 		if (nav.state() != SemanticNavigator::State::Navigating) break;
 		robot.simulate();
+		if (rescanDistance > 0 &&
+		    robot.odometryDistance() - lastScanAt >= rescanDistance)
+		{
+			r.rescans.push_back(m_localizer->rescan(robot));
+			lastScanAt = robot.odometryDistance();
+		}
 		if (hook) hook(robot.simTime(), nav);
 	}
 	// Let the robot come to rest.
@@ -106,6 +126,7 @@ SimulatedNavigation::Result SimulatedNavigation::run(
 	r.simTime = robot.simTime();
 	r.replans = nav.replans();
 	r.trajectory = robot.trajectory();
+	r.estimatedTrajectory = robot.estimatedTrajectory();
 	r.plans = nav.plans();
 	r.sensedObstacles = nav.planner().extraObstacles();
 	if (!stepMs.empty())

@@ -2,6 +2,8 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/kinematics/CVehicleVelCmd_DiffDriven.h>
 #include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/math/wrap2pi.h>
+#include <mrpt/poses/CPose2D.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
 #include <semnav/nav/SimulatedRobot.h>
@@ -102,7 +104,8 @@ SimulatedRobot::SimulatedRobot(
     : mrpt::nav::CRobot2NavInterfaceForSimulator_DiffDriven(m_vehicle),
       m_options(options),
       m_caster(scene),
-      m_previousClock(mrpt::Clock::getActiveClock())
+      m_previousClock(mrpt::Clock::getActiveClock()),
+      m_odometry(start)
 {
 	setLoggerName("SimulatedRobot");
 	m_vehicle.setCurrentGTPose(start);
@@ -149,6 +152,99 @@ void SimulatedRobot::simulate(double dt)
 	else
 		m_inContact = false;
 	m_trajectory.push_back(m_vehicle.getCurrentGTPose());
+
+	// Odometry: the true motion of the step, in the robot frame, with the
+	// odometry errors.
+	mrpt::poses::CPose2D delta =
+	    mrpt::poses::CPose2D(m_vehicle.getCurrentGTPose()) -
+	    mrpt::poses::CPose2D(before);
+	const double d = delta.norm();
+	if (m_odometryNoise && d > 0)
+	{
+		std::normal_distribution<double> n01(0.0, 1.0);
+		const double s = std::sqrt(d);
+		const double dt = m_odometrySpec.transNoise * s * n01(m_rng);
+		const double k = (d + dt) / d;
+		delta = mrpt::poses::CPose2D(
+		    delta.x() * k, delta.y() * k,
+		    delta.phi() + m_odometrySpec.rotBiasPerM * d +
+		        m_odometrySpec.rotNoisePerM * s * n01(m_rng));
+	}
+	m_odometryDistance += d;
+	m_odometry = (mrpt::poses::CPose2D(m_odometry) + delta).asTPose();
+	m_odometry.phi = mrpt::math::wrapToPi(m_odometry.phi);
+	if (m_reportEstimate) m_estimatedTrajectory.push_back(estimatedPose());
+}
+
+void SimulatedRobot::setOdometryNoise(const OdometrySpec& spec, uint64_t seed)
+{
+	m_odometrySpec = spec;
+	m_odometryNoise = true;
+	m_rng.seed(seed);
+}
+
+void SimulatedRobot::setPoseEstimate(const mrpt::math::TPose2D& mapPose)
+{
+	// m_odoToMap + odometry = mapPose
+	m_odoToMap =
+	    (mrpt::poses::CPose2D(mapPose) + (-mrpt::poses::CPose2D(m_odometry)))
+	        .asTPose();
+	m_reportEstimate = true;
+	m_estimatedTrajectory.push_back(estimatedPose());
+}
+
+mrpt::math::TPose2D SimulatedRobot::estimatedPose() const
+{
+	if (!m_reportEstimate) return m_vehicle.getCurrentGTPose();
+	auto p =
+	    (mrpt::poses::CPose2D(m_odoToMap) + mrpt::poses::CPose2D(m_odometry))
+	        .asTPose();
+	p.phi = mrpt::math::wrapToPi(p.phi);
+	return p;
+}
+
+bool SimulatedRobot::getCurrentPoseAndSpeeds(
+    mrpt::math::TPose2D& curPose, mrpt::math::TTwist2D& curVel,
+    mrpt::system::TTimeStamp& timestamp, mrpt::math::TPose2D& curOdometry,
+    std::string& frameId)
+{
+	curPose = estimatedPose();
+	// Velocity in the frame of the reported pose: the robot-frame twist
+	// rotated by the reported heading.
+	curVel = m_vehicle.getCurrentGTVelLocal();
+	curVel.rotate(curPose.phi);
+	timestamp = timestampOf(m_vehicle.getTime());
+	curOdometry = m_odometry;
+	frameId = "map";
+	return true;
+}
+
+void SimulatedRobot::turnInPlace(double angle, double speed)
+{
+	const double dt = m_options.timeStep;
+	double turned = 0;
+	for (int guard = 0; guard < 100000; guard++)
+	{
+		const double left = std::abs(angle) - std::abs(turned);
+		if (left <= 1e-3) break;
+		mrpt::kinematics::CVehicleVelCmd_DiffDriven cmd;
+		cmd.lin_vel = 0;
+		cmd.ang_vel = (angle >= 0 ? 1 : -1) * std::min(speed, left / dt);
+		m_vehicle.sendVelCmd(cmd);
+		const double before = m_odometry.phi;
+		simulate(dt);
+		turned += mrpt::math::wrapToPi(m_odometry.phi - before);
+	}
+	stopNow();
+}
+
+void SimulatedRobot::stopNow()
+{
+	mrpt::kinematics::CVehicleVelCmd_DiffDriven cmd;
+	cmd.lin_vel = 0;
+	cmd.ang_vel = 0;
+	m_vehicle.sendVelCmd(cmd);
+	simulate(m_options.timeStep);
 }
 
 mrpt::kinematics::CVehicleVelCmd::Ptr SimulatedRobot::getAlignCmd(

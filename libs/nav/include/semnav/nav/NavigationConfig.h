@@ -5,6 +5,7 @@
 #include <semnav/map/SemanticMap.h>
 #include <semnav/nav/SemanticNavigator.h>
 #include <semnav/nav/SimulatedRobot.h>
+#include <semnav/nav/StopAndScanLocalizer.h>
 #include <semnav/planning/CnnPlanner.h>
 #include <semnav/planning/TraversabilityBuilder.h>
 
@@ -15,7 +16,8 @@
 namespace semnav
 {
 /** Everything a navigation run is configured with:
- * config/navigation.ini ([SemanticNavigator], [SimulatedRobot] and MRPT's
+ * config/navigation.ini ([SemanticNavigator], [SimulatedRobot],
+ * [StopAndScan] and MRPT's
  * reactive-navigation sections, based on MRPT's reactive2d_config.ini) and
  * config/planning.ini ([CnnPlanner], [Traversability], optionally
  * [SemanticMap], [TravelCost] for loading maps).
@@ -28,6 +30,7 @@ struct NavigationConfig
 {
 	SemanticNavigator::TOptions navigator;
 	SimulatedRobot::TOptions robot;
+	StopAndScanLocalizer::TOptions stopAndScan;
 	CnnPlanner::TOptions cnn;
 	TraversabilityBuilder::TOptions traversability;
 	SemanticMap::TOptions map;

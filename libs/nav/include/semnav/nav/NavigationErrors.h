@@ -17,4 +17,12 @@ class NavCommandError : public NavigationError
 	using NavigationError::NavigationError;
 };
 
+/** The robot could not localize itself in the map (semnav-nav
+ * --localize): no convergence within the allowed sweeps, or nothing to
+ * localize against. */
+class LocalizationFailedError : public NavigationError
+{
+	using NavigationError::NavigationError;
+};
+
 }  // namespace semnav

@@ -7,9 +7,11 @@
 #include <semnav/nav/NavCommand.h>
 #include <semnav/nav/NavigationConfig.h>
 #include <semnav/nav/SemanticNavigator.h>
+#include <semnav/nav/StopAndScanLocalizer.h>
 #include <semnav/sim/Scene.h>
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,6 +54,12 @@ public:
 		std::vector<mrpt::math::TPoint2D> sensedObstacles;
 		/** MRPT navlog written (empty if none). */
 		std::string navlog;
+		/** With setLocalization(): the start's localization, the
+		 * stop-and-scan updates on the way, and the pose the navigator saw
+		 * after every step (estimate; the trajectory above is the truth). */
+		std::optional<StopAndScanLocalizer::Report> localization;
+		std::vector<StopAndScanLocalizer::SweepRecord> rescans;
+		std::vector<mrpt::math::TPose2D> estimatedTrajectory;
 	};
 
 	/** Called after every step with the simulated time; may change the
@@ -62,9 +70,20 @@ public:
 	    const SemanticMap& map, const Scene& scene,
 	    const NavigationConfig& config);
 
-	/** Runs one command from `start`. With `navlogPath`, MRPT's navigation
-	 * log is written there (atomically, at the end). Throws the first
-	 * plan's errors (NoInstanceError, StartBlockedError, NoPathError...). */
+	/** The robot does not know its start pose: before the run
+	 * `localizer` localizes it where it stands (`mode`; a tracking start
+	 * from `guess`), and the navigator sees that estimate composed with the
+	 * robot's odometry; with [StopAndScan] rescan_distance_m > 0 the robot
+	 * stops and scans again on the way. nullptr: the navigator sees the
+	 * true pose (default). The localizer must outlive run(). */
+	void setLocalization(
+	    StopAndScanLocalizer* localizer, StopAndScanLocalizer::Mode mode,
+	    const std::optional<mrpt::math::TPose2D>& guess = std::nullopt);
+
+	/** Runs one command from `start` (the true pose). With `navlogPath`, MRPT's
+	 * navigation log is written there (atomically, at the end). Throws the
+	 * first plan's errors (NoInstanceError, StartBlockedError, NoPathError...)
+	 * and LocalizationFailedError. */
 	Result run(
 	    const NavCommand& command, const mrpt::math::TPose2D& start,
 	    const std::string& navlogPath = "", const StepHook& hook = {});
@@ -73,6 +92,9 @@ private:
 	const SemanticMap& m_map;
 	const Scene& m_scene;
 	const NavigationConfig& m_config;
+	StopAndScanLocalizer* m_localizer = nullptr;
+	StopAndScanLocalizer::Mode m_mode = StopAndScanLocalizer::Mode::Global;
+	std::optional<mrpt::math::TPose2D> m_guess;
 };
 
 }  // namespace semnav

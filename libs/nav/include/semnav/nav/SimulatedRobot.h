@@ -9,6 +9,8 @@
 #include <semnav/sim/RayCaster.h>
 #include <semnav/sim/Scene.h>
 
+#include <cstdint>
+#include <random>
 #include <vector>
 
 namespace semnav
@@ -37,7 +39,14 @@ struct DiffDriveVehicleHolder
  * - Time is simulated: simulate(dt) advances it and, while the robot
  *   exists, MRPT's clock (mrpt::Clock, Simulated source) follows it, so the
  *   navigator's timeouts and timestamps run on simulated time. The previous
- *   clock source is restored by the destructor. */
+ *   clock source is restored by the destructor.
+ * - Odometry is integrated by the robot itself from the true motion of each
+ *   step; setOdometryNoise() adds a scene's odometry errors (heading bias
+ *   and noise per metre, translation noise) to it.
+ * - The pose the navigator sees (getCurrentPoseAndSpeeds) is the true pose,
+ *   until setPoseEstimate() is called: from then on it is that map-frame
+ *   estimate composed with the odometry since, as a localized real robot
+ *   would report. Sensing and collisions always use the true pose. */
 class SimulatedRobot
     : private detail::DiffDriveVehicleHolder,
       public mrpt::nav::CRobot2NavInterfaceForSimulator_DiffDriven
@@ -85,6 +94,43 @@ public:
 	/** simulate(options().timeStep). */
 	void simulate() { simulate(m_options.timeStep); }
 
+	/** Reports the true pose, or after setPoseEstimate() the estimate
+	 * (velocity rotated into its heading); odometry = odometry(). */
+	bool getCurrentPoseAndSpeeds(
+	    mrpt::math::TPose2D& curPose, mrpt::math::TTwist2D& curVel,
+	    mrpt::system::TTimeStamp& timestamp, mrpt::math::TPose2D& curOdometry,
+	    std::string& frameId) override;
+
+	/** From now on the odometry of every step gets the errors of `spec`
+	 * (per metre travelled in the step: heading bias, heading noise with
+	 * std rotNoisePerM * sqrt(d / 1 m), translation noise likewise), drawn
+	 * from a generator seeded with `seed`. */
+	void setOdometryNoise(const OdometrySpec& spec, uint64_t seed);
+	/** Integrated odometry (starts at the start pose). */
+	const mrpt::math::TPose2D& odometry() const { return m_odometry; }
+	/** Odometry distance travelled so far (m). */
+	double odometryDistance() const { return m_odometryDistance; }
+	/** The robot now believes it is at `mapPose` (e.g. a localizer's
+	 * estimate); the reported pose follows it with the odometry. */
+	void setPoseEstimate(const mrpt::math::TPose2D& mapPose);
+	/** True once setPoseEstimate() was called. */
+	bool reportsEstimate() const { return m_reportEstimate; }
+	/** The pose the navigator sees: the estimate (see setPoseEstimate) or
+	 * the true pose. */
+	mrpt::math::TPose2D estimatedPose() const;
+	/** estimatedPose() after every step since the first setPoseEstimate()
+	 * (a jump where a later call corrects it). */
+	const std::vector<mrpt::math::TPose2D>& estimatedTrajectory() const
+	{
+		return m_estimatedTrajectory;
+	}
+
+	/** Turns on the spot by `angle` (rad, by odometry) at `speed` rad/s in
+	 * simulated time, then stops. */
+	void turnInPlace(double angle, double speed);
+	/** Commands zero velocity and lets one time step pass. */
+	void stopNow();
+
 	bool senseObstacles(
 	    mrpt::maps::CSimplePointsMap& obstacles,
 	    mrpt::system::TTimeStamp& timestamp) override;
@@ -130,6 +176,15 @@ private:
 	std::vector<mrpt::math::TPose2D> m_trajectory;
 	std::vector<mrpt::math::TPose2D> m_collisionPoses;
 	mrpt::Clock::Source m_previousClock;
+	mrpt::math::TPose2D m_odometry;
+	double m_odometryDistance = 0;
+	bool m_odometryNoise = false;
+	OdometrySpec m_odometrySpec;
+	std::mt19937_64 m_rng;
+	bool m_reportEstimate = false;
+	/** Map pose of the odometry frame (estimate = m_odoToMap + odometry). */
+	mrpt::math::TPose2D m_odoToMap;
+	std::vector<mrpt::math::TPose2D> m_estimatedTrajectory;
 };
 
 }  // namespace semnav

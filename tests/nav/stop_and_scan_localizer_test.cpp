@@ -1,0 +1,355 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// semnav-nav --localize: the simulated robot localizes itself in a known
+// semantic map by stop-and-scan sweeps (tilting laser in the scene,
+// perception, walls, particle filter) and navigates on that estimate and
+// its drifting odometry; what it reports vs. the truth; failure modes.
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/math/wrap2pi.h>
+#include <semnav/common/ConfigChecks.h>
+#include <semnav/map/SemanticMap.h>
+#include <semnav/nav/NavigationConfig.h>
+#include <semnav/nav/NavigationErrors.h>
+#include <semnav/nav/SceneMapBuilder.h>
+#include <semnav/nav/SimulatedNavigation.h>
+#include <semnav/nav/SimulatedRobot.h>
+#include <semnav/nav/StopAndScanLocalizer.h>
+#include <semnav/sim/SceneLoader.h>
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <memory>
+
+using namespace semnav;
+using Mode = StopAndScanLocalizer::Mode;
+
+namespace
+{
+const std::string kSrc = SEMNAV_SOURCE_DIR;
+
+const NavigationConfig& config()
+{
+	static const NavigationConfig c = NavigationConfig::load(
+	    kSrc + "/config/navigation.ini", kSrc + "/config/planning.ini");
+	return c;
+}
+
+const MappingLocalizer::TOptions& locOptions()
+{
+	static const MappingLocalizer::TOptions o = []
+	{
+		MappingLocalizer::TOptions t;
+		t.loadFromConfigFile(
+		    *openIniFile(
+		        kSrc + "/config/localization.ini",
+		        MappingLocalizer::TOptions::sections()),
+		    "");
+		return t;
+	}();
+	return o;
+}
+
+const PerceptionPipeline::TOptions& perceptionOptions()
+{
+	static const PerceptionPipeline::TOptions o = []
+	{
+		PerceptionPipeline::TOptions t;
+		t.loadFromConfigFile(
+		    *openIniFile(
+		        kSrc + "/config/perception.ini",
+		        PerceptionPipeline::sections()),
+		    "");
+		return t;
+	}();
+	return o;
+}
+
+const Scene& office()
+{
+	static const Scene s =
+	    SceneLoader::loadFile(kSrc + "/datasets/office/office.yaml");
+	return s;
+}
+
+const SemanticMap& officeMap()
+{
+	static const std::unique_ptr<SemanticMap> m = []
+	{
+		auto map = std::make_unique<SemanticMap>(config().map);
+		SceneMapBuilder::build(office(), *map);
+		return map;
+	}();
+	return *m;
+}
+
+double yawErr(double a, double b)
+{
+	return std::abs(mrpt::math::wrapToPi(a - b));
+}
+
+void print(const char* what, const SimulatedNavigation::Result& r)
+{
+	const auto& l = *r.localization;
+	std::cerr << what << ": " << l.sweeps << " sweeps, start error "
+	          << l.errorXY << " m " << mrpt::RAD2DEG(l.errorYaw) << " deg, "
+	          << l.ms << " ms; reached " << r.success << " object "
+	          << r.objectId << ", " << r.collisions << " collisions, "
+	          << r.rescans.size() << " rescans\n";
+	for (const auto& s : l.records)
+		std::cerr << "  sweep: " << s.segments << " walls, spread " << s.stdXY
+		          << " m " << mrpt::RAD2DEG(s.stdYaw) << " deg, " << s.particles
+		          << " particles, error " << s.errorXY << " m "
+		          << mrpt::RAD2DEG(s.errorYaw) << " deg, " << s.ms << " ms\n";
+}
+
+/** The same run when the navigator knows the true pose. */
+SimulatedNavigation::Result withTruePose(
+    const SemanticMap& map, const Scene& scene, const mrpt::math::TPose2D& s,
+    Label label)
+{
+	SimulatedNavigation sim(map, scene, config());
+	auto r = sim.run(NavCommand::nearest(label), s);
+	EXPECT_TRUE(r.success) << r.message;
+	return r;
+}
+
+double pathLength(const std::vector<mrpt::math::TPose2D>& t)
+{
+	double d = 0;
+	for (std::size_t i = 1; i < t.size(); i++)
+		d += std::hypot(t[i].x - t[i - 1].x, t[i].y - t[i - 1].y);
+	return d;
+}
+}  // namespace
+
+TEST(StopAndScanLocalizer, GlobalStartInTheOfficeThenReachesTheWastebasket)
+{
+	const mrpt::math::TPose2D start(2.2, 1.5, 0);
+	StopAndScanLocalizer loc(
+	    office(), officeMap(), config().stopAndScan, locOptions(),
+	    perceptionOptions());
+	SimulatedNavigation sim(officeMap(), office(), config());
+	sim.setLocalization(&loc, Mode::Global);
+	const auto r = sim.run(NavCommand::nearest(Label::Wastebasket), start);
+	ASSERT_TRUE(r.localization);
+	print("global (2.2, 1.5, 0)", r);
+	const auto& l = *r.localization;
+	EXPECT_TRUE(l.converged);
+	EXPECT_LE(l.sweeps, config().stopAndScan.maxSweeps);
+	EXPECT_EQ(l.records.size(), std::size_t(l.sweeps));
+	// The robot turned on the spot between sweeps: the truth at the end of
+	// the start is the start position with another heading.
+	EXPECT_NEAR(l.truth.x, start.x, 0.02);
+	EXPECT_NEAR(l.truth.y, start.y, 0.02);
+	EXPECT_NEAR(
+	    yawErr(l.truth.phi, start.phi),
+	    std::min(M_PI, (l.sweeps - 1) * config().stopAndScan.turnAngle),
+	    mrpt::DEG2RAD(3));
+	EXPECT_LT(l.errorXY, 0.15);
+	EXPECT_LT(l.errorYaw, mrpt::DEG2RAD(3));
+	// Errors are against the true pose.
+	EXPECT_NEAR(
+	    l.errorXY,
+	    std::hypot(l.estimate.x - l.truth.x, l.estimate.y - l.truth.y), 1e-9);
+	// The navigator saw the estimate, not the truth: its first pose is the
+	// localized one.
+	ASSERT_FALSE(r.estimatedTrajectory.empty());
+	EXPECT_NEAR(r.estimatedTrajectory.front().x, l.estimate.x, 1e-9);
+	EXPECT_NEAR(r.estimatedTrajectory.front().y, l.estimate.y, 1e-9);
+	EXPECT_TRUE(r.success) << r.message;
+	EXPECT_EQ(r.collisions, 0);
+	EXPECT_EQ(r.objectLabel, Label::Wastebasket);
+	const auto truth =
+	    withTruePose(officeMap(), office(), start, Label::Wastebasket);
+	EXPECT_EQ(r.objectId, truth.objectId);
+	EXPECT_LT(r.distanceToGoal, truth.distanceToGoal + 0.25);
+}
+
+TEST(StopAndScanLocalizer, TrackingFromARoughGuessConverges)
+{
+	// The robot truly stands at (6.2, 2.6, 0); it is told (6.55, 2.25, 10).
+	const mrpt::math::TPose2D start(6.2, 2.6, 0);
+	const mrpt::math::TPose2D guess(6.55, 2.25, mrpt::DEG2RAD(10.0));
+	ASSERT_NEAR(std::hypot(guess.x - start.x, guess.y - start.y), 0.5, 0.01);
+	StopAndScanLocalizer loc(
+	    office(), officeMap(), config().stopAndScan, locOptions(),
+	    perceptionOptions());
+	SimulatedNavigation sim(officeMap(), office(), config());
+	sim.setLocalization(&loc, Mode::Tracking, guess);
+	const auto r = sim.run(NavCommand::nearest(Label::Washbasin), start);
+	ASSERT_TRUE(r.localization);
+	print("tracking (6.2, 2.6, 0) from (6.55, 2.25, 10)", r);
+	const auto& l = *r.localization;
+	EXPECT_TRUE(l.converged);
+	EXPECT_LT(l.errorXY, 0.15);
+	EXPECT_LT(l.errorYaw, mrpt::DEG2RAD(3));
+	EXPECT_TRUE(r.success) << r.message;
+	EXPECT_EQ(r.collisions, 0);
+}
+
+TEST(StopAndScanLocalizer, StopAndScanKeepsTheDriftingOdometryOnTheMap)
+{
+	// Hall to the right room with the scene's odometry heading bias of
+	// 3.5 deg/m. Without rescans the belief drifts with the odometry (the
+	// obstacles the robot senses are then placed wrongly and may block the
+	// way); with a sweep every 2 m it stays on the map and arrives.
+	const mrpt::math::TPose2D start(2.2, 1.5, 0);
+	const NavCommand cmd = NavCommand::parse("go to 10.0 5.2");
+	const auto run = [&](double rescan)
+	{
+		NavigationConfig c = NavigationConfig::load(
+		    kSrc + "/config/navigation.ini", kSrc + "/config/planning.ini");
+		c.stopAndScan.rescanDistance = rescan;
+		StopAndScanLocalizer loc(
+		    office(), officeMap(), c.stopAndScan, locOptions(),
+		    perceptionOptions());
+		SimulatedNavigation sim(officeMap(), office(), c);
+		sim.setLocalization(&loc, Mode::Tracking, start);
+		auto r = sim.run(cmd, start);
+		const auto& e = r.estimatedTrajectory.back();
+		std::cerr << "rescan every " << rescan << " m: " << r.rescans.size()
+		          << " rescans, " << pathLength(r.trajectory)
+		          << " m driven, final belief error "
+		          << std::hypot(e.x - r.finalPose.x, e.y - r.finalPose.y)
+		          << " m " << mrpt::RAD2DEG(yawErr(e.phi, r.finalPose.phi))
+		          << " deg, success " << r.success << " (" << r.message << "), "
+		          << r.collisions << " collisions\n";
+		EXPECT_EQ(r.collisions, 0) << "rescan " << rescan;
+		return r;
+	};
+	const auto none = run(0);
+	const auto scan = run(2.0);
+	const double bias = office().odometry.rotBiasPerM;
+	ASSERT_GT(bias, mrpt::DEG2RAD(3.0)) << "the scene's odometry changed";
+
+	EXPECT_TRUE(none.rescans.empty());
+	const auto& en = none.estimatedTrajectory.back();
+	const double driven = pathLength(none.trajectory);
+	ASSERT_GT(driven, 2.0);
+	EXPECT_GT(yawErr(en.phi, none.finalPose.phi), 0.5 * bias * driven);
+
+	EXPECT_TRUE(scan.success) << scan.message;
+	EXPECT_GE(scan.rescans.size(), 3u);
+	for (const auto& s : scan.rescans)
+	{
+		EXPECT_LT(s.errorXY, 0.15) << "a rescan";
+		EXPECT_LT(s.errorYaw, mrpt::DEG2RAD(3)) << "a rescan";
+	}
+	// Between rescans the heading drifts by at most bias x 2 m (+ noise).
+	const auto& es = scan.estimatedTrajectory.back();
+	EXPECT_LT(
+	    std::hypot(es.x - scan.finalPose.x, es.y - scan.finalPose.y), 0.2);
+	EXPECT_LT(yawErr(es.phi, scan.finalPose.phi), 2.0 * bias * 2.0);
+}
+
+TEST(StopAndScanLocalizer, NoWallInRangeNeverConvergesAndFailsClearly)
+{
+	// A 30 m x 30 m hall: the robot in its middle sees no wall within the
+	// laser's 8 m, so every sweep only predicts.
+	const Scene hall = SceneLoader::parse(
+	    R"(
+name: hall
+bounds: [0, 0, 30, 30]
+ceiling_height: 4
+objects:
+  - {label: wall, box: {center: [15, 0.05, 1.35], size: [30, 0.1, 2.7]}}
+  - {label: wall, box: {center: [15, 29.95, 1.35], size: [30, 0.1, 2.7]}}
+  - {label: wall, box: {center: [0.05, 15, 1.35], size: [0.1, 29.8, 2.7]}}
+  - {label: wall, box: {center: [29.95, 15, 1.35], size: [0.1, 29.8, 2.7]}}
+  - {label: wastebasket, cylinder: {center: [17, 15, 0.2], radius: 0.15, height: 0.4}}
+trajectory:
+  - [15, 15, 0]
+)",
+	    "hall");
+	ASSERT_GT(15.0 - 0.1, hall.sensor.maxRange);
+	SemanticMap map(config().map);
+	SceneMapBuilder::build(hall, map);
+	StopAndScanLocalizer loc(
+	    hall, map, config().stopAndScan, locOptions(), perceptionOptions());
+	SimulatedNavigation sim(map, hall, config());
+	sim.setLocalization(&loc, Mode::Global);
+	try
+	{
+		sim.run(NavCommand::nearest(Label::Wastebasket), {15, 15, 0.3});
+		FAIL() << "localization converged without seeing a wall";
+	}
+	catch (const LocalizationFailedError& e)
+	{
+		const std::string m = e.what();
+		std::cerr << m << "\n";
+		EXPECT_EQ(m.find('\n'), std::string::npos);
+		EXPECT_NE(m.find("not converged after"), std::string::npos) << m;
+		EXPECT_NE(
+		    m.find(std::to_string(config().stopAndScan.maxSweeps) + " sweeps"),
+		    std::string::npos)
+		    << m;
+		EXPECT_NE(m.find("0 wall segments seen"), std::string::npos) << m;
+	}
+	ASSERT_EQ(
+	    loc.records().size(), std::size_t(config().stopAndScan.maxSweeps));
+	for (const auto& s : loc.records())
+	{
+		EXPECT_EQ(s.segments, 0u);
+		EXPECT_FALSE(s.converged);
+	}
+}
+
+TEST(StopAndScanLocalizer, AMapWithoutWallsIsRejected)
+{
+	// Obstacles only: nothing labelled wall.
+	const Scene s = SceneLoader::parse(
+	    R"(
+name: nowalls
+bounds: [0, 0, 6, 4]
+objects:
+  - {label: obstacle, box: {center: [3, 2, 0.4], size: [1, 1, 0.8]}}
+trajectory:
+  - [1, 1, 0]
+)",
+	    "nowalls");
+	SemanticMap map(config().map);
+	SceneMapBuilder::build(s, map);
+	try
+	{
+		StopAndScanLocalizer loc(
+		    s, map, config().stopAndScan, locOptions(), perceptionOptions());
+		FAIL() << "accepted a map without walls";
+	}
+	catch (const LocalizationFailedError& e)
+	{
+		EXPECT_NE(std::string(e.what()).find("no walls"), std::string::npos)
+		    << e.what();
+	}
+}
+
+TEST(StopAndScanLocalizer, OptionsRejectUnknownKeysAndOutOfRange)
+{
+	const auto load = [](const std::string& text)
+	{
+		mrpt::config::CConfigFileMemory c(text);
+		StopAndScanLocalizer::TOptions o;
+		o.loadFromConfigFile(c, "StopAndScan");
+		return o;
+	};
+	EXPECT_EQ(load("[StopAndScan]\nmax_sweeps = 3\n").maxSweeps, 3);
+	EXPECT_NEAR(
+	    load("[StopAndScan]\nturn_deg = 60\n").turnAngle, mrpt::DEG2RAD(60.0),
+	    1e-12);
+	EXPECT_THROW(load("[StopAndScan]\nmax_sweep = 3\n"), ConfigError);
+	EXPECT_THROW(load("[StopAndScan]\nmax_sweeps = 0\n"), ConfigError);
+	EXPECT_THROW(load("[StopAndScan]\nturn_deg = 400\n"), ConfigError);
+	EXPECT_THROW(load("[StopAndScan]\nodometry_noise = maybe\n"), ConfigError);
+	// Round trip.
+	StopAndScanLocalizer::TOptions a;
+	a.maxSweeps = 4;
+	a.rescanDistance = 1.5;
+	mrpt::config::CConfigFileMemory c;
+	a.saveToConfigFile(c, "StopAndScan");
+	StopAndScanLocalizer::TOptions b;
+	b.loadFromConfigFile(c, "StopAndScan");
+	EXPECT_EQ(b.maxSweeps, 4);
+	EXPECT_EQ(b.rescanDistance, 1.5);
+	EXPECT_EQ(StopAndScanLocalizer::modeFromName("tracking"), Mode::Tracking);
+	EXPECT_THROW(StopAndScanLocalizer::modeFromName("gps"), Error);
+}
