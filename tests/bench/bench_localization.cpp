@@ -10,27 +10,21 @@
 #include <semnav/localization/OccupancyMcl.h>
 #include <semnav/localization/WallExtractor.h>
 #include <semnav/map/SemanticMap.h>
-#include <semnav/perception/PerceptionPipeline.h>
-#include <semnav/scan/GroundTruthLog.h>
-#include <semnav/scan/RawlogSweepReader.h>
-#include <semnav/sim/SceneLoader.h>
-#include <semnav/sim/SimulationRunner.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <map>
+
+#include "PerceivedOffice.h"
 
 using namespace semnav;
 
 namespace
 {
-struct Office
+/** The perceived office and its map built with the true poses. */
+struct Office : test::PerceivedRun
 {
-	std::vector<Sweep> sweeps;
-	std::vector<LabeledSweep> labeled;
-	std::vector<mrpt::poses::CPose2D> gt;
 	std::unique_ptr<SemanticMap> map;
 };
 
@@ -39,23 +33,11 @@ const Office& office()
 	static const Office o = []
 	{
 		Office out;
-		const Scene scene = SceneLoader::loadFile(
-		    std::string(SEMNAV_SOURCE_DIR) + "/datasets/office/office.yaml");
-		const auto dir =
-		    std::filesystem::temp_directory_path() / "semnav_bench_loc";
-		const auto res =
-		    SimulationRunner(scene, SimulationRunner::TOptions(), 1)
-		        .run(dir.string());
-		const GroundTruthLog gt(dir.string(), scene.name);
-		PerceptionPipeline p;
-		out.sweeps = readRawlogSweeps(res.rawlogPath);
+		static_cast<test::PerceivedRun&>(out) =
+		    test::perceivedOffice("semnav_bench_loc");
 		out.map = std::make_unique<SemanticMap>();
-		for (const auto& s : out.sweeps)
-		{
-			out.labeled.push_back(p.process(s));
-			out.gt.push_back(gt.pose(s.index()));
-			out.map->insert(s, out.labeled.back(), out.gt.back());
-		}
+		for (std::size_t i = 0; i < out.sweeps.size(); i++)
+			out.map->insert(out.sweeps[i], out.labeled[i], out.truePoses[i]);
 		return out;
 	}();
 	return o;
@@ -85,7 +67,7 @@ void BM_WallFilterUpdate(benchmark::State& state)
 	Localizer loc(fixedOptions(n));
 	loc.setKnownMap(*o.map);
 	const auto obs = WallExtractor().extract(o.labeled[kSweep]);
-	loc.initialize(o.gt[kSweep]);
+	loc.initialize(o.truePoses[kSweep]);
 	auto& v = samples()["walls/" + std::to_string(n)];
 	for (auto _ : state)
 	{
@@ -104,7 +86,7 @@ void BM_StockMclUpdate(benchmark::State& state)
 	OccupancyMcl mcl(fixedOptions(n));
 	mcl.setMap(OccupancyMcl::mrptGrid(*o.map));
 	const auto scan = OccupancyMcl::horizontalScan(o.sweeps[kSweep]);
-	mcl.initialize(o.gt[kSweep]);
+	mcl.initialize(o.truePoses[kSweep]);
 	auto& v = samples()["stock/" + std::to_string(n)];
 	for (auto _ : state)
 	{
@@ -122,7 +104,7 @@ void BM_WallLikelihoodOnly(benchmark::State& state)
 	WallMap map;
 	map.buildFromSemanticMap(*o.map);
 	const auto obs = WallExtractor().extract(o.labeled[kSweep]);
-	const auto& g = o.gt[kSweep];
+	const auto& g = o.truePoses[kSweep];
 	for (auto _ : state)
 	{
 		double s = 0;

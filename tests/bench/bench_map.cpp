@@ -4,59 +4,32 @@
 #include <benchmark/benchmark.h>
 #include <octomap/OcTree.h>
 #include <semnav/map/SemanticMap.h>
-#include <semnav/perception/PerceptionPipeline.h>
-#include <semnav/scan/RawlogSweepReader.h>
-#include <semnav/sim/SceneLoader.h>
-#include <semnav/sim/SimulationRunner.h>
 
 #include <filesystem>
+
+#include "PerceivedOffice.h"
 
 using namespace semnav;
 
 namespace
 {
-struct Office
+const test::PerceivedRun& office()
 {
-	std::vector<Sweep> sweeps;
-	std::vector<LabeledSweep> labeled;
-	std::vector<mrpt::poses::CPose2D> poses;
-};
-
-const Office& office()
-{
-	static const Office o = []
-	{
-		Office out;
-		const Scene scene = SceneLoader::loadFile(
-		    std::string(SEMNAV_SOURCE_DIR) + "/datasets/office/office.yaml");
-		const auto dir =
-		    std::filesystem::temp_directory_path() / "semnav_bench_map";
-		const auto res =
-		    SimulationRunner(scene, SimulationRunner::TOptions(), 1)
-		        .run(dir.string());
-		PerceptionPipeline p;
-		out.sweeps = readRawlogSweeps(res.rawlogPath);
-		for (std::size_t i = 0; i < out.sweeps.size(); i++)
-		{
-			out.labeled.push_back(p.process(out.sweeps[i]));
-			const auto& t = scene.trajectory[i];
-			out.poses.emplace_back(t.x, t.y, t.phi);
-		}
-		return out;
-	}();
+	static const test::PerceivedRun o =
+	    test::perceivedOffice("semnav_bench_map");
 	return o;
 }
 
 void insertAll(benchmark::State& state, bool withOctomap)
 {
-	const Office& o = office();
+	const test::PerceivedRun& o = office();
 	SemanticMap::TOptions opts;
 	opts.octomap = withOctomap;
 	for (auto _ : state)
 	{
 		SemanticMap m(opts);
 		for (std::size_t i = 0; i < o.sweeps.size(); i++)
-			m.insert(o.sweeps[i], o.labeled[i], o.poses[i]);
+			m.insert(o.sweeps[i], o.labeled[i], o.truePoses[i]);
 		benchmark::DoNotOptimize(m.get("cost").data());
 	}
 	state.counters["sweeps_per_s"] = benchmark::Counter(

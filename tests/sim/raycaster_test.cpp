@@ -6,6 +6,8 @@
 #include <cmath>
 #include <random>
 
+#include "ClutteredScene.h"
+
 using namespace semnav;
 using mrpt::math::TPoint3D;
 
@@ -410,54 +412,9 @@ TEST(RayCaster, RejectsDegeneratePrimitives)
 	EXPECT_THROW(RayCaster{s}, SceneError);
 }
 
-/** A 30-object scene: walls, boxes, cylinders, stairs and two terrains. */
-Scene clutteredScene()
-{
-	Scene s;
-	s.name = "cluttered";
-	s.bounds = {0, 0, 12, 8};
-	s.ceilingHeight = 2.7;
-	int id = 0;
-	auto add = [&](Label l, ScenePrimitive p)
-	{ s.objects.push_back(object(l, ++id, std::move(p))); };
-	add(Label::Wall, box({6, 0.05, 1.35}, {12, 0.1, 2.7}));
-	add(Label::Wall, box({6, 7.95, 1.35}, {12, 0.1, 2.7}));
-	add(Label::Wall, box({0.05, 4, 1.35}, {0.1, 8, 2.7}));
-	add(Label::Wall, box({11.95, 4, 1.35}, {0.1, 8, 2.7}));
-	add(Label::Door, box({3, 7.88, 1.0}, {0.9, 0.04, 2.0}));
-	std::mt19937_64 rng(7);
-	std::uniform_real_distribution<double> u(0, 1);
-	for (int k = 0; k < 13; k++)
-		add(Label::Obstacle,
-		    box({1 + 10 * u(rng), 1 + 6 * u(rng), 0.3 + u(rng)},
-		        {0.2 + u(rng), 0.2 + u(rng), 0.3 + u(rng)}, 2 * M_PI * u(rng)));
-	for (int k = 0; k < 8; k++)
-		add(Label::Wastebasket,
-		    cylinder(
-		        {1 + 10 * u(rng), 1 + 6 * u(rng), 0.5 * u(rng) + 0.2},
-		        0.05 + 0.3 * u(rng), 0.2 + u(rng)));
-	StairsShape st;
-	st.origin = {8, 4};
-	st.yaw = M_PI / 2;
-	st.steps = 5;
-	st.rise = 0.17;
-	st.run = 0.28;
-	st.width = 1.2;
-	add(Label::Stairs, st);
-	st.origin = {2, 2};
-	st.yaw = 0.3;
-	add(Label::Stairs, st);
-	add(Label::Grass, terrain(0.5, 0.5, 4, 3, 0.03));
-	TerrainShape tri;
-	tri.polygon = {{6, 5}, {11, 5.5}, {9, 7.5}};
-	tri.roughness = 0.05;
-	add(Label::Sidewalk, tri);
-	return s;
-}
-
 TEST(RayCaster, AcceleratedEqualsBruteForce)
 {
-	const Scene s = clutteredScene();
+	const Scene s = test::clutteredScene();
 	ASSERT_EQ(s.objects.size(), 30u);
 	RayCaster fast(s, 3), brute(s, 3);
 	brute.setMode(RayCaster::Mode::BruteForce);
