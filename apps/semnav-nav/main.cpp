@@ -305,11 +305,15 @@ int main(int argc, char** argv)
 				         {"error_yaw_deg", x.errorYaw * 180 / M_PI},
 				         {"particles", x.particles},
 				         {"weight_near", x.massNear},
+				         {"inliers", x.inliers},
+				         {"converged", x.converged},
 				         {"ms", x.ms}});
 			    nlohmann::json rescans = nlohmann::json::array();
 			    for (const auto& x : r.rescans)
 				    rescans.push_back(
 				        {{"segments", x.segments},
+				         {"converged", x.converged},
+				         {"inliers", x.inliers},
 				         {"error_xy_m", x.errorXY},
 				         {"error_yaw_deg", x.errorYaw * 180 / M_PI}});
 			    j["localization"] = {

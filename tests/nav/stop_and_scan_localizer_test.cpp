@@ -148,6 +148,13 @@ TEST(StopAndScanLocalizer, GlobalStartInTheOfficeThenReachesTheWastebasket)
 	    mrpt::DEG2RAD(3));
 	EXPECT_LT(l.errorXY, 0.15);
 	EXPECT_LT(l.errorYaw, mrpt::DEG2RAD(3));
+	EXPECT_FALSE(l.ambiguous);
+	// The accepted estimate passed the uniqueness check: no other place of
+	// the office explains the sweeps nearly as well.
+	ASSERT_TRUE(l.records.back().checked);
+	EXPECT_GT(
+	    l.records.back().score,
+	    l.records.back().rivalScore + config().stopAndScan.uniquenessMargin);
 	// Errors are against the true pose.
 	EXPECT_NEAR(
 	    l.errorXY,
@@ -292,6 +299,98 @@ trajectory:
 	{
 		EXPECT_EQ(s.segments, 0u);
 		EXPECT_FALSE(s.converged);
+	}
+}
+
+TEST(StopAndScanLocalizer, SymmetricRoomIsAmbiguousNotConverged)
+{
+	// A 6 m x 4 m empty room looks the same after a half turn about its
+	// centre: walls alone cannot tell (1.5, 1.2) from (4.5, 2.8). The filter
+	// may still collapse onto one of the two (particle depletion); the
+	// uniqueness check must refuse it.
+	const Scene room = SceneLoader::parse(
+	    R"(
+name: symroom
+bounds: [0, 0, 6, 4]
+ceiling_height: 2.7
+objects:
+  - {label: wall, box: {center: [3, 0.05, 1.35], size: [6, 0.1, 2.7]}}
+  - {label: wall, box: {center: [3, 3.95, 1.35], size: [6, 0.1, 2.7]}}
+  - {label: wall, box: {center: [0.05, 2, 1.35], size: [0.1, 3.8, 2.7]}}
+  - {label: wall, box: {center: [5.95, 2, 1.35], size: [0.1, 3.8, 2.7]}}
+  - {label: wastebasket, cylinder: {center: [3, 3.5, 0.2], radius: 0.15, height: 0.4}}
+trajectory:
+  - [1.5, 1.2, 0]
+)",
+	    "symroom");
+	SemanticMap map(config().map);
+	SceneMapBuilder::build(room, map);
+	const mrpt::math::TPose2D start(1.5, 1.2, 0.3);
+	// Shipped options: the two hypotheses stay alive, never converged.
+	{
+		StopAndScanLocalizer loc(
+		    room, map, config().stopAndScan, locOptions(), perceptionOptions());
+		SimulatedRobot robot(room, config().robot, start);
+		try
+		{
+			loc.start(robot, Mode::Global);
+			ADD_FAILURE() << "localized in a symmetric room";
+		}
+		catch (const LocalizationFailedError& e)
+		{
+			const std::string m = e.what();
+			std::cerr << m << "\n";
+			EXPECT_EQ(m.find('\n'), std::string::npos);
+			EXPECT_TRUE(
+			    m.find("ambiguous") != std::string::npos ||
+			    m.find("not converged") != std::string::npos)
+			    << m;
+		}
+	}
+	// A lax convergence criterion (half the weight near the estimate)
+	// accepts one of the twins at once; only the uniqueness check refuses.
+	for (const bool check : {true, false})
+	{
+		auto o = config().stopAndScan;
+		o.convergedFraction = 0.5;
+		o.maxSweeps = 3;
+		o.uniquenessCheck = check;
+		StopAndScanLocalizer loc(
+		    room, map, o, locOptions(), perceptionOptions());
+		SimulatedRobot robot(room, config().robot, start);
+		if (!check)
+		{
+			const auto rep = loc.start(robot, Mode::Global);
+			EXPECT_TRUE(rep.converged);
+			std::cerr << "without the check: accepted (" << rep.estimate.x
+			          << ", " << rep.estimate.y << "), truth (" << rep.truth.x
+			          << ", " << rep.truth.y << ")\n";
+			continue;
+		}
+		try
+		{
+			loc.start(robot, Mode::Global);
+			ADD_FAILURE() << "the uniqueness check accepted a twin";
+		}
+		catch (const LocalizationFailedError& e)
+		{
+			const std::string m = e.what();
+			std::cerr << m << "\n";
+			EXPECT_NE(m.find("ambiguous after 3 sweeps"), std::string::npos)
+			    << m;
+		}
+		std::size_t checked = 0;
+		for (const auto& r : loc.records())
+		{
+			if (!r.checked) continue;
+			checked++;
+			// The rival is the half-turned twin of the estimate.
+			EXPECT_NEAR(r.rival.x, 6 - r.estimate.x, 0.3);
+			EXPECT_NEAR(r.rival.y, 4 - r.estimate.y, 0.3);
+			EXPECT_LT(yawErr(r.rival.phi, r.estimate.phi + M_PI), 0.1);
+			EXPECT_GT(r.rivalScore, r.score - o.uniquenessMargin);
+		}
+		EXPECT_GE(checked, 1u);
 	}
 }
 

@@ -134,17 +134,23 @@ void WallMap::rebuild(const SemanticMap* observed)
 	m_main = MainDirections::estimate(m_segments, m_options.directions);
 }
 
-void WallMap::buildFromSemanticMap(const SemanticMap& map)
+void WallMap::buildFromSemanticMap(
+    const SemanticMap& map, bool unobservedUnknown)
 {
 	m_segments.clear();
 	m_main.reset();
 	m_geometry = map.geometry();
 	std::vector<uint8_t> wall(m_geometry.cellCount(), 0);
+	std::vector<uint8_t> unknown(unobservedUnknown ? wall.size() : 0, 0);
 	for (int cy = 0; cy < m_geometry.rows; cy++)
 		for (int cx = 0; cx < m_geometry.cols; cx++)
+		{
 			if (map.labels(cx, cy).contains(Label::Wall))
 				wall[m_geometry.index(cy, cx)] = 1;
-	buildField(wall);
+			if (unobservedUnknown && !(map.at("observations", cx, cy) > 0))
+				unknown[m_geometry.index(cy, cx)] = 1;
+		}
+	buildField(wall, unobservedUnknown ? &unknown : nullptr);
 	// Segments of the wall cells: probabilistic Hough transform.
 	cv::Mat mask(m_geometry.rows, m_geometry.cols, CV_8U, wall.data());
 	std::vector<cv::Vec4i> lines;

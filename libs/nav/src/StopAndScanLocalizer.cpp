@@ -8,9 +8,11 @@
 #include <semnav/nav/SimulatedRobot.h>
 #include <semnav/nav/StopAndScanLocalizer.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 namespace semnav
@@ -52,15 +54,26 @@ void StopAndScanLocalizer::TOptions::loadFromConfigFile(
 	checkKnownKeys(
 	    c, s,
 	    {"converged_fraction", "converged_radius_m", "converged_yaw_deg",
-	     "max_sweeps", "turn_deg", "turn_speed_deg_s", "line_period_s",
-	     "guess_std_xy_m", "guess_std_yaw_deg", "guess_particles",
-	     "rescan_distance_m", "odometry_noise", "seed"});
+	     "unknown_cells", "uniqueness_check", "uniqueness_step_m",
+	     "uniqueness_margin", "uniqueness_min_distance_m", "max_sweeps",
+	     "turn_deg", "turn_speed_deg_s", "line_period_s", "guess_std_xy_m",
+	     "guess_std_yaw_deg", "guess_particles", "rescan_distance_m",
+	     "odometry_noise", "seed"});
 	convergedFraction =
 	    readChecked(c, s, "converged_fraction", convergedFraction, 0.5, 1.0);
 	convergedRadius =
 	    readChecked(c, s, "converged_radius_m", convergedRadius, 0.01, 10);
 	convergedYaw = mrpt::DEG2RAD(readChecked(
 	    c, s, "converged_yaw_deg", mrpt::RAD2DEG(convergedYaw), 0.1, 180));
+	unknownCells = readCheckedBool(c, s, "unknown_cells", unknownCells);
+	uniquenessCheck =
+	    readCheckedBool(c, s, "uniqueness_check", uniquenessCheck);
+	uniquenessStep =
+	    readChecked(c, s, "uniqueness_step_m", uniquenessStep, 0.02, 5);
+	uniquenessMargin =
+	    readChecked(c, s, "uniqueness_margin", uniquenessMargin, 0, 100);
+	uniquenessMinDistance = readChecked(
+	    c, s, "uniqueness_min_distance_m", uniquenessMinDistance, 0.05, 100);
 	maxSweeps = readCheckedInt(c, s, "max_sweeps", maxSweeps, 1, 100);
 	turnAngle = mrpt::DEG2RAD(
 	    readChecked(c, s, "turn_deg", mrpt::RAD2DEG(turnAngle), 1, 180));
@@ -84,6 +97,11 @@ void StopAndScanLocalizer::TOptions::saveToConfigFile(
 	c.write(s, "converged_fraction", convergedFraction);
 	c.write(s, "converged_radius_m", convergedRadius);
 	c.write(s, "converged_yaw_deg", mrpt::RAD2DEG(convergedYaw));
+	c.write(s, "unknown_cells", unknownCells);
+	c.write(s, "uniqueness_check", uniquenessCheck);
+	c.write(s, "uniqueness_step_m", uniquenessStep);
+	c.write(s, "uniqueness_margin", uniquenessMargin);
+	c.write(s, "uniqueness_min_distance_m", uniquenessMinDistance);
 	c.write(s, "max_sweeps", maxSweeps);
 	c.write(s, "turn_deg", mrpt::RAD2DEG(turnAngle));
 	c.write(s, "turn_speed_deg_s", mrpt::RAD2DEG(turnSpeed));
@@ -109,14 +127,45 @@ StopAndScanLocalizer::StopAndScanLocalizer(
       m_extractor(localization.walls)
 {
 	// Progress goes to the log only when asked (apps print JSON on stdout).
-	setMinLoggingLevel(mrpt::system::LVL_WARN);
+	setMinLoggingLevel(
+	    std::getenv("SEMNAV_LOC_DEBUG") ? mrpt::system::LVL_INFO
+	                                    : mrpt::system::LVL_WARN);
 	m_perception.setMinLoggingLevel(mrpt::system::LVL_ERROR);
-	m_localizer = std::make_unique<Localizer>(m_locOptions.localizer);
+	makeLocalizer(m_locOptions.localizer);
+	const auto& g = m_map.geometry();
+	const int stride = std::max(
+	    1,
+	    static_cast<int>(std::lround(m_options.uniquenessStep / g.resolution)));
+	const double freeBelow = m_locOptions.localizer.freeCellThreshold;
+	for (int cy = stride / 2; cy < g.rows; cy += stride)
+		for (int cx = stride / 2; cx < g.cols; cx += stride)
+			if (m_map.at("observations", cx, cy) > 0 &&
+			    m_map.occupancy(cx, cy) < freeBelow)
+				m_places.push_back({g.centerX(cx), g.centerY(cy)});
+}
+
+const WallMap& StopAndScanLocalizer::scoredWalls() const
+{
+	return m_options.unknownCells ? m_walls : m_localizer->knownWallMap();
+}
+
+void StopAndScanLocalizer::makeLocalizer(const Localizer::TOptions& o)
+{
+	m_localizer = std::make_unique<Localizer>(o);
 	m_localizer->setMinLoggingLevel(mrpt::system::LVL_ERROR);
 	m_localizer->setKnownMap(m_map);
 	if (m_localizer->knownWallMap().segments().empty())
 		throw LocalizationFailedError(
 		    "localization: the map has no walls to localize against");
+	if (m_options.unknownCells)
+	{
+		if (m_walls.empty())
+		{
+			m_walls = WallMap(m_locOptions.wallMap);
+			m_walls.buildFromSemanticMap(m_map, true);
+		}
+		m_localizer->setWallMap(&m_walls);
+	}
 }
 
 StopAndScanLocalizer::~StopAndScanLocalizer() = default;
@@ -139,6 +188,9 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::start(
 
 	Report rep;
 	rep.mode = mode;
+	m_startObs.clear();
+	m_startOdo.clear();
+	m_inStart = true;
 	if (mode == Mode::Global)
 		m_localizer->initializeGlobal();
 	else
@@ -151,9 +203,7 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::start(
 		o.initialStdXY = m_options.guessStdXY;
 		o.initialStdYaw = m_options.guessStdYaw;
 		o.particles = m_options.guessParticles;
-		m_localizer = std::make_unique<Localizer>(o);
-		m_localizer->setMinLoggingLevel(mrpt::system::LVL_ERROR);
-		m_localizer->setKnownMap(m_map);
+		makeLocalizer(o);
 		m_localizer->initialize(mrpt::poses::CPose2D(*guess));
 	}
 
@@ -167,12 +217,32 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::start(
 		segments += r.segments;
 		MRPT_LOG_INFO_FMT(
 		    "start sweep %d: %zu walls, spread %.3f m %.2f deg, error %.3f m "
-		    "%.2f deg, weight near the estimate %.3f",
+		    "%.2f deg, weight near the estimate %.3f, inliers %.2f, estimate "
+		    "(%.2f, %.2f, %.1f deg)%s",
 		    k + 1, r.segments, r.stdXY, mrpt::RAD2DEG(r.stdYaw), r.errorXY,
-		    mrpt::RAD2DEG(r.errorYaw), r.massNear);
+		    mrpt::RAD2DEG(r.errorYaw), r.massNear, r.inliers, r.estimate.x,
+		    r.estimate.y, mrpt::RAD2DEG(r.estimate.phi),
+		    r.kidnapped ? ", KIDNAPPED" : "");
 		if (r.converged)
 		{
+			if (m_options.uniquenessCheck && mode == Mode::Global)
+			{
+				SweepRecord& rr = rep.records.back();
+				checkUniqueness(rr);
+				m_records.back() = rr;
+				MRPT_LOG_INFO_FMT(
+				    "uniqueness: estimate %.3f, best other place (%.2f, %.2f, "
+				    "%.1f deg) %.3f",
+				    rr.score, rr.rival.x, rr.rival.y,
+				    mrpt::RAD2DEG(rr.rival.phi), rr.rivalScore);
+				if (rr.rivalScore > rr.score - m_options.uniquenessMargin)
+				{
+					rep.ambiguous = true;
+					continue;
+				}
+			}
 			rep.converged = true;
+			rep.ambiguous = false;
 			break;
 		}
 	}
@@ -182,6 +252,16 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::start(
 	rep.errorXY = last.errorXY;
 	rep.errorYaw = last.errorYaw;
 	rep.ms = elapsedMs(t0);
+	m_inStart = false;
+	if (!rep.converged && rep.ambiguous)
+		throw LocalizationFailedError(
+		    "localization (" + modeName(mode) + "): ambiguous after " +
+		    std::to_string(rep.sweeps) + " sweeps: the walls fit (" +
+		    fmt("%.2f, %.2f", last.estimate.x, last.estimate.y) +
+		    fmt(", %.0f deg) and (%.2f, ", mrpt::RAD2DEG(last.estimate.phi),
+		        last.rival.x) +
+		    fmt("%.2f, %.0f deg) alike", last.rival.y,
+		        mrpt::RAD2DEG(last.rival.phi)));
 	if (!rep.converged)
 		throw LocalizationFailedError(
 		    "localization (" + modeName(mode) + "): not converged after " +
@@ -212,6 +292,7 @@ StopAndScanLocalizer::SweepRecord StopAndScanLocalizer::sweepAndUpdate(
 	const auto t0 = std::chrono::steady_clock::now();
 	SweepRecord rec;
 	rec.truePose = robot.pose();
+	rec.odometry = robot.odometry();
 	const SimulatedSweep sim = m_laser->simulate(
 	    rec.truePose, m_sweepIndex,
 	    SimulatedRobot::timestampOf(robot.simTime()), m_options.linePeriod);
@@ -223,6 +304,11 @@ StopAndScanLocalizer::SweepRecord StopAndScanLocalizer::sweepAndUpdate(
 	sweep.setOdometry(mrpt::poses::CPose2D(robot.odometry()));
 	m_perception.process(sweep, m_labeled);
 	const WallObservation obs = m_extractor.extract(m_labeled);
+	if (m_inStart)
+	{
+		m_startObs.push_back(obs);
+		m_startOdo.push_back(robot.odometry());
+	}
 	const mrpt::poses::CPose2D incr = mrpt::poses::CPose2D(robot.odometry()) -
 	                                  mrpt::poses::CPose2D(m_lastOdometry);
 	m_lastOdometry = robot.odometry();
@@ -235,6 +321,8 @@ StopAndScanLocalizer::SweepRecord StopAndScanLocalizer::sweepAndUpdate(
 	rec.segments = obs.segments.size();
 	rec.particles = u.particles;
 	rec.massNear = massNear(rec.estimate);
+	rec.inliers = u.inlierFraction;
+	rec.kidnapped = u.kidnapped;
 	rec.converged = u.converged || rec.massNear >= m_options.convergedFraction;
 	rec.updateMs = u.ms;
 	const mrpt::math::TPose2D now = robot.pose();
@@ -243,6 +331,81 @@ StopAndScanLocalizer::SweepRecord StopAndScanLocalizer::sweepAndUpdate(
 	rec.ms = elapsedMs(t0);
 	m_records.push_back(rec);
 	return rec;
+}
+
+void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const
+{
+	// Every sweep's samples in the frame of the last sweep's robot pose
+	// (odometry between them).
+	const mrpt::poses::CPose2D last(m_startOdo.back());
+	std::vector<mrpt::math::TPoint2D> pts;
+	for (std::size_t i = 0; i < m_startObs.size(); i++)
+	{
+		const mrpt::poses::CPose2D rel =
+		    mrpt::poses::CPose2D(m_startOdo[i]) - last;
+		for (const auto& p : m_startObs[i].samples)
+		{
+			double x, y;
+			rel.composePoint(p.x, p.y, x, y);
+			pts.push_back({x, y});
+		}
+	}
+	if (pts.empty()) return;
+	const WallMap& walls = scoredWalls();
+	const double n = static_cast<double>(pts.size());
+	const auto score = [&](double x, double y, double yaw)
+	{ return walls.logLikelihood(x, y, yaw, pts) / n; };
+	// Best pose near `p` (local refinement: +-10 cm, +-1 deg).
+	const auto refine = [&](mrpt::math::TPose2D p)
+	{
+		double best = score(p.x, p.y, p.phi);
+		mrpt::math::TPose2D arg = p;
+		for (double dx = -0.1; dx <= 0.101; dx += 0.025)
+			for (double dy = -0.1; dy <= 0.101; dy += 0.025)
+				for (double da = -1; da <= 1.01; da += 0.5)
+				{
+					const double v =
+					    score(p.x + dx, p.y + dy, p.phi + mrpt::DEG2RAD(da));
+					if (v > best)
+						best = v,
+						arg = {p.x + dx, p.y + dy, p.phi + mrpt::DEG2RAD(da)};
+				}
+		return std::make_pair(best, arg);
+	};
+	const mrpt::math::TPose2D e = rec.estimate;
+	rec.score = refine(e).first;
+	// Coarse search away from the estimate.
+	const double minD2 =
+	    m_options.uniquenessMinDistance * m_options.uniquenessMinDistance;
+	std::vector<std::pair<double, mrpt::math::TPose2D>> top;
+	for (int k = 0; k < 4; k++)
+		for (int j = -2; j <= 2; j++)
+		{
+			const double yaw = e.phi + k * M_PI / 2 + mrpt::DEG2RAD(double(j));
+			for (const auto& q : m_places)
+			{
+				const double dx = q.x - e.x, dy = q.y - e.y;
+				if (k == 0 && dx * dx + dy * dy < minD2) continue;
+				const double v = score(q.x, q.y, yaw);
+				if (top.size() < 8 || v > top.back().first)
+				{
+					top.push_back({v, {q.x, q.y, yaw}});
+					std::sort(
+					    top.begin(), top.end(),
+					    [](const auto& a, const auto& b)
+					    { return a.first > b.first; });
+					if (top.size() > 8) top.pop_back();
+				}
+			}
+		}
+	rec.rivalScore = -std::numeric_limits<double>::infinity();
+	for (const auto& t : top)
+	{
+		const auto [v, p] = refine(t.second);
+		if (v > rec.rivalScore) rec.rivalScore = v, rec.rival = p;
+	}
+	rec.rival.phi = mrpt::math::wrapToPi(rec.rival.phi);
+	rec.checked = true;
 }
 
 double StopAndScanLocalizer::massNear(const mrpt::math::TPose2D& e) const

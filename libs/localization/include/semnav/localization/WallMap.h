@@ -75,8 +75,11 @@ public:
 	void rebuild(const SemanticMap* observed = nullptr);
 	/** Replaces the contents by the wall-labelled cells of a semantic map
 	 * (likelihood field from the cells, segments from a probabilistic Hough
-	 * transform of them). */
-	void buildFromSemanticMap(const SemanticMap& map);
+	 * transform of them). With `unobservedUnknown`, cells the map never
+	 * observed score unknown_weight (as in rebuild() with a map): a map
+	 * built from a few sweeps lacks walls that are there. */
+	void buildFromSemanticMap(
+	    const SemanticMap& map, bool unobservedUnknown = false);
 
 	bool empty() const { return m_field.empty(); }
 	const std::vector<WallSegment>& segments() const { return m_segments; }

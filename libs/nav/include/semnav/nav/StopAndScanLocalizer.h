@@ -69,8 +69,25 @@ public:
 		double convergedFraction = 0.95;
 		double convergedRadius = 0.25;
 		double convergedYaw = mrpt::DEG2RAD(3.0);
+		/** unknown_cells: wall samples in cells the known map never
+		 * observed score [WallMap] unknown_weight instead of the
+		 * far-from-any-wall value (a map built from a few sweeps lacks
+		 * walls the robot sees from elsewhere); as while mapping. */
+		bool unknownCells = true;
+		/** uniqueness_check: before a start is accepted, every place of the
+		 * map's free space (a grid of uniqueness_step_m, headings of the
+		 * estimate + k 90 deg +- 2 deg) is scored on all the start's
+		 * sweeps; if another place more than uniqueness_min_distance_m
+		 * away explains them within uniqueness_margin (mean
+		 * log-likelihood per wall sample) of the estimate, the start is
+		 * ambiguous (walls alone cannot tell, e.g. a symmetric room) and
+		 * not converged. */
+		bool uniquenessCheck = true;
+		double uniquenessStep = 0.15;
+		double uniquenessMargin = 0.1;
+		double uniquenessMinDistance = 0.75;
 		/** max_sweeps: sweeps of a start before giving up. */
-		int maxSweeps = 8;
+		int maxSweeps = 12;
 		/** turn_deg: turn on the spot between start sweeps (rad). */
 		double turnAngle = mrpt::DEG2RAD(60.0);
 		/** turn_speed_deg_s (rad/s). */
@@ -85,7 +102,7 @@ public:
 		int guessParticles = 4000;
 		/** rescan_distance_m: during navigation, stop and scan after this
 		 * much odometry travel (0: never). */
-		double rescanDistance = 2.0;
+		double rescanDistance = 1.0;
 		/** odometry_noise: the robot's odometry gets the scene's odometry
 		 * errors (heading bias and noise) while localizing. */
 		bool odometryNoise = true;
@@ -96,14 +113,28 @@ public:
 	/** One sweep and its filter update. */
 	struct SweepRecord
 	{
-		mrpt::math::TPose2D truePose, estimate;
+		/** True pose, estimate and the robot's odometry at the sweep. */
+		mrpt::math::TPose2D truePose, estimate, odometry;
 		double stdXY = 0, stdYaw = 0;
 		std::size_t segments = 0;
 		std::size_t particles = 0;
 		/** Fraction of the particle weight near the estimate (see
 		 * converged_fraction). */
 		double massNear = 0;
+		/** Fraction of the sweep's wall samples near a map wall at the
+		 * estimate (Localizer's inlier fraction). */
+		double inliers = 0;
+		/** The filter detected a likelihood collapse (kidnapping) and
+		 * spread its particles again. */
+		bool kidnapped = false;
+		/** This sweep alone meets the convergence criterion. */
 		bool converged = false;
+		/** Uniqueness check (when run): mean log-likelihood per wall
+		 * sample of the start's sweeps at the estimate and at the best
+		 * other place, and that place. */
+		bool checked = false;
+		double score = 0, rivalScore = 0;
+		mrpt::math::TPose2D rival;
 		/** Sweep simulation + perception + walls + update, wall clock. */
 		double ms = 0;
 		/** Filter update alone (Localizer), ms. */
@@ -118,6 +149,9 @@ public:
 		Mode mode = Mode::Global;
 		int sweeps = 0;
 		bool converged = false;
+		/** Not converged because another place explains the sweeps as
+		 * well (see uniqueness_check). */
+		bool ambiguous = false;
 		mrpt::math::TPose2D estimate, truth;
 		/** Estimate minus truth at the end of the start (m, rad). */
 		double errorXY = 0, errorYaw = 0;
@@ -152,6 +186,13 @@ public:
 
 private:
 	SweepRecord sweepAndUpdate(SimulatedRobot& robot);
+	/** New Localizer with options `o` on the known map. */
+	void makeLocalizer(const Localizer::TOptions& o);
+	/** Best score of the start's sweeps over the free space, away from
+	 * `estimate` (fills rec.score, rivalScore, rival). */
+	void checkUniqueness(SweepRecord& rec) const;
+	/** The scored wall map. */
+	const WallMap& scoredWalls() const;
 	/** Fraction of the particle weight within convergedRadius and
 	 * convergedYaw of `estimate`. */
 	double massNear(const mrpt::math::TPose2D& estimate) const;
@@ -163,12 +204,20 @@ private:
 	PerceptionPipeline m_perception;
 	WallExtractor m_extractor;
 	std::unique_ptr<Localizer> m_localizer;
+	/** Scored walls when unknownCells. */
+	WallMap m_walls;
 	const RayCaster* m_caster = nullptr;
 	std::unique_ptr<TiltingLaserSimulator> m_laser;
 	LabeledSweep m_labeled;
 	std::vector<SweepRecord> m_records;
+	/** The current start's observations and odometry at each. */
+	std::vector<WallObservation> m_startObs;
+	std::vector<mrpt::math::TPose2D> m_startOdo;
+	/** Free places of the map on the uniqueness grid. */
+	std::vector<mrpt::math::TPoint2D> m_places;
 	mrpt::math::TPose2D m_lastOdometry;
 	std::size_t m_sweepIndex = 0;
+	bool m_inStart = false;
 };
 
 }  // namespace semnav
