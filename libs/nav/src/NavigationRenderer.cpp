@@ -74,7 +74,9 @@ cv::Mat NavigationRenderer::render(
 	};
 	cv::circle(
 	    img, P(r.start.x, r.start.y), 2 * k, green, cv::FILLED, cv::LINE_AA);
-	heading(r.start, green);
+	// The true heading when the start was localized (the robot turned on
+	// the spot while sweeping), else at the start.
+	heading(r.localization ? r.localization->truth : r.start, green);
 	if (r.localization)
 	{
 		const auto& e = r.localization->estimate;
