@@ -327,7 +327,8 @@ int main(int argc, char** argv)
 			        {"error_yaw_deg", l.errorYaw * 180 / M_PI},
 			        {"ms", l.ms},
 			        {"per_sweep", recs},
-			        {"rescans", rescans}};
+			        {"rescans", rescans},
+			        {"recoveries", r.recoveries}};
 			    if (!r.estimatedTrajectory.empty())
 			    {
 				    const auto& e = r.estimatedTrajectory.back();

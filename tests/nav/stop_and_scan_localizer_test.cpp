@@ -394,6 +394,47 @@ trajectory:
 	}
 }
 
+TEST(StopAndScanLocalizer, ACarriedRobotIsFoundAgainByTheNextRescan)
+{
+	// Localized at (2.2, 1.5), then carried to (6.2, 2.6) facing north while
+	// its odometry notices nothing: the next stop-and-scan finds the walls
+	// do not fit, the filter restarts over the map, the robot turns and
+	// sweeps until it is localized at the new place.
+	StopAndScanLocalizer loc(
+	    office(), officeMap(), config().stopAndScan, locOptions(),
+	    perceptionOptions());
+	SimulatedRobot robot(office(), config().robot, {2.2, 1.5, 0});
+	const auto first =
+	    loc.start(robot, Mode::Tracking, mrpt::math::TPose2D(2.2, 1.5, 0));
+	ASSERT_TRUE(first.converged);
+	EXPECT_LT(first.errorXY, 0.1);
+	// Ordinary rescan: nothing to recover.
+	const auto same = loc.rescan(robot);
+	EXPECT_FALSE(same.recovery);
+	EXPECT_EQ(same.sweeps, 1);
+	EXPECT_LT(same.errorXY, 0.1);
+
+	const mrpt::math::TPose2D carried(6.2, 2.6, M_PI / 2);
+	robot.vehicle().setCurrentGTPose(carried);
+	const auto odo = robot.odometry();
+	const auto rep = loc.rescan(robot);
+	for (const auto& r : rep.records)
+		std::cerr << "  recovery sweep: " << r.segments << " walls, inliers "
+		          << r.inliers << ", kidnapped " << r.kidnapped << ", error "
+		          << r.errorXY << " m, converged " << r.converged << "\n";
+	EXPECT_TRUE(rep.recovery);
+	EXPECT_TRUE(rep.converged);
+	EXPECT_GE(rep.sweeps, 2);
+	EXPECT_GE(loc.localizer().kidnappings(), 1);
+	EXPECT_LT(rep.errorXY, 0.15);
+	EXPECT_LT(rep.errorYaw, mrpt::DEG2RAD(3));
+	EXPECT_NEAR(rep.truth.x, carried.x, 0.02);
+	EXPECT_NEAR(rep.truth.y, carried.y, 0.02);
+	// The robot reports the new estimate; its odometry only turned.
+	EXPECT_NEAR(robot.estimatedPose().x, rep.estimate.x, 1e-6);
+	EXPECT_NEAR(robot.odometry().x, odo.x, 0.02);
+}
+
 TEST(StopAndScanLocalizer, AMapWithoutWallsIsRejected)
 {
 	// Obstacles only: nothing labelled wall.

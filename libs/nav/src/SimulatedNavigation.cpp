@@ -95,7 +95,10 @@ SimulatedNavigation::Result SimulatedNavigation::run(
 		if (rescanDistance > 0 &&
 		    robot.odometryDistance() - lastScanAt >= rescanDistance)
 		{
-			r.rescans.push_back(m_localizer->rescan(robot));
+			const auto rep = m_localizer->rescan(robot);
+			r.rescans.insert(
+			    r.rescans.end(), rep.records.begin(), rep.records.end());
+			if (rep.recovery) r.recoveries++;
 			lastScanAt = robot.odometryDistance();
 		}
 		if (hook) hook(robot.simTime(), nav);

@@ -207,56 +207,80 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::start(
 		m_localizer->initialize(mrpt::poses::CPose2D(*guess));
 	}
 
+	sweepUntilConverged(robot, mode == Mode::Global, false, rep, t0);
+	robot.setPoseEstimate(rep.estimate);
+	return rep;
+}
+
+void StopAndScanLocalizer::sweepUntilConverged(
+    SimulatedRobot& robot, bool global, bool turnFirst, Report& rep,
+    std::chrono::steady_clock::time_point t0)
+{
+	// (m_startObs: the sweeps of rep.records the caller kept.)
+	m_inStart = true;
 	std::size_t segments = 0;
-	for (int k = 0; k < m_options.maxSweeps; k++)
+	for (const auto& r : rep.records) segments += r.segments;
+	for (int k = static_cast<int>(rep.records.size()); k < m_options.maxSweeps;
+	     k++)
 	{
-		if (k > 0) robot.turnInPlace(m_options.turnAngle, m_options.turnSpeed);
+		if (k > 0 || turnFirst)
+			robot.turnInPlace(m_options.turnAngle, m_options.turnSpeed);
 		const SweepRecord r = sweepAndUpdate(robot);
 		rep.records.push_back(r);
 		rep.sweeps++;
 		segments += r.segments;
 		MRPT_LOG_INFO_FMT(
-		    "start sweep %d: %zu walls, spread %.3f m %.2f deg, error %.3f m "
+		    "sweep %d: %zu walls, spread %.3f m %.2f deg, error %.3f m "
 		    "%.2f deg, weight near the estimate %.3f, inliers %.2f, estimate "
 		    "(%.2f, %.2f, %.1f deg)%s",
 		    k + 1, r.segments, r.stdXY, mrpt::RAD2DEG(r.stdYaw), r.errorXY,
 		    mrpt::RAD2DEG(r.errorYaw), r.massNear, r.inliers, r.estimate.x,
 		    r.estimate.y, mrpt::RAD2DEG(r.estimate.phi),
 		    r.kidnapped ? ", KIDNAPPED" : "");
-		if (r.converged)
+		if (r.kidnapped)
 		{
-			if (m_options.uniquenessCheck && mode == Mode::Global)
-			{
-				SweepRecord& rr = rep.records.back();
-				checkUniqueness(rr);
-				m_records.back() = rr;
-				MRPT_LOG_INFO_FMT(
-				    "uniqueness: estimate %.3f, best other place (%.2f, %.2f, "
-				    "%.1f deg) %.3f",
-				    rr.score, rr.rival.x, rr.rival.y,
-				    mrpt::RAD2DEG(rr.rival.phi), rr.rivalScore);
-				if (rr.rivalScore > rr.score - m_options.uniquenessMargin)
-				{
-					rep.ambiguous = true;
-					continue;
-				}
-			}
-			rep.converged = true;
-			rep.ambiguous = false;
-			break;
+			// The filter spread its particles over the map again: a global
+			// start from this sweep on (earlier sweeps no longer relate to
+			// the pose by odometry).
+			global = true;
+			m_startObs.erase(m_startObs.begin(), m_startObs.end() - 1);
+			m_startOdo.erase(m_startOdo.begin(), m_startOdo.end() - 1);
 		}
+		if (!r.converged) continue;
+		if (m_options.uniquenessCheck && global)
+		{
+			SweepRecord& rr = rep.records.back();
+			checkUniqueness(rr);
+			m_records.back() = rr;
+			MRPT_LOG_INFO_FMT(
+			    "uniqueness: estimate %.3f, best other place (%.2f, %.2f, "
+			    "%.1f deg) %.3f",
+			    rr.score, rr.rival.x, rr.rival.y, mrpt::RAD2DEG(rr.rival.phi),
+			    rr.rivalScore);
+			if (rr.rivalScore > rr.score - m_options.uniquenessMargin)
+			{
+				rep.ambiguous = true;
+				continue;
+			}
+		}
+		rep.converged = true;
+		rep.ambiguous = false;
+		break;
 	}
+	m_inStart = false;
 	const SweepRecord& last = rep.records.back();
 	rep.truth = last.truePose;
 	rep.estimate = last.estimate;
 	rep.errorXY = last.errorXY;
 	rep.errorYaw = last.errorYaw;
 	rep.ms = elapsedMs(t0);
-	m_inStart = false;
+	const std::string what = "localization (" + modeName(rep.mode) +
+	                         (rep.recovery ? ", lost while navigating" : "") +
+	                         "): ";
 	if (!rep.converged && rep.ambiguous)
 		throw LocalizationFailedError(
-		    "localization (" + modeName(mode) + "): ambiguous after " +
-		    std::to_string(rep.sweeps) + " sweeps: the walls fit (" +
+		    what + "ambiguous after " + std::to_string(rep.sweeps) +
+		    " sweeps: the walls fit (" +
 		    fmt("%.2f, %.2f", last.estimate.x, last.estimate.y) +
 		    fmt(", %.0f deg) and (%.2f, ", mrpt::RAD2DEG(last.estimate.phi),
 		        last.rival.x) +
@@ -264,26 +288,59 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::start(
 		        mrpt::RAD2DEG(last.rival.phi)));
 	if (!rep.converged)
 		throw LocalizationFailedError(
-		    "localization (" + modeName(mode) + "): not converged after " +
-		    std::to_string(rep.sweeps) + " sweeps (" +
-		    std::to_string(segments) + " wall segments seen; spread " +
+		    what + "not converged after " + std::to_string(rep.sweeps) +
+		    " sweeps (" + std::to_string(segments) +
+		    " wall segments seen; spread " +
 		    fmt("%.2f m, %.1f deg)", last.stdXY, mrpt::RAD2DEG(last.stdYaw)));
-	robot.setPoseEstimate(rep.estimate);
-	return rep;
 }
 
-StopAndScanLocalizer::SweepRecord StopAndScanLocalizer::rescan(
-    SimulatedRobot& robot)
+StopAndScanLocalizer::Report StopAndScanLocalizer::rescan(SimulatedRobot& robot)
 {
 	if (!m_laser)
 		throw LocalizationFailedError("localization: rescan before start");
+	const auto t0 = std::chrono::steady_clock::now();
 	robot.stopNow();
+	Report rep;
+	rep.mode = Mode::Tracking;
+	rep.recovery = false;
+	m_startObs.clear();
+	m_startOdo.clear();
+	m_inStart = true;
 	const SweepRecord r = sweepAndUpdate(robot);
-	robot.setPoseEstimate(r.estimate);
+	m_inStart = false;
+	rep.records.push_back(r);
+	rep.sweeps = 1;
 	MRPT_LOG_INFO_FMT(
-	    "rescan: %zu walls, error %.3f m %.2f deg", r.segments, r.errorXY,
-	    mrpt::RAD2DEG(r.errorYaw));
-	return r;
+	    "rescan: %zu walls, error %.3f m %.2f deg%s%s", r.segments, r.errorXY,
+	    mrpt::RAD2DEG(r.errorYaw), r.converged ? "" : ", not converged",
+	    r.kidnapped ? ", KIDNAPPED" : "");
+	if (r.converged && !r.kidnapped)
+	{
+		rep.converged = true;
+		rep.truth = r.truePose;
+		rep.estimate = r.estimate;
+		rep.errorXY = r.errorXY;
+		rep.errorYaw = r.errorYaw;
+		rep.ms = elapsedMs(t0);
+	}
+	else
+	{
+		// Lost (kidnapped, or the spread grew): turn and sweep as at a
+		// start until converged again.
+		rep.recovery = true;
+		rep.mode = r.kidnapped ? Mode::Global : Mode::Tracking;
+		if (!r.kidnapped)
+		{
+			// Keep only the sweep a global restart started from.
+			rep.records.clear();
+			rep.sweeps = 0;
+			m_startObs.clear();
+			m_startOdo.clear();
+		}
+		sweepUntilConverged(robot, r.kidnapped, true, rep, t0);
+	}
+	robot.setPoseEstimate(rep.estimate);
+	return rep;
 }
 
 StopAndScanLocalizer::SweepRecord StopAndScanLocalizer::sweepAndUpdate(
@@ -323,7 +380,11 @@ StopAndScanLocalizer::SweepRecord StopAndScanLocalizer::sweepAndUpdate(
 	rec.massNear = massNear(rec.estimate);
 	rec.inliers = u.inlierFraction;
 	rec.kidnapped = u.kidnapped;
-	rec.converged = u.converged || rec.massNear >= m_options.convergedFraction;
+	// Converged: one tight hypothesis that also explains the sweep (fewer
+	// inliers than the kidnap threshold is a wrong pose, however tight).
+	rec.converged =
+	    (u.converged || rec.massNear >= m_options.convergedFraction) &&
+	    u.inlierFraction >= m_locOptions.localizer.kidnapInlierFraction;
 	rec.updateMs = u.ms;
 	const mrpt::math::TPose2D now = robot.pose();
 	rec.errorXY = std::hypot(rec.estimate.x - now.x, rec.estimate.y - now.y);

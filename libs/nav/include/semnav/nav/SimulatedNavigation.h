@@ -59,6 +59,9 @@ public:
 		 * after every step (estimate; the trajectory above is the truth). */
 		std::optional<StopAndScanLocalizer::Report> localization;
 		std::vector<StopAndScanLocalizer::SweepRecord> rescans;
+		/** Rescans that found the robot lost and relocalized it (turning
+		 * and sweeping). */
+		int recoveries = 0;
 		std::vector<mrpt::math::TPose2D> estimatedTrajectory;
 	};
 

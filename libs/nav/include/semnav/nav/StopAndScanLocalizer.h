@@ -13,6 +13,7 @@
 #include <semnav/sim/Scene.h>
 #include <semnav/sim/TiltingLaserSimulator.h>
 
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
@@ -61,11 +62,13 @@ public:
 		    const std::string& section) const override;
 
 		/** converged_fraction, converged_radius_m, converged_yaw_deg: a
-		 * start has converged when the filter's spread is below its
+		 * sweep leaves the filter converged when its spread is below its
 		 * thresholds ([Localizer]) or when at least this fraction of the
 		 * particle weight lies within this distance and heading of the
 		 * estimate (one dominant hypothesis; a few stray particles far
-		 * away keep the spread large for many sweeps). */
+		 * away keep the spread large for many sweeps), and at least
+		 * [Localizer] kidnap_inlier_fraction of its wall samples lie near
+		 * a map wall at the estimate. */
 		double convergedFraction = 0.95;
 		double convergedRadius = 0.25;
 		double convergedYaw = mrpt::DEG2RAD(3.0);
@@ -152,6 +155,9 @@ public:
 		/** Not converged because another place explains the sweeps as
 		 * well (see uniqueness_check). */
 		bool ambiguous = false;
+		/** A rescan that found the robot lost and turned and swept until
+		 * converged again. */
+		bool recovery = false;
 		mrpt::math::TPose2D estimate, truth;
 		/** Estimate minus truth at the end of the start (m, rad). */
 		double errorXY = 0, errorYaw = 0;
@@ -176,8 +182,12 @@ public:
 	    const std::optional<mrpt::math::TPose2D>& guess = std::nullopt);
 
 	/** One stop-and-scan update: stops the robot, sweeps, updates the
-	 * filter and the robot's estimate. */
-	SweepRecord rescan(SimulatedRobot& robot);
+	 * filter and the robot's estimate. When that sweep leaves the filter
+	 * unconverged or kidnapped (likelihood collapse: the particles were
+	 * spread over the map again), the robot turns and sweeps as at a start
+	 * (global after a kidnapping, with the uniqueness check) until
+	 * converged; else LocalizationFailedError ("lost while navigating"). */
+	Report rescan(SimulatedRobot& robot);
 
 	/** Every sweep so far (start and rescans). */
 	const std::vector<SweepRecord>& records() const { return m_records; }
@@ -186,6 +196,12 @@ public:
 
 private:
 	SweepRecord sweepAndUpdate(SimulatedRobot& robot);
+	/** Sweeps (turning between them; also before the first when
+	 * `turnFirst`) until converged, appending to rep (which may hold
+	 * sweeps already); fills rep; throws LocalizationFailedError. */
+	void sweepUntilConverged(
+	    SimulatedRobot& robot, bool global, bool turnFirst, Report& rep,
+	    std::chrono::steady_clock::time_point t0);
 	/** New Localizer with options `o` on the known map. */
 	void makeLocalizer(const Localizer::TOptions& o);
 	/** Best score of the start's sweeps over the free space, away from
