@@ -304,6 +304,7 @@ int main(int argc, char** argv)
 				         {"error_xy_m", x.errorXY},
 				         {"error_yaw_deg", x.errorYaw * 180 / M_PI},
 				         {"particles", x.particles},
+				         {"update_ms", x.updateMs},
 				         {"weight_near", x.massNear},
 				         {"inliers", x.inliers},
 				         {"converged", x.converged},
