@@ -32,18 +32,22 @@ double median(std::vector<double> v)
 	return v[v.size() / 2];
 }
 
-/** Detection image with ground truth (blue), accepted (green) and
- * rejected (red) boxes, enlarged 2x; sweep layout flipped to the viewer's
- * (up is up). */
+/** Detection image with the object proposals of every class (yellow), ground
+ * truth (blue), accepted (green) and rejected (red) boxes, enlarged 2x; sweep
+ * layout flipped to the viewer's (up is up). */
 cv::Mat drawSweep(
     const cv::Mat& image, const std::vector<semnav::GroundTruthObject>& gt,
-    const std::vector<semnav::CascadeDetector::Candidate>& cands)
+    const std::vector<semnav::CascadeDetector::Candidate>& cands,
+    const std::vector<std::vector<semnav::ObjectProposal>>& proposals)
 {
 	cv::Mat bgr;
 	cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR);
 	cv::resize(bgr, bgr, cv::Size(), 2, 2, cv::INTER_NEAREST);
 	const auto box = [](cv::Rect r)
 	{ return cv::Rect(r.x * 2, r.y * 2, r.width * 2, r.height * 2); };
+	for (const auto& ps : proposals)
+		for (const auto& p : ps)
+			cv::rectangle(bgr, box(p.box), cv::Scalar(0, 220, 255), 1);
 	for (const auto& g : gt)
 		cv::rectangle(
 		    bgr, box(g.box),
@@ -79,7 +83,8 @@ double iou(const cv::Rect& a, const cv::Rect& b)
  * label that overlaps it most (IoU of the measured box, fate). */
 void listMisses(
     const std::string& dir, std::size_t sweep, const cv::Mat& groundTruth,
-    const cv::Mat& points, const std::vector<semnav::Label>& labels,
+    const cv::Mat& points, const cv::Mat& objectMask,
+    const std::vector<semnav::Label>& labels,
     const std::vector<semnav::CascadeDetector::Candidate>& cands)
 {
 	const auto objects =
@@ -121,7 +126,7 @@ void listMisses(
 		if (bestAccepted >= 0.3) continue;
 		const cv::Mat mask = g.mask(groundTruth);
 		cv::Vec3d sum(0, 0, 0);
-		int n = 0;
+		int n = 0, inProposals = 0;
 		for (int r = 0; r < mask.rows; r++)
 			for (int c = 0; c < mask.cols; c++)
 			{
@@ -129,17 +134,19 @@ void listMisses(
 				if (!mask.at<uint8_t>(r, c) || std::isnan(p[0])) continue;
 				sum += cv::Vec3d(p[0], p[1], p[2]);
 				n++;
+				inProposals += objectMask.at<uint8_t>(r, c) != 0;
 			}
 		const cv::Vec3d m = n ? sum / n : sum;
 		std::fprintf(
 		    stderr,
 		    "miss %s sweep %zu %s #%d box %dx%d+%d+%d %d px, range %.2f m, "
-		    "bearing %.0f deg, height %.2f m; nearest candidate IoU %.2f "
-		    "%s\n",
+		    "bearing %.0f deg, height %.2f m, %.0f %% in the proposal mask; "
+		    "nearest candidate IoU %.2f %s\n",
 		    std::filesystem::path(dir).filename().c_str(), sweep,
 		    semnav::labelName(g.label).c_str(), g.instance, g.box.width,
 		    g.box.height, g.box.x, g.box.y, g.pixels, std::hypot(m[0], m[1]),
-		    std::atan2(m[1], m[0]) * 180 / M_PI, m[2], best,
+		    std::atan2(m[1], m[0]) * 180 / M_PI, m[2],
+		    n ? 100.0 * inProposals / n : 0.0, best,
 		    !nearest ? "(no measured candidate)"
 		    : nearest->accepted
 		        ? "(accepted)"
@@ -209,7 +216,7 @@ int main(int argc, char** argv)
 				    const auto& sw = sweeps[i].sweep;
 				    const auto cands = detector.detectCandidates(
 				        sw.phis(), sw.thetas(), ls.normals, ls.normalMask,
-				        ls.points, ls.groundZ, ls.labels);
+				        ls.points, ls.groundZ, ls.labels, ls.areaIds);
 				    ms.push_back(detector.lastTimings().total);
 				    msCascades.push_back(detector.lastTimings().cascades);
 				    std::vector<semnav::Detection> dets;
@@ -230,9 +237,17 @@ int main(int argc, char** argv)
 				    }
 				    scorer.add(dets, sweeps[i].groundTruth, labels);
 				    if (argMisses.getValue())
+				    {
+					    semnav::ObjectProposals::Params pp;
+					    pp.floorTolerance = opts.floorTolerance;
+					    pp.maxHeight = opts.proposalMaxHeight;
 					    listMisses(
-					        dir, i, sweeps[i].groundTruth, ls.points, labels,
-					        cands);
+					        dir, i, sweeps[i].groundTruth, ls.points,
+					        semnav::ObjectProposals::objectMask(
+					            ls.points, ls.labels, ls.areaIds, ls.groundZ,
+					            pp),
+					        labels, cands);
+				    }
 				    if (!argOut.getValue().empty())
 				    {
 					    const cv::Mat img = detector.detectionImage(
@@ -251,7 +266,8 @@ int main(int argc, char** argv)
 					        std::filesystem::path(dir).filename().c_str(), i);
 					    cv::imwrite(
 					        argOut.getValue() + name,
-					        drawSweep(img, gt, cands));
+					        drawSweep(
+					            img, gt, cands, detector.lastProposals()));
 				    }
 				    bar.update(i + 1);
 			    }

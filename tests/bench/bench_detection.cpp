@@ -1,12 +1,19 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // Haar cascade detection (issue 4): all three cascades (washbasin,
-// wastebasket, stairs) on one 211 x 361 simulated sweep, as configured in
-// config/cascade.ini (panoramic image, near + far passes, 3D size check),
-// against baselines in the same run: the same cascades without the far
-// (upscaled) passes, and OpenCV's own frontal-face Haar cascade on the same
-// image. Perception (normals, labels) runs once, outside the timing. Run
+// wastebasket, stairs) on one 211 x 361 simulated sweep (panoramic image,
+// near + far passes, 3D size check): as configured in config/cascade.ini,
+// with object proposals (windows around the regions the rule classifier
+// left to objects, at the sizes the class can have there) and over the
+// whole image (the paper's search, as before the proposals), against
+// baselines in the same run: the whole-image search without the far
+// (upscaled) passes and OpenCV's own frontal-face Haar cascade on the same
+// image. Perception (normals, labels) runs once, outside the timing. The
+// counters split the detector's time (ms): detection image, proposals,
+// cascades, 3D size check. At the end the medians (or means without
+// repetitions) are compared. Run
 //   bench_detection --benchmark_repetitions=5
 //   --benchmark_report_aggregates_only=true
+// (OPENCV_FOR_THREADS_NUM=1 for one thread: detectMultiScale is parallel).
 #include <benchmark/benchmark.h>
 #include <semnav/detection/CascadeDetector.h>
 #include <semnav/detection/GroundTruthObject.h>
@@ -15,8 +22,11 @@
 #include <semnav/sim/SceneLoader.h>
 #include <semnav/sim/SimulationRunner.h>
 #include <semnav/sim/TiltingLaserSimulator.h>
+#include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
+#include <map>
 #include <opencv2/core/utility.hpp>
 #include <opencv2/objdetect.hpp>
 #include <string>
@@ -84,32 +94,68 @@ void runDetector(benchmark::State& state, CascadeDetector::TOptions opts)
 		}
 	CascadeDetector det(opts);
 	std::size_t found = 0;
+	CascadeDetector::Timings sum;
+	double n = 0;
 	for (auto _ : state)
 	{
 		const auto c = det.detectCandidates(
 		    in.sweep.phis(), in.sweep.thetas(), in.labeled.normals,
 		    in.labeled.normalMask, in.labeled.points, in.labeled.groundZ,
-		    in.labeled.labels);
+		    in.labeled.labels, in.labeled.areaIds);
 		found = 0;
 		for (const auto& x : c) found += x.accepted;
 		benchmark::DoNotOptimize(found);
+		const auto& t = det.lastTimings();
+		sum.image += t.image;
+		sum.proposals += t.proposals;
+		sum.cascades += t.cascades;
+		sum.sizeCheck += t.sizeCheck;
+		n++;
 	}
+	if (n > 0)
+	{
+		state.counters["ms_image"] = sum.image / n;
+		state.counters["ms_proposals"] = sum.proposals / n;
+		state.counters["ms_cascades"] = sum.cascades / n;
+		state.counters["ms_size_check"] = sum.sizeCheck / n;
+	}
+	std::size_t proposals = 0;
+	for (const auto& ps : det.lastProposals()) proposals += ps.size();
+	state.counters["proposals"] = double(proposals);
 	state.counters["detections"] = double(found);
 	state.counters["gt_objects"] = double(in.objects);
 	state.counters["rows"] = double(in.sweep.rows());
 	state.counters["cols"] = double(in.sweep.cols());
 }
 
-/** All three cascades as shipped (near + far passes). */
+/** All three cascades as shipped (config/cascade.ini). */
 void BM_ThreeCascades(benchmark::State& s)
 {
 	runDetector(s, shipped());
 }
 
-/** Baseline: the same cascades without the far (upscaled) passes. */
-void BM_ThreeCascadesNoUpscaling(benchmark::State& s)
+/** All three cascades with object proposals (proposals = true). */
+void BM_ThreeCascadesProposals(benchmark::State& s)
 {
 	auto o = shipped();
+	o.proposals = true;
+	runDetector(s, o);
+}
+
+/** Baseline: the same cascades over the whole image (every window of the
+ * near and far passes), as before the proposals. */
+void BM_ThreeCascadesWholeImage(benchmark::State& s)
+{
+	auto o = shipped();
+	o.proposals = false;
+	runDetector(s, o);
+}
+
+/** Baseline: the whole-image search without the far (upscaled) passes. */
+void BM_ThreeCascadesWholeImageNoUpscaling(benchmark::State& s)
+{
+	auto o = shipped();
+	o.proposals = false;
 	for (auto& k : o.classes) k.farUpscale = 0;
 	runDetector(s, o);
 }
@@ -159,9 +205,62 @@ void BM_DetectionImage(benchmark::State& state)
 }  // namespace
 
 BENCHMARK(BM_ThreeCascades)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_ThreeCascadesNoUpscaling)
+BENCHMARK(BM_ThreeCascadesProposals)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_ThreeCascadesWholeImage)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_ThreeCascadesWholeImageNoUpscaling)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_OpenCvFaceCascade)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DetectionImage)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_MAIN();
+namespace
+{
+/** The console output, and each benchmark's median real time (the mean
+ * when run without repetitions) for the comparison at the end. */
+class RatioReporter : public benchmark::ConsoleReporter
+{
+public:
+	RatioReporter()
+	    : benchmark::ConsoleReporter(
+	          isatty(fileno(stdout)) ? OO_Defaults : OO_Tabular)
+	{
+	}
+	std::map<std::string, double> ms;
+	void ReportRuns(const std::vector<Run>& runs) override
+	{
+		for (const auto& r : runs)
+		{
+			const std::string name = r.run_name.function_name;
+			const double t = r.GetAdjustedRealTime();  // in the unit: ms
+			// Aggregates follow their repetitions: the median wins.
+			if (r.run_type == Run::RT_Iteration || r.aggregate_name == "median")
+				ms[name] = t;
+		}
+		ConsoleReporter::ReportRuns(runs);
+	}
+};
+}  // namespace
+
+int main(int argc, char** argv)
+{
+	benchmark::Initialize(&argc, argv);
+	if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+	RatioReporter rep;
+	benchmark::RunSpecifiedBenchmarks(&rep);
+	benchmark::Shutdown();
+	const auto has = [&](const char* n) { return rep.ms.count(n) > 0; };
+	const char* base = "BM_ThreeCascadesWholeImage";
+	if (!has(base)) return 0;
+	std::printf("\nmedian real time, ms (ratio to the whole-image search):\n");
+	for (const auto& [name, t] : rep.ms)
+		std::printf(
+		    "  %-40s %8.2f  (%.2f)\n", name.c_str(), t, t / rep.ms.at(base));
+	if (has("BM_ThreeCascadesProposals"))
+		std::printf(
+		    "proposals: %.1f times faster than the whole-image search\n",
+		    rep.ms.at(base) / rep.ms.at("BM_ThreeCascadesProposals"));
+	return 0;
+}

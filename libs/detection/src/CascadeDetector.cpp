@@ -73,6 +73,10 @@ const std::vector<std::string>& CascadeDetector::TClassOptions::knownKeys()
 	    "max_top_m",
 	    "max_depth_m",
 	    "min_points",
+	    "min_size_m",
+	    "min_cut_size_m",
+	    "max_size_m",
+	    "proposal_min_neighbors",
 	    "channel"};
 	return keys;
 }
@@ -113,6 +117,11 @@ void CascadeDetector::TClassOptions::loadFromConfigFile(
 	o.maxTop = readChecked(c, s, "max_top_m", maxTop, -10, 100);
 	o.maxDepth = readChecked(c, s, "max_depth_m", maxDepth, 0.01, 100);
 	o.minPoints = readCheckedInt(c, s, "min_points", minPoints, 1, 1000000);
+	o.minSize = readChecked(c, s, "min_size_m", minSize, 0.01, 100);
+	o.minCutSize = readChecked(c, s, "min_cut_size_m", minCutSize, 0.01, 100);
+	o.maxSize = readChecked(c, s, "max_size_m", maxSize, 0.01, 100);
+	o.proposalMinNeighbors = readCheckedInt(
+	    c, s, "proposal_min_neighbors", proposalMinNeighbors, -1, 100);
 	if (c.keyExists(s, "channel"))
 	{
 		try
@@ -125,6 +134,7 @@ void CascadeDetector::TClassOptions::loadFromConfigFile(
 		}
 	}
 	if (o.minWidth > o.maxWidth || o.minTop > o.maxTop ||
+	    o.minSize > o.maxSize || o.minCutSize > o.maxSize ||
 	    o.minElevation >= o.maxElevation ||
 	    (o.farUpscale > 0 && o.farMinElevation >= o.farMaxElevation))
 		throw ConfigError("[" + s + "] a minimum exceeds its maximum");
@@ -152,6 +162,10 @@ void CascadeDetector::TClassOptions::saveToConfigFile(
 	c.write(s, "max_top_m", num(maxTop));
 	c.write(s, "max_depth_m", num(maxDepth));
 	c.write(s, "min_points", std::to_string(minPoints));
+	c.write(s, "min_size_m", num(minSize));
+	c.write(s, "min_cut_size_m", num(minCutSize));
+	c.write(s, "max_size_m", num(maxSize));
+	c.write(s, "proposal_min_neighbors", std::to_string(proposalMinNeighbors));
 	if (channel) c.write(s, "channel", channelName(*channel));
 }
 
@@ -200,6 +214,9 @@ CascadeDetector::TOptions::TOptions()
 	wb.minTop = 0.6;
 	wb.maxTop = 1.1;
 	wb.maxDepth = 0.6;
+	wb.minSize = 0.7;
+	wb.minCutSize = 0.35;
+	wb.maxSize = 1.2;
 	TClassOptions bin(Label::Wastebasket);
 	bin.upscale = 1.0;
 	bin.farUpscale = 3.0;
@@ -209,6 +226,9 @@ CascadeDetector::TOptions::TOptions()
 	bin.minTop = 0.2;
 	bin.maxTop = 0.65;
 	bin.maxDepth = 0.45;
+	bin.minSize = 0.28;
+	bin.minCutSize = 0.2;
+	bin.maxSize = 0.6;
 	TClassOptions st(Label::Stairs);
 	st.upscale = 1.0;
 	st.minWidth = 0.6;
@@ -216,15 +236,34 @@ CascadeDetector::TOptions::TOptions()
 	st.minTop = 0.25;
 	st.maxTop = 2.0;
 	st.maxDepth = 2.5;
+	st.minSize = 0.8;
+	st.minCutSize = 0.6;
+	st.maxSize = 3.0;
 	classes = {wb, bin, st};
 }
 
 const std::vector<std::string>& CascadeDetector::TOptions::knownKeys()
 {
 	static const std::vector<std::string> keys{
-	    "channel",        "normal_smoothing_px", "projection",
-	    "classes",        "label_pixels",        "floor_tolerance_m",
-	    "measure_margin", "connected_object"};
+	    "channel",
+	    "normal_smoothing_px",
+	    "projection",
+	    "classes",
+	    "label_pixels",
+	    "floor_tolerance_m",
+	    "measure_margin",
+	    "connected_object",
+	    "proposals",
+	    "proposal_min_pixels",
+	    "proposal_join_px",
+	    "proposal_max_height_m",
+	    "proposal_margin",
+	    "proposal_size_slack",
+	    "proposal_foot_height_m",
+	    "proposal_fill",
+	    "proposal_range_gap_m",
+	    "proposal_top_margin_m",
+	    "proposal_size_check"};
 	return keys;
 }
 
@@ -257,6 +296,26 @@ void CascadeDetector::TOptions::loadFromConfigFile(
 	o.measureMargin = readChecked(c, s, "measure_margin", measureMargin, 0, 2);
 	o.connectedObject =
 	    readCheckedBool(c, s, "connected_object", connectedObject);
+	o.proposals = readCheckedBool(c, s, "proposals", proposals);
+	o.proposalMinPixels = readCheckedInt(
+	    c, s, "proposal_min_pixels", proposalMinPixels, 1, 1000000);
+	o.proposalJoinPx =
+	    readCheckedInt(c, s, "proposal_join_px", proposalJoinPx, 0, 20);
+	o.proposalMaxHeight =
+	    readChecked(c, s, "proposal_max_height_m", proposalMaxHeight, 0.05, 20);
+	o.proposalMargin =
+	    readChecked(c, s, "proposal_margin", proposalMargin, 0, 5);
+	o.proposalSizeSlack =
+	    readChecked(c, s, "proposal_size_slack", proposalSizeSlack, 1, 10);
+	o.proposalFootHeight =
+	    readChecked(c, s, "proposal_foot_height_m", proposalFootHeight, 0, 5);
+	o.proposalFill = readChecked(c, s, "proposal_fill", proposalFill, 0, 1);
+	o.proposalRangeGap =
+	    readChecked(c, s, "proposal_range_gap_m", proposalRangeGap, 0, 100);
+	o.proposalTopMargin =
+	    readChecked(c, s, "proposal_top_margin_m", proposalTopMargin, 0, 10);
+	o.proposalSizeCheck =
+	    readCheckedBool(c, s, "proposal_size_check", proposalSizeCheck);
 	std::string list;
 	for (const auto& k : classes) list += labelName(k.label) + " ";
 	list = c.read_string(s, "classes", list, false);
@@ -302,6 +361,19 @@ void CascadeDetector::TOptions::saveToConfigFile(
 	c.write(s, "measure_margin", num(measureMargin));
 	c.write(
 	    s, "connected_object", std::string(connectedObject ? "true" : "false"));
+	c.write(s, "proposals", std::string(proposals ? "true" : "false"));
+	c.write(s, "proposal_min_pixels", std::to_string(proposalMinPixels));
+	c.write(s, "proposal_join_px", std::to_string(proposalJoinPx));
+	c.write(s, "proposal_max_height_m", num(proposalMaxHeight));
+	c.write(s, "proposal_margin", num(proposalMargin));
+	c.write(s, "proposal_size_slack", num(proposalSizeSlack));
+	c.write(s, "proposal_foot_height_m", num(proposalFootHeight));
+	c.write(s, "proposal_fill", num(proposalFill));
+	c.write(s, "proposal_range_gap_m", num(proposalRangeGap));
+	c.write(s, "proposal_top_margin_m", num(proposalTopMargin));
+	c.write(
+	    s, "proposal_size_check",
+	    std::string(proposalSizeCheck ? "true" : "false"));
 	for (const auto& k : classes)
 		k.saveToConfigFile(c, s + "." + labelName(k.label));
 }
@@ -349,6 +421,11 @@ struct CascadeDetector::Impl
 	std::map<std::tuple<DetectionChannel, double, int, int>, cv::Mat> scaled;
 	bool keepScaled = false;
 	PanoramicProjection projection;
+	/** DetectionImage::viewRotation() of the last grid. */
+	cv::Mat rotation;
+	std::vector<double> rotationPhis, rotationThetas;
+	/** Per class. */
+	std::vector<std::vector<ObjectProposal>> proposals;
 	/** Elevations of the first and last row of the detection image. */
 	double el0 = -M_PI / 2, el1 = M_PI / 2;
 };
@@ -371,9 +448,101 @@ CascadeDetector::CascadeDetector(const TOptions& options)
 
 CascadeDetector::~CascadeDetector() = default;
 
+namespace
+{
+/** detectMultiScale runs in parallel: its output order varies. A fixed
+ * order keeps everything after it deterministic. */
+std::vector<std::size_t> fixedOrder(
+    const std::vector<cv::Rect>& found, const std::vector<int>& n)
+{
+	std::vector<std::size_t> order(found.size());
+	for (std::size_t j = 0; j < order.size(); j++) order[j] = j;
+	std::sort(
+	    order.begin(), order.end(),
+	    [&](std::size_t a, std::size_t b)
+	    {
+		    const cv::Rect &ra = found[a], &rb = found[b];
+		    return std::tie(ra.y, ra.x, ra.height, ra.width, n[a]) <
+		           std::tie(rb.y, rb.x, rb.height, rb.width, n[b]);
+	    });
+	return order;
+}
+}  // namespace
+
+std::vector<CascadeDetector::SearchRegion> CascadeDetector::searchRegions(
+    const TClassOptions& k, const DetectionPass& pass, cv::Size window,
+    const std::vector<ObjectProposal>& proposals, cv::Size imageSize,
+    double step) const
+{
+	std::vector<SearchRegion> out;
+	if (pass.rowEnd <= pass.rowBegin || step <= 0) return out;
+	const cv::Rect band(
+	    0, pass.rowBegin, imageSize.width,
+	    std::min(imageSize.height, pass.rowEnd) - pass.rowBegin);
+	const double slack = m_options.proposalSizeSlack;
+	// The training window is the object's larger side + 15 %.
+	const double largest = 1.15 * k.maxSize;
+	const double winSide = std::max(window.width, window.height) / pass.upscale;
+	for (const auto& p : proposals)
+	{
+		if (p.nearRange <= 0 || p.farRange <= 0) continue;
+		const cv::Rect& box = p.box;
+		const double smallest =
+		    1.15 * (p.bottom <= m_options.proposalFootHeight ? k.minSize
+		                                                     : k.minCutSize);
+		double lo = smallest / p.farRange / step / slack;
+		double hi = largest / p.nearRange / step * slack;
+		lo = std::max({lo, pass.minSide, winSide});
+		if (pass.maxSide > 0) hi = std::min(hi, pass.maxSide);
+		// A proposal is taken to be (mostly) one object, which fills at
+		// least proposal_fill of its larger side (no smaller windows) and
+		// lies within it (slack: it may be split).
+		const double boxSide = std::max(box.width, box.height);
+		lo = std::max(lo, 1.15 * m_options.proposalFill * boxSide / slack);
+		hi = std::min(hi, 1.15 * slack * boxSide + 2);
+		// Its real size says whether an object of the class can be in it
+		// (the 3D size check would reject it anyway): its top is the
+		// object's or higher, it is at least as wide as the object and,
+		// filling proposal_fill of it, not much wider.
+		const double width = box.width * step * p.nearRange;
+		if (m_options.proposalSizeCheck &&
+		    (p.top < k.minTop || width * slack < k.minWidth ||
+		     width * m_options.proposalFill > k.maxWidth * slack))
+			continue;
+		if (lo > hi) continue;
+		const double grow = m_options.proposalMargin * std::min(hi, boxSide);
+		cv::Rect2d r(
+		    box.x - grow, box.y - grow, box.width + 2 * grow,
+		    box.height + 2 * grow);
+		// Windows are square: the largest one searched must fit around
+		// the box in both directions.
+		if (r.width < hi)
+		{
+			r.x -= (hi - r.width) / 2;
+			r.width = hi;
+		}
+		if (r.height < hi)
+		{
+			r.y -= (hi - r.height) / 2;
+			r.height = hi;
+		}
+		const cv::Rect ri =
+		    cv::Rect(
+		        static_cast<int>(std::floor(r.x)),
+		        static_cast<int>(std::floor(r.y)),
+		        static_cast<int>(std::ceil(r.x + r.width) - std::floor(r.x)),
+		        static_cast<int>(std::ceil(r.y + r.height) - std::floor(r.y))) &
+		    band;
+		if (ri.width < lo || ri.height < lo) continue;
+		out.push_back({ri, lo, hi});
+	}
+	return out;
+}
+
 void CascadeDetector::runCascade(
     std::size_t i, const cv::Mat& image, std::vector<cv::Rect>& boxes,
-    std::vector<int>& neighbours)
+    std::vector<int>& neighbours, const std::vector<ObjectProposal>* proposals,
+    double step)
 {
 	const TClassOptions& k = m_options.classes.at(i);
 	const cv::Size win = m_impl->windows[i];
@@ -381,10 +550,62 @@ void CascadeDetector::runCascade(
 	boxes.clear();
 	neighbours.clear();
 	const cv::Rect all(0, 0, image.cols, image.rows);
+	auto& classifier = m_impl->classifiers[i];
+	std::vector<cv::Rect> found;
+	std::vector<int> n;
 	for (std::size_t pi = 0; pi < passes.size(); pi++)
 	{
 		const DetectionPass& p = passes[pi];
 		if (p.rowEnd <= p.rowBegin) continue;
+		if (proposals)
+		{
+			for (const auto& reg :
+			     searchRegions(k, p, win, *proposals, image.size(), step))
+			{
+				// Scale fitted to the region: upscaled only as far as its
+				// smallest object needs to fill the window (at most by the
+				// pass's upscale), so no window is wasted on smaller ones.
+				const double u =
+				    p.upscale <= 1.0
+				        ? p.upscale
+				        : std::clamp(
+				              std::max(win.width, win.height) / reg.minSide,
+				              1.0, p.upscale);
+				cv::Mat crop = image(reg.rect);
+				if (u != 1.0)
+					cv::resize(crop, crop, cv::Size(), u, u, cv::INTER_LINEAR);
+				const int lo = std::max(
+				    {win.width, win.height,
+				     static_cast<int>(std::lround(reg.minSide * u))});
+				const int hi = std::max(
+				    lo, static_cast<int>(std::lround(reg.maxSide * u)));
+				found.clear();
+				n.clear();
+				classifier.detectMultiScale(
+				    crop, found, n, k.scaleFactor,
+				    k.proposalMinNeighbors < 0 ? k.minNeighbors
+				                               : k.proposalMinNeighbors,
+				    0, cv::Size(lo, lo), cv::Size(hi, hi));
+				n.resize(found.size(), 0);
+				for (std::size_t j : fixedOrder(found, n))
+				{
+					const cv::Rect& f = found[j];
+					const int x0 = static_cast<int>(std::floor(f.x / u));
+					const int y0 = static_cast<int>(std::floor(f.y / u));
+					const int x1 =
+					    static_cast<int>(std::ceil((f.x + f.width) / u));
+					const int y1 =
+					    static_cast<int>(std::ceil((f.y + f.height) / u));
+					boxes.push_back(
+					    cv::Rect(
+					        x0 + reg.rect.x, y0 + reg.rect.y, x1 - x0,
+					        y1 - y0) &
+					    all);
+					neighbours.push_back(n[j]);
+				}
+			}
+			continue;
+		}
 		// Bands are shared between classes with the same pass.
 		const auto key = std::make_tuple(
 		    m_options.channelOf(k), p.upscale, p.rowBegin, p.rowEnd);
@@ -403,24 +624,12 @@ void CascadeDetector::runCascade(
 			const int s = static_cast<int>(std::lround(p.maxSide * p.upscale));
 			maxSize = cv::Size(s, s);
 		}
-		std::vector<cv::Rect> found;
-		std::vector<int> n;
-		m_impl->classifiers[i].detectMultiScale(
+		found.clear();
+		n.clear();
+		classifier.detectMultiScale(
 		    band, found, n, k.scaleFactor, k.minNeighbors, 0, minSize, maxSize);
 		n.resize(found.size(), 0);
-		// detectMultiScale runs in parallel: its output order varies. A
-		// fixed order keeps everything after it deterministic.
-		std::vector<std::size_t> order(found.size());
-		for (std::size_t j = 0; j < order.size(); j++) order[j] = j;
-		std::sort(
-		    order.begin(), order.end(),
-		    [&](std::size_t a, std::size_t b)
-		    {
-			    const cv::Rect &ra = found[a], &rb = found[b];
-			    return std::tie(ra.y, ra.x, ra.height, ra.width, n[a]) <
-			           std::tie(rb.y, rb.x, rb.height, rb.width, n[b]);
-		    });
-		for (std::size_t j : order)
+		for (std::size_t j : fixedOrder(found, n))
 		{
 			boxes.push_back(p.toImage(found[j]) & all);
 			neighbours.push_back(n[j]);
@@ -595,6 +804,12 @@ void suppressDuplicates(
 }
 }  // namespace
 
+const std::vector<std::vector<ObjectProposal>>& CascadeDetector::lastProposals()
+    const
+{
+	return m_impl->proposals;
+}
+
 const PanoramicProjection& CascadeDetector::projection() const
 {
 	return m_impl->projection;
@@ -605,14 +820,42 @@ cv::Mat CascadeDetector::detectionImage(
     const cv::Mat& normals, const cv::Mat& normalMask,
     std::optional<DetectionChannel> channel)
 {
-	cv::Mat image = DetectionImage::fromNormals(
-	    normals, normalMask, channel ? *channel : m_options.channel,
-	    m_options.normalSmoothing, phis, thetas);
+	return detectionImage(
+	    phis, thetas,
+	    DetectionImage::smoothNormals(
+	        normals, normalMask, m_options.normalSmoothing),
+	    normalMask, channel ? *channel : m_options.channel);
+}
+
+cv::Mat CascadeDetector::detectionImage(
+    const std::vector<double>& phis, const std::vector<double>& thetas,
+    const cv::Mat& smoothed, const cv::Mat& normalMask,
+    DetectionChannel channel)
+{
 	if (!thetas.empty())
 	{
 		m_impl->el0 = thetas.front();
 		m_impl->el1 = thetas.back();
 	}
+	cv::Mat rotation;
+	if (channel == DetectionChannel::View)
+	{
+		if (m_impl->rotationPhis != phis || m_impl->rotationThetas != thetas ||
+		    m_impl->rotation.empty())
+		{
+			if (phis.size() != static_cast<std::size_t>(smoothed.cols) ||
+			    thetas.size() != static_cast<std::size_t>(smoothed.rows))
+				throw Error(
+				    "DetectionImage: the view channel needs one bearing per "
+				    "column and one tilt per row");
+			m_impl->rotation = DetectionImage::viewRotation(phis, thetas);
+			m_impl->rotationPhis = phis;
+			m_impl->rotationThetas = thetas;
+		}
+		rotation = m_impl->rotation;
+	}
+	const cv::Mat image = DetectionImage::fromSmoothedNormals(
+	    smoothed, normalMask, channel, rotation);
 	if (!m_options.panoramic) return image;
 	if (!m_impl->projection.sameGrid(phis, thetas))
 		m_impl->projection = PanoramicProjection(phis, thetas);
@@ -622,21 +865,48 @@ cv::Mat CascadeDetector::detectionImage(
 std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
     const std::vector<double>& phis, const std::vector<double>& thetas,
     const cv::Mat& normals, const cv::Mat& normalMask, const cv::Mat& points,
-    double groundZ, const cv::Mat& labels)
+    double groundZ, const cv::Mat& labels, const cv::Mat& areaIds)
 {
 	const auto t0 = Clock::now();
 	m_timings = Timings();
-	// One detection image per channel in use.
+	// One detection image per channel in use, from one smoothing.
 	std::map<DetectionChannel, cv::Mat> images;
+	const cv::Mat smoothed = DetectionImage::smoothNormals(
+	    normals, normalMask, m_options.normalSmoothing);
 	for (const auto& k : m_options.classes)
 	{
 		const DetectionChannel ch = m_options.channelOf(k);
 		if (!images.count(ch))
-			images[ch] = detectionImage(phis, thetas, normals, normalMask, ch);
+			images[ch] = detectionImage(phis, thetas, smoothed, normalMask, ch);
 	}
 	m_impl->scaled.clear();
 	m_impl->keepScaled = true;
 	m_timings.image = msSince(t0);
+	const auto tp = Clock::now();
+	m_impl->proposals.clear();
+	double step = 0;
+	if (m_options.proposals)
+	{
+		ObjectProposals::Params pp;
+		pp.floorTolerance = m_options.floorTolerance;
+		pp.maxHeight = m_options.proposalMaxHeight;
+		pp.minPixels = m_options.proposalMinPixels;
+		pp.joinRadius = m_options.proposalJoinPx;
+		pp.rangeGap = m_options.proposalRangeGap;
+		std::vector<double> limits;
+		for (const auto& k : m_options.classes)
+			limits.push_back(k.maxTop + m_options.proposalTopMargin);
+		m_impl->proposals = ObjectProposals::find(
+		    points, labels, areaIds, groundZ,
+		    m_options.panoramic ? &m_impl->projection : nullptr, limits, pp);
+		// Both layouts keep the sweep's angular steps.
+		if (phis.size() > 1 && thetas.size() > 1)
+			step =
+			    0.5 *
+			    ((phis.back() - phis.front()) / double(phis.size() - 1) +
+			     (thetas.back() - thetas.front()) / double(thetas.size() - 1));
+	}
+	m_timings.proposals = msSince(tp);
 	std::vector<Candidate> out;
 	std::vector<cv::Rect> boxes;
 	std::vector<int> neighbours;
@@ -645,7 +915,9 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	{
 		const TClassOptions& k = m_options.classes[i];
 		const auto tc = Clock::now();
-		runCascade(i, images.at(m_options.channelOf(k)), boxes, neighbours);
+		runCascade(
+		    i, images.at(m_options.channelOf(k)), boxes, neighbours,
+		    m_options.proposals ? &m_impl->proposals.at(i) : nullptr, step);
 		m_timings.cascades += msSince(tc);
 		const auto tm = Clock::now();
 		const std::size_t first = out.size();
@@ -716,7 +988,7 @@ void CascadeDetector::detect(const Sweep& sweep, LabeledSweep& ls)
 	if (ls.normals.empty()) return;
 	const auto cands = detectCandidates(
 	    sweep.phis(), sweep.thetas(), ls.normals, ls.normalMask, ls.points,
-	    ls.groundZ, ls.labels);
+	    ls.groundZ, ls.labels, ls.areaIds);
 	for (const auto& c : cands)
 	{
 		if (!c.accepted) continue;

@@ -42,47 +42,87 @@ cv::Mat DetectionImage::fromNormals(
 		throw Error(
 		    "DetectionImage: the view channel needs one bearing per column "
 		    "and one tilt per row");
+	return fromSmoothedNormals(
+	    smoothNormals(normals, normalMask, smoothing), normalMask, channel,
+	    view ? viewRotation(phis, thetas) : cv::Mat());
+}
+
+cv::Mat DetectionImage::smoothNormals(
+    const cv::Mat& normals, const cv::Mat& normalMask, int smoothing)
+{
+	if (normals.type() != CV_32FC3 || normalMask.type() != CV_8UC1 ||
+	    normals.size() != normalMask.size())
+		throw Error(
+		    "DetectionImage: expected CV_32FC3 normals and a CV_8U mask of "
+		    "the same size");
 	// Never written in place: `normals` belongs to the caller.
+	if (smoothing <= 0) return normals;
 	cv::Mat sm;
-	if (smoothing <= 0)
-		sm = normals;
-	else
+	cv::Mat masked(normals.size(), CV_32FC3, cv::Scalar::all(0));
+	normals.copyTo(masked, normalMask);
+	const int k = 2 * smoothing + 1;
+	cv::boxFilter(
+	    masked, sm, -1, cv::Size(k, k), cv::Point(-1, -1), false,
+	    cv::BORDER_CONSTANT);
+	for (int r = 0; r < sm.rows; r++)
 	{
-		cv::Mat masked(normals.size(), CV_32FC3, cv::Scalar::all(0));
-		normals.copyTo(masked, normalMask);
-		const int k = 2 * smoothing + 1;
-		cv::boxFilter(
-		    masked, sm, -1, cv::Size(k, k), cv::Point(-1, -1), false,
-		    cv::BORDER_CONSTANT);
-		for (int r = 0; r < sm.rows; r++)
+		auto* p = sm.ptr<cv::Vec3f>(r);
+		for (int c = 0; c < sm.cols; c++)
 		{
-			auto* p = sm.ptr<cv::Vec3f>(r);
-			for (int c = 0; c < sm.cols; c++)
-			{
-				const float len = std::sqrt(p[c].dot(p[c]));
-				if (len > 1e-6f) p[c] *= 1.0f / len;
-			}
+			const float len = std::sqrt(p[c].dot(p[c]));
+			if (len > 1e-6f) p[c] *= 1.0f / len;
 		}
 	}
-	cv::Mat bgr(normals.size(), CV_8UC3, cv::Scalar::all(0));
-	for (int r = 0; r < normals.rows; r++)
+	return sm;
+}
+
+cv::Mat DetectionImage::viewRotation(
+    const std::vector<double>& phis, const std::vector<double>& thetas)
+{
+	cv::Mat rot(
+	    static_cast<int>(thetas.size()), static_cast<int>(phis.size()),
+	    CV_32FC2);
+	for (int r = 0; r < rot.rows; r++)
+	{
+		const double cosTheta = std::cos(thetas[std::size_t(r)]);
+		auto* o = rot.ptr<cv::Vec2f>(r);
+		for (int c = 0; c < rot.cols; c++)
+		{
+			// Turn by -azimuth of the line of sight (as
+			// PanoramicProjection): x along the ray, y to its left.
+			const double ph = phis[std::size_t(c)];
+			const double az = std::atan2(std::sin(ph), std::cos(ph) * cosTheta);
+			o[c] = cv::Vec2f(
+			    static_cast<float>(std::cos(az)),
+			    static_cast<float>(std::sin(az)));
+		}
+	}
+	return rot;
+}
+
+cv::Mat DetectionImage::fromSmoothedNormals(
+    const cv::Mat& sm, const cv::Mat& normalMask, DetectionChannel channel,
+    const cv::Mat& rotation)
+{
+	const bool view = channel == DetectionChannel::View;
+	if (view && (rotation.type() != CV_32FC2 || rotation.size() != sm.size()))
+		throw Error(
+		    "DetectionImage: the view channel needs the sweep's rotation "
+		    "(one bearing per column and one tilt per row)");
+	cv::Mat bgr(sm.size(), CV_8UC3, cv::Scalar::all(0));
+	for (int r = 0; r < sm.rows; r++)
 	{
 		const auto* n = sm.ptr<cv::Vec3f>(r);
 		const auto* m = normalMask.ptr<uint8_t>(r);
+		const auto* rot = view ? rotation.ptr<cv::Vec2f>(r) : nullptr;
 		auto* o = bgr.ptr<cv::Vec3b>(r);
-		const double cosTheta = view ? std::cos(thetas[r]) : 1.0;
-		for (int c = 0; c < normals.cols; c++)
+		for (int c = 0; c < sm.cols; c++)
 		{
 			if (!m[c]) continue;
 			cv::Vec3f v = n[c];
 			if (view)
 			{
-				// Turn by -azimuth of the line of sight (as
-				// PanoramicProjection): x along the ray, y to its left.
-				const double az =
-				    std::atan2(std::sin(phis[c]), std::cos(phis[c]) * cosTheta);
-				const float ca = static_cast<float>(std::cos(az));
-				const float sa = static_cast<float>(std::sin(az));
+				const float ca = rot[c][0], sa = rot[c][1];
 				v = cv::Vec3f(
 				    ca * n[c][0] + sa * n[c][1], -sa * n[c][0] + ca * n[c][1],
 				    n[c][2]);

@@ -5,6 +5,7 @@
 #include <semnav/common/Label.h>
 #include <semnav/detection/DetectionImage.h>
 #include <semnav/detection/DetectionPass.h>
+#include <semnav/detection/ObjectProposals.h>
 #include <semnav/detection/PanoramicProjection.h>
 #include <semnav/perception/Detection.h>
 #include <semnav/perception/LabeledSweep.h>
@@ -81,6 +82,16 @@ public:
 		/** max_depth_m: object points lie at most this far (horizontally)
 		 * behind its nearest part in the box's centre. */
 		double maxDepth = 1.0;
+		/** min_size_m, max_size_m: the larger side (width or height) of a
+		 * whole object of the class; min_cut_size_m: of an object whose
+		 * foot is not seen (cut by the lowest tilt line). With proposals,
+		 * they bound the window sides searched at a proposal's range. */
+		double minSize = 0.2, maxSize = 2.0, minCutSize = 0.2;
+		/** proposal_min_neighbors: detectMultiScale's min_neighbors in the
+		 * windows around proposals (-1: min_neighbors): a region the rules
+		 * left to objects, of the right real size, needs less agreement
+		 * between neighbouring windows than anywhere in the image. */
+		int proposalMinNeighbors = -1;
 		/** min_points: fewer object points than this: rejected. */
 		int minPoints = 15;
 		/** channel: this class's detection image (DetectionImage); unset:
@@ -139,6 +150,48 @@ public:
 		 * (in the sweep, without a gap in 3D) to those of the box's centre,
 		 * so that a box cutting an object still measures all of it. */
 		bool connectedObject = true;
+		/** proposals: search only windows around object proposals
+		 * (ObjectProposals: regions the rule classifier left to objects),
+		 * at the window sizes an object of the class can have at the
+		 * region's range; false: every window of every pass (the paper's
+		 * whole-image search). */
+		bool proposals = false;
+		/** proposal_min_pixels, proposal_join_px, proposal_max_height_m:
+		 * ObjectProposals::Params (minPixels, joinRadius, maxHeight). */
+		int proposalMinPixels = 10;
+		int proposalJoinPx = 2;
+		double proposalMaxHeight = 2.0;
+		/** proposal_margin: a proposal's search window is its box grown by
+		 * this fraction of the largest window side searched there (capped
+		 * at the box's larger side) on every side. */
+		double proposalMargin = 0.5;
+		/** proposal_size_slack: the window sides expected from the class's
+		 * real size (min_width_m .. 1.15 x max(max_width_m, max_top_m)) and
+		 * the region's range (near and far percentile) are widened by this
+		 * factor both ways. */
+		double proposalSizeSlack = 1.15;
+		/** proposal_foot_height_m: a proposal whose lowest points are at
+		 * most this high above the ground shows an object whole (its foot
+		 * is seen): min_size_m applies, else min_cut_size_m. */
+		double proposalFootHeight = 0.1;
+		/** proposal_fill: a proposal is taken to be (mostly) one object,
+		 * which fills at least this fraction of the proposal's larger side:
+		 * no smaller windows are searched there (0: any size down to the
+		 * class's smallest at the proposal's range). */
+		double proposalFill = 0.5;
+		/** proposal_range_gap_m: neighbouring object pixels whose ranges
+		 * differ by more than this (+ 5 % of the range) start another
+		 * proposal (ObjectProposals::Params::rangeGap). */
+		double proposalRangeGap = 1.0;
+		/** proposal_top_margin_m: a class's proposals are the regions of
+		 * the object points at most max_top_m + this above the ground
+		 * (ObjectProposals::find). */
+		double proposalTopMargin = 0.1;
+		/** proposal_size_check: skip a proposal whose real size cannot
+		 * hold an object of the class (its top below min_top_m, narrower
+		 * than min_width_m, or wider than max_width_m / proposal_fill;
+		 * with proposal_size_slack). */
+		bool proposalSizeCheck = true;
 		/** Directory relative cascade paths are resolved against. */
 		std::string baseDir = ".";
 	};
@@ -168,7 +221,7 @@ public:
 	/** Wall-clock times of the last detect(), ms. */
 	struct Timings
 	{
-		double image = 0, cascades = 0, sizeCheck = 0, total = 0;
+		double image = 0, proposals = 0, cascades = 0, sizeCheck = 0, total = 0;
 	};
 
 	/** Loads every class's cascade (CascadeXml validates it, then
@@ -187,25 +240,60 @@ public:
 	 * `points` CV_32FC3 robot frame (NaN where invalid); `labels` (CV_8U
 	 * rule-classifier labels, may be empty): pixels already labelled as a
 	 * surface (floor, ceiling, wall, door, sidewalk, grass) are not object
-	 * points. */
+	 * points; `areaIds` (CV_32S segmentation areas, may be empty) tell the
+	 * object proposals which surface areas reach above an object's
+	 * height (ObjectProposals). */
 	std::vector<Candidate> detectCandidates(
 	    const std::vector<double>& phis, const std::vector<double>& thetas,
 	    const cv::Mat& normals, const cv::Mat& normalMask,
 	    const cv::Mat& points, double groundZ,
-	    const cv::Mat& labels = cv::Mat());
+	    const cv::Mat& labels = cv::Mat(), const cv::Mat& areaIds = cv::Mat());
 	/** The image the cascades see (8-bit, panoramic or sweep layout), in
 	 * the [CascadeDetector] channel or in `channel`. */
 	cv::Mat detectionImage(
 	    const std::vector<double>& phis, const std::vector<double>& thetas,
 	    const cv::Mat& normals, const cv::Mat& normalMask,
 	    std::optional<DetectionChannel> channel = std::nullopt);
+	/** The same from normals already smoothed
+	 * (DetectionImage::smoothNormals with normal_smoothing_px), in
+	 * `channel`; the view rotation and the projection are kept for the
+	 * next sweep of the same grid. */
+	cv::Mat detectionImage(
+	    const std::vector<double>& phis, const std::vector<double>& thetas,
+	    const cv::Mat& smoothed, const cv::Mat& normalMask,
+	    DetectionChannel channel);
 	/** The projection of the last grid used (empty in sweep mode). */
 	const PanoramicProjection& projection() const;
 	/** Runs one class's cascade on a detection image; boxes in its pixels,
-	 * with detectMultiScale's neighbour counts. */
+	 * with detectMultiScale's neighbour counts. With `proposals` (detection
+	 * image pixels) and `step` (rad per detection-image pixel), only the
+	 * searchRegions() of each pass are searched; without, every window. */
 	void runCascade(
 	    std::size_t classIndex, const cv::Mat& detectionImage,
-	    std::vector<cv::Rect>& boxes, std::vector<int>& neighbours);
+	    std::vector<cv::Rect>& boxes, std::vector<int>& neighbours,
+	    const std::vector<ObjectProposal>* proposals = nullptr,
+	    double step = 0);
+
+	/** Where one pass searches around proposals: an image region and the
+	 * range of window sides (detection-image pixels). */
+	struct SearchRegion
+	{
+		cv::Rect rect;
+		double minSide = 0, maxSide = 0;
+	};
+	/** The regions of pass `pass` of class `k` (cascade window `window`)
+	 * around `proposals` in an image of `imageSize` whose pixels are `step`
+	 * rad apart: per proposal, the window sides an object of the class's
+	 * real size can have at the proposal's range (within the pass's
+	 * range), and the proposal's box grown by proposal_margin; overlapping
+	 * regions are merged. */
+	std::vector<SearchRegion> searchRegions(
+	    const TClassOptions& k, const DetectionPass& pass, cv::Size window,
+	    const std::vector<ObjectProposal>& proposals, cv::Size imageSize,
+	    double step) const;
+	/** The proposals of the last detectCandidates() call, per class (in
+	 * the order of TOptions::classes). */
+	const std::vector<std::vector<ObjectProposal>>& lastProposals() const;
 
 	/** Measures the object among `pixels` (sweep pixels of a detection
 	 * box, grown): the points that are not floor (within floorTolerance of

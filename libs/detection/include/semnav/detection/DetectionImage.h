@@ -48,6 +48,23 @@ public:
 	    DetectionChannel channel, int smoothing = 0,
 	    const std::vector<double>& phis = {},
 	    const std::vector<double>& thetas = {});
+
+	/** The first step of fromNormals(): the normals averaged over
+	 * (2k+1)^2 and renormalised (`normals` itself when k = 0). Shared by
+	 * the channels of one sweep. */
+	static cv::Mat smoothNormals(
+	    const cv::Mat& normals, const cv::Mat& normalMask, int smoothing);
+	/** The view channel's turn of every pixel: CV_32FC2 (cos, sin of the
+	 * azimuth of its line of sight), for a sweep grid; computed once per
+	 * grid. */
+	static cv::Mat viewRotation(
+	    const std::vector<double>& phis, const std::vector<double>& thetas);
+	/** The second step: the channel of (smoothed) normals; `rotation`
+	 * (viewRotation()) is needed for View only. fromNormals() gives the
+	 * same bytes. */
+	static cv::Mat fromSmoothedNormals(
+	    const cv::Mat& smoothed, const cv::Mat& normalMask,
+	    DetectionChannel channel, const cv::Mat& rotation = cv::Mat());
 };
 
 }  // namespace semnav
