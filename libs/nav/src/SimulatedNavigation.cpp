@@ -99,6 +99,7 @@ SimulatedNavigation::Result SimulatedNavigation::run(
 			r.rescans.insert(
 			    r.rescans.end(), rep.records.begin(), rep.records.end());
 			if (rep.recovery) r.recoveries++;
+			nav.notifyPoseCorrected();
 			lastScanAt = robot.odometryDistance();
 		}
 		if (hook) hook(robot.simTime(), nav);

@@ -156,6 +156,15 @@ public:
 	State step();
 	/** The map changed: replan at the next step. */
 	void notifyMapChanged() { m_mapChanged = true; }
+	/** The robot's pose estimate was corrected (relocalization): the
+	 * obstacles sensed so far were placed with the old estimate, forget
+	 * them (the scan senses what is still there again) and replan at the
+	 * next step. */
+	void notifyPoseCorrected()
+	{
+		m_planner.setExtraObstacles({});
+		m_mapChanged = true;
+	}
 	void cancel(StopReason reason = StopReason::Cancelled);
 
 	State state() const { return m_state; }
