@@ -396,6 +396,7 @@ StopAndScanLocalizer::SweepRecord StopAndScanLocalizer::sweepAndUpdate(
 
 void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const
 {
+	const auto t0 = std::chrono::steady_clock::now();
 	// Every sweep's samples in the frame of the last sweep's robot pose
 	// (odometry between them).
 	const mrpt::poses::CPose2D last(m_startOdo.back());
@@ -467,6 +468,7 @@ void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const
 	}
 	rec.rival.phi = mrpt::math::wrapToPi(rec.rival.phi);
 	rec.checked = true;
+	rec.checkMs = elapsedMs(t0);
 }
 
 double StopAndScanLocalizer::massNear(const mrpt::math::TPose2D& e) const

@@ -137,6 +137,8 @@ public:
 		 * other place, and that place. */
 		bool checked = false;
 		double score = 0, rivalScore = 0;
+		/** Wall clock of the check, ms. */
+		double checkMs = 0;
 		mrpt::math::TPose2D rival;
 		/** Sweep simulation + perception + walls + update, wall clock. */
 		double ms = 0;
