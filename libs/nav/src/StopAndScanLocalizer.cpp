@@ -12,7 +12,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
 
 namespace semnav
@@ -126,10 +125,9 @@ StopAndScanLocalizer::StopAndScanLocalizer(
       m_perception(perception),
       m_extractor(localization.walls)
 {
-	// Progress goes to the log only when asked (apps print JSON on stdout).
-	setMinLoggingLevel(
-	    std::getenv("SEMNAV_LOC_DEBUG") ? mrpt::system::LVL_INFO
-	                                    : mrpt::system::LVL_WARN);
+	// Progress goes to the log only when asked (setMinLoggingLevel): apps
+	// print JSON on stdout.
+	setMinLoggingLevel(mrpt::system::LVL_WARN);
 	m_perception.setMinLoggingLevel(mrpt::system::LVL_ERROR);
 	makeLocalizer(m_locOptions.localizer);
 	const auto& g = m_map.geometry();
