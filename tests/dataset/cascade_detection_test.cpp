@@ -212,3 +212,44 @@ TEST(CascadeDetection, ProposalsKeepMostOfTheWholeImageDetections)
 	EXPECT_GE(double(tpProposed), 0.8 * double(tpWhole));
 	EXPECT_GT(tpProposed, 0u);
 }
+
+TEST(CascadeDetection, ZeroBorderGivesWindowsAtTheImageEdge)
+{
+	auto opts =
+	    CascadeDetector::TOptions::fromIniFile(kSource + "/config/cascade.ini");
+	if (!shippedCascadesExist(opts))
+		GTEST_SKIP()
+		    << "datasets/cascades/*.xml missing (scripts/train-cascades)";
+	const Simulated& s = scene();
+	PerceptionPipeline p;
+	for (auto& k : opts.classes) k.borderPx = 0;
+	CascadeDetector plain(opts);
+	for (auto& k : opts.classes) k.borderPx = 24;
+	CascadeDetector padded(opts);
+	std::size_t atEdgePlain = 0, atEdgePadded = 0;
+	for (std::size_t i = 0; i < s.sweeps.size(); i++)
+	{
+		const Sweep& sw = s.sweeps[i];
+		const LabeledSweep ls = p.process(sw);
+		const cv::Rect image(0, 0, int(sw.cols()), int(sw.rows()));
+		const auto count = [&](CascadeDetector& d)
+		{
+			std::size_t n = 0;
+			for (const auto& c : d.detectCandidates(
+			         sw.phis(), sw.thetas(), ls.normals, ls.normalMask,
+			         ls.points, ls.groundZ, ls.labels, ls.areaIds))
+			{
+				// Boxes come back clipped to the image.
+				EXPECT_EQ(c.box & image, c.box);
+				EXPECT_GT(c.box.area(), 0);
+				n += c.box.x == 0 || c.box.y == 0 ||
+				     c.box.x + c.box.width == image.width;
+			}
+			return n;
+		};
+		atEdgePlain += count(plain);
+		atEdgePadded += count(padded);
+	}
+	// Windows reaching into the border are clipped to the edge.
+	EXPECT_GT(atEdgePadded, atEdgePlain);
+}

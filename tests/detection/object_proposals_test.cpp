@@ -243,13 +243,16 @@ TEST(DetectorProposals, OptionsRoundTripAndRangeErrors)
 	    "[CascadeDetector]\nclasses = stairs\nproposals = false\n"
 	    "proposal_fill = 0.3\nproposal_size_slack = 1.4\n"
 	    "proposal_range_gap_m = 0.7\n[CascadeDetector.stairs]\n"
-	    "min_size_m = 0.9\nmax_size_m = 2.5\n");
+	    "min_size_m = 0.9\nmax_size_m = 2.5\nborder_px = 16\n"
+	    "proposal_min_neighbors = 1\n");
 	EXPECT_FALSE(o.proposals);
 	EXPECT_DOUBLE_EQ(o.proposalFill, 0.3);
 	EXPECT_DOUBLE_EQ(o.proposalSizeSlack, 1.4);
 	EXPECT_DOUBLE_EQ(o.proposalRangeGap, 0.7);
 	EXPECT_DOUBLE_EQ(o.classes[0].minSize, 0.9);
 	EXPECT_DOUBLE_EQ(o.classes[0].maxSize, 2.5);
+	EXPECT_DOUBLE_EQ(o.classes[0].borderPx, 16);
+	EXPECT_EQ(o.classes[0].proposalMinNeighbors, 1);
 	mrpt::config::CConfigFileMemory out;
 	o.saveToConfigFile(out, "CascadeDetector");
 	CascadeDetector::TOptions back;
@@ -260,6 +263,8 @@ TEST(DetectorProposals, OptionsRoundTripAndRangeErrors)
 	EXPECT_DOUBLE_EQ(back.proposalTopMargin, o.proposalTopMargin);
 	EXPECT_EQ(back.proposalJoinPx, o.proposalJoinPx);
 	EXPECT_DOUBLE_EQ(back.classes[0].minCutSize, o.classes[0].minCutSize);
+	EXPECT_DOUBLE_EQ(back.classes[0].borderPx, 16);
+	EXPECT_EQ(back.classes[0].proposalMinNeighbors, 1);
 	EXPECT_THROW(load("[CascadeDetector]\nproposal_fill = 1.5\n"), ConfigError);
 	EXPECT_THROW(
 	    load("[CascadeDetector]\nproposal_size_slack = 0.9\n"), ConfigError);

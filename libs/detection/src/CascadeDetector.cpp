@@ -77,6 +77,7 @@ const std::vector<std::string>& CascadeDetector::TClassOptions::knownKeys()
 	    "min_cut_size_m",
 	    "max_size_m",
 	    "proposal_min_neighbors",
+	    "border_px",
 	    "channel"};
 	return keys;
 }
@@ -122,6 +123,7 @@ void CascadeDetector::TClassOptions::loadFromConfigFile(
 	o.maxSize = readChecked(c, s, "max_size_m", maxSize, 0.01, 100);
 	o.proposalMinNeighbors = readCheckedInt(
 	    c, s, "proposal_min_neighbors", proposalMinNeighbors, -1, 100);
+	o.borderPx = readChecked(c, s, "border_px", borderPx, 0, 1000);
 	if (c.keyExists(s, "channel"))
 	{
 		try
@@ -166,6 +168,7 @@ void CascadeDetector::TClassOptions::saveToConfigFile(
 	c.write(s, "min_cut_size_m", num(minCutSize));
 	c.write(s, "max_size_m", num(maxSize));
 	c.write(s, "proposal_min_neighbors", std::to_string(proposalMinNeighbors));
+	c.write(s, "border_px", num(borderPx));
 	if (channel) c.write(s, "channel", channelName(*channel));
 }
 
@@ -418,7 +421,8 @@ struct CascadeDetector::Impl
 	std::vector<cv::Size> windows;
 	/** Scaled detection images by upscale, shared by the classes within
 	 * one detectCandidates() call. */
-	std::map<std::tuple<DetectionChannel, double, int, int>, cv::Mat> scaled;
+	std::map<std::tuple<DetectionChannel, double, int, int, int>, cv::Mat>
+	    scaled;
 	bool keepScaled = false;
 	PanoramicProjection projection;
 	/** DetectionImage::viewRotation() of the last grid. */
@@ -607,10 +611,22 @@ void CascadeDetector::runCascade(
 			continue;
 		}
 		// Bands are shared between classes with the same pass.
+		// Zero border (as the training samples of objects at the image's
+		// edge): left, right and below the lowest elevation.
+		const int border =
+		    static_cast<int>(std::lround(k.borderPx * p.upscale));
+		const int padBelow = p.rowBegin == 0 ? border : 0;
 		const auto key = std::make_tuple(
-		    m_options.channelOf(k), p.upscale, p.rowBegin, p.rowEnd);
+		    m_options.channelOf(k), p.upscale, p.rowBegin, p.rowEnd, border);
 		cv::Mat& band = m_impl->scaled[key];
-		if (band.empty()) band = p.apply(image);
+		if (band.empty())
+		{
+			band = p.apply(image);
+			if (border > 0)
+				cv::copyMakeBorder(
+				    band, band, padBelow, 0, border, border,
+				    cv::BORDER_CONSTANT, cv::Scalar(0));
+		}
 		const cv::Size minSize(
 		    std::max(
 		        win.width,
@@ -631,7 +647,10 @@ void CascadeDetector::runCascade(
 		n.resize(found.size(), 0);
 		for (std::size_t j : fixedOrder(found, n))
 		{
-			boxes.push_back(p.toImage(found[j]) & all);
+			const cv::Rect b =
+			    p.toImage(found[j] - cv::Point(border, padBelow)) & all;
+			if (b.area() == 0) continue;
+			boxes.push_back(b);
 			neighbours.push_back(n[j]);
 		}
 	}

@@ -92,6 +92,12 @@ public:
 		 * left to objects, of the right real size, needs less agreement
 		 * between neighbouring windows than anywhere in the image. */
 		int proposalMinNeighbors = -1;
+		/** border_px: the whole-image search pads each pass's band with
+		 * this many zero pixels (detection-image pixels, scaled with the
+		 * pass) on the left, the right and below the lowest elevation, as
+		 * the training samples of objects at the image's edge are padded:
+		 * windows around objects cut by the edge then exist. 0: none. */
+		double borderPx = 0;
 		/** min_points: fewer object points than this: rejected. */
 		int minPoints = 15;
 		/** channel: this class's detection image (DetectionImage); unset:
