@@ -4,9 +4,7 @@
 #include <semnav/detection/ObjectProposals.h>
 
 #include <algorithm>
-#include <climits>
 #include <cmath>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace semnav
