@@ -15,6 +15,8 @@
 #include <cstdio>
 #include <limits>
 
+#include "NavTestUtils.h"
+
 using namespace semnav;
 using Reason = SemanticNavigator::StopReason;
 using Replan = SemanticNavigator::ReplanReason;
@@ -25,14 +27,12 @@ const std::string kSrc = SEMNAV_SOURCE_DIR;
 
 const NavigationConfig& config()
 {
-	static const NavigationConfig c = NavigationConfig::load(
-	    kSrc + "/config/navigation.ini", kSrc + "/config/planning.ini");
-	return c;
+	return test::shippedNavigationConfig();
 }
 
 Scene scene(const std::string& rel)
 {
-	return SceneLoader::loadFile(kSrc + "/" + rel);
+	return test::sourceScene(rel);
 }
 
 /** Path-nearest instance of `label` from (x, y) by the planner's own costs

@@ -21,6 +21,8 @@
 #include <limits>
 #include <memory>
 
+#include "NavTestUtils.h"
+
 using namespace semnav;
 using Mode = StopAndScanLocalizer::Mode;
 
@@ -30,9 +32,7 @@ const std::string kSrc = SEMNAV_SOURCE_DIR;
 
 const NavigationConfig& config()
 {
-	static const NavigationConfig c = NavigationConfig::load(
-	    kSrc + "/config/navigation.ini", kSrc + "/config/planning.ini");
-	return c;
+	return test::shippedNavigationConfig();
 }
 
 const MappingLocalizer::TOptions& locOptions()

@@ -1,0 +1,33 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+// The shipped navigation configuration and scenes of the source tree, for
+// the navigation tests.
+#include <semnav/nav/NavigationConfig.h>
+#include <semnav/sim/SceneLoader.h>
+
+#include <string>
+
+namespace semnav::test
+{
+inline const std::string& sourceDir()
+{
+	static const std::string s = SEMNAV_SOURCE_DIR;
+	return s;
+}
+
+/** config/navigation.ini + config/planning.ini, loaded once. */
+inline const NavigationConfig& shippedNavigationConfig()
+{
+	static const NavigationConfig c = NavigationConfig::load(
+	    sourceDir() + "/config/navigation.ini",
+	    sourceDir() + "/config/planning.ini");
+	return c;
+}
+
+/** A scene file of the source tree (path relative to it). */
+inline Scene sourceScene(const std::string& relativePath)
+{
+	return SceneLoader::loadFile(sourceDir() + "/" + relativePath);
+}
+
+}  // namespace semnav::test
