@@ -235,8 +235,9 @@ TEST(MapAccuracy, OfficeObjectsAppearOnceNearTheirCentres)
 TEST(MapAccuracy, HeldOutSceneObjects)
 {
 	// The cascade test scenes (not used in training). The target is every
-	// object once and nothing spurious; measured (README): 20 of 26 found
-	// once, 6 spurious of 26 instances. Asserted: not worse than that.
+	// object once and nothing spurious; measured (README): 22 of 26 found
+	// once, 4 spurious of 26 instances (20 and 6 with the plain mean of the
+	// sightings). Asserted with a margin of one for detector changes.
 	ObjectScore all;
 	for (const char* name : {"test_a", "test_b", "test_c"})
 	{
@@ -255,8 +256,8 @@ TEST(MapAccuracy, HeldOutSceneObjects)
 	          << all.spurious << " spurious of " << all.instances
 	          << " instances\n";
 	ASSERT_GE(all.seen, 24u);
-	EXPECT_GE(all.foundOnce, 20u);
-	EXPECT_LE(all.spurious, 6u);
+	EXPECT_GE(all.foundOnce, 21u);
+	EXPECT_LE(all.spurious, 5u);
 }
 
 TEST(MapAccuracy, SavedMapLoadsBack)

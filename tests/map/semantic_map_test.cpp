@@ -146,6 +146,36 @@ TEST(SemanticMap, DetectionsMergeIntoInstances)
 	EXPECT_THROW(m.instance(99), Error);
 }
 
+TEST(ObjectInstance, OutlyingSightingsDoNotDragTheCentroid)
+{
+	// Five sightings of one washbasin at (2.65, 0.3) +- 5 cm, a first
+	// detection whose box swallowed a neighbour (0.9 m off) and a false
+	// alarm merged by footprint overlap (1.9 m off).
+	const std::vector<mrpt::math::TPoint3D> seen = {
+	    {3.50, 0.64, 0.6}, {2.65, 0.35, 0.6}, {2.70, 0.30, 0.6},
+	    {4.54, 0.79, 0.6}, {2.60, 0.25, 0.6}, {2.66, 0.31, 0.6},
+	    {2.64, 0.29, 0.6}};
+	ObjectInstance o;
+	o.centroid = seen[0];
+	o.sightings = {seen[0]};
+	o.observations = 1;
+	for (std::size_t i = 1; i < seen.size(); i++, o.observations++)
+		o.addSighting(seen[i], 0.3);
+	EXPECT_NEAR(o.centroid.x, 2.65, 0.01);
+	EXPECT_NEAR(o.centroid.y, 0.30, 0.01);
+	// The plain mean would be 0.3 m away.
+	double mx = 0;
+	for (const auto& c : seen) mx += c.x / seen.size();
+	EXPECT_GT(std::abs(mx - 2.65), 0.3);
+	// Two far-apart sightings: no inlier majority, the plain mean.
+	ObjectInstance two;
+	two.centroid = {0, 0, 0};
+	two.sightings = {two.centroid};
+	two.observations = 1;
+	two.addSighting({2, 0, 0}, 0.3);
+	EXPECT_NEAR(two.centroid.x, 1.0, 1e-9);
+}
+
 TEST(SemanticMap, GoalRegionIsFreeCellsWithinReach)
 {
 	SemanticMap m;

@@ -361,6 +361,7 @@ void SemanticMap::mergeObject(
 		o.id = static_cast<int>(m_instances.size()) + 1;
 		o.label = label;
 		o.centroid = centroid;
+		o.sightings.push_back(centroid);
 		o.minCorner = minCorner;
 		o.maxCorner = maxCorner;
 		o.observations = 1;
@@ -374,8 +375,7 @@ void SemanticMap::mergeObject(
 	    seenThisSweep.end();
 	if (!again)
 	{
-		const double n = static_cast<double>(best->observations);
-		best->centroid = (best->centroid * n + centroid) * (1.0 / (n + 1));
+		best->addSighting(centroid, m_options.mergeDistance / 2);
 		best->observations++;
 		seenThisSweep.push_back(best->id);
 	}

@@ -4,7 +4,10 @@
 #include <mrpt/math/TPoint3D.h>
 #include <semnav/common/Label.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <vector>
 
 namespace semnav
 {
@@ -15,8 +18,11 @@ struct ObjectInstance
 	/** 1-based id, also the value of the map's "objects" layer. */
 	int id = 0;
 	Label label = Label::Unknown;
-	/** Mean of the detections' centroids. */
+	/** Robust mean of the detections' centroids (see addSighting()). */
 	mrpt::math::TPoint3D centroid{0, 0, 0};
+	/** The detections' centroids, one per sweep that detected it (in
+	 * memory only: a loaded map starts again from its centroid). */
+	std::vector<mrpt::math::TPoint3D> sightings;
 	/** Axis-aligned bounds of all detections. */
 	mrpt::math::TPoint3D minCorner{0, 0, 0}, maxCorner{0, 0, 0};
 	/** Sweeps in which the object was detected. */
@@ -24,6 +30,42 @@ struct ObjectInstance
 	/** Sweeps that had it in view (line of sight to its centroid within
 	 * the sweep's field of view and range), detected or not. */
 	std::size_t views = 0;
+
+	/** Adds one sweep's detection centroid and recomputes `centroid` as
+	 * the mean of the sightings within `inlierRadius` (horizontally) of
+	 * their per-axis median: a detection box that swallowed a neighbour,
+	 * or a false alarm merged by footprint overlap, no longer drags the
+	 * object away. */
+	void addSighting(const mrpt::math::TPoint3D& c, double inlierRadius)
+	{
+		if (sightings.empty() && observations > 0)
+			sightings.push_back(centroid);
+		sightings.push_back(c);
+		auto median = [&](double mrpt::math::TPoint3D::*axis)
+		{
+			std::vector<double> v;
+			for (const auto& s : sightings) v.push_back(s.*axis);
+			std::sort(v.begin(), v.end());
+			const std::size_t h = v.size() / 2;
+			return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
+		};
+		const mrpt::math::TPoint3D m(
+		    median(&mrpt::math::TPoint3D::x), median(&mrpt::math::TPoint3D::y),
+		    median(&mrpt::math::TPoint3D::z));
+		mrpt::math::TPoint3D sumIn(0, 0, 0), sumAll(0, 0, 0);
+		std::size_t in = 0;
+		for (const auto& s : sightings)
+		{
+			sumAll = sumAll + s;
+			if (std::hypot(s.x - m.x, s.y - m.y) <= inlierRadius)
+			{
+				sumIn = sumIn + s;
+				in++;
+			}
+		}
+		centroid =
+		    in > 0 ? sumIn * (1.0 / in) : sumAll * (1.0 / sightings.size());
+	}
 
 	mrpt::math::TPoint3D extent() const
 	{
