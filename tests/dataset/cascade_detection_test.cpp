@@ -53,21 +53,26 @@ const Simulated& scene()
 	return s;
 }
 
-bool shippedCascadesExist(const CascadeDetector::TOptions& o)
-{
-	for (const auto& k : o.classes)
-		if (!std::filesystem::exists(o.cascadePath(k))) return false;
-	return true;
-}
 }  // namespace
 
-TEST(CascadeDetection, ShippedCascadesAgreeWithOpenCvOnASweep)
+/** The shipped detector options (config/cascade.ini); its cascades are
+ * committed in datasets/cascades/. */
+class CascadeDetection : public ::testing::Test
 {
-	const auto opts =
-	    CascadeDetector::TOptions::fromIniFile(kSource + "/config/cascade.ini");
-	if (!shippedCascadesExist(opts))
-		GTEST_SKIP()
-		    << "datasets/cascades/*.xml missing (scripts/train-cascades)";
+protected:
+	void SetUp() override
+	{
+		opts = CascadeDetector::TOptions::fromIniFile(
+		    kSource + "/config/cascade.ini");
+		for (const auto& k : opts.classes)
+			ASSERT_TRUE(std::filesystem::exists(opts.cascadePath(k)))
+			    << opts.cascadePath(k);
+	}
+	CascadeDetector::TOptions opts;
+};
+
+TEST_F(CascadeDetection, ShippedCascadesAgreeWithOpenCvOnASweep)
+{
 	const Simulated& s = scene();
 	PerceptionPipeline p;
 	const LabeledSweep ls = p.process(s.sweeps[3]);
@@ -112,13 +117,8 @@ TEST(CascadeDetection, ShippedCascadesAgreeWithOpenCvOnASweep)
 	}
 }
 
-TEST(CascadeDetection, HeldOutSceneScoresAboveAFloor)
+TEST_F(CascadeDetection, HeldOutSceneScoresAboveAFloor)
 {
-	const auto opts =
-	    CascadeDetector::TOptions::fromIniFile(kSource + "/config/cascade.ini");
-	if (!shippedCascadesExist(opts))
-		GTEST_SKIP()
-		    << "datasets/cascades/*.xml missing (scripts/train-cascades)";
 	const Simulated& s = scene();
 	PerceptionPipeline p;
 	CascadeDetector det(opts);
@@ -154,13 +154,8 @@ TEST(CascadeDetection, HeldOutSceneScoresAboveAFloor)
 	EXPECT_GT(labelled, 0u) << "detections label their pixels";
 }
 
-TEST(CascadeDetection, ProposalsKeepMostOfTheWholeImageDetections)
+TEST_F(CascadeDetection, ProposalsKeepMostOfTheWholeImageDetections)
 {
-	auto opts =
-	    CascadeDetector::TOptions::fromIniFile(kSource + "/config/cascade.ini");
-	if (!shippedCascadesExist(opts))
-		GTEST_SKIP()
-		    << "datasets/cascades/*.xml missing (scripts/train-cascades)";
 	const Simulated& s = scene();
 	PerceptionPipeline p;
 	opts.proposals = false;
@@ -213,13 +208,8 @@ TEST(CascadeDetection, ProposalsKeepMostOfTheWholeImageDetections)
 	EXPECT_GT(tpProposed, 0u);
 }
 
-TEST(CascadeDetection, ZeroBorderGivesWindowsAtTheImageEdge)
+TEST_F(CascadeDetection, ZeroBorderGivesWindowsAtTheImageEdge)
 {
-	auto opts =
-	    CascadeDetector::TOptions::fromIniFile(kSource + "/config/cascade.ini");
-	if (!shippedCascadesExist(opts))
-		GTEST_SKIP()
-		    << "datasets/cascades/*.xml missing (scripts/train-cascades)";
 	const Simulated& s = scene();
 	PerceptionPipeline p;
 	for (auto& k : opts.classes) k.borderPx = 0;
