@@ -8,7 +8,13 @@
 //   navigationStep() (ray-cast scan of 2 x 240 beams, TP-space transform of
 //   3 PTGs, holonomic method, motion decision) + the path-blocked check;
 // - BM_ReplanAndStep: both, the worst-case step (a step that replans);
-// - BM_SenseObstacles, BM_CollisionCheck: the simulator's share.
+// - BM_SenseObstacles, BM_CollisionCheck: the simulator's share;
+// - BM_PlanCnn (CNN field to the fixed point + path) against, in the same
+//   run, the binary-heap Dijkstra oracle on the same u and goal regions of
+//   every washbasin: full cost field (BM_PlanDijkstra, what the CNN
+//   computes) and stopped at the start (BM_PlanDijkstraEarlyStop);
+//   BM_Traversability: u (C-space, profile influence), built by every
+//   replan before either.
 // Run with
 //   bench_nav --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -18,6 +24,9 @@
 #include <semnav/nav/SceneMapBuilder.h>
 #include <semnav/nav/SemanticNavigator.h>
 #include <semnav/nav/SimulatedRobot.h>
+#include <semnav/planning/CnnPlanner.h>
+#include <semnav/planning/DijkstraPlanner.h>
+#include <semnav/planning/SemanticPlanner.h>
 #include <semnav/sim/SceneLoader.h>
 
 #include <memory>
@@ -119,6 +128,57 @@ void BM_CollisionCheck(benchmark::State& st)
 		benchmark::DoNotOptimize(f.robot->inCollision(f.robot->pose()));
 }
 BENCHMARK(BM_CollisionCheck)->Unit(benchmark::kMillisecond);
+/** The inputs of one replan's plan: u and the goal regions of every
+ * washbasin, from the robot's pose. */
+const SemanticPlanner::Plan& washbasinPlan()
+{
+	static const SemanticPlanner::Plan p = []
+	{
+		auto& f = fixture();
+		const SemanticPlanner planner(
+		    f.map, f.config.cnn, f.config.traversability);
+		const auto r = f.robot->pose();
+		return planner.toLabel(r.x, r.y, Label::Washbasin, f.nav->profile());
+	}();
+	return p;
+}
+
+void BM_PlanCnn(benchmark::State& st)
+{
+	const auto& p = washbasinPlan();
+	const CnnPlanner cnn(fixture().config.cnn);
+	for (auto _ : st)
+		benchmark::DoNotOptimize(cnn.plan(p.u, p.goals, p.start).cost);
+}
+BENCHMARK(BM_PlanCnn)->Unit(benchmark::kMillisecond);
+
+void BM_PlanDijkstra(benchmark::State& st)
+{
+	const auto& p = washbasinPlan();
+	for (auto _ : st)
+		benchmark::DoNotOptimize(
+		    DijkstraPlanner::costField(p.u, p.goals).data());
+}
+BENCHMARK(BM_PlanDijkstra)->Unit(benchmark::kMillisecond);
+
+void BM_PlanDijkstraEarlyStop(benchmark::State& st)
+{
+	const auto& p = washbasinPlan();
+	for (auto _ : st)
+		benchmark::DoNotOptimize(
+		    DijkstraPlanner::plan(p.u, p.goals, p.start).cost);
+}
+BENCHMARK(BM_PlanDijkstraEarlyStop)->Unit(benchmark::kMillisecond);
+
+void BM_Traversability(benchmark::State& st)
+{
+	auto& f = fixture();
+	const SemanticPlanner planner(f.map, f.config.cnn, f.config.traversability);
+	for (auto _ : st)
+		benchmark::DoNotOptimize(
+		    planner.traversability(f.nav->profile()).values().data());
+}
+BENCHMARK(BM_Traversability)->Unit(benchmark::kMillisecond);
 }  // namespace
 
 BENCHMARK_MAIN();
