@@ -5,6 +5,8 @@
 #include <semnav/cascade/CascadeXml.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/Percentile.h>
+#include <semnav/common/Timing.h>
 #include <semnav/detection/CascadeDetector.h>
 
 #include <algorithm>
@@ -31,19 +33,6 @@ std::string num(double v)
 }
 
 using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0)
-{
-	return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-/** p-th percentile (0..1) of v (reorders v). */
-double percentile(std::vector<double>& v, double p)
-{
-	const std::size_t k = std::min(
-	    v.size() - 1, static_cast<std::size_t>(p * double(v.size() - 1) + 0.5));
-	std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
-	return v[k];
-}
 }  // namespace
 
 // ------------------------------------------------------------ options

@@ -1,6 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <semnav/common/Error.h>
 #include <semnav/common/Label.h>
+#include <semnav/common/Percentile.h>
 #include <semnav/detection/ObjectProposals.h>
 
 #include <algorithm>
@@ -178,21 +179,13 @@ std::vector<ObjectProposal> ObjectProposals::regions(
 				}
 			}
 			if (static_cast<int>(ranges.size()) < params.minPixels) continue;
-			const auto at = [](std::vector<float>& w, double q)
-			{
-				const std::size_t k = std::min(
-				    w.size() - 1,
-				    static_cast<std::size_t>(q * double(w.size() - 1) + 0.5));
-				std::nth_element(w.begin(), w.begin() + long(k), w.end());
-				return double(w[k]);
-			};
 			ObjectProposal p;
 			p.box = cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
 			p.pixels = static_cast<int>(ranges.size());
-			p.nearRange = at(ranges, 0.1);
-			p.farRange = at(ranges, 0.9);
-			p.bottom = at(heights, 0.05);
-			p.top = at(heights, 0.95);
+			p.nearRange = percentile(ranges, 0.1);
+			p.farRange = percentile(ranges, 0.9);
+			p.bottom = percentile(heights, 0.05);
+			p.top = percentile(heights, 0.95);
 			out.push_back(p);
 		}
 	return out;

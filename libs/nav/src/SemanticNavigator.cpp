@@ -4,6 +4,7 @@
 #include <mrpt/poses/CPoint2D.h>
 #include <mrpt/poses/CPose2D.h>
 #include <semnav/common/ConfigChecks.h>
+#include <semnav/common/Timing.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/nav/NavigationErrors.h>
 #include <semnav/nav/SemanticNavigator.h>
@@ -21,13 +22,6 @@ namespace semnav
 {
 namespace
 {
-double msSince(std::chrono::steady_clock::time_point t0)
-{
-	return std::chrono::duration<double, std::milli>(
-	           std::chrono::steady_clock::now() - t0)
-	    .count();
-}
-
 /** MRPT's navigator with its delay statistics off (its destructor would
  * print them on stdout). */
 class QuietNavigator : public mrpt::nav::CReactiveNavigationSystem

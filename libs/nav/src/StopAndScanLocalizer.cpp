@@ -1,8 +1,10 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <mrpt/core/format.h>
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/poses/CPose2D.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/Timing.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/nav/NavigationErrors.h>
 #include <semnav/nav/SimulatedRobot.h>
@@ -11,28 +13,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 namespace semnav
 {
-namespace
-{
-double elapsedMs(std::chrono::steady_clock::time_point t0)
-{
-	return std::chrono::duration<double, std::milli>(
-	           std::chrono::steady_clock::now() - t0)
-	    .count();
-}
-
-std::string fmt(const char* f, double a, double b)
-{
-	char buf[128];
-	std::snprintf(buf, sizeof(buf), f, a, b);
-	return buf;
-}
-}  // namespace
-
 std::string StopAndScanLocalizer::modeName(Mode m)
 {
 	return m == Mode::Global ? "global" : "tracking";
@@ -271,25 +255,26 @@ void StopAndScanLocalizer::sweepUntilConverged(
 	rep.estimate = last.estimate;
 	rep.errorXY = last.errorXY;
 	rep.errorYaw = last.errorYaw;
-	rep.ms = elapsedMs(t0);
+	rep.ms = msSince(t0);
 	const std::string what = "localization (" + modeName(rep.mode) +
 	                         (rep.recovery ? ", lost while navigating" : "") +
 	                         "): ";
 	if (!rep.converged && rep.ambiguous)
 		throw LocalizationFailedError(
 		    what + "ambiguous after " + std::to_string(rep.sweeps) +
-		    " sweeps: the walls fit (" +
-		    fmt("%.2f, %.2f", last.estimate.x, last.estimate.y) +
-		    fmt(", %.0f deg) and (%.2f, ", mrpt::RAD2DEG(last.estimate.phi),
-		        last.rival.x) +
-		    fmt("%.2f, %.0f deg) alike", last.rival.y,
+		    mrpt::format(
+		        " sweeps: the walls fit (%.2f, %.2f, %.0f deg) and (%.2f, "
+		        "%.2f, %.0f deg) alike",
+		        last.estimate.x, last.estimate.y,
+		        mrpt::RAD2DEG(last.estimate.phi), last.rival.x, last.rival.y,
 		        mrpt::RAD2DEG(last.rival.phi)));
 	if (!rep.converged)
 		throw LocalizationFailedError(
 		    what + "not converged after " + std::to_string(rep.sweeps) +
 		    " sweeps (" + std::to_string(segments) +
 		    " wall segments seen; spread " +
-		    fmt("%.2f m, %.1f deg)", last.stdXY, mrpt::RAD2DEG(last.stdYaw)));
+		    mrpt::format(
+		        "%.2f m, %.1f deg)", last.stdXY, mrpt::RAD2DEG(last.stdYaw)));
 }
 
 StopAndScanLocalizer::Report StopAndScanLocalizer::rescan(SimulatedRobot& robot)
@@ -319,7 +304,7 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::rescan(SimulatedRobot& robot)
 		rep.estimate = r.estimate;
 		rep.errorXY = r.errorXY;
 		rep.errorYaw = r.errorYaw;
-		rep.ms = elapsedMs(t0);
+		rep.ms = msSince(t0);
 	}
 	else
 	{
@@ -387,7 +372,7 @@ StopAndScanLocalizer::SweepRecord StopAndScanLocalizer::sweepAndUpdate(
 	const mrpt::math::TPose2D now = robot.pose();
 	rec.errorXY = std::hypot(rec.estimate.x - now.x, rec.estimate.y - now.y);
 	rec.errorYaw = std::abs(mrpt::math::wrapToPi(rec.estimate.phi - now.phi));
-	rec.ms = elapsedMs(t0);
+	rec.ms = msSince(t0);
 	m_records.push_back(rec);
 	return rec;
 }
@@ -466,7 +451,7 @@ void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const
 	}
 	rec.rival.phi = mrpt::math::wrapToPi(rec.rival.phi);
 	rec.checked = true;
-	rec.checkMs = elapsedMs(t0);
+	rec.checkMs = msSince(t0);
 }
 
 double StopAndScanLocalizer::massNear(const mrpt::math::TPose2D& e) const

@@ -1,20 +1,11 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/Timing.h>
 #include <semnav/perception/PerceptionPipeline.h>
 
 #include <chrono>
 
 namespace semnav
 {
-namespace
-{
-double msSince(std::chrono::steady_clock::time_point t0)
-{
-	return std::chrono::duration<double, std::milli>(
-	           std::chrono::steady_clock::now() - t0)
-	    .count();
-}
-}  // namespace
-
 const std::vector<std::string>& PerceptionPipeline::sections()
 {
 	static const std::vector<std::string> s = {
