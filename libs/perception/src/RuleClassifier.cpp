@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "BoxSum.h"
@@ -42,6 +43,120 @@ bool isGround(int8_t l)
 	return l == lab(Label::Floor) || l == lab(Label::Sidewalk) ||
 	       l == lab(Label::Grass);
 }
+
+/** Sums pixels into surfaces run by run: consecutive pixels of one
+ * surface along a row are accumulated in locals (floats: a run is at most
+ * one row long) and added to the surface at the run's end (no
+ * store-to-load chain through the surface). */
+template <class SurfaceT>
+class RunSums
+{
+public:
+	/** `points` and `normals` hold `n` pixels. */
+	RunSums(
+	    std::vector<SurfaceT>& surfaces, const cv::Vec3f* points,
+	    const cv::Vec3f* normals, const uint8_t* orient, const int* areas,
+	    int n)
+	    : m_surfaces(surfaces),
+	      m_p(points),
+	      m_n(normals),
+	      m_orient(orient),
+	      m_areas(areas),
+	      m_last(n - 1)
+	{
+	}
+	int runId() const { return m_id; }
+	/** Adds pixel p (row r, column c) of surface id >= 0 to the run. */
+	void add(int p, int r, int c, int id)
+	{
+		// x y z (and nx ny nz) in the first three lanes of a vector: the
+		// fourth is the next pixel's x, unused (the last pixel, which has
+		// none, is copied first).
+		const float* q = m_p[p].val;
+		const float* nq = m_n[p].val;
+		float tail[8];
+		if (p == m_last)
+		{
+			std::copy(q, q + 3, tail);
+			std::copy(nq, nq + 3, tail + 4);
+			tail[3] = tail[7] = 0;
+			q = tail;
+			nq = tail + 4;
+		}
+		const cv::v_float32x4 vq = cv::v_load(q), vn = cv::v_load(nq);
+		if (m_id < 0)
+		{
+			m_id = id;
+			m_count = 0;
+			m_sumP = m_sumN = cv::v_setzero_f32();
+			m_xx = m_xy = m_yy = 0;
+			SurfaceT& s = m_surfaces[id];
+			if (s.count == 0)
+			{
+				s.orient = m_orient[p];
+				s.area = m_areas[p];
+			}
+			m_lo = m_hi = vq;
+			m_r = r;
+			m_c0 = c;
+		}
+		m_c1 = c;
+		m_count++;
+		m_sumP += vq;
+		m_sumN += vn;
+		m_xx += q[0] * q[0];
+		m_xy += q[0] * q[1];
+		m_yy += q[1] * q[1];
+		m_lo = cv::v_min(m_lo, vq);
+		m_hi = cv::v_max(m_hi, vq);
+	}
+	/** Ends the run (if any): adds it to its surface. */
+	void flush()
+	{
+		if (m_id < 0) return;
+		float sp[4], sn[4], lo[4], hi[4];
+		cv::v_store(sp, m_sumP);
+		cv::v_store(sn, m_sumN);
+		cv::v_store(lo, m_lo);
+		cv::v_store(hi, m_hi);
+		SurfaceT& s = m_surfaces[m_id];
+		if (s.count == 0)
+		{
+			s.minP = cv::Vec3f(lo[0], lo[1], lo[2]);
+			s.maxP = cv::Vec3f(hi[0], hi[1], hi[2]);
+			s.minR = s.maxR = m_r;
+			s.minC = m_c0;
+			s.maxC = m_c1;
+		}
+		s.count += m_count;
+		s.sumP += cv::Vec3d(sp[0], sp[1], sp[2]);
+		s.sumN += cv::Vec3d(sn[0], sn[1], sn[2]);
+		s.sxx += m_xx;
+		s.sxy += m_xy;
+		s.syy += m_yy;
+		for (int k = 0; k < 3; k++)
+		{
+			s.minP[k] = std::min(s.minP[k], lo[k]);
+			s.maxP[k] = std::max(s.maxP[k], hi[k]);
+		}
+		s.minR = std::min(s.minR, m_r);
+		s.maxR = std::max(s.maxR, m_r);
+		s.minC = std::min(s.minC, m_c0);
+		s.maxC = std::max(s.maxC, m_c1);
+		m_id = -1;
+	}
+
+private:
+	std::vector<SurfaceT>& m_surfaces;
+	const cv::Vec3f* m_p;
+	const cv::Vec3f* m_n;
+	const uint8_t* m_orient;
+	const int* m_areas;
+	const int m_last;
+	int m_id = -1, m_count = 0, m_r = 0, m_c0 = 0, m_c1 = 0;
+	cv::v_float32x4 m_sumP, m_sumN, m_lo, m_hi;
+	float m_xx = 0, m_xy = 0, m_yy = 0;
+};
 
 const char* envName(RuleClassifier::TOptions::Environment e)
 {
@@ -366,17 +481,67 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 			       (std::abs(RG[p] - RG[q]) <= maxStep) &
 			       (!angular | (NS[p].dot(NS[q]) >= cosJoin));
 		};
+		// The same test on 4 pairs (p, p + step) at a time; lane k of the
+		// result is 1 where pixel p + k joins its neighbour.
+		const float* NSf = NS[0].val;
+		const cv::v_float32x4 vMaxStep = cv::v_setall_f32(maxStep),
+		                      vCosJoin = cv::v_setall_f32(cosJoin);
+		const cv::v_uint32x4 vNone = cv::v_setall_u32(kNone),
+		                     vVert = cv::v_setall_u32(kVertical),
+		                     vObl = cv::v_setall_u32(kOblique),
+		                     vOne = cv::v_setall_u32(1);
+		const cv::v_int32x4 vZero = cv::v_setzero_s32();
+		auto ok4 = [&](int p, int step, unsigned out[4])
+		{
+			const int q = p + step;
+			const cv::v_uint32x4 cp = cv::v_load_expand_q(CL + p),
+			                     cq = cv::v_load_expand_q(CL + q);
+			const cv::v_int32x4 ap = cv::v_load(A + p), aq = cv::v_load(A + q);
+			const cv::v_float32x4 rp = cv::v_load(RG + p),
+			                      rq = cv::v_load(RG + q);
+			cv::v_float32x4 ax, ay, az, bx, by, bz;
+			cv::v_load_deinterleave(NSf + 3 * p, ax, ay, az);
+			cv::v_load_deinterleave(NSf + 3 * q, bx, by, bz);
+			const cv::v_float32x4 dot = ax * bx + ay * by + az * bz;
+			const cv::v_uint32x4 angular = (cp == vVert) | (cp == vObl);
+			const cv::v_uint32x4 m =
+			    (cp != vNone) & cv::v_reinterpret_as_u32(ap > vZero) &
+			    (cq == cp) & cv::v_reinterpret_as_u32(aq == ap) &
+			    cv::v_reinterpret_as_u32(cv::v_abs(rp - rq) <= vMaxStep) &
+			    (~angular | cv::v_reinterpret_as_u32(dot >= vCosJoin));
+			cv::v_store(out, m & vOne);
+		};
+		unsigned bits[4];
 		for (int r = 0; r < rows; r++)
 		{
-			const int base = r * cols;
-			for (int p = base; p + 1 < base + cols; p++)
+			const int base = r * cols, end = base + cols;
+			int p = base;
+			for (; p + 4 < end; p += 4)
+			{
+				ok4(p, 1, bits);
+				for (int k = 0; k < 4; k++)
+				{
+					J[p + k] |= static_cast<uint8_t>(bits[k]);
+					J[p + k + 1] |= static_cast<uint8_t>(bits[k] << 1);
+				}
+			}
+			for (; p + 1 < end; p++)
 			{
 				const uint8_t right = ok(p, p + 1);
 				J[p] |= right;
 				J[p + 1] |= static_cast<uint8_t>(right << 1);
 			}
 			if (r + 1 == rows) continue;
-			for (int p = base; p < base + cols; p++)
+			for (p = base; p + 4 <= end; p += 4)
+			{
+				ok4(p, cols, bits);
+				for (int k = 0; k < 4; k++)
+				{
+					J[p + k] |= static_cast<uint8_t>(bits[k] << 2);
+					J[p + k + cols] |= static_cast<uint8_t>(bits[k] << 3);
+				}
+			}
+			for (; p < end; p++)
 			{
 				const uint8_t down = ok(p, p + cols);
 				J[p] |= static_cast<uint8_t>(down << 2);
@@ -414,11 +579,14 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 			}
 		}
 		m_surf.assign(n, -1);
-		for (int seed = 0; seed < n; seed++)
+		// Numbers the surface of `seed` if it has none yet: an up- or
+		// down-facing component by its root, else a fill from it. (Every
+		// pixel of a new surface lies at or after its seed.)
+		auto number = [&](int seed)
 		{
 			if (m_surf[seed] != -1 || !PM[seed] || A[seed] < 1 ||
 			    m_class[seed] == kNone)
-				continue;
+				return;
 			const uint8_t cls = m_class[seed];
 			const bool angular = cls == kVertical || cls == kOblique;
 			if (!angular)
@@ -428,10 +596,17 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 				int root = seed;
 				while (m_uf[root] != root) root = m_uf[root];
 				m_uf[seed] = root;
-				m_surf[seed] = root == seed ? count++ : m_surf[root];
-				continue;
+				if (root == seed)
+				{
+					m_surf[seed] = count++;
+					m_surfaces.emplace_back();
+				}
+				else
+					m_surf[seed] = m_surf[root];
+				return;
 			}
 			const int id = count++;
+			m_surfaces.emplace_back();
 			cv::Vec3f mean(0, 0, 0);  // running normal sum
 			float mean2 = 0;
 			m_surf[seed] = id;
@@ -458,7 +633,25 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 					m_stack.push_back(q);
 				}
 			}
+		};
+		// One row-major pass numbers the surfaces and sums them up: a
+		// pixel's surface is final once its own turn has come.
+		m_surfaces.clear();
+		RunSums<Surface> sums(
+		    m_surfaces, m_points->ptr<cv::Vec3f>(0), NS, m_class.data(), A, n);
+		for (int r = 0, p = 0; r < rows; r++)
+		{
+			sums.flush();
+			for (int c = 0; c < cols; c++, p++)
+			{
+				number(p);
+				const int id = m_surf[p];
+				if (id != sums.runId()) sums.flush();
+				if (id >= 0) sums.add(p, r, c, id);
+			}
 		}
+		sums.flush();
+		firstAccumulated = count;
 	}
 	else
 	{
@@ -562,122 +755,29 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 
 void RuleClassifier::computeSurfaceStats(int count, int firstAccumulated)
 {
-	const int* RO = m_rowOf.data();
-	const int* CO = m_colOf.data();
-	const int rows = m_rows, cols = m_cols;
-	const auto* P = m_points->ptr<cv::Vec3f>(0);
-	const int* A = m_areas->ptr<int>(0);
-	const auto* NS = m_ns->ptr<cv::Vec3f>(0);
 	// Surfaces below firstAccumulated are already summed up (pass 2 adds
 	// the pass-1 pieces of unsplit groups); the others start empty.
 	m_surfaces.resize(count);
 	for (int i = firstAccumulated; i < count; i++) m_surfaces[i] = Surface();
-	// Runs of one surface along a row are accumulated in locals and added
-	// at the run's end (no store-to-load chain through the surface).
-	struct Run
+	if (firstAccumulated < count)
 	{
-		int id = -1, count = 0;
-		// floats: a run is at most one row long
-		float sx = 0, sy = 0, sz = 0, nx = 0, ny = 0, nz = 0, xx = 0, xy = 0,
-		      yy = 0;
-		float lo[3], hi[3];
-		int r = 0, c0 = 0, c1 = 0;
-	} run;
-	auto flush = [&]()
-	{
-		if (run.id < 0) return;
-		Surface& s = m_surfaces[run.id];
-		if (s.count == 0)
-		{
-			s.minP = cv::Vec3f(run.lo[0], run.lo[1], run.lo[2]);
-			s.maxP = cv::Vec3f(run.hi[0], run.hi[1], run.hi[2]);
-			s.minR = s.maxR = run.r;
-			s.minC = run.c0;
-			s.maxC = run.c1;
-		}
-		s.count += run.count;
-		s.sumP += cv::Vec3d(run.sx, run.sy, run.sz);
-		s.sumN += cv::Vec3d(run.nx, run.ny, run.nz);
-		s.sxx += run.xx;
-		s.sxy += run.xy;
-		s.syy += run.yy;
-		for (int k = 0; k < 3; k++)
-		{
-			s.minP[k] = std::min(s.minP[k], run.lo[k]);
-			s.maxP[k] = std::max(s.maxP[k], run.hi[k]);
-		}
-		s.minR = std::min(s.minR, run.r);
-		s.maxR = std::max(s.maxR, run.r);
-		s.minC = std::min(s.minC, run.c0);
-		s.maxC = std::max(s.maxC, run.c1);
-		run.id = -1;
-	};
-	// A run ends where the id changes, at a row's end, or (pass 2, which
-	// visits only the split groups' pixels) at a gap.
-	// Adds pixel p (row r, column c) of surface id >= 0 to the run.
-	auto add = [&](int p, int r, int c, int id)
-	{
-		const cv::Vec3f& q = P[p];
-		if (run.id < 0)
-		{
-			run = Run();
-			run.id = id;
-			Surface& s = m_surfaces[id];
-			if (s.count == 0)
-			{
-				s.orient = m_class[p];
-				s.area = A[p];
-			}
-			for (int k = 0; k < 3; k++) run.lo[k] = run.hi[k] = q[k];
-			run.r = r;
-			run.c0 = c;
-		}
-		run.c1 = c;
-		run.count++;
-		run.sx += q[0];
-		run.sy += q[1];
-		run.sz += q[2];
-		run.nx += NS[p][0];
-		run.ny += NS[p][1];
-		run.nz += NS[p][2];
-		run.xx += q[0] * q[0];
-		run.xy += q[0] * q[1];
-		run.yy += q[1] * q[1];
-		for (int k = 0; k < 3; k++)
-		{
-			run.lo[k] = std::min(run.lo[k], q[k]);
-			run.hi[k] = std::max(run.hi[k], q[k]);
-		}
-	};
-	if (firstAccumulated == 0)
-	{
-		// Pass 1: all pixels, row by row.
-		for (int r = 0, p = 0; r < rows; r++)
-		{
-			flush();
-			for (int c = 0; c < cols; c++, p++)
-			{
-				const int id = m_surf[p];
-				if (id != run.id) flush();
-				if (id >= 0) add(p, r, c, id);
-			}
-		}
-	}
-	else if (firstAccumulated < count)
-	{
-		// Pass 2: the split groups' pixels (row-major); a run also ends at
-		// a gap.
+		// The split groups' pixels (row-major); a run also ends at a gap.
+		const int* RO = m_rowOf.data();
+		const int* CO = m_colOf.data();
+		RunSums<Surface> sums(
+		    m_surfaces, m_points->ptr<cv::Vec3f>(0), m_ns->ptr<cv::Vec3f>(0),
+		    m_class.data(), m_areas->ptr<int>(0), m_rows * m_cols);
 		int prev = -2;
 		for (const int p : m_splitPix)
 		{
 			const int id = m_surf[p];
 			const int c = CO[p];
-			if (id != run.id || c == 0 || p != prev + 1) flush();
+			if (id != sums.runId() || c == 0 || p != prev + 1) sums.flush();
 			prev = p;
-			if (id >= firstAccumulated) add(p, RO[p], c, id);
+			if (id >= firstAccumulated) sums.add(p, RO[p], c, id);
 		}
+		sums.flush();
 	}
-	flush();
 	for (Surface& s : m_surfaces) finishSurface(s);
 }
 
@@ -874,29 +974,27 @@ void RuleClassifier::splitPlanes()
 		offset.push_back(m[0] * cx + m[1] * cy);
 	}
 	if (nSlots == 0) return;
-	// The groups' pixels, grouped by slot (counting sort, row-major
-	// inside).
-	std::vector<int> slotOfSurface(ns, -1), start(nSlots + 1, 0);
+	// The groups' pixels, grouped by slot, row-major inside (the slots'
+	// sizes are their groups' pixel counts; one pass places the pixels).
+	// (slotOfSurface is indexed by surface id + 1: -1 is no surface.)
+	std::vector<int> slotOfSurface(ns + 1, -1), start(nSlots + 1, 0);
 	for (int i = 0; i < ns; i++)
-		if (m_surfaces[i].orient == kVertical)
-			slotOfSurface[i] = slot[m_parent[i]];
-	// (One pass over the image collects the pixels and their slots.)
-	m_candPix.clear();
-	m_candSlot.clear();
-	for (int p = 0; p < n; p++)
 	{
-		const int s = m_surf[p];
-		if (s < 0 || slotOfSurface[s] < 0) continue;
-		m_candPix.push_back(p);
-		m_candSlot.push_back(slotOfSurface[s]);
-		start[slotOfSurface[s] + 1]++;
+		if (m_surfaces[i].orient == kVertical)
+			slotOfSurface[i + 1] = slot[m_parent[i]];
+		if (slot[i] >= 0) start[slot[i] + 1] = groups[i].count;
 	}
 	for (int k = 0; k < nSlots; k++) start[k + 1] += start[k];
 	std::vector<int> pix(start[nSlots]);
 	{
 		std::vector<int> fill(start.begin(), start.end() - 1);
-		for (std::size_t i = 0; i < m_candPix.size(); i++)
-			pix[fill[m_candSlot[i]]++] = m_candPix[i];
+		const int* slotOf = slotOfSurface.data() + 1;
+		const int* SF = m_surf.data();
+		for (int p = 0; p < n; p++)
+		{
+			const int k = slotOf[SF[p]];
+			if (k >= 0) pix[fill[k]++] = p;
+		}
 	}
 
 	// The dominant plane of each group: a least-squares fit of all points

@@ -220,7 +220,6 @@ private:
 	std::vector<uint64_t> m_pairs;    ///< mergeCoplanar()'s surface pairs
 	std::vector<uint8_t> m_seed;      ///< leftover growth's seeds
 	std::vector<int8_t> m_surfLabel;  ///< label per surface id + 1
-	std::vector<int> m_candPix, m_candSlot;  ///< splitPlanes()' pixels
 	/** splitPlanes()'s sums per group (those the plane fit needs). */
 	struct GroupSums
 	{
