@@ -12,6 +12,12 @@
 
 namespace semnav
 {
+namespace
+{
+/** Floats per vector of the widest SIMD the build allows. */
+constexpr int kLanes = cv::v_float32::nlanes;
+}  // namespace
+
 using mrpt::DEG2RAD;
 using mrpt::RAD2DEG;
 
@@ -67,14 +73,16 @@ void NormalImage::compute(const Sweep& sweep)
 	// around) for the branch-free normal kernel below.
 	const int pc = cols + 2;
 	const std::size_t plane = static_cast<std::size_t>(rows + 2) * pc;
-	// (+8: the vector kernel reads up to 3 floats past the last row.) Every
-	// interior pixel is written below; the padding stays 0 once zeroed.
-	if (m_x.size() != plane + 8 || m_paddedCols != pc)
+	// (+2 kLanes: the vector kernel reads up to kLanes floats past the
+	// last row.) Every interior pixel is written below; the padding stays 0
+	// once zeroed.
+	const std::size_t padded = plane + 2 * kLanes;
+	if (m_x.size() != padded || m_paddedCols != pc)
 	{
-		m_x.assign(plane + 8, 0.0f);
-		m_y.assign(plane + 8, 0.0f);
-		m_z.assign(plane + 8, 0.0f);
-		m_v.assign(plane + 8, 0.0f);
+		m_x.assign(padded, 0.0f);
+		m_y.assign(padded, 0.0f);
+		m_z.assign(padded, 0.0f);
+		m_v.assign(padded, 0.0f);
 		m_paddedCols = pc;
 	}
 	std::vector<float> cphi(cols), sphi(cols);
@@ -140,9 +148,9 @@ void NormalImage::compute(const Sweep& sweep)
 	    m_options.maxNeighbourDistance * m_options.maxNeighbourDistance);
 	const float sinMin = static_cast<float>(std::sin(m_options.minPairAngle));
 	const float sinMinSq = sinMin * sinMin;
-	m_nx.resize(cols + 4);
-	m_ny.resize(cols + 4);
-	m_nz.resize(cols + 4);
+	m_nx.resize(cols + kLanes);
+	m_ny.resize(cols + kLanes);
+	m_nz.resize(cols + kLanes);
 	for (int r = 0; r < rows; r++)
 	{
 		const std::size_t o = static_cast<std::size_t>(r + 1) * pc + 1;
@@ -156,38 +164,39 @@ void NormalImage::compute(const Sweep& sweep)
 		float* NY = m_ny.data();
 		float* NZ = m_nz.data();
 		// Neighbours (i-1, j-1), (i-1, j+1), (i+1, j-1), (i+1, j+1),
-		// 4 pixels at a time (OpenCV universal intrinsics; the planes are
+		// kLanes pixels at a time (OpenCV universal intrinsics at the widest
+		// vectors the build allows; the planes are
 		// padded so that the last group may run past the row end).
 		const float* Xn[4] = {X - pc - 1, X - pc + 1, X + pc - 1, X + pc + 1};
 		const float* Yn[4] = {Y - pc - 1, Y - pc + 1, Y + pc - 1, Y + pc + 1};
 		const float* Zn[4] = {Z - pc - 1, Z - pc + 1, Z + pc - 1, Z + pc + 1};
 		const float* Vn[4] = {V - pc - 1, V - pc + 1, V + pc - 1, V + pc + 1};
-		const cv::v_float32x4 vE0 = cv::v_setall_f32(e0sq),
-		                      vE1 = cv::v_setall_f32(e1sq),
-		                      vS = cv::v_setall_f32(sinMinSq),
-		                      vHalf = cv::v_setall_f32(0.5f),
-		                      vZero = cv::v_setzero_f32(),
-		                      vOne = cv::v_setall_f32(1.0f),
-		                      vMinusOne = cv::v_setall_f32(-1.0f),
-		                      vsx = cv::v_setall_f32(sx),
-		                      vsy = cv::v_setall_f32(sy),
-		                      vsz = cv::v_setall_f32(sz);
-		for (int c = 0; c < cols; c += 4)
+		const cv::v_float32 vE0 = cv::vx_setall_f32(e0sq),
+		                    vE1 = cv::vx_setall_f32(e1sq),
+		                    vS = cv::vx_setall_f32(sinMinSq),
+		                    vHalf = cv::vx_setall_f32(0.5f),
+		                    vZero = cv::vx_setzero_f32(),
+		                    vOne = cv::vx_setall_f32(1.0f),
+		                    vMinusOne = cv::vx_setall_f32(-1.0f),
+		                    vsx = cv::vx_setall_f32(sx),
+		                    vsy = cv::vx_setall_f32(sy),
+		                    vsz = cv::vx_setall_f32(sz);
+		for (int c = 0; c < cols; c += kLanes)
 		{
-			const cv::v_float32x4 px = cv::v_load(X + c),
-			                      py = cv::v_load(Y + c),
-			                      pz = cv::v_load(Z + c),
-			                      pv = cv::v_load(V + c);
-			cv::v_float32x4 ex[4], ey[4], ez[4], el[4];
+			const cv::v_float32 px = cv::vx_load(X + c),
+			                    py = cv::vx_load(Y + c),
+			                    pz = cv::vx_load(Z + c),
+			                    pv = cv::vx_load(V + c);
+			cv::v_float32 ex[4], ey[4], ez[4], el[4];
 			for (int k = 0; k < 4; k++)
 			{
-				cv::v_float32x4 dx = cv::v_load(Xn[k] + c) - px;
-				cv::v_float32x4 dy = cv::v_load(Yn[k] + c) - py;
-				cv::v_float32x4 dz = cv::v_load(Zn[k] + c) - pz;
-				cv::v_float32x4 d2 = dx * dx + dy * dy + dz * dz;
+				cv::v_float32 dx = cv::vx_load(Xn[k] + c) - px;
+				cv::v_float32 dy = cv::vx_load(Yn[k] + c) - py;
+				cv::v_float32 dz = cv::vx_load(Zn[k] + c) - pz;
+				cv::v_float32 d2 = dx * dx + dy * dy + dz * dz;
 				// Accepted when both are valid and eps0 <= |d| <= eps1.
-				const cv::v_float32x4 acc =
-				    (cv::v_load(Vn[k] + c) * pv > vHalf) & (d2 >= vE0) &
+				const cv::v_float32 acc =
+				    (cv::vx_load(Vn[k] + c) * pv > vHalf) & (d2 >= vE0) &
 				    (d2 <= vE1);
 				ex[k] = dx & acc;
 				ey[k] = dy & acc;
@@ -200,17 +209,17 @@ void NormalImage::compute(const Sweep& sweep)
 			// toward the sensor before summing. Near-parallel pairs (e.g.
 			// opposite neighbours) only add noise and are skipped; so are
 			// pairs with a rejected neighbour (zero edge).
-			const cv::v_float32x4 vx = vsx - px, vy = vsy - py, vz = vsz - pz;
-			cv::v_float32x4 nx = vZero, ny = vZero, nz = vZero;
+			const cv::v_float32 vx = vsx - px, vy = vsy - py, vz = vsz - pz;
+			cv::v_float32 nx = vZero, ny = vZero, nz = vZero;
 			for (int a = 0; a < 3; a++)
 				for (int b = a + 1; b < 4; b++)
 				{
-					const cv::v_float32x4 cx = ey[a] * ez[b] - ez[a] * ey[b];
-					const cv::v_float32x4 cy = ez[a] * ex[b] - ex[a] * ez[b];
-					const cv::v_float32x4 cz = ex[a] * ey[b] - ey[a] * ex[b];
-					const cv::v_float32x4 c2 = cx * cx + cy * cy + cz * cz;
-					const cv::v_float32x4 keep = c2 > vS * el[a] * el[b];
-					const cv::v_float32x4 sgn =
+					const cv::v_float32 cx = ey[a] * ez[b] - ez[a] * ey[b];
+					const cv::v_float32 cy = ez[a] * ex[b] - ex[a] * ez[b];
+					const cv::v_float32 cz = ex[a] * ey[b] - ey[a] * ex[b];
+					const cv::v_float32 c2 = cx * cx + cy * cy + cz * cz;
+					const cv::v_float32 keep = c2 > vS * el[a] * el[b];
+					const cv::v_float32 sgn =
 					    cv::v_select(
 					        cx * vx + cy * vy + cz * vz >= vZero, vOne,
 					        vMinusOne) &
@@ -223,20 +232,20 @@ void NormalImage::compute(const Sweep& sweep)
 			cv::v_store(NY + c, ny);
 			cv::v_store(NZ + c, nz);
 		}
-		// Normalise, 4 at a time, stored interleaved (x y z per pixel).
+		// Normalise, kLanes at a time, stored interleaved (x y z per pixel).
 		float* N = m_normals.ptr<float>(r);
 		uint8_t* NM = m_normalMask.ptr<uint8_t>(r);
-		const cv::v_float32x4 tiny = cv::v_setall_f32(1e-24f);
+		const cv::v_float32 tiny = cv::vx_setall_f32(1e-24f);
 		int c = 0;
-		for (; c + 4 <= cols; c += 4)
+		for (; c + kLanes <= cols; c += kLanes)
 		{
-			const cv::v_float32x4 x = cv::v_load(NX + c),
-			                      y = cv::v_load(NY + c),
-			                      z = cv::v_load(NZ + c);
-			const cv::v_float32x4 l2 = x * x + y * y + z * z;
-			const cv::v_float32x4 ok = l2 > tiny;
-			const cv::v_float32x4 inv = cv::v_select(
-			    ok, cv::v_invsqrt(cv::v_max(l2, tiny)), cv::v_setzero_f32());
+			const cv::v_float32 x = cv::vx_load(NX + c),
+			                    y = cv::vx_load(NY + c),
+			                    z = cv::vx_load(NZ + c);
+			const cv::v_float32 l2 = x * x + y * y + z * z;
+			const cv::v_float32 ok = l2 > tiny;
+			const cv::v_float32 inv = cv::v_select(
+			    ok, cv::v_invsqrt(cv::v_max(l2, tiny)), cv::vx_setzero_f32());
 			cv::v_store_interleave(N + 3 * c, x * inv, y * inv, z * inv);
 		}
 		for (; c < cols; c++)

@@ -481,45 +481,47 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 			       (std::abs(RG[p] - RG[q]) <= maxStep) &
 			       (!angular | (NS[p].dot(NS[q]) >= cosJoin));
 		};
-		// The same test on 4 pairs (p, p + step) at a time; lane k of the
-		// result is 1 where pixel p + k joins its neighbour.
+		// The same test on kLanes pairs (p, p + step) at a time (the widest
+		// vectors the build allows); lane k of the result is 1 where pixel
+		// p + k joins its neighbour.
+		constexpr int kLanes = cv::v_uint32::nlanes;
 		const float* NSf = NS[0].val;
-		const cv::v_float32x4 vMaxStep = cv::v_setall_f32(maxStep),
-		                      vCosJoin = cv::v_setall_f32(cosJoin);
-		const cv::v_uint32x4 vNone = cv::v_setall_u32(kNone),
-		                     vVert = cv::v_setall_u32(kVertical),
-		                     vObl = cv::v_setall_u32(kOblique),
-		                     vOne = cv::v_setall_u32(1);
-		const cv::v_int32x4 vZero = cv::v_setzero_s32();
-		auto ok4 = [&](int p, int step, unsigned out[4])
+		const cv::v_float32 vMaxStep = cv::vx_setall_f32(maxStep),
+		                    vCosJoin = cv::vx_setall_f32(cosJoin);
+		const cv::v_uint32 vNone = cv::vx_setall_u32(kNone),
+		                   vVert = cv::vx_setall_u32(kVertical),
+		                   vObl = cv::vx_setall_u32(kOblique),
+		                   vOne = cv::vx_setall_u32(1);
+		const cv::v_int32 vZero = cv::vx_setzero_s32();
+		auto joinLanes = [&](int p, int step, unsigned* out)
 		{
 			const int q = p + step;
-			const cv::v_uint32x4 cp = cv::v_load_expand_q(CL + p),
-			                     cq = cv::v_load_expand_q(CL + q);
-			const cv::v_int32x4 ap = cv::v_load(A + p), aq = cv::v_load(A + q);
-			const cv::v_float32x4 rp = cv::v_load(RG + p),
-			                      rq = cv::v_load(RG + q);
-			cv::v_float32x4 ax, ay, az, bx, by, bz;
+			const cv::v_uint32 cp = cv::vx_load_expand_q(CL + p),
+			                   cq = cv::vx_load_expand_q(CL + q);
+			const cv::v_int32 ap = cv::vx_load(A + p), aq = cv::vx_load(A + q);
+			const cv::v_float32 rp = cv::vx_load(RG + p),
+			                    rq = cv::vx_load(RG + q);
+			cv::v_float32 ax, ay, az, bx, by, bz;
 			cv::v_load_deinterleave(NSf + 3 * p, ax, ay, az);
 			cv::v_load_deinterleave(NSf + 3 * q, bx, by, bz);
-			const cv::v_float32x4 dot = ax * bx + ay * by + az * bz;
-			const cv::v_uint32x4 angular = (cp == vVert) | (cp == vObl);
-			const cv::v_uint32x4 m =
+			const cv::v_float32 dot = ax * bx + ay * by + az * bz;
+			const cv::v_uint32 angular = (cp == vVert) | (cp == vObl);
+			const cv::v_uint32 m =
 			    (cp != vNone) & cv::v_reinterpret_as_u32(ap > vZero) &
 			    (cq == cp) & cv::v_reinterpret_as_u32(aq == ap) &
 			    cv::v_reinterpret_as_u32(cv::v_abs(rp - rq) <= vMaxStep) &
 			    (~angular | cv::v_reinterpret_as_u32(dot >= vCosJoin));
 			cv::v_store(out, m & vOne);
 		};
-		unsigned bits[4];
+		unsigned bits[kLanes];
 		for (int r = 0; r < rows; r++)
 		{
 			const int base = r * cols, end = base + cols;
 			int p = base;
-			for (; p + 4 < end; p += 4)
+			for (; p + kLanes < end; p += kLanes)
 			{
-				ok4(p, 1, bits);
-				for (int k = 0; k < 4; k++)
+				joinLanes(p, 1, bits);
+				for (int k = 0; k < kLanes; k++)
 				{
 					J[p + k] |= static_cast<uint8_t>(bits[k]);
 					J[p + k + 1] |= static_cast<uint8_t>(bits[k] << 1);
@@ -532,10 +534,10 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 				J[p + 1] |= static_cast<uint8_t>(right << 1);
 			}
 			if (r + 1 == rows) continue;
-			for (p = base; p + 4 <= end; p += 4)
+			for (p = base; p + kLanes <= end; p += kLanes)
 			{
-				ok4(p, cols, bits);
-				for (int k = 0; k < 4; k++)
+				joinLanes(p, cols, bits);
+				for (int k = 0; k < kLanes; k++)
 				{
 					J[p + k] |= static_cast<uint8_t>(bits[k] << 2);
 					J[p + k + cols] |= static_cast<uint8_t>(bits[k] << 3);
@@ -662,8 +664,9 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 		const std::vector<uint8_t>& hasSide = m_groupSplit;
 		// Unsplit groups: the sum of their pieces' statistics.
 		std::vector<int> newId(ns, -1);
-		std::vector<Surface> combined;
-		combined.reserve(ns);
+		// (Built in a member buffer, swapped in: no allocation per call.)
+		std::vector<Surface>& combined = m_combined;
+		combined.clear();
 		for (int i = 0; i < ns; i++)
 		{
 			const int g = m_parent[i];
@@ -697,27 +700,39 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 			c.minC = std::min(c.minC, a.minC);
 			c.maxC = std::max(c.maxC, a.maxC);
 		}
-		const bool anySplit =
-		    std::find(hasSide.begin(), hasSide.end(), 1) != hasSide.end();
-		if (anySplit) m_group.resize(n);
-		// The split groups' pixels, row-major, are numbered below and
-		// summed up in computeSurfaceStats().
-		m_splitPix.clear();
-		for (int p = 0; p < n; p++)
+		// Pixels of unsplit groups take their group's id, those of split
+		// groups -2 (to label below). (finalOf is indexed by id + 1.)
+		m_finalOf.assign(ns + 1, -1);
+		for (int i = 0; i < ns; i++)
 		{
-			const int s = m_surf[p];
-			if (s < 0) continue;
-			const int g = m_parent[s];
-			if (hasSide[g])
+			const int g = m_parent[i];
+			m_finalOf[i + 1] = hasSide[g] ? -2 : newId[g];
+		}
+		{
+			const int* F = m_finalOf.data() + 1;
+			int* SF = m_surf.data();
+			for (int p = 0; p < n; p++) SF[p] = F[SF[p]];
+		}
+		// The split groups' pixels (their slots' pixels), row-major, are
+		// numbered below and summed up in computeSurfaceStats().
+		m_splitPix.clear();
+		int splitGroups = 0;
+		for (std::size_t k = 0; k < m_slotGroup.size(); k++)
+		{
+			const int g = m_slotGroup[k];
+			if (!hasSide[g]) continue;
+			splitGroups++;
+			if (m_group.size() != static_cast<std::size_t>(n))
+				m_group.resize(n);
+			for (int i = m_slotStart[k]; i < m_slotStart[k + 1]; i++)
 			{
+				const int p = m_slotPix[i];
 				m_group[p] = g;
-				m_surf[p] = -2;  // to label below
 				m_splitPix.push_back(p);
 			}
-			else
-				m_surf[p] = newId[g];
 		}
-		m_surfaces = std::move(combined);
+		if (splitGroups > 1) std::sort(m_splitPix.begin(), m_splitPix.end());
+		std::swap(m_surfaces, combined);
 		m_surfLoose.assign(count, -1);
 		for (int i = 0; i < ns; i++)
 			if (!hasSide[m_parent[i]] && m_surfLoose[newId[m_parent[i]]] < 0)
@@ -913,6 +928,8 @@ void RuleClassifier::splitPlanes()
 	const int rows = m_rows, cols = m_cols, n = rows * cols;
 	m_side.assign(n, 0);
 	m_groupSplit.assign(m_surfaces.size(), 0);
+	m_slotGroup.clear();
+	m_slotStart.assign(1, 0);
 	if (m_options.planeSplitOffset <= 0) return;
 	const auto* P = m_points->ptr<cv::Vec3f>(0);
 	const int ns = static_cast<int>(m_surfaces.size());
@@ -970,6 +987,7 @@ void RuleClassifier::splitPlanes()
 		cv::Vec3d m;
 		if (!normalOf(a, b, d, m)) continue;
 		slot[i] = nSlots++;
+		m_slotGroup.push_back(i);
 		normal.push_back(m);
 		offset.push_back(m[0] * cx + m[1] * cy);
 	}
@@ -985,7 +1003,9 @@ void RuleClassifier::splitPlanes()
 		if (slot[i] >= 0) start[slot[i] + 1] = groups[i].count;
 	}
 	for (int k = 0; k < nSlots; k++) start[k + 1] += start[k];
-	std::vector<int> pix(start[nSlots]);
+	m_slotStart = start;
+	std::vector<int>& pix = m_slotPix;
+	pix.resize(start[nSlots]);
 	{
 		std::vector<int> fill(start.begin(), start.end() - 1);
 		const int* slotOf = slotOfSurface.data() + 1;
@@ -1419,37 +1439,45 @@ void RuleClassifier::classify(
 	const float cosDown =
 	    static_cast<float>(std::cos(o.ceilingNormalTolerance));
 	const float sinVert = static_cast<float>(std::sin(o.wallNormalTolerance));
-	const bool smooth = o.normalSmoothingHalfWidth > 0;
-	if (smooth)
+	m_class.resize(n);
+	auto classifyRow = [&](int r, const cv::Vec3f* N)
 	{
-		detail::boxSum(
-		    normals.normals(), o.normalSmoothingHalfWidth, m_smoothSum, m_tmp);
+		const int base = r * cols;
+		for (int c = 0; c < cols; c++)
+		{
+			const int p = base + c;
+			const float nz = N[c][2];
+			m_class[p] = !PM[p] || !NM[p]          ? kNone
+			             : nz >= cosUp             ? kUp
+			             : nz <= -cosDown          ? kDown
+			             : std::abs(nz) <= sinVert ? kVertical
+			                                       : kOblique;
+		}
+	};
+	if (o.normalSmoothingHalfWidth > 0)
+	{
+		// Box sums normalised and classified row by row.
+		m_smoothSum.create(rows, cols, CV_32FC3);
+		detail::boxSumRows(
+		    normals.normals(), o.normalSmoothingHalfWidth, m_tmp,
+		    [&](int r) { return m_smoothSum.ptr<float>(r); },
+		    [&](int r, const float*)
+		    {
+			    auto* S = m_smoothSum.ptr<cv::Vec3f>(r);
+			    for (int c = 0; c < cols; c++)
+			    {
+				    const float l2 = S[c].dot(S[c]);
+				    S[c] = l2 > 1e-24f ? S[c] * (1.0f / std::sqrt(l2))
+				                       : cv::Vec3f(0, 0, 0);
+			    }
+			    classifyRow(r, S);
+		    });
 		m_ns = &m_smoothSum;
 	}
 	else
-		m_ns = &normals.normals();
-	// Smoothed normals normalised in place, and classified, in one pass.
-	auto* S = smooth ? m_smoothSum.ptr<cv::Vec3f>(0) : nullptr;
-	const auto* NS = m_ns->ptr<cv::Vec3f>(0);
-	m_class.resize(n);
-	for (int p = 0; p < n; p++)
 	{
-		if (smooth)
-		{
-			const float l2 = S[p].dot(S[p]);
-			S[p] = l2 > 1e-24f ? S[p] * (1.0f / std::sqrt(l2))
-			                   : cv::Vec3f(0, 0, 0);
-		}
-		if (!PM[p] || !NM[p])
-		{
-			m_class[p] = kNone;
-			continue;
-		}
-		const float nz = NS[p][2];
-		m_class[p] = nz >= cosUp               ? kUp
-		             : nz <= -cosDown          ? kDown
-		             : std::abs(nz) <= sinVert ? kVertical
-		                                       : kOblique;
+		m_ns = &normals.normals();
+		for (int r = 0; r < rows; r++) classifyRow(r, m_ns->ptr<cv::Vec3f>(r));
 	}
 
 	const auto t1 = std::chrono::steady_clock::now();
@@ -1655,32 +1683,39 @@ void RuleClassifier::classify(
 		int8_t* LB = m_label.data();
 		int* OW = m_owner.data();
 		const int* SF = m_surf.data();
+		// m_seed: 1 on valid pixels without a label (the leftovers).
+		m_seed.resize(n);
+		uint8_t* FR = m_seed.data();
 		for (int p = 0; p < n; p++)
 		{
 			const int s = SF[p];
 			const int8_t l = SL[s];  // s >= -1
 			LB[p] = l;
 			OW[p] = l != kNoLabel ? s : -1;
+			FR[p] = (PM[p] != 0) & (l == kNoLabel);
 		}
 	}
 	if (o.classifyLeftoverPixels)
 	{
-		// Seeds: labelled pixels next to a valid unlabelled one, in
-		// row-major order (marked from the unlabelled side: they are few;
-		// then collected in order).
-		m_seed.assign(n, 0);
-		for (int q = 0; q < n; q++)
+		// Seeds: labelled pixels next to a leftover, in row-major order.
+		const uint8_t* FR = m_seed.data();
+		const int8_t* LB = m_label.data();
+		m_zeroRow.assign(cols, 0);
+		for (int r = 0; r < rows; r++)
 		{
-			if (!PM[q] || m_owner[q] >= 0) continue;
-			const int r = RO[q], c = CO[q];
-			const int nb[4] = {
-			    c > 0 ? q - 1 : -1, c + 1 < cols ? q + 1 : -1,
-			    r > 0 ? q - cols : -1, r + 1 < rows ? q + cols : -1};
-			for (int p : nb)
-				if (p >= 0 && m_owner[p] >= 0) m_seed[p] = 1;
+			const int base = r * cols;
+			const uint8_t* F = FR + base;
+			const uint8_t* up = r + 1 < rows ? F + cols : m_zeroRow.data();
+			const uint8_t* down = r > 0 ? F - cols : m_zeroRow.data();
+			for (int c = 0; c < cols; c++)
+			{
+				const int near = (c > 0 ? F[c - 1] : 0) |
+				                 (c + 1 < cols ? F[c + 1] : 0) | up[c] |
+				                 down[c];
+				if ((near != 0) & (LB[base + c] != kNoLabel))
+					m_stack.push_back(base + c);
+			}
 		}
-		for (int p = 0; p < n; p++)
-			if (m_seed[p]) m_stack.push_back(p);
 	}
 	if (o.classifyLeftoverPixels)
 	{

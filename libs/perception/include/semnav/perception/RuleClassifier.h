@@ -218,7 +218,8 @@ private:
 	std::vector<uint8_t> m_groupSplit;
 	std::vector<int> m_splitPix;
 	std::vector<uint64_t> m_pairs;    ///< mergeCoplanar()'s surface pairs
-	std::vector<uint8_t> m_seed;      ///< leftover growth's seeds
+	std::vector<uint8_t> m_seed;      ///< leftover pixels (valid, no label)
+	std::vector<uint8_t> m_zeroRow;   ///< zeros beyond the image's rows
 	std::vector<int8_t> m_surfLabel;  ///< label per surface id + 1
 	/** splitPlanes()'s sums per group (those the plane fit needs). */
 	struct GroupSums
@@ -230,6 +231,12 @@ private:
 	std::vector<int> m_surf, m_group, m_stack, m_parent, m_loose, m_surfLoose,
 	    m_uf;
 	std::vector<Surface> m_surfaces;
+	std::vector<Surface> m_combined;  ///< pass 2's surfaces, swapped in
+	/** splitPlanes()' slots (vertical groups examined): their root
+	 * surfaces, and their pixels (row-major per slot, slot k from
+	 * m_slotStart[k]). */
+	std::vector<int> m_slotGroup, m_slotStart, m_slotPix;
+	std::vector<int> m_finalOf;  ///< pass 2: new id per pass-1 id + 1
 	std::vector<int8_t> m_label;
 	std::vector<int> m_owner;
 	std::vector<int> m_rowOf, m_colOf;
