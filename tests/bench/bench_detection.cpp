@@ -1,15 +1,16 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // Haar cascade detection (issue 4): all three cascades (washbasin,
 // wastebasket, stairs) on one 211 x 361 simulated sweep (panoramic image,
-// near + far passes, 3D size check): as configured in config/cascade.ini,
-// with object proposals (windows around the regions the rule classifier
-// left to objects, at the sizes the class can have there) and over the
-// whole image (the paper's search, as before the proposals), against
-// baselines in the same run: the whole-image search without the far
-// (upscaled) passes and OpenCV's own frontal-face Haar cascade on the same
-// image. Perception (normals, labels) runs once, outside the timing. The
-// counters split the detector's time (ms): detection image, proposals,
-// cascades, 3D size check. At the end the medians (or means without
+// near + far passes, 3D size check): as configured in config/cascade.ini
+// (range_scales: every window at the scales its range allows, around
+// object points), without the object-point condition, with object proposals
+// (windows around the regions the rule classifier left to objects, at the sizes
+// the class can have there) and over the whole image (the paper's search, as
+// before the proposals), against baselines in the same run: the whole-image
+// search without the far (upscaled) passes and OpenCV's own frontal-face Haar
+// cascade on the same image. Perception (normals, labels) runs once, outside
+// the timing. The counters split the detector's time (ms): detection image,
+// proposals, cascades, 3D size check. At the end the medians (or means without
 // repetitions) are compared. Run
 //   bench_detection --benchmark_repetitions=5
 //   --benchmark_report_aggregates_only=true
@@ -128,7 +129,8 @@ void runDetector(benchmark::State& state, CascadeDetector::TOptions opts)
 	state.counters["cols"] = double(in.sweep.cols());
 }
 
-/** All three cascades as shipped (config/cascade.ini). */
+/** All three cascades as shipped (config/cascade.ini: range_scales, the
+ * whole image searched at the scales each window's range allows). */
 void BM_ThreeCascades(benchmark::State& s)
 {
 	runDetector(s, shipped());
@@ -143,11 +145,25 @@ void BM_ThreeCascadesProposals(benchmark::State& s)
 }
 
 /** Baseline: the same cascades over the whole image (every window of the
- * near and far passes), as before the proposals. */
+ * near and far passes, detectMultiScale), as before the proposals and the
+ * range-gated search. */
 void BM_ThreeCascadesWholeImage(benchmark::State& s)
 {
 	auto o = shipped();
 	o.proposals = false;
+	o.rangeScales = false;
+	runDetector(s, o);
+}
+
+/** The range-gated search without the object-point condition
+ * (range_objects_only = false): windows at the scales their range allows,
+ * anywhere. */
+void BM_ThreeCascadesRangeScalesAnywhere(benchmark::State& s)
+{
+	auto o = shipped();
+	o.proposals = false;
+	o.rangeScales = true;
+	o.rangeObjectsOnly = false;
 	runDetector(s, o);
 }
 
@@ -156,6 +172,7 @@ void BM_ThreeCascadesWholeImageNoUpscaling(benchmark::State& s)
 {
 	auto o = shipped();
 	o.proposals = false;
+	o.rangeScales = false;
 	for (auto& k : o.classes) k.farUpscale = 0;
 	runDetector(s, o);
 }
@@ -211,6 +228,9 @@ BENCHMARK(BM_ThreeCascadesProposals)
 BENCHMARK(BM_ThreeCascadesWholeImage)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+BENCHMARK(BM_ThreeCascadesRangeScalesAnywhere)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_ThreeCascadesWholeImageNoUpscaling)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
@@ -262,5 +282,10 @@ int main(int argc, char** argv)
 		std::printf(
 		    "proposals: %.1f times faster than the whole-image search\n",
 		    rep.ms.at(base) / rep.ms.at("BM_ThreeCascadesProposals"));
+	if (has("BM_ThreeCascades"))
+		std::printf(
+		    "shipped (range_scales): %.1f times faster than the whole-image "
+		    "search\n",
+		    rep.ms.at(base) / rep.ms.at("BM_ThreeCascades"));
 	return 0;
 }

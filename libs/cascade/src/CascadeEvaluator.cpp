@@ -2,10 +2,17 @@
 #include <semnav/cascade/CascadeError.h>
 #include <semnav/cascade/CascadeEvaluator.h>
 
+#include <cstddef>
+
 #include "CompiledFeature.h"
 
 namespace semnav
 {
+// evaluateStages indexes the leaves as an array.
+static_assert(
+    offsetof(HaarCascade::Stump, right) ==
+    offsetof(HaarCascade::Stump, left) + sizeof(float));
+
 CascadeEvaluator::CascadeEvaluator(HaarCascade cascade)
     : m_cascade(std::move(cascade))
 {
@@ -91,7 +98,10 @@ CascadeEvaluator::Result CascadeEvaluator::evaluateStages(
 		{
 			// OpenCV: double value = optfeature.calc(pwin) * nf (float).
 			const double value = m_compiled[st.featureIdx].calc(sum, tilt) * nf;
-			tmp += value < st.threshold ? st.left : st.right;
+			// Branch-free leaf (left, right adjacent): the comparison is
+			// unpredictable, a mispredicted jump cost more than the stump.
+			const float* leaves = &st.left;
+			tmp += leaves[!(value < st.threshold)];
 		}
 		res.sum = tmp;
 		if (tmp < stage.threshold - detail::kStageThresholdEps)

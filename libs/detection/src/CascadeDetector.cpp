@@ -2,7 +2,9 @@
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileBase.h>
 #include <semnav/cascade/CascadeError.h>
+#include <semnav/cascade/CascadeEvaluator.h>
 #include <semnav/cascade/CascadeXml.h>
+#include <semnav/cascade/RangeGate.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
 #include <semnav/common/Percentile.h>
@@ -255,7 +257,11 @@ const std::vector<std::string>& CascadeDetector::TOptions::knownKeys()
 	    "proposal_fill",
 	    "proposal_range_gap_m",
 	    "proposal_top_margin_m",
-	    "proposal_size_check"};
+	    "proposal_size_check",
+	    "range_scales",
+	    "range_scale_slack",
+	    "range_cut_m",
+	    "range_objects_only"};
 	return keys;
 }
 
@@ -308,6 +314,12 @@ void CascadeDetector::TOptions::loadFromConfigFile(
 	    readChecked(c, s, "proposal_top_margin_m", proposalTopMargin, 0, 10);
 	o.proposalSizeCheck =
 	    readCheckedBool(c, s, "proposal_size_check", proposalSizeCheck);
+	o.rangeScales = readCheckedBool(c, s, "range_scales", rangeScales);
+	o.rangeScaleSlack =
+	    readChecked(c, s, "range_scale_slack", rangeScaleSlack, 1, 10);
+	o.rangeCut = readChecked(c, s, "range_cut_m", rangeCut, 0, 100);
+	o.rangeObjectsOnly =
+	    readCheckedBool(c, s, "range_objects_only", rangeObjectsOnly);
 	std::string list;
 	for (const auto& k : classes) list += labelName(k.label) + " ";
 	list = c.read_string(s, "classes", list, false);
@@ -366,6 +378,12 @@ void CascadeDetector::TOptions::saveToConfigFile(
 	c.write(
 	    s, "proposal_size_check",
 	    std::string(proposalSizeCheck ? "true" : "false"));
+	c.write(s, "range_scales", std::string(rangeScales ? "true" : "false"));
+	c.write(s, "range_scale_slack", num(rangeScaleSlack));
+	c.write(s, "range_cut_m", num(rangeCut));
+	c.write(
+	    s, "range_objects_only",
+	    std::string(rangeObjectsOnly ? "true" : "false"));
 	for (const auto& k : classes)
 		k.saveToConfigFile(c, s + "." + labelName(k.label));
 }
@@ -388,6 +406,19 @@ CascadeDetector::TOptions CascadeDetector::TOptions::fromIniFile(
 	return o;
 }
 
+RangeGate CascadeDetector::TOptions::rangeGate(
+    const TClassOptions& c, double step, double upscale) const
+{
+	RangeGate g;
+	// The training window is the object's larger side + 15 %.
+	g.perSide = 1.15 * upscale / step;
+	g.lo = c.minSize / rangeScaleSlack;
+	g.loCut = c.minCutSize / rangeScaleSlack;
+	g.hi = c.maxSize * rangeScaleSlack;
+	g.cutRange = rangeCut;
+	return g;
+}
+
 const CascadeDetector::TClassOptions& CascadeDetector::TOptions::classOptions(
     Label l) const
 {
@@ -407,6 +438,8 @@ std::string CascadeDetector::TOptions::cascadePath(const TClassOptions& c) const
 struct CascadeDetector::Impl
 {
 	std::vector<cv::CascadeClassifier> classifiers;
+	/** The same cascades for the range-gated search (range_scales). */
+	std::vector<CascadeEvaluator> evaluators;
 	std::vector<cv::Size> windows;
 	/** Scaled detection images by upscale, shared by the classes within
 	 * one detectCandidates() call. */
@@ -436,6 +469,7 @@ CascadeDetector::CascadeDetector(const TOptions& options)
 			throw CascadeError("cv::CascadeClassifier cannot load " + path);
 		m_impl->classifiers.push_back(std::move(cc));
 		m_impl->windows.push_back(c.windowSize);
+		m_impl->evaluators.emplace_back(c);
 	}
 }
 
@@ -459,6 +493,75 @@ std::vector<std::size_t> fixedOrder(
 		           std::tie(rb.y, rb.x, rb.height, rb.width, n[b]);
 	    });
 	return order;
+}
+
+/** detectMultiScale's search (its pyramid levels, window steps, skip after
+ * a stage-0 rejection and grouping) by CascadeEvaluator, but a window is
+ * evaluated only where the range at its centre (the nearest of five
+ * samples in its central half; `range` 0 = none) passes `gate` for its
+ * side. */
+/** detectMultiScale's search (its pyramid levels, window steps, skip after
+ * a stage-0 rejection and grouping) by CascadeEvaluator, but a window is
+ * evaluated only where the range at its centre (the nearest of five
+ * samples in its central half; `range` 0 = none) passes `gate` for its
+ * side. The integral images of a level cover only the windows searched. */
+void rangeGatedDetect(
+    CascadeEvaluator& ev, const cv::Mat& image, const cv::Mat& range,
+    double scaleFactor, int minNeighbors, cv::Size minSize, cv::Size maxSize,
+    const RangeGate& gate, std::vector<cv::Rect>& found,
+    std::vector<int>& weights)
+{
+	found.clear();
+	weights.clear();
+	const cv::Size win = ev.cascade().windowSize;
+	if (maxSize.area() == 0) maxSize = image.size();
+	cv::Mat level, levelRange;
+	std::vector<cv::Point> windows;
+	for (double factor = 1;; factor *= scaleFactor)
+	{
+		const cv::Size ws(
+		    cvRound(win.width * factor), cvRound(win.height * factor));
+		const cv::Size sz(
+		    cvRound(image.cols / factor), cvRound(image.rows / factor));
+		if (sz.width <= win.width || sz.height <= win.height) break;
+		if (ws.width > maxSize.width || ws.height > maxSize.height) break;
+		if (ws.width < minSize.width || ws.height < minSize.height) continue;
+		const double side = std::max(ws.width, ws.height);
+		cv::resize(range, levelRange, sz, 0, 0, cv::INTER_NEAREST);
+		const int nx = sz.width + 1 - win.width;
+		const int ny = sz.height + 1 - win.height;
+		const int step = factor > 2 ? 1 : 2;
+		windows.clear();
+		cv::Rect box;
+		for (int y = 0; y < ny; y += step)
+			for (int x = 0; x < nx; x += step)
+			{
+				const float r = RangeGate::windowRange(levelRange, x, y, win);
+				if (!gate.accepts(r, side)) continue;
+				windows.emplace_back(x, y);
+				box |= cv::Rect(x, y, win.width, win.height);
+			}
+		if (windows.empty()) continue;
+		if (sz == image.size())
+			level = image;
+		else
+			cv::resize(image, level, sz, 0, 0, cv::INTER_LINEAR_EXACT);
+		ev.setImage(level(box));
+		cv::Point skip(-1, -1);
+		for (const cv::Point& w : windows)
+		{
+			// OpenCV skips the next x after a rejection by stage 0.
+			if (w == skip) continue;
+			const auto res = ev.evaluate(w - box.tl());
+			if (ev.accepted(res))
+				found.emplace_back(
+				    cvRound(w.x * factor), cvRound(w.y * factor), ws.width,
+				    ws.height);
+			else if (res.stage == 0)
+				skip = cv::Point(w.x + step, w.y);
+		}
+	}
+	cv::groupRectangles(found, weights, minNeighbors, 0.2);
 }
 }  // namespace
 
@@ -535,7 +638,7 @@ std::vector<CascadeDetector::SearchRegion> CascadeDetector::searchRegions(
 void CascadeDetector::runCascade(
     std::size_t i, const cv::Mat& image, std::vector<cv::Rect>& boxes,
     std::vector<int>& neighbours, const std::vector<ObjectProposal>* proposals,
-    double step)
+    double step, const cv::Mat& range)
 {
 	const TClassOptions& k = m_options.classes.at(i);
 	const cv::Size win = m_impl->windows[i];
@@ -631,8 +734,31 @@ void CascadeDetector::runCascade(
 		}
 		found.clear();
 		n.clear();
-		classifier.detectMultiScale(
-		    band, found, n, k.scaleFactor, k.minNeighbors, 0, minSize, maxSize);
+		if (m_options.rangeScales && !range.empty() && step > 0)
+		{
+			// The band's ranges, scaled and padded as the band.
+			cv::Mat r = range.rowRange(
+			    std::max(0, p.rowBegin), std::min(range.rows, p.rowEnd));
+			if (p.upscale != 1.0)
+				cv::resize(
+				    r, r, band.size() - cv::Size(2 * border, padBelow), 0, 0,
+				    cv::INTER_NEAREST);
+			if (border > 0)
+				cv::copyMakeBorder(
+				    r, r, padBelow, 0, border, border, cv::BORDER_CONSTANT,
+				    cv::Scalar(0));
+			// Window side w band pixels = w / upscale image pixels: an
+			// object of size s (the window's 1 / 1.15) at range
+			// s * 1.15 * upscale / (w * step).
+			rangeGatedDetect(
+			    m_impl->evaluators[i], band, r, k.scaleFactor, k.minNeighbors,
+			    minSize, maxSize, m_options.rangeGate(k, step, p.upscale),
+			    found, n);
+		}
+		else
+			classifier.detectMultiScale(
+			    band, found, n, k.scaleFactor, k.minNeighbors, 0, minSize,
+			    maxSize);
 		n.resize(found.size(), 0);
 		for (std::size_t j : fixedOrder(found, n))
 		{
@@ -914,6 +1040,46 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 			    ((phis.back() - phis.front()) / double(phis.size() - 1) +
 			     (thetas.back() - thetas.front()) / double(thetas.size() - 1));
 	}
+	// range_scales: per class, the horizontal range of the pixels whose
+	// windows are searched (0 elsewhere), in detection-image layout.
+	std::vector<cv::Mat> ranges(m_options.classes.size());
+	if (m_options.rangeScales && !m_options.proposals)
+	{
+		if (phis.size() > 1 && thetas.size() > 1)
+			step =
+			    0.5 *
+			    ((phis.back() - phis.front()) / double(phis.size() - 1) +
+			     (thetas.back() - thetas.front()) / double(thetas.size() - 1));
+		cv::Mat mask;
+		if (m_options.rangeObjectsOnly)
+		{
+			ObjectProposals::Params pp;
+			pp.floorTolerance = m_options.floorTolerance;
+			pp.maxHeight = m_options.proposalMaxHeight;
+			mask = ObjectProposals::objectMask(
+			    points, labels, areaIds, groundZ, pp);
+		}
+		for (std::size_t i = 0; i < m_options.classes.size(); i++)
+		{
+			const double top = m_options.classes[i].maxTop +
+			                   m_options.proposalTopMargin + groundZ;
+			cv::Mat range(points.size(), CV_32F, cv::Scalar(0));
+			for (int r = 0; r < points.rows; r++)
+			{
+				const auto* p = points.ptr<cv::Vec3f>(r);
+				const auto* m = mask.empty() ? nullptr : mask.ptr<uint8_t>(r);
+				auto* d = range.ptr<float>(r);
+				for (int c = 0; c < points.cols; c++)
+					if (std::isfinite(p[c][0]) && std::isfinite(p[c][1]) &&
+					    (!m || (m[c] && p[c][2] <= top)))
+						d[c] = std::hypot(p[c][0], p[c][1]);
+			}
+			if (m_options.panoramic)
+				range =
+				    m_impl->projection.toPanoramic(range, cv::INTER_NEAREST);
+			ranges[i] = range;
+		}
+	}
 	m_timings.proposals = msSince(tp);
 	std::vector<Candidate> out;
 	std::vector<cv::Rect> boxes;
@@ -925,7 +1091,8 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		const auto tc = Clock::now();
 		runCascade(
 		    i, images.at(m_options.channelOf(k)), boxes, neighbours,
-		    m_options.proposals ? &m_impl->proposals.at(i) : nullptr, step);
+		    m_options.proposals ? &m_impl->proposals.at(i) : nullptr, step,
+		    ranges[i]);
 		m_timings.cascades += msSince(tc);
 		const auto tm = Clock::now();
 		const std::size_t first = out.size();

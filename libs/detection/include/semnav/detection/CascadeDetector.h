@@ -2,6 +2,7 @@
 #pragma once
 
 #include <mrpt/config/CLoadableOptions.h>
+#include <semnav/cascade/RangeGate.h>
 #include <semnav/common/Label.h>
 #include <semnav/detection/DetectionImage.h>
 #include <semnav/detection/DetectionPass.h>
@@ -122,6 +123,10 @@ public:
 		static TOptions fromIniFile(
 		    const std::string& path,
 		    const std::string& section = "CascadeDetector");
+		/** The range gate of class `c` (range_scales) for an image whose
+		 * pixels are `step` rad apart, upscaled by `upscale`. */
+		RangeGate rangeGate(
+		    const TClassOptions& c, double step, double upscale) const;
 		/** The class options of `l`; throws ConfigError if not listed. */
 		const TClassOptions& classOptions(Label l) const;
 		/** Resolves a class's cascade path against baseDir. */
@@ -198,6 +203,27 @@ public:
 		 * than min_width_m, or wider than max_width_m / proposal_fill;
 		 * with proposal_size_slack). */
 		bool proposalSizeCheck = true;
+		/** range_scales: the whole-image search evaluates a window only
+		 * at the scales the range at its centre allows: the object it
+		 * would hold (window side / 1.15, as the training window is the
+		 * object's larger side + 15 %) must be between min_cut_size_m /
+		 * range_scale_slack and max_size_m x range_scale_slack (the 20 x 20
+		 * cascade window spans 20 pixels of `step` rad, so a metric size
+		 * fixes its pixel size). Windows whose centre has no range are
+		 * skipped. Runs the project's CascadeEvaluator over the pyramid as
+		 * detectMultiScale does (same levels, steps, grouping). false:
+		 * detectMultiScale on every window. */
+		bool rangeScales = false;
+		/** range_scale_slack: widens the allowed object size both ways. */
+		double rangeScaleSlack = 1.3;
+		/** range_cut_m: closer than this an object may be cut by the lowest
+		 * tilt line (min_cut_size_m applies instead of min_size_m). */
+		double rangeCut = 2.0;
+		/** range_objects_only: windows are searched only around the points
+		 * the rule classifier left to objects (ObjectProposals::objectMask,
+		 * at most max_top_m + proposal_top_margin_m high): one of the five
+		 * range samples must be such a point. */
+		bool rangeObjectsOnly = false;
 		/** Directory relative cascade paths are resolved against. */
 		std::string baseDir = ".";
 	};
@@ -224,7 +250,8 @@ public:
 		bool accepted = false;
 		std::string rejection;
 	};
-	/** Wall-clock times of the last detect(), ms. */
+	/** Wall-clock times of the last detect(), ms (`proposals`: the object
+	 * proposals, or the range images of range_scales). */
 	struct Timings
 	{
 		double image = 0, proposals = 0, cascades = 0, sizeCheck = 0, total = 0;
@@ -273,12 +300,15 @@ public:
 	/** Runs one class's cascade on a detection image; boxes in its pixels,
 	 * with detectMultiScale's neighbour counts. With `proposals` (detection
 	 * image pixels) and `step` (rad per detection-image pixel), only the
-	 * searchRegions() of each pass are searched; without, every window. */
+	 * searchRegions() of each pass are searched; without, every window,
+	 * or with range_scales and a `range` image (CV_32F, horizontal range
+	 * of each detection-image pixel, 0 where none) and `step`, every
+	 * window at the scales its centre's range allows. */
 	void runCascade(
 	    std::size_t classIndex, const cv::Mat& detectionImage,
 	    std::vector<cv::Rect>& boxes, std::vector<int>& neighbours,
-	    const std::vector<ObjectProposal>* proposals = nullptr,
-	    double step = 0);
+	    const std::vector<ObjectProposal>* proposals = nullptr, double step = 0,
+	    const cv::Mat& range = cv::Mat());
 
 	/** Where one pass searches around proposals: an image region and the
 	 * range of window sides (detection-image pixels). */
