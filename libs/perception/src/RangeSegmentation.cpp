@@ -77,40 +77,64 @@ void RangeSegmentation::compute(const Sweep& sweep)
 	const double diff = m_options.maxNeighbourDifference;
 	const int flags =
 	    m_options.connectivity | cv::FLOODFILL_MASK_ONLY | (2 << 8);
+	// Most areas are small (noisy or grazing surfaces): a search bounded to
+	// min_area_px + 1 pixels finds them whole, with cv::floodFill's own
+	// test (floating range, d = a - b in float, -diff <= d <= diff), and
+	// they are set aside without a fill. Larger areas are filled.
+	const float up = static_cast<float>(diff), lo = -up;
+	const int bound = m_options.minAreaPixels + 1;
+	const int mstep = static_cast<int>(m_mask.step1());
+	const int rstep = static_cast<int>(m_range.step1());
+	uint8_t* M0 = m_mask.ptr<uint8_t>(1) + 1;  // pixel (0, 0)
+	const float* R0 = m_range.ptr<float>(0);
+	const bool eight = m_options.connectivity == 8;
+	const int nbR[8] = {0, 0, -1, 1, -1, -1, 1, 1};
+	const int nbC[8] = {-1, 1, 0, 0, -1, 1, -1, 1};
+	const int nNb = eight ? 8 : 4;
 	for (int r = 0; r < rows; r++)
 	{
 		const int* I = m_ids.ptr<int>(r);
 		for (int c = 0; c < cols; c++)
 		{
 			if (I[c] != -1) continue;
-			// A pixel with no joinable neighbour is an area of its own: no
-			// need to call the flood fill (most calls are such on noisy or
-			// grazing surfaces). Same result: it is never > min_area_px.
+			// Bounded search (visited pixels marked 3 in the mask).
+			m_small.clear();
+			m_small.emplace_back(r, c);
+			M0[r * mstep + c] = 3;
+			for (std::size_t h = 0; h < m_small.size() &&
+			                        static_cast<int>(m_small.size()) <= bound;
+			     h++)
 			{
-				const float d = m_range.ptr<float>(r)[c];
-				uint8_t* Mr = m_mask.ptr<uint8_t>(r + 1) + 1;
-				const uint8_t* Mu = m_mask.ptr<uint8_t>(r) + 1;
-				const uint8_t* Md = m_mask.ptr<uint8_t>(r + 2) + 1;
-				auto joinable = [&](const uint8_t* M, int rr, int cc) {
-					return M[cc] == 0 &&
-					       std::abs(m_range.ptr<float>(rr)[cc] - d) <= diff;
-				};
-				bool any = joinable(Mr, r, c - 1) || joinable(Mr, r, c + 1) ||
-				           joinable(Mu, r - 1, c) || joinable(Md, r + 1, c);
-				if (!any && m_options.connectivity == 8)
-					any = joinable(Mu, r - 1, c - 1) ||
-					      joinable(Mu, r - 1, c + 1) ||
-					      joinable(Md, r + 1, c - 1) ||
-					      joinable(Md, r + 1, c + 1);
-				if (!any && m_options.minAreaPixels >= 1)
+				const int pr = m_small[h].first, pc = m_small[h].second;
+				const float d = R0[pr * rstep + pc];
+				for (int k = 0; k < nNb; k++)
 				{
-					Mr[c] = 1;
-					m_ids.ptr<int>(r)[c] = 0;
-					m_sizes[0]++;
-					m_singletons++;
-					continue;
+					const int qr = pr + nbR[k], qc = pc + nbC[k];
+					uint8_t& mq = M0[qr * mstep + qc];  // frame is 1
+					if (mq != 0) continue;
+					const float dd = R0[qr * rstep + qc] - d;
+					if (!(lo <= dd && dd <= up)) continue;
+					mq = 3;
+					m_small.emplace_back(qr, qc);
 				}
 			}
+			const int found = static_cast<int>(m_small.size());
+			if (found < bound)
+			{
+				// The whole area, too small to be numbered.
+				for (const auto& [pr, pc] : m_small)
+				{
+					M0[pr * mstep + pc] = 1;
+					m_ids.ptr<int>(pr)[pc] = 0;
+				}
+				m_sizes[0] += found;
+				if (found == 1)
+					m_singletons++;
+				else
+					m_fills++;
+				continue;
+			}
+			for (const auto& [pr, pc] : m_small) M0[pr * mstep + pc] = 0;
 			cv::Rect box;
 			const int n = cv::floodFill(
 			    m_range, m_mask, cv::Point(c, r), cv::Scalar(0), &box,

@@ -61,27 +61,31 @@ void Roughness::compute(const NormalImage& normals, const cv::Mat& areaIds)
 	// R = n . (S - n) / (N - 1), S and N the sums of normals and of the
 	// normal mask over the window (box filters: O(1) per pixel). Normals are
 	// 0 where there is none, so S only counts pixels with a normal.
+	// (S row by row: the sums of normals are used once.)
 	normals.normalMask().convertTo(m_mask, CV_32F);
-	detail::boxSum(*n, m_options.windowHalfWidth, m_sumN, m_tmp);
 	detail::boxSum(m_mask, m_options.windowHalfWidth, m_sumM, m_tmp);
-	for (int r = 0; r < rows; r++)
-	{
-		const auto* N = n->ptr<cv::Vec3f>(r);
-		const auto* S = m_sumN.ptr<cv::Vec3f>(r);
-		const float* C = m_sumM.ptr<float>(r);
-		const uint8_t* NM = normals.normalMask().ptr<uint8_t>(r);
-		float* R = m_r.ptr<float>(r);
-		for (int c = 0; c < cols; c++)
-		{
-			const float cnt = C[c] - 1.0f;
-			if (!NM[c] || cnt < 0.5f)
-			{
-				R[c] = nan;
-				continue;
-			}
-			R[c] = (N[c].dot(S[c]) - N[c].dot(N[c])) / cnt;
-		}
-	}
+	m_rowSum.resize(static_cast<std::size_t>(cols) * 3);
+	detail::boxSumRows(
+	    *n, m_options.windowHalfWidth, m_tmp,
+	    [&](int) { return m_rowSum.data(); },
+	    [&](int r, const float* sums)
+	    {
+		    const auto* N = n->ptr<cv::Vec3f>(r);
+		    const auto* S = reinterpret_cast<const cv::Vec3f*>(sums);
+		    const float* C = m_sumM.ptr<float>(r);
+		    const uint8_t* NM = normals.normalMask().ptr<uint8_t>(r);
+		    float* R = m_r.ptr<float>(r);
+		    for (int c = 0; c < cols; c++)
+		    {
+			    const float cnt = C[c] - 1.0f;
+			    if (!NM[c] || cnt < 0.5f)
+			    {
+				    R[c] = nan;
+				    continue;
+			    }
+			    R[c] = (N[c].dot(S[c]) - N[c].dot(N[c])) / cnt;
+		    }
+	    });
 	squareMeans(
 	    m_r, areaIds, m_options.squareWidth, m_options.minSquarePixels, m_rBar);
 }

@@ -581,6 +581,7 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 			}
 		}
 		m_surf.assign(n, -1);
+		m_fillStack.resize(n);
 		// Numbers the surface of `seed` if it has none yet: an up- or
 		// down-facing component by its root, else a fill from it. (Every
 		// pixel of a new surface lies at or after its seed.)
@@ -612,11 +613,13 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 			cv::Vec3f mean(0, 0, 0);  // running normal sum
 			float mean2 = 0;
 			m_surf[seed] = id;
-			m_stack.push_back(seed);
-			while (!m_stack.empty())
+			// (A pixel enters the stack once: n slots suffice.)
+			int* stack = m_fillStack.data();
+			int top = 0;
+			stack[top++] = seed;
+			while (top > 0)
 			{
-				const int p = m_stack.back();
-				m_stack.pop_back();
+				const int p = stack[--top];
 				const uint8_t j = m_join[p];
 				mean += NS[p];
 				mean2 = mean.dot(mean);
@@ -632,7 +635,7 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 					const float d = NS[q].dot(mean);
 					if (d < 0 || d * d < cosSpread2 * mean2) continue;
 					m_surf[q] = id;
-					m_stack.push_back(q);
+					stack[top++] = q;
 				}
 			}
 		};

@@ -6,6 +6,7 @@
 
 #include <opencv2/core/mat.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace semnav
@@ -53,10 +54,10 @@ public:
 	int areaCount() const { return static_cast<int>(m_sizes.size()) - 1; }
 	/** Pixels of area i (index 0: pixels in no area, invalid included). */
 	const std::vector<int>& areaSizes() const { return m_sizes; }
-	/** Flood fills run (areas before the size test). */
+	/** Areas of two or more pixels found (before the size test); those
+	 * larger than min_area_px by cv::floodFill. */
 	int fills() const { return m_fills; }
-	/** Pixels with no joinable neighbour (areas of one pixel, found without
-	 * a flood fill). */
+	/** Pixels with no joinable neighbour (areas of one pixel). */
 	int singletons() const { return m_singletons; }
 
 	const TOptions& options() const { return m_options; }
@@ -70,6 +71,7 @@ private:
 	cv::Mat m_range, m_mask, m_ids;
 	std::vector<int> m_sizes;
 	int m_fills = 0, m_singletons = 0;
+	std::vector<std::pair<int, int>> m_small;  ///< a small area's pixels
 };
 
 }  // namespace semnav

@@ -81,8 +81,8 @@ public:
 
 private:
 	TOptions m_options;
-	cv::Mat m_r, m_rBar, m_n, m_mask, m_sumN, m_sumM, m_smooth;
-	std::vector<float> m_tmp;
+	cv::Mat m_r, m_rBar, m_n, m_mask, m_sumM, m_smooth;
+	std::vector<float> m_tmp, m_rowSum;
 };
 
 }  // namespace semnav
