@@ -154,7 +154,8 @@ private:
 	const int* m_areas;
 	const int m_last;
 	int m_id = -1, m_count = 0, m_r = 0, m_c0 = 0, m_c1 = 0;
-	cv::v_float32x4 m_sumP, m_sumN, m_lo, m_hi;
+	cv::v_float32x4 m_sumP = cv::v_setzero_f32(), m_sumN = cv::v_setzero_f32(),
+	                m_lo = cv::v_setzero_f32(), m_hi = cv::v_setzero_f32();
 	float m_xx = 0, m_xy = 0, m_yy = 0;
 };
 
@@ -1939,32 +1940,10 @@ void RuleClassifier::buildRegions(LabeledSweep& out, const cv::Mat& rBar)
 		if (regOf[s] < 0) regOf[s] = count++;
 		RI[p] = regOf[s];
 	}
-	m_stack.clear();
-	for (int seed = 0; seed < n; seed++)
-	{
-		if (RI[seed] >= 0 || L[seed] == 0) continue;
-		const int id = count++;
-		const uint8_t l = L[seed];
-		RI[seed] = id;
-		m_stack.push_back(seed);
-		while (!m_stack.empty())
-		{
-			const int p = m_stack.back();
-			m_stack.pop_back();
-			const int r = RO[p], c = CO[p];
-			const int nb[4] = {
-			    c > 0 ? p - 1 : -1, c + 1 < cols ? p + 1 : -1,
-			    r > 0 ? p - cols : -1, r + 1 < rows ? p + cols : -1};
-			for (int q : nb)
-				if (q >= 0 && RI[q] < 0 && L[q] == l)
-				{
-					RI[q] = id;
-					m_stack.push_back(q);
-				}
-		}
-	}
-	// Statistics in one pass (plus one for the extent along vertical
-	// regions).
+	// Statistics in the same row-major pass that numbers the other
+	// regions (a region's pixels lie at or after its seed, so a pixel's
+	// region is final at its turn); plus one pass over the regions for the
+	// extent along vertical ones.
 	struct Acc
 	{
 		cv::Vec3d sum{0, 0, 0}, sumN{0, 0, 0};
@@ -1977,44 +1956,69 @@ void RuleClassifier::buildRegions(LabeledSweep& out, const cv::Mat& rBar)
 		bool vertical = false;
 	};
 	std::vector<Acc> acc(count);
+	// Runs of one region along a row are summed in locals first.
+	int rid = -1, rn = 0, rr = 0, rc0 = 0, rc1 = 0, rfirst = -1, rnb = 0;
+	double sx = 0, sy = 0, sz = 0, nx = 0, ny = 0, nz = 0, sb = 0;
+	float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+	auto flush = [&]()
 	{
-		// Runs of one region along a row are summed in locals first.
-		int rid = -1, rn = 0, rr = 0, rc0 = 0, rc1 = 0, rfirst = -1, rnb = 0;
-		double sx = 0, sy = 0, sz = 0, nx = 0, ny = 0, nz = 0, sb = 0;
-		float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-		auto flush = [&]()
+		if (rid < 0) return;
+		Acc& a = acc[rid];
+		if (a.n == 0)
 		{
-			if (rid < 0) return;
-			Acc& a = acc[rid];
-			if (a.n == 0)
-			{
-				a.first = rfirst;
-				a.lo = cv::Vec3f(lo[0], lo[1], lo[2]);
-				a.hi = cv::Vec3f(hi[0], hi[1], hi[2]);
-				a.r0 = a.r1 = rr;
-				a.c0 = rc0;
-				a.c1 = rc1;
-			}
-			a.n += rn;
-			a.nRbar += rnb;
-			a.sumRbar += sb;
-			a.sum += cv::Vec3d(sx, sy, sz);
-			a.sumN += cv::Vec3d(nx, ny, nz);
-			for (int k = 0; k < 3; k++)
-			{
-				a.lo[k] = std::min(a.lo[k], lo[k]);
-				a.hi[k] = std::max(a.hi[k], hi[k]);
-			}
-			a.r0 = std::min(a.r0, rr);
-			a.r1 = std::max(a.r1, rr);
-			a.c0 = std::min(a.c0, rc0);
-			a.c1 = std::max(a.c1, rc1);
-			rid = -1;
-		};
-		for (int p = 0; p < n; p++)
+			a.first = rfirst;
+			a.lo = cv::Vec3f(lo[0], lo[1], lo[2]);
+			a.hi = cv::Vec3f(hi[0], hi[1], hi[2]);
+			a.r0 = a.r1 = rr;
+			a.c0 = rc0;
+			a.c1 = rc1;
+		}
+		a.n += rn;
+		a.nRbar += rnb;
+		a.sumRbar += sb;
+		a.sum += cv::Vec3d(sx, sy, sz);
+		a.sumN += cv::Vec3d(nx, ny, nz);
+		for (int k = 0; k < 3; k++)
 		{
+			a.lo[k] = std::min(a.lo[k], lo[k]);
+			a.hi[k] = std::max(a.hi[k], hi[k]);
+		}
+		a.r0 = std::min(a.r0, rr);
+		a.r1 = std::max(a.r1, rr);
+		a.c0 = std::min(a.c0, rc0);
+		a.c1 = std::max(a.c1, rc1);
+		rid = -1;
+	};
+	int* stack = m_fillStack.data();  // n slots
+	for (int r = 0, p = 0; r < rows; r++)
+		for (int c = 0; c < cols; c++, p++)
+		{
+			if (RI[p] < 0 && L[p] != 0)
+			{
+				// A new region: 4-connected pixels of this label.
+				const int id = count++;
+				acc.emplace_back();
+				const uint8_t l = L[p];
+				RI[p] = id;
+				int top = 0;
+				stack[top++] = p;
+				while (top > 0)
+				{
+					const int q0 = stack[--top];
+					const int qr = RO[q0], qc = CO[q0];
+					const int nb[4] = {
+					    qc > 0 ? q0 - 1 : -1, qc + 1 < cols ? q0 + 1 : -1,
+					    qr > 0 ? q0 - cols : -1,
+					    qr + 1 < rows ? q0 + cols : -1};
+					for (int q : nb)
+						if (q >= 0 && RI[q] < 0 && L[q] == l)
+						{
+							RI[q] = id;
+							stack[top++] = q;
+						}
+				}
+			}
 			const int id = RI[p];
-			const int c = CO[p];
 			if (id != rid || c == 0) flush();
 			if (id < 0) continue;
 			const cv::Vec3f& q = P[p];
@@ -2022,7 +2026,7 @@ void RuleClassifier::buildRegions(LabeledSweep& out, const cv::Mat& rBar)
 			{
 				rid = id;
 				rn = 0;
-				rr = RO[p];
+				rr = r;
 				rc0 = c;
 				rfirst = p;
 				rnb = 0;
@@ -2050,8 +2054,7 @@ void RuleClassifier::buildRegions(LabeledSweep& out, const cv::Mat& rBar)
 				hi[k] = std::max(hi[k], q[k]);
 			}
 		}
-		flush();
-	}
+	flush();
 	// Extent along a vertical region (t = z x n): the projections of its
 	// box's corners (exact for a plane, whose xy trace is the box diagonal).
 	for (Acc& a : acc)
