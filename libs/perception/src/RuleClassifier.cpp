@@ -1008,8 +1008,12 @@ void RuleClassifier::splitPlanes()
 	}
 	for (int k = 0; k < nSlots; k++) start[k + 1] += start[k];
 	m_slotStart = start;
+	// (With their points' x and y alongside: the fits below read them in
+	// order.)
 	std::vector<int>& pix = m_slotPix;
 	pix.resize(start[nSlots]);
+	m_slotX.resize(start[nSlots]);
+	m_slotY.resize(start[nSlots]);
 	{
 		std::vector<int> fill(start.begin(), start.end() - 1);
 		const int* slotOf = slotOfSurface.data() + 1;
@@ -1017,7 +1021,11 @@ void RuleClassifier::splitPlanes()
 		for (int p = 0; p < n; p++)
 		{
 			const int k = slotOf[SF[p]];
-			if (k >= 0) pix[fill[k]++] = p;
+			if (k < 0) continue;
+			const int i = fill[k]++;
+			pix[i] = p;
+			m_slotX[i] = P[p][0];
+			m_slotY[i] = P[p][1];
 		}
 	}
 
@@ -1040,14 +1048,15 @@ void RuleClassifier::splitPlanes()
 		for (int k = 0; k < nSlots; k++)
 		{
 			const int cnt = start[k + 1] - start[k];
-			const int* mem = pix.data() + start[k];
+			const float* xs = m_slotX.data() + start[k];
+			const float* ys = m_slotY.data() + start[k];
 			const int stride = std::max(1, cnt / 384);
 			px.clear();
 			py.clear();
 			for (int i = 0; i < cnt; i += stride)
 			{
-				px.push_back(P[mem[i]][0]);
-				py.push_back(P[mem[i]][1]);
+				px.push_back(xs[i]);
+				py.push_back(ys[i]);
 			}
 			const double a0 = std::atan2(normal[k][1], normal[k][0]);
 			int bestScore = -1;
@@ -1090,7 +1099,7 @@ void RuleClassifier::splitPlanes()
 			double s0 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
 			for (int i = 0; i < cnt; i++)
 			{
-				const double x = P[mem[i]][0], y = P[mem[i]][1];
+				const double x = xs[i], y = ys[i];
 				if (!(std::abs(bestM[0] * x + bestM[1] * y - bestD) <= half))
 					continue;
 				s0 += 1.0;
@@ -1140,7 +1149,7 @@ void RuleClassifier::splitPlanes()
 		for (int i = start[k]; i < start[k + 1]; i++)
 		{
 			const int p = pix[i];
-			RES[p] = nx * P[p][0] + ny * P[p][1] - d0;
+			RES[p] = nx * m_slotX[i] + ny * m_slotY[i] - d0;
 			WT[p] = 1;
 		}
 	}
