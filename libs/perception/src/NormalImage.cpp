@@ -133,12 +133,23 @@ void NormalImage::compute(const Sweep& sweep)
 			D[c] = ok ? d : nan;
 			M[c] = ok ? 1 : 0;
 		}
-		for (int c = 0; c < cols; c++)
+		// Interleaved points, NaN where invalid, kLanes at a time.
+		const cv::v_float32 vNan = cv::vx_setall_f32(nan),
+		                    vHalf = cv::vx_setall_f32(0.5f);
+		float* Pf = P[0].val;
+		int c = 0;
+		for (; c + kLanes <= cols; c += kLanes)
 		{
+			const cv::v_float32 ok = cv::vx_load(V + c) > vHalf;
+			cv::v_store_interleave(
+			    Pf + 3 * c, cv::v_select(ok, cv::vx_load(X + c), vNan),
+			    cv::v_select(ok, cv::vx_load(Y + c), vNan),
+			    cv::v_select(ok, cv::vx_load(Z + c), vNan));
+		}
+		for (; c < cols; c++)
 			P[c] =
 			    M[c] ? cv::Vec3f(X[c], Y[c], Z[c]) : cv::Vec3f(nan, nan, nan);
-			m_validPoints += M[c];
-		}
+		for (c = 0; c < cols; c++) m_validPoints += M[c];
 	}
 
 	// Normals.
