@@ -79,7 +79,7 @@ void SemanticMap::TOptions::saveToConfigFile(
 	c.write(s, "min_detection_ratio", minDetectionRatio);
 	c.write(s, "view_min_pixels", viewMinPixels);
 	c.write(s, "door_min_height_m", doorMinHeight);
-	c.write(s, "octomap", octomap ? "true" : "false");
+	writeBool(c, s, "octomap", octomap);
 }
 
 SemanticMap::SemanticMap() : SemanticMap(TOptions()) {}

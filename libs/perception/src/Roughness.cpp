@@ -34,7 +34,7 @@ void Roughness::TOptions::saveToConfigFile(
 	c.write(s, "window_half_width_px", windowHalfWidth);
 	c.write(s, "square_width_px", squareWidth);
 	c.write(s, "min_square_px", minSquarePixels);
-	c.write(s, "smooth_normals", smoothNormals ? "true" : "false");
+	writeBool(c, s, "smooth_normals", smoothNormals);
 	c.write(s, "smoothing_half_width_px", smoothingHalfWidth);
 }
 

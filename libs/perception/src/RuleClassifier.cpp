@@ -310,7 +310,6 @@ void RuleClassifier::TOptions::loadFromConfigFile(
 void RuleClassifier::TOptions::saveToConfigFile(
     mrpt::config::CConfigFileBase& c, const std::string& s) const
 {
-	auto b = [](bool v) { return v ? "true" : "false"; };
 	c.write(s, "normal_smoothing_half_width_px", normalSmoothingHalfWidth);
 	c.write(s, "ground_normal_tolerance_deg", RAD2DEG(groundNormalTolerance));
 	c.write(s, "ceiling_normal_tolerance_deg", RAD2DEG(ceilingNormalTolerance));
@@ -325,7 +324,7 @@ void RuleClassifier::TOptions::saveToConfigFile(
 	c.write(s, "wall_group_tolerance_m", wallGroupTolerance);
 	c.write(s, "wall_group_angle_deg", RAD2DEG(wallGroupAngle));
 	c.write(s, "plane_split_half_width_px", planeSplitHalfWidth);
-	c.write(s, "auto_ground_level", b(autoGroundLevel));
+	writeBool(c, s, "auto_ground_level", autoGroundLevel);
 	c.write(s, "ground_z_m", groundZ);
 	c.write(s, "ground_tolerance_m", groundTolerance);
 	c.write(s, "min_ground_px", minGroundPixels);
@@ -344,14 +343,14 @@ void RuleClassifier::TOptions::saveToConfigFile(
 	c.write(s, "door_max_offset_m", doorMaxOffset);
 	c.write(s, "door_max_angle_deg", RAD2DEG(doorMaxAngle));
 	c.write(s, "door_min_offset_m", doorMinOffset);
-	c.write(s, "door_allow_truncation", b(doorAllowTruncation));
+	writeBool(c, s, "door_allow_truncation", doorAllowTruncation);
 	c.write(s, "door_search_px", doorSearchPixels);
 	c.write(s, "door_min_side_fraction", doorMinSideFraction);
 	c.write(s, "sidewalk_min_rbar", sidewalkMinRbar);
 	c.write(s, "sidewalk_max_height_std_m", sidewalkMaxHeightStd);
 	c.write(s, "min_patch_squares", minPatchSquares);
 	c.write(s, "leftover_plane_tolerance_m", leftoverPlaneTolerance);
-	c.write(s, "classify_leftover_pixels", b(classifyLeftoverPixels));
+	writeBool(c, s, "classify_leftover_pixels", classifyLeftoverPixels);
 }
 
 RuleClassifier::RuleClassifier() : RuleClassifier(TOptions()) {}

@@ -161,9 +161,7 @@ void TraversabilityBuilder::TOptions::saveToConfigFile(
 	c.write(s, "safe_radius_m", num(safeRadius));
 	c.write(s, "safe_ring_cost", costText(safeRingCost, L));
 	c.write(s, "u_unobserved", costText(uUnobserved, L));
-	c.write(
-	    s, "inflate_unobserved",
-	    std::string(inflateUnobserved ? "true" : "false"));
+	writeBool(c, s, "inflate_unobserved", inflateUnobserved);
 	c.write(s, "goal_reach_m", num(goalReach));
 	for (Label l : allLabels())
 		c.write(

@@ -46,7 +46,7 @@ void SweepAssembler::TOptions::saveToConfigFile(
 	c.write(s, "min_valid_range_m", minValidRange);
 	c.write(s, "nominal_span_deg", RAD2DEG(nominalSpan));
 	c.write(s, "complete_span_fraction", completeSpanFraction);
-	c.write(s, "split_on_motion", splitOnMotion ? "true" : "false");
+	writeBool(c, s, "split_on_motion", splitOnMotion);
 	c.write(s, "motion_tolerance_m", motionTolerance);
 	c.write(s, "motion_tolerance_deg", RAD2DEG(motionToleranceYaw));
 }

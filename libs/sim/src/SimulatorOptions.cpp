@@ -63,8 +63,7 @@ void SimulatorOptions::saveToConfigFile(
 	c.write(s, "robot_turn_rate_deg_s", num(robotTurnRate * 180.0 / M_PI));
 	c.write(s, "terrain_cell_m", num(terrainCell));
 	c.write(s, "threads", std::to_string(threads));
-	c.write(
-	    s, "brute_force_raycast", std::string(bruteForce ? "true" : "false"));
+	writeBool(c, s, "brute_force_raycast", bruteForce);
 	c.write(s, "rawlog_compress_level", std::to_string(compressLevel));
 }
 
