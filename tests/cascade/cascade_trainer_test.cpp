@@ -98,6 +98,38 @@ TEST(CascadeTrainer, SameSeedSameXmlWhateverTheThreads)
 	EXPECT_NE(other.xml, reference().xml);
 }
 
+TEST(CascadeTrainer, RangeGateChoosesTheNegativeWindows)
+{
+	// A range gate that lets every window through: the same cascade as
+	// without one.
+	Trained t;
+	test::syntheticTrainingSet({12, 12}, 200, t.pos, t.neg);
+	for (auto& n : t.neg)
+		n.range = cv::Mat(n.image.size(), CV_32F, cv::Scalar(2.0));
+	auto o = test::tinyTrainerOptions();
+	o.threads = 0;
+	o.numStages = 4;
+	CascadeTrainer tr(o);
+	EXPECT_EQ(
+	    CascadeXml::toString(tr.train(t.pos, t.neg, 42)), reference().xml);
+	// Objects of at most 1 m: a window of side s at 2 m holds one of
+	// 2 s / perSide m, so with perSide 24 windows up to 12 pixels, the
+	// first pyramid level, are negatives; the others are not searched.
+	for (auto& n : t.neg)
+	{
+		n.gate.perSide = 24;
+		n.gate.hi = 1.0;
+	}
+	CascadeTrainer small(o);
+	small.train(t.pos, t.neg, 42);
+	EXPECT_LT(
+	    small.report().stages.front().negativeWindows,
+	    tr.report().stages.front().negativeWindows);
+	// None: no negative window at all.
+	for (auto& n : t.neg) n.gate.hi = 0.1;
+	EXPECT_THROW(CascadeTrainer(o).train(t.pos, t.neg, 42), CascadeError);
+}
+
 TEST(CascadeTrainer, RejectsUnusableInput)
 {
 	CascadeTrainer tr(test::tinyTrainerOptions());

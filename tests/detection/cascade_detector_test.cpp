@@ -5,6 +5,7 @@
 #include <semnav/common/Error.h>
 #include <semnav/detection/CascadeDetector.h>
 #include <semnav/detection/CascadeTraining.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -126,6 +127,22 @@ TEST(CascadeDetector, ShippedConfigLoads)
 	EXPECT_EQ(t.trainer.mode, HaarMode::All);
 	EXPECT_DOUBLE_EQ(t.trainer.minHitRate, 0.995);
 	EXPECT_DOUBLE_EQ(t.trainer.maxFalseAlarm, 0.5);
+	EXPECT_TRUE(o.rangeScales);
+	// A class's [SampleGenerator.<label>] changes only that class.
+	const auto dir = std::filesystem::temp_directory_path() /
+	                 ("semnav_cascade_ini_" + std::to_string(::getpid()));
+	std::filesystem::create_directories(dir);
+	const auto ini = (dir / "c.ini").string();
+	{
+		std::ofstream f(ini);
+		f << "[SampleGenerator]\npositives = 50\n"
+		     "[SampleGenerator.stairs]\nrange_negatives = true\n";
+	}
+	const auto pc = CascadeTraining::TOptions::fromIniFile(ini);
+	EXPECT_TRUE(pc.samplesFor(Label::Stairs).rangeNegatives);
+	EXPECT_EQ(pc.samplesFor(Label::Stairs).positives, 50);
+	EXPECT_FALSE(pc.samplesFor(Label::Washbasin).rangeNegatives);
+	std::filesystem::remove_all(dir);
 }
 
 TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
@@ -167,6 +184,10 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	CascadeDetector::TOptions back;
 	back.loadFromConfigFile(out, "CascadeDetector");
 	ASSERT_EQ(back.classes.size(), o.classes.size());
+	EXPECT_EQ(back.rangeScales, o.rangeScales);
+	EXPECT_DOUBLE_EQ(back.rangeScaleSlack, o.rangeScaleSlack);
+	EXPECT_DOUBLE_EQ(back.rangeCut, o.rangeCut);
+	EXPECT_EQ(back.rangeObjectsOnly, o.rangeObjectsOnly);
 	EXPECT_DOUBLE_EQ(back.classes[1].farUpscale, o.classes[1].farUpscale);
 	EXPECT_NEAR(
 	    back.classes[0].farMaxElevation, o.classes[0].farMaxElevation, 1e-12);

@@ -126,6 +126,51 @@ TEST(SampleGenerator, WarpKeepsAnUnrotatedObjectInPlace)
 	EXPECT_EQ(r.at<uint8_t>(12, 0), 0);
 }
 
+TEST(SampleGenerator, RangeNegativesCarryTheRangeAndGateOfEachPass)
+{
+	SampleGenerator::TOptions o;
+	o.positives = 4;
+	std::vector<TrainingSweep> sweeps{sweep(1, true), sweep(2, false)};
+	DetectionPass nearPass, farPass;
+	nearPass.rowEnd = 120;
+	nearPass.minSide = 20;
+	farPass.upscale = 2;
+	farPass.rowBegin = 40;
+	farPass.rowEnd = 90;
+	farPass.minSide = 10;
+	farPass.maxSide = 20;
+	for (auto& s : sweeps)
+	{
+		s.passes = {nearPass, farPass};
+		s.range = cv::Mat(120, 200, CV_32F, cv::Scalar(0));
+		s.range.rowRange(60, 120).setTo(cv::Scalar(3.0));
+		s.gate.perSide = 10;
+		s.gate.hi = 1.5;
+	}
+	// Off: every window is a negative.
+	for (const auto& n : SampleGenerator(o)
+	                         .generate(sweeps, Label::Washbasin, {20, 20}, 7)
+	                         .negatives)
+		EXPECT_TRUE(n.range.empty());
+	o.rangeNegatives = true;
+	const auto res =
+	    SampleGenerator(o).generate(sweeps, Label::Washbasin, {20, 20}, 7);
+	ASSERT_EQ(res.negatives.size(), 4u);
+	for (const auto& n : res.negatives)
+	{
+		ASSERT_EQ(n.range.size(), n.image.size());
+		EXPECT_EQ(n.range.type(), CV_32F);
+		EXPECT_DOUBLE_EQ(n.gate.hi, 1.5);
+	}
+	// The far pass: rows 40..90 upscaled by 2 (range from row 60 on, i.e.
+	// band row 20, upscaled row 40), gate per upscaled pixel.
+	const auto& far = res.negatives[1];
+	EXPECT_DOUBLE_EQ(far.gate.perSide, 20.0);
+	EXPECT_EQ(far.range.at<float>(39, 10), 0.0f);
+	EXPECT_EQ(far.range.at<float>(40, 10), 3.0f);
+	EXPECT_DOUBLE_EQ(res.negatives[0].gate.perSide, 10.0);
+}
+
 TEST(SampleGenerator, ErrorsAndOptions)
 {
 	SampleGenerator gen;
@@ -137,6 +182,9 @@ TEST(SampleGenerator, ErrorsAndOptions)
 	o.loadFromConfigFile(c, "S");
 	EXPECT_EQ(o.positives, 12);
 	EXPECT_NEAR(o.maxAngleZ, 30 * M_PI / 180, 1e-12);
+	mrpt::config::CConfigFileMemory rn("[S]\nrange_negatives = true\n");
+	o.loadFromConfigFile(rn, "S");
+	EXPECT_TRUE(o.rangeNegatives);
 	mrpt::config::CConfigFileMemory bad("[S]\npositive = 12\n");
 	EXPECT_THROW(o.loadFromConfigFile(bad, "S"), ConfigError);
 	mrpt::config::CConfigFileMemory range("[S]\njitter = 0.9\n");

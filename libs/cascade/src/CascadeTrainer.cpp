@@ -231,6 +231,16 @@ struct Level
 	double scale = 1;
 	cv::Mat img;
 	int nx = 0, ny = 0;
+	/** With a range gate: per visited position (step 2 below scale 2,
+	 * row-major over the visited ones), whether it may be a negative. */
+	std::vector<uint8_t> allowed;
+	int step() const { return scale >= 2 ? 1 : 2; }
+	bool isAllowed(int x, int y) const
+	{
+		if (allowed.empty()) return true;
+		const int s = step(), cols = (nx + s - 1) / s;
+		return allowed[std::size_t(y / s) * std::size_t(cols) + x / s] != 0;
+	}
 	std::size_t windows() const { return std::size_t(nx) * std::size_t(ny); }
 };
 
@@ -289,6 +299,7 @@ MiningResult mineNegatives(
 		for (int y = 0; y < lv.ny; y += step)
 			for (int x = 0; x < lv.nx; x += step)
 			{
+				if (!lv.isAllowed(x, y)) continue;
 				if (!excl.empty())
 				{
 					const cv::Rect2d box(
@@ -701,6 +712,25 @@ HaarCascade CascadeTrainer::train(
 				cv::resize(img, L.img, sz, 0, 0, cv::INTER_LINEAR);
 			L.nx = sz.width - win.width + 1;
 			L.ny = sz.height - win.height + 1;
+			if (!neg.range.empty())
+			{
+				// The windows the detector's range gate lets through.
+				cv::Mat r;
+				cv::resize(neg.range, r, sz, 0, 0, cv::INTER_NEAREST);
+				const int st = L.step();
+				const double side =
+				    std::max(cvRound(win.width * s), cvRound(win.height * s));
+				bool any = false;
+				for (int y = 0; y < L.ny; y += st)
+					for (int x = 0; x < L.nx; x += st)
+					{
+						const bool ok = neg.gate.accepts(
+						    RangeGate::windowRange(r, x, y, win), side);
+						L.allowed.push_back(ok);
+						any |= ok;
+					}
+				if (!any) continue;
+			}
 			levels.push_back(std::move(L));
 		}
 	}
@@ -708,7 +738,7 @@ HaarCascade CascadeTrainer::train(
 		throw CascadeError(
 		    "no negative image is at least as large as the " +
 		    std::to_string(win.width) + "x" + std::to_string(win.height) +
-		    " window");
+		    " window with a window its range gate lets through");
 
 	const std::vector<HaarFeature> pool = generateHaarFeatures(win, opt.mode);
 	m_report.featurePool = pool.size();
@@ -767,6 +797,7 @@ HaarCascade CascadeTrainer::train(
 		    std::size_t(opt.negativesPerStage), rng, threads);
 		rep.secondsNegatives = secondsSince(tn);
 		rep.acceptanceRatio = neg.acceptanceRatio();
+		rep.negativeWindows = neg.tried;
 		m_report.finalAcceptanceRatio = rep.acceptanceRatio;
 		MRPT_LOG_INFO_FMT(
 		    "stage %d: %zu positives, %zu/%zu negative windows accepted "

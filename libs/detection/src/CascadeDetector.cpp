@@ -397,6 +397,7 @@ CascadeDetector::TOptions CascadeDetector::TOptions::fromIniFile(
 	{
 		sections.push_back(section + "." + labelName(l));
 		sections.push_back("CascadeTrainer." + labelName(l));
+		sections.push_back("SampleGenerator." + labelName(l));
 	}
 	const auto cfg = openIniFile(path, sections);
 	TOptions o;

@@ -7,6 +7,7 @@
 #include <semnav/detection/SimDataset.h>
 
 #include <chrono>
+#include <cmath>
 #include <opencv2/imgproc.hpp>
 
 namespace semnav
@@ -31,9 +32,17 @@ CascadeTraining::TOptions CascadeTraining::TOptions::fromIniFile(
 	{
 		sections.push_back("CascadeDetector." + labelName(l));
 		sections.push_back("CascadeTrainer." + labelName(l));
+		sections.push_back("SampleGenerator." + labelName(l));
 	}
 	const auto cfg = openIniFile(path, sections);
 	o.samples.loadFromConfigFile(*cfg, "SampleGenerator");
+	for (Label l : allLabels())
+		if (cfg->sectionExists("SampleGenerator." + labelName(l)))
+		{
+			SampleGenerator::TOptions t = o.samples;
+			t.loadFromConfigFile(*cfg, "SampleGenerator." + labelName(l));
+			o.samplesPerClass[l] = t;
+		}
 	o.trainer.loadFromConfigFile(*cfg, "CascadeTrainer");
 	for (Label l : allLabels())
 		if (cfg->sectionExists("CascadeTrainer." + labelName(l)))
@@ -51,7 +60,8 @@ CascadeTraining::CascadeTraining(const TOptions& options) : m_options(options)
 }
 
 std::vector<TrainingSweep> CascadeTraining::loadSweeps(
-    const std::vector<std::string>& dirs, DetectionChannel channel) const
+    const std::vector<std::string>& dirs, DetectionChannel channel,
+    bool withRange) const
 {
 	std::vector<TrainingSweep> out;
 	NormalImage normals(m_options.normals);
@@ -66,6 +76,30 @@ std::vector<TrainingSweep> CascadeTraining::loadSweeps(
 			    normals.normals(), normals.normalMask(), channel,
 			    det.normalSmoothing, s.sweep.phis(), s.sweep.thetas());
 			t.groundTruth = s.groundTruth;
+			// Both layouts keep the sweep's angular steps.
+			const auto& ph = s.sweep.phis();
+			const auto& th = s.sweep.thetas();
+			if (ph.size() > 1 && th.size() > 1)
+				t.step =
+				    0.5 * ((ph.back() - ph.front()) / double(ph.size() - 1) +
+				           (th.back() - th.front()) / double(th.size() - 1));
+			if (withRange && t.step > 0)
+			{
+				// Horizontal range of every pixel, as the detector's.
+				const auto pts = s.sweep.points();
+				t.range = cv::Mat(
+				    int(s.sweep.rows()), int(s.sweep.cols()), CV_32F,
+				    cv::Scalar(0));
+				for (int r = 0; r < t.range.rows; r++)
+					for (int c = 0; c < t.range.cols; c++)
+					{
+						const auto& p =
+						    pts[std::size_t(r) * std::size_t(t.range.cols) +
+						        std::size_t(c)];
+						if (std::isfinite(p.x) && std::isfinite(p.y))
+							t.range.at<float>(r, c) = std::hypot(p.x, p.y);
+					}
+			}
 			t.elevation0 = s.sweep.thetas().front();
 			t.elevation1 = s.sweep.thetas().back();
 			if (det.panoramic)
@@ -77,6 +111,9 @@ std::vector<TrainingSweep> CascadeTraining::loadSweeps(
 				t.image = projection.toPanoramic(t.image, cv::INTER_LINEAR);
 				t.groundTruth =
 				    projection.toPanoramic(t.groundTruth, cv::INTER_NEAREST);
+				if (!t.range.empty())
+					t.range =
+					    projection.toPanoramic(t.range, cv::INTER_NEAREST);
 			}
 			out.push_back(std::move(t));
 		}
@@ -95,8 +132,9 @@ CascadeTraining::Result CascadeTraining::run(
 	Result res;
 	auto t0 = Clock::now();
 	if (progress) progress(0, steps, "reading datasets");
-	std::vector<TrainingSweep> sweeps =
-	    loadSweeps(dirs, m_options.detector.channelOf(cls));
+	std::vector<TrainingSweep> sweeps = loadSweeps(
+	    dirs, m_options.detector.channelOf(cls),
+	    m_options.samplesFor(label).rangeNegatives);
 	res.sweeps = sweeps.size();
 	res.secondsLoad = secondsSince(t0);
 
@@ -104,8 +142,12 @@ CascadeTraining::Result CascadeTraining::run(
 	if (progress) progress(1, steps, "making samples");
 	const cv::Size win(trainerOptions.windowWidth, trainerOptions.windowHeight);
 	for (auto& s : sweeps)
+	{
 		s.passes = cls.passes(s.image.rows, s.elevation0, s.elevation1, win);
-	SampleGenerator gen(m_options.samples);
+		if (!s.range.empty())
+			s.gate = m_options.detector.rangeGate(cls, s.step, 1.0);
+	}
+	SampleGenerator gen(m_options.samplesFor(label));
 	auto samples = gen.generate(sweeps, label, win, seed);
 	res.views = samples.views;
 	res.positives = samples.positives.size();

@@ -54,7 +54,8 @@ const std::vector<std::string>& SampleGenerator::TOptions::knownKeys()
 	    "max_intensity_dev",
 	    "jitter",
 	    "background_scale",
-	    "own_background_fraction"};
+	    "own_background_fraction",
+	    "range_negatives"};
 	return keys;
 }
 
@@ -80,6 +81,7 @@ void SampleGenerator::TOptions::loadFromConfigFile(
 	    readChecked(c, s, "background_scale", backgroundScale, 1.0, 10.0);
 	o.ownBackgroundFraction = readChecked(
 	    c, s, "own_background_fraction", ownBackgroundFraction, 0.0, 1.0);
+	o.rangeNegatives = readCheckedBool(c, s, "range_negatives", rangeNegatives);
 	*this = o;
 }
 
@@ -96,6 +98,8 @@ void SampleGenerator::TOptions::saveToConfigFile(
 	c.write(s, "jitter", num(jitter));
 	c.write(s, "background_scale", num(backgroundScale));
 	c.write(s, "own_background_fraction", num(ownBackgroundFraction));
+	c.write(
+	    s, "range_negatives", std::string(rangeNegatives ? "true" : "false"));
 }
 
 SampleGenerator::SampleGenerator() = default;
@@ -323,6 +327,16 @@ SampleGenerator::Result SampleGenerator::generate(
 			for (const auto& e : exclude[i]) n.exclude.push_back(p.toPass(e));
 			n.minScale = std::max(1.0, p.minSide * p.upscale / win);
 			n.maxScale = p.maxSide > 0 ? p.maxSide * p.upscale / win : 0.0;
+			if (m_options.rangeNegatives && !sweeps[i].range.empty())
+			{
+				const cv::Mat& r = sweeps[i].range;
+				cv::resize(
+				    r.rowRange(
+				        std::max(0, p.rowBegin), std::min(r.rows, p.rowEnd)),
+				    n.range, n.image.size(), 0, 0, cv::INTER_NEAREST);
+				n.gate = sweeps[i].gate;
+				n.gate.perSide *= p.upscale;
+			}
 			res.negatives.push_back(std::move(n));
 		}
 	return res;

@@ -109,6 +109,9 @@ public:
 		/** Accepted / tried negative windows when the stage's negatives
 		 * were drawn (the cascade so far). */
 		double acceptanceRatio = 0;
+		/** Negative windows tried then (all windows of all pyramid levels
+		 * that are not excluded and pass the images' range gates). */
+		std::size_t negativeWindows = 0;
 		/** Wall-clock seconds: the whole stage, drawing negatives, binning
 		 * feature values, boosting. */
 		double seconds = 0, secondsNegatives = 0, secondsBinning = 0,

@@ -34,7 +34,16 @@ public:
 		/** [CascadeTrainer.<label>]: a class's changes to [CascadeTrainer]
 		 * (keys absent there keep the [CascadeTrainer] values). */
 		std::map<Label, CascadeTrainer::TOptions> trainerPerClass;
+		/** [SampleGenerator.<label>]: a class's changes to
+		 * [SampleGenerator]. */
+		std::map<Label, SampleGenerator::TOptions> samplesPerClass;
 		NormalImage::TOptions normals;
+		/** The sample options of a class. */
+		const SampleGenerator::TOptions& samplesFor(Label l) const
+		{
+			const auto it = samplesPerClass.find(l);
+			return it == samplesPerClass.end() ? samples : it->second;
+		}
 		/** The trainer options of a class. */
 		const CascadeTrainer::TOptions& trainerFor(Label l) const
 		{
@@ -68,10 +77,12 @@ public:
 	explicit CascadeTraining(const TOptions& options);
 
 	/** The detection images (in `channel`) and ground truth of every sweep
-	 * of the datasets. Throws IoError / RawlogError. */
+	 * of the datasets, with `withRange` also each pixel's horizontal range
+	 * and the pixels' angular step (for range_negatives). Throws IoError /
+	 * RawlogError. */
 	std::vector<TrainingSweep> loadSweeps(
-	    const std::vector<std::string>& datasetDirs,
-	    DetectionChannel channel) const;
+	    const std::vector<std::string>& datasetDirs, DetectionChannel channel,
+	    bool withRange = false) const;
 
 	/** Trains `label` (which must have a class section). Throws
 	 * ConfigError, IoError, RawlogError, CascadeError, Error. */

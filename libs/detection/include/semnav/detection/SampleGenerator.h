@@ -3,6 +3,7 @@
 
 #include <mrpt/config/CLoadableOptions.h>
 #include <semnav/cascade/NegativeImage.h>
+#include <semnav/cascade/RangeGate.h>
 #include <semnav/common/Label.h>
 #include <semnav/detection/DetectionPass.h>
 
@@ -24,6 +25,15 @@ struct TrainingSweep
 	std::vector<DetectionPass> passes;
 	/** Elevations (rad) of the first and last image row. */
 	double elevation0 = 0, elevation1 = 0;
+	/** Optional (empty: every window is a negative): horizontal range of
+	 * each image pixel (CV_32F, 0 = none) and the class's range gate for
+	 * the image at scale 1 (perSide = 1.15 / step); the negatives of each
+	 * pass are then the windows the gate lets through (the detector's
+	 * range_scales). */
+	cv::Mat range;
+	RangeGate gate;
+	/** Angle between neighbouring image pixels (rad). */
+	double step = 0;
 };
 
 /** Training samples for one class as in the paper (sec. 2.2.2), the
@@ -82,6 +92,10 @@ public:
 		 * real surroundings instead of a random background (0 = the
 		 * paper's method). */
 		double ownBackgroundFraction = 0.0;
+		/** range_negatives: negatives only from the windows the
+		 * detector's range gate lets through (TrainingSweep::range and
+		 * gate, CascadeDetector range_scales), not every window. */
+		bool rangeNegatives = false;
 	};
 
 	struct Result
