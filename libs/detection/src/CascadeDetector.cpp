@@ -360,12 +360,11 @@ void CascadeDetector::TOptions::saveToConfigFile(
 	for (const auto& k : classes)
 		list += (list.empty() ? "" : " ") + labelName(k.label);
 	c.write(s, "classes", list);
-	c.write(s, "label_pixels", std::string(labelPixels ? "true" : "false"));
+	writeBool(c, s, "label_pixels", labelPixels);
 	c.write(s, "floor_tolerance_m", num(floorTolerance));
 	c.write(s, "measure_margin", num(measureMargin));
-	c.write(
-	    s, "connected_object", std::string(connectedObject ? "true" : "false"));
-	c.write(s, "proposals", std::string(proposals ? "true" : "false"));
+	writeBool(c, s, "connected_object", connectedObject);
+	writeBool(c, s, "proposals", proposals);
 	c.write(s, "proposal_min_pixels", std::to_string(proposalMinPixels));
 	c.write(s, "proposal_join_px", std::to_string(proposalJoinPx));
 	c.write(s, "proposal_max_height_m", num(proposalMaxHeight));
@@ -375,15 +374,11 @@ void CascadeDetector::TOptions::saveToConfigFile(
 	c.write(s, "proposal_fill", num(proposalFill));
 	c.write(s, "proposal_range_gap_m", num(proposalRangeGap));
 	c.write(s, "proposal_top_margin_m", num(proposalTopMargin));
-	c.write(
-	    s, "proposal_size_check",
-	    std::string(proposalSizeCheck ? "true" : "false"));
-	c.write(s, "range_scales", std::string(rangeScales ? "true" : "false"));
+	writeBool(c, s, "proposal_size_check", proposalSizeCheck);
+	writeBool(c, s, "range_scales", rangeScales);
 	c.write(s, "range_scale_slack", num(rangeScaleSlack));
 	c.write(s, "range_cut_m", num(rangeCut));
-	c.write(
-	    s, "range_objects_only",
-	    std::string(rangeObjectsOnly ? "true" : "false"));
+	writeBool(c, s, "range_objects_only", rangeObjectsOnly);
 	for (const auto& k : classes)
 		k.saveToConfigFile(c, s + "." + labelName(k.label));
 }

@@ -98,8 +98,7 @@ void SampleGenerator::TOptions::saveToConfigFile(
 	c.write(s, "jitter", num(jitter));
 	c.write(s, "background_scale", num(backgroundScale));
 	c.write(s, "own_background_fraction", num(ownBackgroundFraction));
-	c.write(
-	    s, "range_negatives", std::string(rangeNegatives ? "true" : "false"));
+	writeBool(c, s, "range_negatives", rangeNegatives);
 }
 
 SampleGenerator::SampleGenerator() = default;
