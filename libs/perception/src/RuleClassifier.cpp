@@ -119,30 +119,19 @@ public:
 		cv::v_store(sn, m_sumN);
 		cv::v_store(lo, m_lo);
 		cv::v_store(hi, m_hi);
-		SurfaceT& s = m_surfaces[m_id];
-		if (s.count == 0)
-		{
-			s.minP = cv::Vec3f(lo[0], lo[1], lo[2]);
-			s.maxP = cv::Vec3f(hi[0], hi[1], hi[2]);
-			s.minR = s.maxR = m_r;
-			s.minC = m_c0;
-			s.maxC = m_c1;
-		}
-		s.count += m_count;
-		s.sumP += cv::Vec3d(sp[0], sp[1], sp[2]);
-		s.sumN += cv::Vec3d(sn[0], sn[1], sn[2]);
-		s.sxx += m_xx;
-		s.sxy += m_xy;
-		s.syy += m_yy;
-		for (int k = 0; k < 3; k++)
-		{
-			s.minP[k] = std::min(s.minP[k], lo[k]);
-			s.maxP[k] = std::max(s.maxP[k], hi[k]);
-		}
-		s.minR = std::min(s.minR, m_r);
-		s.maxR = std::max(s.maxR, m_r);
-		s.minC = std::min(s.minC, m_c0);
-		s.maxC = std::max(s.maxC, m_c1);
+		SurfaceT run;
+		run.count = m_count;
+		run.sumP = cv::Vec3d(sp[0], sp[1], sp[2]);
+		run.sumN = cv::Vec3d(sn[0], sn[1], sn[2]);
+		run.sxx = m_xx;
+		run.sxy = m_xy;
+		run.syy = m_yy;
+		run.minP = cv::Vec3f(lo[0], lo[1], lo[2]);
+		run.maxP = cv::Vec3f(hi[0], hi[1], hi[2]);
+		run.minR = run.maxR = m_r;
+		run.minC = m_c0;
+		run.maxC = m_c1;
+		m_surfaces[m_id].addStats(run);
 		m_id = -1;
 	}
 
@@ -379,6 +368,34 @@ cv::Mat RuleClassifier::planeSides() const
 	if (m_side.size() != static_cast<std::size_t>(m_rows * m_cols))
 		return cv::Mat();
 	return cv::Mat(m_rows, m_cols, CV_8U, const_cast<uint8_t*>(m_side.data()));
+}
+
+void RuleClassifier::Surface::addStats(const Surface& o)
+{
+	if (count == 0)
+	{
+		minP = o.minP;
+		maxP = o.maxP;
+		minR = o.minR;
+		maxR = o.maxR;
+		minC = o.minC;
+		maxC = o.maxC;
+	}
+	count += o.count;
+	sumP += o.sumP;
+	sumN += o.sumN;
+	sxx += o.sxx;
+	sxy += o.sxy;
+	syy += o.syy;
+	for (int k = 0; k < 3; k++)
+	{
+		minP[k] = std::min(minP[k], o.minP[k]);
+		maxP[k] = std::max(maxP[k], o.maxP[k]);
+	}
+	minR = std::min(minR, o.minR);
+	maxR = std::max(maxR, o.maxR);
+	minC = std::min(minC, o.minC);
+	maxC = std::max(maxC, o.maxC);
 }
 
 void RuleClassifier::fitVerticalPlane(Surface& s)
@@ -683,25 +700,10 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 			const Surface& a = m_surfaces[i];
 			if (c.count == 0)
 			{
-				c = a;
-				c.label = -1;
-				continue;
+				c.orient = a.orient;
+				c.area = a.area;
 			}
-			c.count += a.count;
-			c.sumP += a.sumP;
-			c.sumN += a.sumN;
-			c.sxx += a.sxx;
-			c.sxy += a.sxy;
-			c.syy += a.syy;
-			for (int k = 0; k < 3; k++)
-			{
-				c.minP[k] = std::min(c.minP[k], a.minP[k]);
-				c.maxP[k] = std::max(c.maxP[k], a.maxP[k]);
-			}
-			c.minR = std::min(c.minR, a.minR);
-			c.maxR = std::max(c.maxR, a.maxR);
-			c.minC = std::min(c.minC, a.minC);
-			c.maxC = std::max(c.maxC, a.maxC);
+			c.addStats(a);
 		}
 		// Pixels of unsplit groups take their group's id, those of split
 		// groups -2 (to label below). (finalOf is indexed by id + 1.)

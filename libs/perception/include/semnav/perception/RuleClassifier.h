@@ -173,6 +173,9 @@ private:
 		double width = 0, height = 0;
 		int8_t label = -1;  ///< Label id, -1 = none yet
 		double planeD() const { return normal.dot(centroid); }
+		/** Adds o's pixel count, sums and bounds (the bounds are o's when
+		 * this one is empty). */
+		void addStats(const Surface& o);
 	};
 	/** What the door rule found around a candidate. */
 	struct DoorCheck
