@@ -10,6 +10,8 @@
 #include <limits>
 #include <opencv2/core/hal/intrin.hpp>
 
+#include "NormalKernel.h"
+
 namespace semnav
 {
 namespace
@@ -73,10 +75,10 @@ void NormalImage::compute(const Sweep& sweep)
 	// around) for the branch-free normal kernel below.
 	const int pc = cols + 2;
 	const std::size_t plane = static_cast<std::size_t>(rows + 2) * pc;
-	// (+2 kLanes: the vector kernel reads up to kLanes floats past the
-	// last row.) Every interior pixel is written below; the padding stays 0
-	// once zeroed.
-	const std::size_t padded = plane + 2 * kLanes;
+	// (The normal kernel reads up to kNormalKernelPad floats past the last
+	// row.) Every interior pixel is written below; the padding stays 0 once
+	// zeroed.
+	const std::size_t padded = plane + 2 * detail::kNormalKernelPad;
 	if (m_x.size() != padded || m_paddedCols != pc)
 	{
 		m_x.assign(padded, 0.0f);
@@ -152,128 +154,33 @@ void NormalImage::compute(const Sweep& sweep)
 		for (c = 0; c < cols; c++) m_validPoints += M[c];
 	}
 
-	// Normals.
-	const float e0sq = static_cast<float>(
+	// Normals (NormalKernel.h: the widest vectors the CPU has).
+	detail::NormalKernelArgs a;
+	a.rows = rows;
+	a.cols = cols;
+	a.x = &m_x[0];
+	a.y = &m_y[0];
+	a.z = &m_z[0];
+	a.valid = &m_v[0];
+	a.paddedCols = pc;
+	a.sensor = m_sensorPos[0].val;
+	a.e0sq = static_cast<float>(
 	    m_options.minNeighbourDistance * m_options.minNeighbourDistance);
-	const float e1sq = static_cast<float>(
+	a.e1sq = static_cast<float>(
 	    m_options.maxNeighbourDistance * m_options.maxNeighbourDistance);
 	const float sinMin = static_cast<float>(std::sin(m_options.minPairAngle));
-	const float sinMinSq = sinMin * sinMin;
-	m_nx.resize(cols + kLanes);
-	m_ny.resize(cols + kLanes);
-	m_nz.resize(cols + kLanes);
-	for (int r = 0; r < rows; r++)
-	{
-		const std::size_t o = static_cast<std::size_t>(r + 1) * pc + 1;
-		const float* X = &m_x[o];
-		const float* Y = &m_y[o];
-		const float* Z = &m_z[o];
-		const float* V = &m_v[o];
-		const float sx = m_sensorPos[r][0], sy = m_sensorPos[r][1],
-		            sz = m_sensorPos[r][2];
-		float* NX = m_nx.data();
-		float* NY = m_ny.data();
-		float* NZ = m_nz.data();
-		// Neighbours (i-1, j-1), (i-1, j+1), (i+1, j-1), (i+1, j+1),
-		// kLanes pixels at a time (OpenCV universal intrinsics at the widest
-		// vectors the build allows; the planes are
-		// padded so that the last group may run past the row end).
-		const float* Xn[4] = {X - pc - 1, X - pc + 1, X + pc - 1, X + pc + 1};
-		const float* Yn[4] = {Y - pc - 1, Y - pc + 1, Y + pc - 1, Y + pc + 1};
-		const float* Zn[4] = {Z - pc - 1, Z - pc + 1, Z + pc - 1, Z + pc + 1};
-		const float* Vn[4] = {V - pc - 1, V - pc + 1, V + pc - 1, V + pc + 1};
-		const cv::v_float32 vE0 = cv::vx_setall_f32(e0sq),
-		                    vE1 = cv::vx_setall_f32(e1sq),
-		                    vS = cv::vx_setall_f32(sinMinSq),
-		                    vHalf = cv::vx_setall_f32(0.5f),
-		                    vZero = cv::vx_setzero_f32(),
-		                    vOne = cv::vx_setall_f32(1.0f),
-		                    vMinusOne = cv::vx_setall_f32(-1.0f),
-		                    vsx = cv::vx_setall_f32(sx),
-		                    vsy = cv::vx_setall_f32(sy),
-		                    vsz = cv::vx_setall_f32(sz);
-		for (int c = 0; c < cols; c += kLanes)
-		{
-			const cv::v_float32 px = cv::vx_load(X + c),
-			                    py = cv::vx_load(Y + c),
-			                    pz = cv::vx_load(Z + c),
-			                    pv = cv::vx_load(V + c);
-			cv::v_float32 ex[4], ey[4], ez[4], el[4];
-			for (int k = 0; k < 4; k++)
-			{
-				cv::v_float32 dx = cv::vx_load(Xn[k] + c) - px;
-				cv::v_float32 dy = cv::vx_load(Yn[k] + c) - py;
-				cv::v_float32 dz = cv::vx_load(Zn[k] + c) - pz;
-				cv::v_float32 d2 = dx * dx + dy * dy + dz * dz;
-				// Accepted when both are valid and eps0 <= |d| <= eps1.
-				const cv::v_float32 acc =
-				    (cv::vx_load(Vn[k] + c) * pv > vHalf) & (d2 >= vE0) &
-				    (d2 <= vE1);
-				ex[k] = dx & acc;
-				ey[k] = dy & acc;
-				ez[k] = dz & acc;
-				el[k] = d2 & acc;
-			}
-			// Evident intent of the paper's sum of cross products: with the
-			// four diagonal neighbours the plain sum over all pairs cancels
-			// (e1 x e2 = -(e3 x e4) ...), so every pair's product is turned
-			// toward the sensor before summing. Near-parallel pairs (e.g.
-			// opposite neighbours) only add noise and are skipped; so are
-			// pairs with a rejected neighbour (zero edge).
-			const cv::v_float32 vx = vsx - px, vy = vsy - py, vz = vsz - pz;
-			cv::v_float32 nx = vZero, ny = vZero, nz = vZero;
-			for (int a = 0; a < 3; a++)
-				for (int b = a + 1; b < 4; b++)
-				{
-					const cv::v_float32 cx = ey[a] * ez[b] - ez[a] * ey[b];
-					const cv::v_float32 cy = ez[a] * ex[b] - ex[a] * ez[b];
-					const cv::v_float32 cz = ex[a] * ey[b] - ey[a] * ex[b];
-					const cv::v_float32 c2 = cx * cx + cy * cy + cz * cz;
-					const cv::v_float32 keep = c2 > vS * el[a] * el[b];
-					const cv::v_float32 sgn =
-					    cv::v_select(
-					        cx * vx + cy * vy + cz * vz >= vZero, vOne,
-					        vMinusOne) &
-					    keep;
-					nx = cv::v_fma(sgn, cx, nx);
-					ny = cv::v_fma(sgn, cy, ny);
-					nz = cv::v_fma(sgn, cz, nz);
-				}
-			cv::v_store(NX + c, nx);
-			cv::v_store(NY + c, ny);
-			cv::v_store(NZ + c, nz);
-		}
-		// Normalise, kLanes at a time, stored interleaved (x y z per pixel).
-		float* N = m_normals.ptr<float>(r);
-		uint8_t* NM = m_normalMask.ptr<uint8_t>(r);
-		const cv::v_float32 tiny = cv::vx_setall_f32(1e-24f);
-		int c = 0;
-		for (; c + kLanes <= cols; c += kLanes)
-		{
-			const cv::v_float32 x = cv::vx_load(NX + c),
-			                    y = cv::vx_load(NY + c),
-			                    z = cv::vx_load(NZ + c);
-			const cv::v_float32 l2 = x * x + y * y + z * z;
-			const cv::v_float32 ok = l2 > tiny;
-			const cv::v_float32 inv = cv::v_select(
-			    ok, cv::v_invsqrt(cv::v_max(l2, tiny)), cv::vx_setzero_f32());
-			cv::v_store_interleave(N + 3 * c, x * inv, y * inv, z * inv);
-		}
-		for (; c < cols; c++)
-		{
-			const float l2 = NX[c] * NX[c] + NY[c] * NY[c] + NZ[c] * NZ[c];
-			const float inv = l2 > 1e-24f ? 1.0f / std::sqrt(l2) : 0.0f;
-			N[3 * c] = NX[c] * inv;
-			N[3 * c + 1] = NY[c] * inv;
-			N[3 * c + 2] = NZ[c] * inv;
-		}
-		for (c = 0; c < cols; c++)
-		{
-			const float l2 = NX[c] * NX[c] + NY[c] * NY[c] + NZ[c] * NZ[c];
-			NM[c] = l2 > 1e-24f ? 1 : 0;
-			m_validNormals += NM[c];
-		}
-	}
+	a.sinMinSq = sinMin * sinMin;
+	m_nx.resize(cols + detail::kNormalKernelPad);
+	m_ny.resize(cols + detail::kNormalKernelPad);
+	m_nz.resize(cols + detail::kNormalKernelPad);
+	a.nx = m_nx.data();
+	a.ny = m_ny.data();
+	a.nz = m_nz.data();
+	a.normals = m_normals.ptr<float>(0);
+	a.normalsStep = m_normals.step1();
+	a.mask = m_normalMask.ptr<uint8_t>(0);
+	a.maskStep = m_normalMask.step1();
+	m_validNormals = detail::computeNormals(a);
 }
 
 void NormalImage::swapOutputs(

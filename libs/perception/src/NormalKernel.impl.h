@@ -1,0 +1,131 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// The normal kernel's body, compiled once per instruction set: include with
+// SEMNAV_KERNEL_NS defined (NormalKernelBaseline.cpp, NormalKernelAvx2.cpp).
+// cv::v_float32 and vx_* are the widest vectors of the including unit.
+#include <opencv2/core/hal/intrin.hpp>
+
+#include "NormalKernel.h"
+
+namespace semnav::detail::SEMNAV_KERNEL_NS
+{
+std::size_t computeNormals(const NormalKernelArgs& a)
+{
+	constexpr int kLanes = cv::v_float32::nlanes;
+	static_assert(kLanes <= kNormalKernelPad);
+	const int rows = a.rows, cols = a.cols, pc = a.paddedCols;
+	std::size_t validNormals = 0;
+	for (int r = 0; r < rows; r++)
+	{
+		const std::size_t o = static_cast<std::size_t>(r + 1) * pc + 1;
+		const float* X = a.x + o;
+		const float* Y = a.y + o;
+		const float* Z = a.z + o;
+		const float* V = a.valid + o;
+		float* NX = a.nx;
+		float* NY = a.ny;
+		float* NZ = a.nz;
+		// Neighbours (i-1, j-1), (i-1, j+1), (i+1, j-1), (i+1, j+1),
+		// kLanes pixels at a time (the planes are padded so that the last
+		// group may run past the row end).
+		const float* Xn[4] = {X - pc - 1, X - pc + 1, X + pc - 1, X + pc + 1};
+		const float* Yn[4] = {Y - pc - 1, Y - pc + 1, Y + pc - 1, Y + pc + 1};
+		const float* Zn[4] = {Z - pc - 1, Z - pc + 1, Z + pc - 1, Z + pc + 1};
+		const float* Vn[4] = {V - pc - 1, V - pc + 1, V + pc - 1, V + pc + 1};
+		const cv::v_float32 vE0 = cv::vx_setall_f32(a.e0sq),
+		                    vE1 = cv::vx_setall_f32(a.e1sq),
+		                    vS = cv::vx_setall_f32(a.sinMinSq),
+		                    vHalf = cv::vx_setall_f32(0.5f),
+		                    vZero = cv::vx_setzero_f32(),
+		                    vOne = cv::vx_setall_f32(1.0f),
+		                    vMinusOne = cv::vx_setall_f32(-1.0f),
+		                    vsx = cv::vx_setall_f32(a.sensor[3 * r]),
+		                    vsy = cv::vx_setall_f32(a.sensor[3 * r + 1]),
+		                    vsz = cv::vx_setall_f32(a.sensor[3 * r + 2]);
+		for (int c = 0; c < cols; c += kLanes)
+		{
+			const cv::v_float32 px = cv::vx_load(X + c),
+			                    py = cv::vx_load(Y + c),
+			                    pz = cv::vx_load(Z + c),
+			                    pv = cv::vx_load(V + c);
+			cv::v_float32 ex[4], ey[4], ez[4], el[4];
+			for (int k = 0; k < 4; k++)
+			{
+				cv::v_float32 dx = cv::vx_load(Xn[k] + c) - px;
+				cv::v_float32 dy = cv::vx_load(Yn[k] + c) - py;
+				cv::v_float32 dz = cv::vx_load(Zn[k] + c) - pz;
+				cv::v_float32 d2 = dx * dx + dy * dy + dz * dz;
+				// Accepted when both are valid and eps0 <= |d| <= eps1.
+				const cv::v_float32 acc =
+				    (cv::vx_load(Vn[k] + c) * pv > vHalf) & (d2 >= vE0) &
+				    (d2 <= vE1);
+				ex[k] = dx & acc;
+				ey[k] = dy & acc;
+				ez[k] = dz & acc;
+				el[k] = d2 & acc;
+			}
+			// Evident intent of the paper's sum of cross products: with the
+			// four diagonal neighbours the plain sum over all pairs cancels
+			// (e1 x e2 = -(e3 x e4) ...), so every pair's product is turned
+			// toward the sensor before summing. Near-parallel pairs (e.g.
+			// opposite neighbours) only add noise and are skipped; so are
+			// pairs with a rejected neighbour (zero edge).
+			const cv::v_float32 vx = vsx - px, vy = vsy - py, vz = vsz - pz;
+			cv::v_float32 nx = vZero, ny = vZero, nz = vZero;
+			for (int i = 0; i < 3; i++)
+				for (int j = i + 1; j < 4; j++)
+				{
+					const cv::v_float32 cx = ey[i] * ez[j] - ez[i] * ey[j];
+					const cv::v_float32 cy = ez[i] * ex[j] - ex[i] * ez[j];
+					const cv::v_float32 cz = ex[i] * ey[j] - ey[i] * ex[j];
+					const cv::v_float32 c2 = cx * cx + cy * cy + cz * cz;
+					const cv::v_float32 keep = c2 > vS * el[i] * el[j];
+					const cv::v_float32 sgn =
+					    cv::v_select(
+					        cx * vx + cy * vy + cz * vz >= vZero, vOne,
+					        vMinusOne) &
+					    keep;
+					// (sgn is +-1 or 0: the product is exact, so a fused
+					// multiply-add rounds as a multiply and an add.)
+					nx = cv::v_fma(sgn, cx, nx);
+					ny = cv::v_fma(sgn, cy, ny);
+					nz = cv::v_fma(sgn, cz, nz);
+				}
+			cv::v_store(NX + c, nx);
+			cv::v_store(NY + c, ny);
+			cv::v_store(NZ + c, nz);
+		}
+		// Normalise, kLanes at a time, stored interleaved (x y z per pixel).
+		float* N = a.normals + r * a.normalsStep;
+		uint8_t* NM = a.mask + r * a.maskStep;
+		const cv::v_float32 tiny = cv::vx_setall_f32(1e-24f);
+		int c = 0;
+		for (; c + kLanes <= cols; c += kLanes)
+		{
+			const cv::v_float32 x = cv::vx_load(NX + c),
+			                    y = cv::vx_load(NY + c),
+			                    z = cv::vx_load(NZ + c);
+			const cv::v_float32 l2 = x * x + y * y + z * z;
+			const cv::v_float32 ok = l2 > tiny;
+			const cv::v_float32 inv = cv::v_select(
+			    ok, cv::v_invsqrt(cv::v_max(l2, tiny)), cv::vx_setzero_f32());
+			cv::v_store_interleave(N + 3 * c, x * inv, y * inv, z * inv);
+		}
+		for (; c < cols; c++)
+		{
+			const float l2 = NX[c] * NX[c] + NY[c] * NY[c] + NZ[c] * NZ[c];
+			const float inv = l2 > 1e-24f ? 1.0f / std::sqrt(l2) : 0.0f;
+			N[3 * c] = NX[c] * inv;
+			N[3 * c + 1] = NY[c] * inv;
+			N[3 * c + 2] = NZ[c] * inv;
+		}
+		for (c = 0; c < cols; c++)
+		{
+			const float l2 = NX[c] * NX[c] + NY[c] * NY[c] + NZ[c] * NZ[c];
+			NM[c] = l2 > 1e-24f ? 1 : 0;
+			validNormals += NM[c];
+		}
+	}
+	return validNormals;
+}
+
+}  // namespace semnav::detail::SEMNAV_KERNEL_NS
