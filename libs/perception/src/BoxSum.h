@@ -5,6 +5,8 @@
 #include <opencv2/core/mat.hpp>
 #include <vector>
 
+#include "SimdKernels.h"
+
 namespace semnav::detail
 {
 /** Unnormalized box sum over a (2k+1) x (2k+1) window with zero outside
@@ -23,47 +25,16 @@ void boxSumRows(
 	tmp.assign(static_cast<std::size_t>(w), 0.0f);
 	float* acc = tmp.data();
 	// Vertical: running sum of rows r-k .. r+k.
+	const SimdKernels& K = simdKernels();
 	for (int r = 0; r < std::min(k, rows); r++)
-	{
-		const float* s = src.ptr<float>(r);
-		for (int i = 0; i < w; i++) acc[i] += s[i];
-	}
+		K.addRow(acc, src.ptr<float>(r), w);
 	for (int r = 0; r < rows; r++)
 	{
-		if (r + k < rows)
-		{
-			const float* s = src.ptr<float>(r + k);
-			for (int i = 0; i < w; i++) acc[i] += s[i];
-		}
-		if (r - k - 1 >= 0)
-		{
-			const float* s = src.ptr<float>(r - k - 1);
-			for (int i = 0; i < w; i++) acc[i] -= s[i];
-		}
-		// Horizontal, per channel (interleaved): o(c) = sum of acc over
-		// columns c-k .. c+k; the middle part is 2k+1 shifted adds (no loop
-		// dependency: vectorizes), the k columns at each end are clamped.
+		if (r + k < rows) K.addRow(acc, src.ptr<float>(r + k), w);
+		if (r - k - 1 >= 0) K.subRow(acc, src.ptr<float>(r - k - 1), w);
+		// Horizontal, per channel (interleaved).
 		float* o = rowDest(r);
-		const int cols = src.cols;
-		const int head = std::min(k, cols) * ch;
-		const int tail = std::max(head, (cols - k) * ch);
-		for (int i = head; i < tail; i++) o[i] = acc[i];
-		for (int j = 1; j <= k; j++)
-		{
-			const int d = j * ch;
-			for (int i = head; i < tail; i++) o[i] += acc[i - d] + acc[i + d];
-		}
-		auto edge = [&](int i)
-		{
-			const int c = i / ch, c0 = i % ch;
-			float v = 0;
-			for (int cc = std::max(0, c - k); cc <= std::min(cols - 1, c + k);
-			     cc++)
-				v += acc[cc * ch + c0];
-			o[i] = v;
-		};
-		for (int i = 0; i < head; i++) edge(i);
-		for (int i = tail; i < w; i++) edge(i);
+		K.boxRow(acc, o, src.cols, ch, k);
 		rowDone(r, static_cast<const float*>(o));
 	}
 }

@@ -10,7 +10,7 @@
 #include <limits>
 #include <opencv2/core/hal/intrin.hpp>
 
-#include "NormalKernel.h"
+#include "SimdKernels.h"
 
 namespace semnav
 {
@@ -154,7 +154,7 @@ void NormalImage::compute(const Sweep& sweep)
 		for (c = 0; c < cols; c++) m_validPoints += M[c];
 	}
 
-	// Normals (NormalKernel.h: the widest vectors the CPU has).
+	// Normals (SimdKernels.h: the widest vectors the CPU has).
 	detail::NormalKernelArgs a;
 	a.rows = rows;
 	a.cols = cols;
@@ -180,7 +180,7 @@ void NormalImage::compute(const Sweep& sweep)
 	a.normalsStep = m_normals.step1();
 	a.mask = m_normalMask.ptr<uint8_t>(0);
 	a.maskStep = m_normalMask.step1();
-	m_validNormals = detail::computeNormals(a);
+	m_validNormals = detail::simdKernels().computeNormals(a);
 }
 
 void NormalImage::swapOutputs(

@@ -1,10 +1,12 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // The normal kernel's body, compiled once per instruction set: include with
-// SEMNAV_KERNEL_NS defined (NormalKernelBaseline.cpp, NormalKernelAvx2.cpp).
+// SEMNAV_KERNEL_NS defined (SimdKernelsBaseline.cpp, SimdKernelsAvx2.cpp).
 // cv::v_float32 and vx_* are the widest vectors of the including unit.
+#include <algorithm>
+#include <cmath>
 #include <opencv2/core/hal/intrin.hpp>
 
-#include "NormalKernel.h"
+#include "SimdKernels.h"
 
 namespace semnav::detail::SEMNAV_KERNEL_NS
 {
@@ -127,5 +129,43 @@ std::size_t computeNormals(const NormalKernelArgs& a)
 	}
 	return validNormals;
 }
+
+void addRow(float* acc, const float* row, int n)
+{
+	for (int i = 0; i < n; i++) acc[i] += row[i];
+}
+
+void subRow(float* acc, const float* row, int n)
+{
+	for (int i = 0; i < n; i++) acc[i] -= row[i];
+}
+
+void boxRow(const float* acc, float* o, int cols, int ch, int k)
+{
+	// The middle part is 2k+1 shifted adds (no loop dependency:
+	// vectorizes), the k columns at each end are clamped.
+	const int w = cols * ch;
+	const int head = std::min(k, cols) * ch;
+	const int tail = std::max(head, (cols - k) * ch);
+	for (int i = head; i < tail; i++) o[i] = acc[i];
+	for (int j = 1; j <= k; j++)
+	{
+		const int d = j * ch;
+		for (int i = head; i < tail; i++) o[i] += acc[i - d] + acc[i + d];
+	}
+	auto edge = [&](int i)
+	{
+		const int c = i / ch, c0 = i % ch;
+		float v = 0;
+		for (int cc = std::max(0, c - k); cc <= std::min(cols - 1, c + k); cc++)
+			v += acc[cc * ch + c0];
+		o[i] = v;
+	};
+	for (int i = 0; i < head; i++) edge(i);
+	for (int i = tail; i < w; i++) edge(i);
+}
+
+extern const SimdKernels kKernels = {
+    &computeNormals, &addRow, &subRow, &boxRow, SEMNAV_KERNEL_NAME};
 
 }  // namespace semnav::detail::SEMNAV_KERNEL_NS

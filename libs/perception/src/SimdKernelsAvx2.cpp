@@ -1,5 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-// The normal kernel at 8 floats per vector. Built with -mavx2 -mfma -mf16c
+// The kernels at 8 floats per vector. Built with -mavx2 -mfma -mf16c
 // -ffp-contract=off (CMakeLists.txt) and, like OpenCV's own *.avx2.cpp
 // dispatch units, with its universal intrinsics switched to AVX2 in their
 // own namespace (cv::hal_AVX2); called only where the CPU has them.
@@ -14,12 +14,7 @@
 #define CV_AVX2 1
 #define CV_FMA3 1
 #define SEMNAV_KERNEL_NS avx2
+#define SEMNAV_KERNEL_NAME "avx2"
 #include <immintrin.h>
 
-#include "NormalKernel.impl.h"
-
-namespace semnav::detail
-{
-std::size_t (*const computeNormalsAvx2)(const NormalKernelArgs&) =
-    &avx2::computeNormals;
-}  // namespace semnav::detail
+#include "SimdKernels.impl.h"

@@ -33,21 +33,27 @@ struct NormalKernelArgs
 	std::size_t maskStep = 0;
 };
 
-/** Computes the normals of every row; returns the number of pixels with a
- * normal. Runs the AVX2 build of the kernel where the CPU has AVX2, FMA and
- * F16C (8 floats per vector instead of 4; the same results bit for bit),
- * else the baseline (SSE2) build. */
-std::size_t computeNormals(const NormalKernelArgs& a);
+/** The perception's vector kernels, one build per instruction set (the
+ * same results bit for bit: no reordered sums, no fused multiply-adds). */
+struct SimdKernels
+{
+	/** Normals of every row; returns the number of pixels with one. */
+	std::size_t (*computeNormals)(const NormalKernelArgs& a);
+	/** acc[i] += row[i] (add) or -= (sub), i < n. */
+	void (*addRow)(float* acc, const float* row, int n);
+	void (*subRow)(float* acc, const float* row, int n);
+	/** Box sums along a row of `cols` pixels of `ch` interleaved channels:
+	 * out[c] = sum of acc over columns c-k .. c+k inside the row. */
+	void (*boxRow)(const float* acc, float* out, int cols, int ch, int k);
+	/** "baseline" (SSE2) or "avx2". */
+	const char* name;
+};
 
-/** The builds, for tests and benchmarks. avx2 is null when the compiler
- * could not build it. */
-std::size_t computeNormalsBaseline(const NormalKernelArgs& a);
-extern std::size_t (*const computeNormalsAvx2)(const NormalKernelArgs& a);
-/** Whether computeNormals() runs the AVX2 build on this CPU (and it is not
- * turned off by setKernelsBaselineOnly()). */
-bool normalKernelUsesAvx2();
-/** Makes the kernels run their baseline builds only (tests: same results
- * bit for bit), or again the widest the CPU has. */
+/** The widest build the CPU runs: AVX2 where it has AVX2, FMA and F16C (8
+ * floats per vector instead of 4), else the baseline. */
+const SimdKernels& simdKernels();
+/** Makes simdKernels() return the baseline build only (tests), or again
+ * the widest. */
 void setKernelsBaselineOnly(bool baselineOnly);
 
 }  // namespace semnav::detail

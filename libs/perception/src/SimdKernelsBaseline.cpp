@@ -1,0 +1,43 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#define SEMNAV_KERNEL_NS baseline
+#define SEMNAV_KERNEL_NAME "baseline"
+#include <atomic>
+
+#include "SimdKernels.impl.h"
+
+namespace semnav::detail
+{
+#ifdef SEMNAV_HAVE_AVX2_KERNELS
+namespace avx2
+{
+extern const SimdKernels kKernels;
+}  // namespace avx2
+#endif
+
+namespace
+{
+std::atomic<bool> baselineOnly{false};
+
+const SimdKernels* widest()
+{
+#ifdef SEMNAV_HAVE_AVX2_KERNELS
+	if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
+	    __builtin_cpu_supports("f16c"))
+		return &avx2::kKernels;
+#endif
+	return &baseline::kKernels;
+}
+}  // namespace
+
+void setKernelsBaselineOnly(bool b)
+{
+	baselineOnly = b;
+}
+
+const SimdKernels& simdKernels()
+{
+	static const SimdKernels* const w = widest();
+	return baselineOnly ? baseline::kKernels : *w;
+}
+
+}  // namespace semnav::detail

@@ -1,0 +1,84 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// The perception's vector kernels: every build (baseline SSE2, AVX2 where
+// the CPU has it) gives the same results bit for bit, and the box sums
+// equal OpenCV's box filter.
+#include <gtest/gtest.h>
+#include <semnav/perception/NormalImage.h>
+
+#include <cstring>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "../../libs/perception/src/BoxSum.h"
+#include "../../libs/perception/src/SimdKernels.h"
+#include "SyntheticScene.h"
+
+using namespace semnav;
+
+namespace
+{
+Sweep room()
+{
+	test::SynthScene sc = test::boxRoom(-2, 6, -2.5, 3, 2.7);
+	sc.noise = 0.005;
+	sc.boxes.push_back({{1.5, -1.5, 0}, {3.1, -0.7, 0.75}, Label::Obstacle});
+	return test::renderSweep(sc);
+}
+
+bool sameBits(const cv::Mat& a, const cv::Mat& b)
+{
+	return a.size() == b.size() && a.type() == b.type() &&
+	       std::memcmp(a.data, b.data, a.total() * a.elemSize()) == 0;
+}
+
+/** Runs f() with the widest kernels and with the baseline ones. */
+template <class F>
+void bothBuilds(F&& f)
+{
+	f(false);
+	detail::setKernelsBaselineOnly(true);
+	EXPECT_STREQ(detail::simdKernels().name, "baseline");
+	f(true);
+	detail::setKernelsBaselineOnly(false);
+}
+}  // namespace
+
+TEST(SimdKernels, AllBuildsGiveTheSameNormalsBitForBit)
+{
+	const Sweep sweep = room();
+	std::cout << "[ MEASURED ] widest kernels on this CPU: "
+	          << detail::simdKernels().name << "\n";
+	NormalImage ni[2];
+	bothBuilds([&](bool baseline) { ni[baseline].compute(sweep); });
+	ASSERT_GT(ni[1].validNormals(), 50000u);
+	EXPECT_EQ(ni[0].validNormals(), ni[1].validNormals());
+	EXPECT_TRUE(sameBits(ni[0].normals(), ni[1].normals()));
+	EXPECT_TRUE(sameBits(ni[0].normalMask(), ni[1].normalMask()));
+}
+
+TEST(SimdKernels, BoxSumsAreOpenCvsBoxFilterInEveryBuild)
+{
+	NormalImage ni;
+	ni.compute(room());
+	cv::Mat mask;
+	ni.normalMask().convertTo(mask, CV_32F);
+	for (const cv::Mat* src :
+	     {&ni.normals(), const_cast<const cv::Mat*>(&mask)})
+		for (int k : {1, 2, 5})
+		{
+			cv::Mat sums[2];
+			std::vector<float> tmp;
+			bothBuilds([&](bool baseline)
+			           { detail::boxSum(*src, k, sums[baseline], tmp); });
+			EXPECT_TRUE(sameBits(sums[0], sums[1]))
+			    << "channels " << src->channels() << " k " << k;
+			cv::Mat ref;
+			cv::boxFilter(
+			    *src, ref, CV_32F, cv::Size(2 * k + 1, 2 * k + 1),
+			    cv::Point(-1, -1), false, cv::BORDER_CONSTANT);
+			// (Running sums: rounding differs from OpenCV's in the last
+			// bits.)
+			EXPECT_LT(cv::norm(sums[1], ref, cv::NORM_INF), 1e-3)
+			    << "channels " << src->channels() << " k " << k;
+		}
+}
