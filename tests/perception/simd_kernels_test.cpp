@@ -43,7 +43,7 @@ void bothBuilds(F&& f)
 }
 }  // namespace
 
-TEST(SimdKernels, AllBuildsGiveTheSameNormalsBitForBit)
+TEST(SimdKernels, AllBuildsGiveTheSamePointsAndNormalsBitForBit)
 {
 	const Sweep sweep = room();
 	std::cout << "[ MEASURED ] widest kernels on this CPU: "
@@ -52,6 +52,11 @@ TEST(SimdKernels, AllBuildsGiveTheSameNormalsBitForBit)
 	bothBuilds([&](bool baseline) { ni[baseline].compute(sweep); });
 	ASSERT_GT(ni[1].validNormals(), 50000u);
 	EXPECT_EQ(ni[0].validNormals(), ni[1].validNormals());
+	EXPECT_EQ(ni[0].validPoints(), ni[1].validPoints());
+	// (NaN where invalid: compared as bits.)
+	EXPECT_TRUE(sameBits(ni[0].points(), ni[1].points()));
+	EXPECT_TRUE(sameBits(ni[0].ranges(), ni[1].ranges()));
+	EXPECT_TRUE(sameBits(ni[0].pointMask(), ni[1].pointMask()));
 	EXPECT_TRUE(sameBits(ni[0].normals(), ni[1].normals()));
 	EXPECT_TRUE(sameBits(ni[0].normalMask(), ni[1].normalMask()));
 }

@@ -8,18 +8,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <opencv2/core/hal/intrin.hpp>
 
 #include "SimdKernels.h"
 
 namespace semnav
 {
-namespace
-{
-/** Floats per vector of the widest SIMD the build allows. */
-constexpr int kLanes = cv::v_float32::nlanes;
-}  // namespace
-
 using mrpt::DEG2RAD;
 using mrpt::RAD2DEG;
 
@@ -59,7 +52,6 @@ void NormalImage::compute(const Sweep& sweep)
 {
 	const int rows = static_cast<int>(sweep.rows());
 	const int cols = static_cast<int>(sweep.cols());
-	constexpr float nan = std::numeric_limits<float>::quiet_NaN();
 	m_points.create(rows, cols, CV_32FC3);
 	m_ranges.create(rows, cols, CV_32F);
 	m_pointMask.create(rows, cols, CV_8U);
@@ -93,65 +85,36 @@ void NormalImage::compute(const Sweep& sweep)
 		cphi[c] = static_cast<float>(std::cos(sweep.phi(c)));
 		sphi[c] = static_cast<float>(std::sin(sweep.phi(c)));
 	}
-	const float* rng = sweep.ranges().data();
-	const uint8_t* val = sweep.validity().data();
-	const float fmax = std::numeric_limits<float>::max();
+	const detail::SimdKernels& K = detail::simdKernels();
+	detail::PointRowArgs pa;
+	pa.cols = cols;
+	pa.cosPhi = cphi.data();
+	pa.sinPhi = sphi.data();
 	for (int r = 0; r < rows; r++)
 	{
 		const auto& pose = sweep.sensorPose(r);
 		const auto& R = pose.getRotationMatrix();
-		const float a0 = static_cast<float>(R(0, 0)),
-		            a1 = static_cast<float>(R(1, 0)),
-		            a2 = static_cast<float>(R(2, 0));
-		const float b0 = static_cast<float>(R(0, 1)),
-		            b1 = static_cast<float>(R(1, 1)),
-		            b2 = static_cast<float>(R(2, 1));
-		const cv::Vec3f t(
-		    static_cast<float>(pose.x()), static_cast<float>(pose.y()),
-		    static_cast<float>(pose.z()));
-		m_sensorPos[r] = t;
-		auto* P = m_points.ptr<cv::Vec3f>(r);
-		auto* M = m_pointMask.ptr<uint8_t>(r);
-		float* D = m_ranges.ptr<float>(r);
+		for (int k = 0; k < 3; k++)
+		{
+			pa.a[k] = static_cast<float>(R(k, 0));
+			pa.b[k] = static_cast<float>(R(k, 1));
+		}
+		pa.t[0] = static_cast<float>(pose.x());
+		pa.t[1] = static_cast<float>(pose.y());
+		pa.t[2] = static_cast<float>(pose.z());
+		m_sensorPos[r] = cv::Vec3f(pa.t[0], pa.t[1], pa.t[2]);
 		const std::size_t o = static_cast<std::size_t>(r + 1) * pc + 1;
-		const float* rr = rng + static_cast<std::size_t>(r) * cols;
-		const uint8_t* vv = val + static_cast<std::size_t>(r) * cols;
-		float* X = &m_x[o];
-		float* Y = &m_y[o];
-		float* Z = &m_z[o];
-		float* V = &m_v[o];
-		// Branch-free (vectorizes): invalid, NaN, infinite or <= 0 ranges
-		// give 0 in the padded planes and NaN in the outputs.
-		for (int c = 0; c < cols; c++)
-		{
-			const float d = rr[c];
-			const bool ok = (vv[c] != 0) & (d > 0.0f) & (d <= fmax);
-			const float dd = ok ? d : 0.0f;
-			const float u = dd * cphi[c], v = dd * sphi[c];
-			X[c] = ok ? t[0] + u * a0 + v * b0 : 0.0f;
-			Y[c] = ok ? t[1] + u * a1 + v * b1 : 0.0f;
-			Z[c] = ok ? t[2] + u * a2 + v * b2 : 0.0f;
-			V[c] = ok ? 1.0f : 0.0f;
-			D[c] = ok ? d : nan;
-			M[c] = ok ? 1 : 0;
-		}
-		// Interleaved points, NaN where invalid, kLanes at a time.
-		const cv::v_float32 vNan = cv::vx_setall_f32(nan),
-		                    vHalf = cv::vx_setall_f32(0.5f);
-		float* Pf = P[0].val;
-		int c = 0;
-		for (; c + kLanes <= cols; c += kLanes)
-		{
-			const cv::v_float32 ok = cv::vx_load(V + c) > vHalf;
-			cv::v_store_interleave(
-			    Pf + 3 * c, cv::v_select(ok, cv::vx_load(X + c), vNan),
-			    cv::v_select(ok, cv::vx_load(Y + c), vNan),
-			    cv::v_select(ok, cv::vx_load(Z + c), vNan));
-		}
-		for (; c < cols; c++)
-			P[c] =
-			    M[c] ? cv::Vec3f(X[c], Y[c], Z[c]) : cv::Vec3f(nan, nan, nan);
-		for (c = 0; c < cols; c++) m_validPoints += M[c];
+		pa.ranges = sweep.ranges().data() + static_cast<std::size_t>(r) * cols;
+		pa.validity =
+		    sweep.validity().data() + static_cast<std::size_t>(r) * cols;
+		pa.x = &m_x[o];
+		pa.y = &m_y[o];
+		pa.z = &m_z[o];
+		pa.valid = &m_v[o];
+		pa.rangesOut = m_ranges.ptr<float>(r);
+		pa.mask = m_pointMask.ptr<uint8_t>(r);
+		pa.points = m_points.ptr<float>(r);
+		m_validPoints += K.pointsRow(pa);
 	}
 
 	// Normals (SimdKernels.h: the widest vectors the CPU has).
@@ -180,7 +143,7 @@ void NormalImage::compute(const Sweep& sweep)
 	a.normalsStep = m_normals.step1();
 	a.mask = m_normalMask.ptr<uint8_t>(0);
 	a.maskStep = m_normalMask.step1();
-	m_validNormals = detail::simdKernels().computeNormals(a);
+	m_validNormals = K.computeNormals(a);
 }
 
 void NormalImage::swapOutputs(

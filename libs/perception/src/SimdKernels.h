@@ -33,10 +33,32 @@ struct NormalKernelArgs
 	std::size_t maskStep = 0;
 };
 
+/** One row of NormalImage::compute's points. */
+struct PointRowArgs
+{
+	int cols = 0;
+	const float* ranges = nullptr;
+	const uint8_t* validity = nullptr;
+	/** cos and sin of each column's bearing. */
+	const float *cosPhi = nullptr, *sinPhi = nullptr;
+	/** The row's scanner pose: rotation columns 0 and 1, translation. */
+	float a[3] = {0, 0, 0}, b[3] = {0, 0, 0}, t[3] = {0, 0, 0};
+	/** Outputs: padded planes (0 where invalid) and validity (1 / 0),
+	 * ranges (NaN where invalid), mask, interleaved points (NaN where
+	 * invalid). */
+	float *x = nullptr, *y = nullptr, *z = nullptr, *valid = nullptr;
+	float* rangesOut = nullptr;
+	uint8_t* mask = nullptr;
+	float* points = nullptr;
+};
+
 /** The perception's vector kernels, one build per instruction set (the
  * same results bit for bit: no reordered sums, no fused multiply-adds). */
 struct SimdKernels
 {
+	/** Points of one row; returns the number of valid ones. Invalid, NaN,
+	 * infinite or <= 0 ranges are invalid. */
+	std::size_t (*pointsRow)(const PointRowArgs& a);
 	/** Normals of every row; returns the number of pixels with one. */
 	std::size_t (*computeNormals)(const NormalKernelArgs& a);
 	/** acc[i] += row[i] (add) or -= (sub), i < n. */

@@ -4,12 +4,65 @@
 // cv::v_float32 and vx_* are the widest vectors of the including unit.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/core/hal/intrin.hpp>
 
 #include "SimdKernels.h"
 
 namespace semnav::detail::SEMNAV_KERNEL_NS
 {
+std::size_t pointsRow(const PointRowArgs& a)
+{
+	constexpr int kLanes = cv::v_float32::nlanes;
+	constexpr float nan = std::numeric_limits<float>::quiet_NaN();
+	const float fmax = std::numeric_limits<float>::max();
+	const int cols = a.cols;
+	const float *rr = a.ranges, *cphi = a.cosPhi, *sphi = a.sinPhi;
+	const uint8_t* vv = a.validity;
+	float *X = a.x, *Y = a.y, *Z = a.z, *V = a.valid, *D = a.rangesOut;
+	uint8_t* M = a.mask;
+	const float a0 = a.a[0], a1 = a.a[1], a2 = a.a[2];
+	const float b0 = a.b[0], b1 = a.b[1], b2 = a.b[2];
+	const float t0 = a.t[0], t1 = a.t[1], t2 = a.t[2];
+	// Branch-free (vectorizes): invalid ranges give 0 in the padded planes
+	// and NaN in the outputs.
+	for (int c = 0; c < cols; c++)
+	{
+		const float d = rr[c];
+		const bool ok = (vv[c] != 0) & (d > 0.0f) & (d <= fmax);
+		const float dd = ok ? d : 0.0f;
+		const float u = dd * cphi[c], v = dd * sphi[c];
+		X[c] = ok ? t0 + u * a0 + v * b0 : 0.0f;
+		Y[c] = ok ? t1 + u * a1 + v * b1 : 0.0f;
+		Z[c] = ok ? t2 + u * a2 + v * b2 : 0.0f;
+		V[c] = ok ? 1.0f : 0.0f;
+		D[c] = ok ? d : nan;
+		M[c] = ok ? 1 : 0;
+	}
+	// Interleaved points, NaN where invalid, kLanes at a time.
+	const cv::v_float32 vNan = cv::vx_setall_f32(nan),
+	                    vHalf = cv::vx_setall_f32(0.5f);
+	float* P = a.points;
+	int c = 0;
+	for (; c + kLanes <= cols; c += kLanes)
+	{
+		const cv::v_float32 ok = cv::vx_load(V + c) > vHalf;
+		cv::v_store_interleave(
+		    P + 3 * c, cv::v_select(ok, cv::vx_load(X + c), vNan),
+		    cv::v_select(ok, cv::vx_load(Y + c), vNan),
+		    cv::v_select(ok, cv::vx_load(Z + c), vNan));
+	}
+	for (; c < cols; c++)
+	{
+		P[3 * c] = M[c] ? X[c] : nan;
+		P[3 * c + 1] = M[c] ? Y[c] : nan;
+		P[3 * c + 2] = M[c] ? Z[c] : nan;
+	}
+	std::size_t valid = 0;
+	for (c = 0; c < cols; c++) valid += M[c];
+	return valid;
+}
+
 std::size_t computeNormals(const NormalKernelArgs& a)
 {
 	constexpr int kLanes = cv::v_float32::nlanes;
@@ -166,6 +219,6 @@ void boxRow(const float* acc, float* o, int cols, int ch, int k)
 }
 
 extern const SimdKernels kKernels = {
-    &computeNormals, &addRow, &subRow, &boxRow, SEMNAV_KERNEL_NAME};
+    &pointsRow, &computeNormals, &addRow, &subRow, &boxRow, SEMNAV_KERNEL_NAME};
 
 }  // namespace semnav::detail::SEMNAV_KERNEL_NS
