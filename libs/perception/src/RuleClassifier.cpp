@@ -24,11 +24,11 @@ namespace
 /** Orientation class of a pixel. */
 enum Orient : uint8_t
 {
-	kNone = 0,
-	kUp,
-	kDown,
-	kVertical,
-	kOblique
+	kNone = detail::kOrientNone,
+	kUp = detail::kOrientUp,
+	kDown = detail::kOrientDown,
+	kVertical = detail::kOrientVertical,
+	kOblique = detail::kOrientOblique
 };
 
 constexpr int8_t kNoLabel = -1;
@@ -483,90 +483,17 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 		// and oblique pixels close normals. Precomputed row by row; only
 		// the surface's running mean is checked during the fill.
 		m_join.assign(n, 0);
-		const uint8_t* CL = m_class.data();
-		uint8_t* J = m_join.data();
-		// (Every term is evaluated, without branches: the outcome is
-		// unpredictable along surface edges and in noisy parts. A pixel
-		// with a class has a point and a normal; q's class equal to p's
-		// covers q's validity.)
-		auto ok = [&](int p, int q)
-		{
-			const uint8_t cls = CL[p];
-			const bool angular = (cls == kVertical) | (cls == kOblique);
-			return (PM[p] != 0) & (A[p] >= 1) & (cls != kNone) &
-			       (CL[q] == cls) & (A[q] == A[p]) &
-			       (std::abs(RG[p] - RG[q]) <= maxStep) &
-			       (!angular | (NS[p].dot(NS[q]) >= cosJoin));
-		};
-		// The same test on kLanes pairs (p, p + step) at a time (the widest
-		// vectors the build allows); lane k of the result is 1 where pixel
-		// p + k joins its neighbour.
-		constexpr int kLanes = cv::v_uint32::nlanes;
-		const float* NSf = NS[0].val;
-		const cv::v_float32 vMaxStep = cv::vx_setall_f32(maxStep),
-		                    vCosJoin = cv::vx_setall_f32(cosJoin);
-		const cv::v_uint32 vNone = cv::vx_setall_u32(kNone),
-		                   vVert = cv::vx_setall_u32(kVertical),
-		                   vObl = cv::vx_setall_u32(kOblique),
-		                   vOne = cv::vx_setall_u32(1);
-		const cv::v_int32 vZero = cv::vx_setzero_s32();
-		auto joinLanes = [&](int p, int step, unsigned* out)
-		{
-			const int q = p + step;
-			const cv::v_uint32 cp = cv::vx_load_expand_q(CL + p),
-			                   cq = cv::vx_load_expand_q(CL + q);
-			const cv::v_int32 ap = cv::vx_load(A + p), aq = cv::vx_load(A + q);
-			const cv::v_float32 rp = cv::vx_load(RG + p),
-			                    rq = cv::vx_load(RG + q);
-			cv::v_float32 ax, ay, az, bx, by, bz;
-			cv::v_load_deinterleave(NSf + 3 * p, ax, ay, az);
-			cv::v_load_deinterleave(NSf + 3 * q, bx, by, bz);
-			const cv::v_float32 dot = ax * bx + ay * by + az * bz;
-			const cv::v_uint32 angular = (cp == vVert) | (cp == vObl);
-			const cv::v_uint32 m =
-			    (cp != vNone) & cv::v_reinterpret_as_u32(ap > vZero) &
-			    (cq == cp) & cv::v_reinterpret_as_u32(aq == ap) &
-			    cv::v_reinterpret_as_u32(cv::v_abs(rp - rq) <= vMaxStep) &
-			    (~angular | cv::v_reinterpret_as_u32(dot >= vCosJoin));
-			cv::v_store(out, m & vOne);
-		};
-		unsigned bits[kLanes];
-		for (int r = 0; r < rows; r++)
-		{
-			const int base = r * cols, end = base + cols;
-			int p = base;
-			for (; p + kLanes < end; p += kLanes)
-			{
-				joinLanes(p, 1, bits);
-				for (int k = 0; k < kLanes; k++)
-				{
-					J[p + k] |= static_cast<uint8_t>(bits[k]);
-					J[p + k + 1] |= static_cast<uint8_t>(bits[k] << 1);
-				}
-			}
-			for (; p + 1 < end; p++)
-			{
-				const uint8_t right = ok(p, p + 1);
-				J[p] |= right;
-				J[p + 1] |= static_cast<uint8_t>(right << 1);
-			}
-			if (r + 1 == rows) continue;
-			for (p = base; p + kLanes <= end; p += kLanes)
-			{
-				joinLanes(p, cols, bits);
-				for (int k = 0; k < kLanes; k++)
-				{
-					J[p + k] |= static_cast<uint8_t>(bits[k] << 2);
-					J[p + k + cols] |= static_cast<uint8_t>(bits[k] << 3);
-				}
-			}
-			for (; p < end; p++)
-			{
-				const uint8_t down = ok(p, p + cols);
-				J[p] |= static_cast<uint8_t>(down << 2);
-				J[p + cols] |= static_cast<uint8_t>(down << 3);
-			}
-		}
+		detail::JoinArgs ja;
+		ja.rows = rows;
+		ja.cols = cols;
+		ja.classes = m_class.data();
+		ja.areas = A;
+		ja.ranges = RG;
+		ja.normals = NS[0].val;
+		ja.maxStep = maxStep;
+		ja.cosJoin = cosJoin;
+		ja.join = m_join.data();
+		detail::simdKernels().joinMask(ja);
 		// Up- and down-facing pixels need no running mean: their surfaces
 		// are the connected components of the join graph, found by
 		// union-find in one row-major scan (faster than a fill).
@@ -1449,24 +1376,16 @@ void RuleClassifier::classify(
 	// 1. Orientation per pixel on normals averaged inside their area.
 	// (A box filter over all pixels: 0 where there is no normal; pixels
 	// without their own normal are not classified anyway.)
-	const float cosUp = static_cast<float>(std::cos(o.groundNormalTolerance));
-	const float cosDown =
-	    static_cast<float>(std::cos(o.ceilingNormalTolerance));
-	const float sinVert = static_cast<float>(std::sin(o.wallNormalTolerance));
+	detail::OrientThresholds th;
+	th.cosUp = static_cast<float>(std::cos(o.groundNormalTolerance));
+	th.cosDown = static_cast<float>(std::cos(o.ceilingNormalTolerance));
+	th.sinVert = static_cast<float>(std::sin(o.wallNormalTolerance));
+	const detail::SimdKernels& K = detail::simdKernels();
 	m_class.resize(n);
-	auto classifyRow = [&](int r, const cv::Vec3f* N)
+	auto classifyRow = [&](int r, const float* N)
 	{
 		const int base = r * cols;
-		for (int c = 0; c < cols; c++)
-		{
-			const int p = base + c;
-			const float nz = N[c][2];
-			m_class[p] = !PM[p] || !NM[p]          ? kNone
-			             : nz >= cosUp             ? kUp
-			             : nz <= -cosDown          ? kDown
-			             : std::abs(nz) <= sinVert ? kVertical
-			                                       : kOblique;
-		}
+		K.orientRow(N, PM + base, NM + base, &m_class[base], cols, th);
 	};
 	if (o.normalSmoothingHalfWidth > 0)
 	{
@@ -1477,13 +1396,8 @@ void RuleClassifier::classify(
 		    [&](int r) { return m_smoothSum.ptr<float>(r); },
 		    [&](int r, const float*)
 		    {
-			    auto* S = m_smoothSum.ptr<cv::Vec3f>(r);
-			    for (int c = 0; c < cols; c++)
-			    {
-				    const float l2 = S[c].dot(S[c]);
-				    S[c] = l2 > 1e-24f ? S[c] * (1.0f / std::sqrt(l2))
-				                       : cv::Vec3f(0, 0, 0);
-			    }
+			    float* S = m_smoothSum.ptr<float>(r);
+			    K.normalizeRow(S, cols);
 			    classifyRow(r, S);
 		    });
 		m_ns = &m_smoothSum;
@@ -1491,7 +1405,7 @@ void RuleClassifier::classify(
 	else
 	{
 		m_ns = &normals.normals();
-		for (int r = 0; r < rows; r++) classifyRow(r, m_ns->ptr<cv::Vec3f>(r));
+		for (int r = 0; r < rows; r++) classifyRow(r, m_ns->ptr<float>(r));
 	}
 
 	const auto t1 = std::chrono::steady_clock::now();

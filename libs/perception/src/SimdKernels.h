@@ -52,6 +52,38 @@ struct PointRowArgs
 	float* points = nullptr;
 };
 
+/** Orientation classes of normals (RuleClassifier). */
+enum OrientClass : uint8_t
+{
+	kOrientNone = 0,
+	kOrientUp,
+	kOrientDown,
+	kOrientVertical,
+	kOrientOblique
+};
+
+/** Thresholds on a unit normal's z for orientRow(). */
+struct OrientThresholds
+{
+	float cosUp = 0, cosDown = 0, sinVert = 0;
+};
+
+/** Input and output of joinMask() (RuleClassifier's surfaces). */
+struct JoinArgs
+{
+	int rows = 0, cols = 0;
+	const uint8_t* classes = nullptr;  ///< OrientClass per pixel
+	const int* areas = nullptr;        ///< segmentation area ids
+	const float* ranges = nullptr;     ///< NaN where invalid
+	const float* normals = nullptr;    ///< x y z per pixel
+	/** Largest range step and smallest normal dot product (vertical and
+	 * oblique pixels) between joined neighbours. */
+	float maxStep = 0, cosJoin = 0;
+	/** Output, zeroed by the caller: per pixel bit 0 joins the right
+	 * neighbour, 1 the left, 2 the one below (next row), 3 the one above. */
+	uint8_t* join = nullptr;
+};
+
 /** The perception's vector kernels, one build per instruction set (the
  * same results bit for bit: no reordered sums, no fused multiply-adds). */
 struct SimdKernels
@@ -67,6 +99,20 @@ struct SimdKernels
 	/** Box sums along a row of `cols` pixels of `ch` interleaved channels:
 	 * out[c] = sum of acc over columns c-k .. c+k inside the row. */
 	void (*boxRow)(const float* acc, float* out, int cols, int ch, int k);
+	/** Normalises `cols` summed normals (x y z) in place, 0 where the sum
+	 * is ~0. */
+	void (*normalizeRow)(float* sums, int cols);
+	/** Orientation classes of a row of unit normals: kOrientNone without
+	 * point or normal (pointMask, normalMask), else up (z >= cosUp), down
+	 * (z <= -cosDown), vertical (|z| <= sinVert) or oblique. */
+	void (*orientRow)(
+	    const float* normals, const uint8_t* pointMask,
+	    const uint8_t* normalMask, uint8_t* classes, int cols,
+	    const OrientThresholds& t);
+	/** Which 4-neighbours may join a pixel's surface: same area (>= 1) and
+	 * class (not none), ranges within maxStep, and for vertical and
+	 * oblique pixels normals within acos(cosJoin). */
+	void (*joinMask)(const JoinArgs& a);
 	/** "baseline" (SSE2) or "avx2". */
 	const char* name;
 };

@@ -218,7 +218,141 @@ void boxRow(const float* acc, float* o, int cols, int ch, int k)
 	for (int i = tail; i < w; i++) edge(i);
 }
 
+void normalizeRow(float* S, int cols)
+{
+	constexpr int kLanes = cv::v_float32::nlanes;
+	const cv::v_float32 tiny = cv::vx_setall_f32(1e-24f),
+	                    one = cv::vx_setall_f32(1.0f),
+	                    zero = cv::vx_setzero_f32();
+	int c = 0;
+	for (; c + kLanes <= cols; c += kLanes)
+	{
+		cv::v_float32 x, y, z;
+		cv::v_load_deinterleave(S + 3 * c, x, y, z);
+		const cv::v_float32 l2 = x * x + y * y + z * z;
+		const cv::v_float32 inv = one / cv::v_sqrt(l2);
+		const cv::v_float32 ok = l2 > tiny;
+		cv::v_store_interleave(
+		    S + 3 * c, cv::v_select(ok, x * inv, zero),
+		    cv::v_select(ok, y * inv, zero), cv::v_select(ok, z * inv, zero));
+	}
+	for (; c < cols; c++)
+	{
+		float* n = S + 3 * c;
+		const float l2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+		const float inv = 1.0f / std::sqrt(l2);
+		for (int k = 0; k < 3; k++) n[k] = l2 > 1e-24f ? n[k] * inv : 0.0f;
+	}
+}
+
+void orientRow(
+    const float* S, const uint8_t* PM, const uint8_t* NM, uint8_t* cls,
+    int cols, const OrientThresholds& t)
+{
+	for (int c = 0; c < cols; c++)
+	{
+		const float nz = S[3 * c + 2];
+		cls[c] = !PM[c] || !NM[c]            ? kOrientNone
+		         : nz >= t.cosUp             ? kOrientUp
+		         : nz <= -t.cosDown          ? kOrientDown
+		         : std::abs(nz) <= t.sinVert ? kOrientVertical
+		                                     : kOrientOblique;
+	}
+}
+
+void joinMask(const JoinArgs& a)
+{
+	const int rows = a.rows, cols = a.cols;
+	const uint8_t* CL = a.classes;
+	const int* A = a.areas;
+	const float* RG = a.ranges;
+	const float* NS = a.normals;
+	uint8_t* J = a.join;
+	// (Every term is evaluated, without branches: the outcome is
+	// unpredictable along surface edges and in noisy parts. A pixel with a
+	// class has a point and a normal; q's class equal to p's covers q's
+	// validity.)
+	auto ok = [&](int p, int q)
+	{
+		const uint8_t cls = CL[p];
+		const bool angular = (cls == kOrientVertical) | (cls == kOrientOblique);
+		const float dot = NS[3 * p] * NS[3 * q] +
+		                  NS[3 * p + 1] * NS[3 * q + 1] +
+		                  NS[3 * p + 2] * NS[3 * q + 2];
+		return (A[p] >= 1) & (cls != kOrientNone) & (CL[q] == cls) &
+		       (A[q] == A[p]) & (std::abs(RG[p] - RG[q]) <= a.maxStep) &
+		       (!angular | (dot >= a.cosJoin));
+	};
+	// The same test on kLanes pairs (p, p + step) at a time; lane k of the
+	// result is 1 where pixel p + k joins its neighbour.
+	constexpr int kLanes = cv::v_uint32::nlanes;
+	const cv::v_float32 vMaxStep = cv::vx_setall_f32(a.maxStep),
+	                    vCosJoin = cv::vx_setall_f32(a.cosJoin);
+	const cv::v_uint32 vNone = cv::vx_setall_u32(kOrientNone),
+	                   vVert = cv::vx_setall_u32(kOrientVertical),
+	                   vObl = cv::vx_setall_u32(kOrientOblique),
+	                   vOne = cv::vx_setall_u32(1);
+	const cv::v_int32 vZero = cv::vx_setzero_s32();
+	auto joinLanes = [&](int p, int step, unsigned* out)
+	{
+		const int q = p + step;
+		const cv::v_uint32 cp = cv::vx_load_expand_q(CL + p),
+		                   cq = cv::vx_load_expand_q(CL + q);
+		const cv::v_int32 ap = cv::vx_load(A + p), aq = cv::vx_load(A + q);
+		const cv::v_float32 rp = cv::vx_load(RG + p), rq = cv::vx_load(RG + q);
+		cv::v_float32 ax, ay, az, bx, by, bz;
+		cv::v_load_deinterleave(NS + 3 * p, ax, ay, az);
+		cv::v_load_deinterleave(NS + 3 * q, bx, by, bz);
+		const cv::v_float32 dot = ax * bx + ay * by + az * bz;
+		const cv::v_uint32 angular = (cp == vVert) | (cp == vObl);
+		const cv::v_uint32 m =
+		    (cp != vNone) & cv::v_reinterpret_as_u32(ap > vZero) & (cq == cp) &
+		    cv::v_reinterpret_as_u32(aq == ap) &
+		    cv::v_reinterpret_as_u32(cv::v_abs(rp - rq) <= vMaxStep) &
+		    (~angular | cv::v_reinterpret_as_u32(dot >= vCosJoin));
+		cv::v_store(out, m & vOne);
+	};
+	unsigned bits[kLanes];
+	for (int r = 0; r < rows; r++)
+	{
+		const int base = r * cols, end = base + cols;
+		int p = base;
+		for (; p + kLanes < end; p += kLanes)
+		{
+			joinLanes(p, 1, bits);
+			for (int k = 0; k < kLanes; k++)
+			{
+				J[p + k] |= static_cast<uint8_t>(bits[k]);
+				J[p + k + 1] |= static_cast<uint8_t>(bits[k] << 1);
+			}
+		}
+		for (; p + 1 < end; p++)
+		{
+			const uint8_t right = ok(p, p + 1);
+			J[p] |= right;
+			J[p + 1] |= static_cast<uint8_t>(right << 1);
+		}
+		if (r + 1 == rows) continue;
+		for (p = base; p + kLanes <= end; p += kLanes)
+		{
+			joinLanes(p, cols, bits);
+			for (int k = 0; k < kLanes; k++)
+			{
+				J[p + k] |= static_cast<uint8_t>(bits[k] << 2);
+				J[p + k + cols] |= static_cast<uint8_t>(bits[k] << 3);
+			}
+		}
+		for (; p < end; p++)
+		{
+			const uint8_t down = ok(p, p + cols);
+			J[p] |= static_cast<uint8_t>(down << 2);
+			J[p + cols] |= static_cast<uint8_t>(down << 3);
+		}
+	}
+}
+
 extern const SimdKernels kKernels = {
-    &pointsRow, &computeNormals, &addRow, &subRow, &boxRow, SEMNAV_KERNEL_NAME};
+    &pointsRow,    &computeNormals, &addRow,   &subRow,           &boxRow,
+    &normalizeRow, &orientRow,      &joinMask, SEMNAV_KERNEL_NAME};
 
 }  // namespace semnav::detail::SEMNAV_KERNEL_NS
