@@ -30,8 +30,9 @@ void SemanticMap::TOptions::loadFromConfigFile(
 	     "robot_height_m", "robot_radius_m", "hit_probability",
 	     "free_probability", "occupied_threshold", "free_threshold",
 	     "merge_distance_m", "min_observations", "door_min_observations",
-	     "min_detection_ratio", "view_min_pixels", "door_min_height_m",
-	     "octomap"});
+	     "min_detection_ratio", "view_min_pixels", "view_max_bearing_deg",
+	     "washbasin_min_top_m", "washbasin_max_wall_distance_m",
+	     "door_min_height_m", "octomap"});
 	resolution = readChecked(c, s, "resolution_m", resolution, 0.005, 1.0);
 	growMargin = readChecked(c, s, "grow_margin_m", growMargin, 0, 100);
 	obstacleMinHeight =
@@ -56,6 +57,12 @@ void SemanticMap::TOptions::loadFromConfigFile(
 	    readChecked(c, s, "min_detection_ratio", minDetectionRatio, 0, 1);
 	viewMinPixels =
 	    readCheckedInt(c, s, "view_min_pixels", viewMinPixels, 0, 1000000);
+	viewMaxBearingDeg =
+	    readChecked(c, s, "view_max_bearing_deg", viewMaxBearingDeg, 0, 180);
+	washbasinMinTop =
+	    readChecked(c, s, "washbasin_min_top_m", washbasinMinTop, 0, 3);
+	washbasinMaxWallDistance = readChecked(
+	    c, s, "washbasin_max_wall_distance_m", washbasinMaxWallDistance, 0, 5);
 	doorMinHeight =
 	    readChecked(c, s, "door_min_height_m", doorMinHeight, 0, 10);
 	octomap = readCheckedBool(c, s, "octomap", octomap);
@@ -78,6 +85,9 @@ void SemanticMap::TOptions::saveToConfigFile(
 	c.write(s, "door_min_observations", doorMinObservations);
 	c.write(s, "min_detection_ratio", minDetectionRatio);
 	c.write(s, "view_min_pixels", viewMinPixels);
+	c.write(s, "view_max_bearing_deg", viewMaxBearingDeg);
+	c.write(s, "washbasin_min_top_m", washbasinMinTop);
+	c.write(s, "washbasin_max_wall_distance_m", washbasinMaxWallDistance);
 	c.write(s, "door_min_height_m", doorMinHeight);
 	writeBool(c, s, "octomap", octomap);
 }
@@ -270,7 +280,34 @@ bool SemanticMap::reported(const ObjectInstance& o) const
 		return false;
 	if (o.label == Label::Door && o.extent().z < m_options.doorMinHeight)
 		return false;
+	if (o.label == Label::Washbasin &&
+	    (o.maxCorner.z < m_options.washbasinMinTop ||
+	     (m_options.washbasinMaxWallDistance > 0 &&
+	      !wallWithin(
+	          o.centroid.x, o.centroid.y, m_options.washbasinMaxWallDistance))))
+		return false;
 	return true;
+}
+
+bool SemanticMap::wallWithin(double x, double y, double radius) const
+{
+	const auto& labels = get(kLabels);
+	const GridGeometry& g = m_geometry;
+	const int r = static_cast<int>(std::ceil(radius / g.resolution));
+	int cx, cy;
+	if (!g.worldToCell(x, y, cx, cy)) return false;
+	for (int dy = -r; dy <= r; dy++)
+		for (int dx = -r; dx <= r; dx++)
+		{
+			if (!g.contains(cy + dy, cx + dx)) continue;
+			if (std::hypot(g.centerX(cx + dx) - x, g.centerY(cy + dy) - y) >
+			    radius)
+				continue;
+			const LabelSet ls(static_cast<LabelSet::mask_t>(
+			    labels[g.index(cy + dy, cx + dx)]));
+			if (ls.contains(Label::Wall)) return true;
+		}
+	return false;
 }
 
 std::vector<ObjectInstance> SemanticMap::instances() const

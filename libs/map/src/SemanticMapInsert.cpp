@@ -229,7 +229,9 @@ void SemanticMap::insert(
 		toWorldBox(d.centroid - half, d.centroid + half, lo, hi);
 		robot.composePoint(d.centroid, wc);
 		int id = 0;
-		mergeObject(d.label, wc, lo, hi, seenThisSweep, id);
+		mergeObject(
+		    d.label, wc, {std::max(d.extent.x, d.extent.y), 0, d.extent.z}, lo,
+		    hi, seenThisSweep, id);
 		if (std::find(viewedThisSweep.begin(), viewedThisSweep.end(), id) ==
 		    viewedThisSweep.end())
 		{
@@ -255,7 +257,9 @@ void SemanticMap::insert(
 		toWorldBox(reg.minCorner, reg.maxCorner, lo, hi);
 		robot.composePoint(reg.centroid, wc);
 		int id = 0;
-		mergeObject(Label::Door, wc, lo, hi, seenThisSweep, id);
+		mergeObject(
+		    Label::Door, wc, {reg.width, 0, reg.height}, lo, hi, seenThisSweep,
+		    id);
 		paint(
 		    id, reg.imageBox,
 		    [&](int r, int c)
@@ -292,6 +296,7 @@ void SemanticMap::countViews(
 	// The tilt axis (rows differ by a few cm: the laser's offset from it).
 	const auto& axis = sweep.sensorPose(sweep.rows() / 2);
 	constexpr double kObjectDepth = 0.4;  // a return this short of it: seen
+	const double maxBearing = m_options.viewMaxBearingDeg * M_PI / 180;
 	const double phiStep =
 	    phis.size() > 1 ? (phis.back() - phis.front()) / (phis.size() - 1) : 1;
 	const double thetaStep =
@@ -311,10 +316,12 @@ void SemanticMap::countViews(
 		if (theta < thetas.front() || theta > thetas.back() ||
 		    phi < phis.front() || phi > phis.back())
 			continue;
-		// Pixels the object would cover at this distance.
-		const auto e = o.extent();
-		const double wide = std::max({e.x, e.y, 0.2}),
-		             high = std::max(e.z, 0.3);
+		if (std::abs(std::atan2(dy, dx)) > maxBearing) continue;
+		// Pixels the object would cover at this distance (its typical
+		// detection size: the union of all boxes would count views from
+		// where a real one is too small for the cascades).
+		const auto e = o.typicalSize();
+		const double wide = std::max(e.x, 0.2), high = std::max(e.z, 0.3);
 		const double px = (wide / d) / phiStep * (high / d) / thetaStep;
 		if (px < m_options.viewMinPixels) continue;
 		const std::size_t r0 = nearest(thetas, theta), c0 = nearest(phis, phi);
@@ -333,7 +340,7 @@ void SemanticMap::countViews(
 
 void SemanticMap::mergeObject(
     Label label, const mrpt::math::TPoint3D& centroid,
-    const mrpt::math::TPoint3D& minCorner,
+    const mrpt::math::TPoint3D& size, const mrpt::math::TPoint3D& minCorner,
     const mrpt::math::TPoint3D& maxCorner, std::vector<int>& seenThisSweep,
     int& id)
 {
@@ -362,6 +369,7 @@ void SemanticMap::mergeObject(
 		o.label = label;
 		o.centroid = centroid;
 		o.sightings.push_back(centroid);
+		o.sightingSizes.push_back(size);
 		o.minCorner = minCorner;
 		o.maxCorner = maxCorner;
 		o.observations = 1;
@@ -376,6 +384,7 @@ void SemanticMap::mergeObject(
 	if (!again)
 	{
 		best->addSighting(centroid, m_options.mergeDistance / 2);
+		best->sightingSizes.push_back(size);
 		best->observations++;
 		seenThisSweep.push_back(best->id);
 	}

@@ -86,6 +86,17 @@ public:
 		 * centroid and the object would cover at least this many pixels
 		 * of it (from its extent and distance). */
 		int viewMinPixels = 150;
+		/** Views count only within this bearing of the robot's heading
+		 * (deg): beside the robot the sweep's poles smear objects and the
+		 * cascades rarely fire. */
+		double viewMaxBearingDeg = 90;
+		/** Washbasins whose detections never reach this height are not
+		 * reported (side tables, chairs, steps taken for one) (m). */
+		double washbasinMinTop = 0.75;
+		/** Washbasins with no wall cell within this distance of their
+		 * centroid are not reported (free-standing tables taken for
+		 * one); 0 = no check (m). */
+		double washbasinMaxWallDistance = 0.6;
 		/** Doors whose merged extent is lower than this are not reported
 		 * (fragments of walls or furniture taken for a door) (m). */
 		double doorMinHeight = 1.2;
@@ -214,9 +225,11 @@ private:
 	void countViews(
 	    const Sweep& sweep, const mrpt::poses::CPose3D& robot,
 	    std::vector<int>& viewedThisSweep);
+	/** True when a cell labelled wall lies within `radius` of (x, y). */
+	bool wallWithin(double x, double y, double radius) const;
 	void mergeObject(
 	    Label label, const mrpt::math::TPoint3D& centroid,
-	    const mrpt::math::TPoint3D& minCorner,
+	    const mrpt::math::TPoint3D& size, const mrpt::math::TPoint3D& minCorner,
 	    const mrpt::math::TPoint3D& maxCorner, std::vector<int>& seenThisSweep,
 	    int& id);
 
