@@ -190,6 +190,49 @@ void printInstances(const MappedScene& o, const std::vector<Label>& labels)
 	}
 }
 
+/** Diagnostic (SEMNAV_MAP_DIAG set): the grid around every staircase. */
+void printStairs(const MappedScene& o)
+{
+	if (!std::getenv("SEMNAV_MAP_DIAG")) return;
+	const auto& map = *o.map;
+	for (const auto& obj : o.scene.objects)
+	{
+		if (obj.label != Label::Stairs) continue;
+		const auto c = trueCentre(obj);
+		std::cout << "  STAIRS " << o.scene.name << " #" << obj.id << " ("
+		          << c.x << ", " << c.y << ")\n";
+		for (double y = c.y + 1.5; y >= c.y - 1.5; y -= 0.05)
+		{
+			std::string line;
+			for (double x = c.x - 1.5; x <= c.x + 1.5; x += 0.05)
+			{
+				int cx, cy;
+				if (!map.worldToCell(x, y, cx, cy))
+				{
+					line += '?';
+					continue;
+				}
+				const bool in = footprintDistance(obj.parts[0], x, y) <= 0;
+				const auto ls = map.labels(cx, cy);
+				const auto st = map.cellState(cx, cy);
+				char ch = ' ';
+				if (ls.contains(Label::Stairs))
+					ch = 's';
+				else if (ls.contains(Label::Wall))
+					ch = 'w';
+				else if (st == SemanticMap::CellState::Occupied)
+					ch = '#';
+				else if (st == SemanticMap::CellState::Free)
+					ch = '.';
+				if (in)
+					ch = ch == ' ' ? '_' : ch == '.' ? 'o' : std::toupper(ch);
+				line += ch;
+			}
+			std::cout << "    " << line << "\n";
+		}
+	}
+}
+
 const MappedScene& office()
 {
 	static const MappedScene m = mapScene("/datasets/office/office.yaml");
@@ -210,6 +253,7 @@ ObjectScore scoreObjects(const MappedScene& o, const std::vector<Label>& labels)
 {
 	ObjectScore score;
 	printInstances(o, labels);
+	printStairs(o);
 	const auto& opts = o.map->options();
 	for (const Label l : labels)
 	{
@@ -327,23 +371,26 @@ ObjectScore scoreCascadeScenes(const std::vector<std::string>& names)
 TEST(MapAccuracy, HeldOutSceneObjects)
 {
 	// The cascade test scenes (not used in training). The target is every
-	// object once and nothing spurious; measured (README): 23 of 26 found
-	// once, 4 spurious of 27 instances. Asserted with a margin of one for
+	// object once and nothing spurious; measured (README): 24 of 26 found
+	// once, 2 spurious of 26 instances (23 and 4 before the map's views,
+	// washbasin and stairs checks). Asserted with a margin of one for
 	// detector changes.
 	const auto all = scoreCascadeScenes({"test_a", "test_b", "test_c"});
-	ASSERT_GE(all.seen, 24u);
-	EXPECT_GE(all.foundOnce, 21u);
-	EXPECT_LE(all.spurious, 5u);
+	ASSERT_GE(all.seen, 25u);
+	EXPECT_GE(all.foundOnce, 23u);
+	EXPECT_LE(all.spurious, 3u);
 }
 
 TEST(MapAccuracy, ValidationSceneObjects)
 {
 	// The cascade validation scenes (neither trained on nor held out), so
 	// that map-level rules are not tuned to the held-out scenes alone.
+	// Measured: 27 of 27 found once, 0 spurious of 27 instances (24 and 3
+	// before the map's views, washbasin and stairs checks); margin of one.
 	const auto all = scoreCascadeScenes({"val_a", "val_b", "val_c"});
-	ASSERT_GE(all.seen, 1u);
-	EXPECT_GE(all.foundOnce, 0u);
-	EXPECT_LE(all.spurious, 100u);
+	ASSERT_GE(all.seen, 26u);
+	EXPECT_GE(all.foundOnce, 26u);
+	EXPECT_LE(all.spurious, 1u);
 }
 
 TEST(MapAccuracy, SavedMapLoadsBack)
@@ -360,6 +407,10 @@ TEST(MapAccuracy, SavedMapLoadsBack)
 
 TEST(MapAccuracy, DISABLED_TrainingSceneObjects)
 {
+	// The cascade training scenes, for diagnosing map rules on more objects
+	// than the held-out and validation scenes hold (run with
+	// --gtest_also_run_disabled_tests; SEMNAV_MAP_DIAG=1 prints every
+	// instance). Measured: 163 of 177 found once, 10 spurious of 176.
 	std::vector<std::string> names;
 	for (char c = 'a'; c <= 't'; c++)
 		names.push_back(std::string("train_") + c);
