@@ -14,8 +14,11 @@
 #include <semnav/sim/SceneLoader.h>
 #include <semnav/sim/SimulationRunner.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <opencv2/imgcodecs.hpp>
 
@@ -74,6 +77,7 @@ struct MappedScene
 {
 	Scene scene;
 	fs::path dir;
+	std::string yamlPath;
 	std::unique_ptr<SemanticMap> map;
 	/** Per scene object id: sweeps that saw >= 150 of its pixels (the
 	 * detection rule of issue 4). */
@@ -85,7 +89,8 @@ struct MappedScene
 MappedScene mapScene(const std::string& yaml)
 {
 	MappedScene o;
-	o.scene = SceneLoader::loadFile(std::string(SEMNAV_SOURCE_DIR) + yaml);
+	o.yamlPath = std::string(SEMNAV_SOURCE_DIR) + yaml;
+	o.scene = SceneLoader::loadFile(o.yamlPath);
 	o.dir = fs::temp_directory_path() / ("semnav_mapacc_" + o.scene.name + "_" +
 	                                     std::to_string(::getpid()));
 	fs::remove_all(o.dir);
@@ -122,6 +127,112 @@ MappedScene mapScene(const std::string& yaml)
 	return o;
 }
 
+/** The comment line above an object in its scene file ("# table"). */
+std::string objectComment(const MappedScene& o, const SceneObject& obj)
+{
+	std::ifstream in(o.yamlPath);
+	std::string line, prev;
+	for (int n = 1; std::getline(in, line); n++)
+	{
+		if (n == obj.line) return prev;
+		prev = line;
+	}
+	return "";
+}
+
+/** Diagnostic (SEMNAV_MAP_DIAG set): every instance of `labels`, reported
+ * or not, with its nearest true object of any label. */
+void printInstances(const MappedScene& o, const std::vector<Label>& labels)
+{
+	if (!std::getenv("SEMNAV_MAP_DIAG")) return;
+	for (const auto& inst : o.map->allInstances())
+	{
+		if (std::find(labels.begin(), labels.end(), inst.label) == labels.end())
+			continue;
+		const SceneObject* nearest = nullptr;
+		double best = std::numeric_limits<double>::infinity();
+		for (const auto& obj : o.scene.objects)
+			for (const auto& p : obj.parts)
+			{
+				const double d =
+				    footprintDistance(p, inst.centroid.x, inst.centroid.y);
+				if (d < best)
+				{
+					best = d;
+					nearest = &obj;
+				}
+			}
+		double sameLabel = std::numeric_limits<double>::infinity();
+		for (const auto& obj : o.scene.objects)
+			if (obj.label == inst.label)
+			{
+				const auto c = trueCentre(obj);
+				sameLabel = std::min(
+				    sameLabel,
+				    std::hypot(inst.centroid.x - c.x, inst.centroid.y - c.y));
+			}
+		std::cout << "  DIAG " << o.scene.name << " " << labelName(inst.label)
+		          << " #" << inst.id
+		          << (o.map->reported(inst) ? " REPORTED" : " dropped")
+		          << " at (" << inst.centroid.x << ", " << inst.centroid.y
+		          << ", " << inst.centroid.z << ") " << inst.observations << "/"
+		          << inst.views << " ext (" << inst.extent().x << ", "
+		          << inst.extent().y << ", " << inst.extent().z << ") z "
+		          << inst.minCorner.z << ".." << inst.maxCorner.z
+		          << " true-same-label " << sameLabel << " m; nearest "
+		          << (nearest ? labelName(nearest->label) : "-") << " #"
+		          << (nearest ? nearest->id : 0) << " "
+		          << (nearest ? objectComment(o, *nearest) : "") << " at "
+		          << best << " m\n";
+		for (const auto& s : inst.sightings)
+			std::cout << "      sighting (" << s.x << ", " << s.y << ", " << s.z
+			          << ")\n";
+	}
+}
+
+/** Diagnostic (SEMNAV_MAP_DIAG set): the grid around every staircase. */
+void printStairs(const MappedScene& o)
+{
+	if (!std::getenv("SEMNAV_MAP_DIAG")) return;
+	const auto& map = *o.map;
+	for (const auto& obj : o.scene.objects)
+	{
+		if (obj.label != Label::Stairs) continue;
+		const auto c = trueCentre(obj);
+		std::cout << "  STAIRS " << o.scene.name << " #" << obj.id << " ("
+		          << c.x << ", " << c.y << ")\n";
+		for (double y = c.y + 1.5; y >= c.y - 1.5; y -= 0.05)
+		{
+			std::string line;
+			for (double x = c.x - 1.5; x <= c.x + 1.5; x += 0.05)
+			{
+				int cx, cy;
+				if (!map.worldToCell(x, y, cx, cy))
+				{
+					line += '?';
+					continue;
+				}
+				const bool in = footprintDistance(obj.parts[0], x, y) <= 0;
+				const auto ls = map.labels(cx, cy);
+				const auto st = map.cellState(cx, cy);
+				char ch = ' ';
+				if (ls.contains(Label::Stairs))
+					ch = 's';
+				else if (ls.contains(Label::Wall))
+					ch = 'w';
+				else if (st == SemanticMap::CellState::Occupied)
+					ch = '#';
+				else if (st == SemanticMap::CellState::Free)
+					ch = '.';
+				if (in)
+					ch = ch == ' ' ? '_' : ch == '.' ? 'o' : std::toupper(ch);
+				line += ch;
+			}
+			std::cout << "    " << line << "\n";
+		}
+	}
+}
+
 const MappedScene& office()
 {
 	static const MappedScene m = mapScene("/datasets/office/office.yaml");
@@ -141,6 +252,8 @@ struct ObjectScore
 ObjectScore scoreObjects(const MappedScene& o, const std::vector<Label>& labels)
 {
 	ObjectScore score;
+	printInstances(o, labels);
+	printStairs(o);
 	const auto& opts = o.map->options();
 	for (const Label l : labels)
 	{
@@ -232,17 +345,14 @@ TEST(MapAccuracy, OfficeObjectsAppearOnceNearTheirCentres)
 	    << "the office trajectory looks at wastebaskets 2 and 3";
 }
 
-TEST(MapAccuracy, HeldOutSceneObjects)
+/** Maps the cascade scenes `names` (datasets/cascade-scenes) and sums their
+ * washbasin, wastebasket and stairs scores. */
+ObjectScore scoreCascadeScenes(const std::vector<std::string>& names)
 {
-	// The cascade test scenes (not used in training). The target is every
-	// object once and nothing spurious; measured (README): 22 of 26 found
-	// once, 4 spurious of 26 instances (20 and 6 with the plain mean of the
-	// sightings). Asserted with a margin of one for detector changes.
 	ObjectScore all;
-	for (const char* name : {"test_a", "test_b", "test_c"})
+	for (const auto& name : names)
 	{
-		const auto o =
-		    mapScene(std::string("/datasets/cascade-scenes/") + name + ".yaml");
+		const auto o = mapScene("/datasets/cascade-scenes/" + name + ".yaml");
 		const auto s = scoreObjects(
 		    o, {Label::Washbasin, Label::Wastebasket, Label::Stairs});
 		all.seen += s.seen;
@@ -251,13 +361,36 @@ TEST(MapAccuracy, HeldOutSceneObjects)
 		all.spurious += s.spurious;
 		fs::remove_all(o.dir);
 	}
-	std::cout << "[ MEASURED ] held-out scenes: " << all.foundOnce << " of "
-	          << all.seen << " seen objects found once within 0.3 m, "
-	          << all.spurious << " spurious of " << all.instances
-	          << " instances\n";
-	ASSERT_GE(all.seen, 24u);
-	EXPECT_GE(all.foundOnce, 21u);
-	EXPECT_LE(all.spurious, 5u);
+	std::cout << "[ MEASURED ] " << names.front() << ".." << names.back()
+	          << ": " << all.foundOnce << " of " << all.seen
+	          << " seen objects found once within 0.3 m, " << all.spurious
+	          << " spurious of " << all.instances << " instances\n";
+	return all;
+}
+
+TEST(MapAccuracy, HeldOutSceneObjects)
+{
+	// The cascade test scenes (not used in training). The target is every
+	// object once and nothing spurious; measured (README): 24 of 26 found
+	// once, 2 spurious of 26 instances (23 and 4 before the map's views,
+	// washbasin and stairs checks). Asserted with a margin of one for
+	// detector changes.
+	const auto all = scoreCascadeScenes({"test_a", "test_b", "test_c"});
+	ASSERT_GE(all.seen, 25u);
+	EXPECT_GE(all.foundOnce, 23u);
+	EXPECT_LE(all.spurious, 3u);
+}
+
+TEST(MapAccuracy, ValidationSceneObjects)
+{
+	// The cascade validation scenes (neither trained on nor held out), so
+	// that map-level rules are not tuned to the held-out scenes alone.
+	// Measured: 27 of 27 found once, 0 spurious of 27 instances (24 and 3
+	// before the map's views, washbasin and stairs checks); margin of one.
+	const auto all = scoreCascadeScenes({"val_a", "val_b", "val_c"});
+	ASSERT_GE(all.seen, 26u);
+	EXPECT_GE(all.foundOnce, 26u);
+	EXPECT_LE(all.spurious, 1u);
 }
 
 TEST(MapAccuracy, SavedMapLoadsBack)
@@ -270,4 +403,16 @@ TEST(MapAccuracy, SavedMapLoadsBack)
 	EXPECT_EQ(back.geometry(), o.map->geometry());
 	EXPECT_EQ(back.instances().size(), o.map->instances().size());
 	EXPECT_EQ(back.get("cost"), o.map->get("cost"));
+}
+
+TEST(MapAccuracy, DISABLED_TrainingSceneObjects)
+{
+	// The cascade training scenes, for diagnosing map rules on more objects
+	// than the held-out and validation scenes hold (run with
+	// --gtest_also_run_disabled_tests; SEMNAV_MAP_DIAG=1 prints every
+	// instance). Measured: 163 of 177 found once, 10 spurious of 176.
+	std::vector<std::string> names;
+	for (char c = 'a'; c <= 't'; c++)
+		names.push_back(std::string("train_") + c);
+	scoreCascadeScenes(names);
 }

@@ -176,9 +176,123 @@ TEST(ObjectInstance, OutlyingSightingsDoNotDragTheCentroid)
 	EXPECT_NEAR(two.centroid.x, 1.0, 1e-9);
 }
 
+TEST(ObjectInstance, TypicalSizeIsTheMedianDetectionNotTheUnion)
+{
+	ObjectInstance o;
+	o.minCorner = {0, 0, 0};
+	o.maxCorner = {1.6, 1.9, 0.9};  // boxes spread over 1.9 m
+	EXPECT_NEAR(o.typicalSize().x, 1.9, 1e-9) << "no sizes: the union";
+	o.sightingSizes = {{0.45, 0, 0.7}, {0.5, 0, 0.75}, {1.5, 0, 0.8}};
+	EXPECT_NEAR(o.typicalSize().x, 0.5, 1e-9);
+	EXPECT_NEAR(o.typicalSize().z, 0.75, 1e-9);
+}
+
+namespace
+{
+/** A sweep with one detection of `label` (robot frame), plus `extra`
+ * points on a floor fan. */
+semnav::test::FakeSweep detectionSweep(
+    Label label, const mrpt::math::TPoint3D& centroid,
+    const mrpt::math::TPoint3D& extent, const std::vector<FakePoint>& extra)
+{
+	auto pts = floorFan(3.0);
+	pts.insert(pts.end(), extra.begin(), extra.end());
+	auto f = makeFakeSweep(pts);
+	Detection d;
+	d.label = label;
+	d.imageBox = cv::Rect(0, 0, 1, 1);
+	d.centroid = centroid;
+	d.extent = extent;
+	f.labeled.detections = {d};
+	return f;
+}
+}  // namespace
+
+TEST(SemanticMap, WashbasinsNeedTheirHeightAndAWall)
+{
+	const mrpt::poses::CPose2D pose(0, 0, 0);
+	std::vector<FakePoint> wall;
+	for (double y = -1; y <= 1; y += 0.04)
+		for (double z = 0.1; z <= 0.9; z += 0.2)
+			wall.push_back({2.5, y, z, Label::Wall});
+	// Top 0.6 + 0.6 / 2 = 0.9 m, against a wall 0.3 m behind: reported.
+	{
+		SemanticMap m;
+		const auto f = detectionSweep(
+		    Label::Washbasin, {2.2, 0, 0.6}, {0.4, 0.4, 0.6}, wall);
+		m.insert(f.sweep, f.labeled, pose);
+		EXPECT_EQ(m.instances(Label::Washbasin).size(), 1u);
+	}
+	// The same free-standing (a table): not reported, unless the check
+	// is off.
+	for (const double wallDistance : {0.6, 0.0})
+	{
+		SemanticMap::TOptions o;
+		o.washbasinMaxWallDistance = wallDistance;
+		SemanticMap m(o);
+		const auto f = detectionSweep(
+		    Label::Washbasin, {2.2, 0, 0.6}, {0.4, 0.4, 0.6}, {});
+		m.insert(f.sweep, f.labeled, pose);
+		EXPECT_EQ(m.allInstances().size(), 1u);
+		EXPECT_EQ(
+		    m.instances(Label::Washbasin).size(), wallDistance > 0 ? 0u : 1u);
+	}
+	// Against the wall but topping out at 0.4 + 0.3 / 2 = 0.55 m (a chair
+	// seat, a side table): not reported.
+	{
+		SemanticMap m;
+		const auto f = detectionSweep(
+		    Label::Washbasin, {2.2, 0, 0.4}, {0.4, 0.4, 0.3}, wall);
+		m.insert(f.sweep, f.labeled, pose);
+		EXPECT_EQ(m.allInstances().size(), 1u);
+		EXPECT_TRUE(m.instances(Label::Washbasin).empty());
+	}
+}
+
+TEST(SemanticMap, StairsCentreOnTheirLabelledCells)
+{
+	// A flight over x 2.0..3.2, y -0.6..0.6, labelled stairs; the
+	// detection's points lean to its near right corner: (2.2, -0.35).
+	std::vector<FakePoint> flight;
+	for (double x = 2.0; x <= 3.2; x += 0.03)
+		for (double y = -0.6; y <= 0.6; y += 0.03)
+			flight.push_back({x, y, 0.2 + 0.3 * (x - 2.0), Label::Stairs});
+	const mrpt::poses::CPose2D pose(0, 0, 0);
+	for (const bool fromCells : {true, false})
+	{
+		SemanticMap::TOptions o;
+		o.stairsCentroidFromCells = fromCells;
+		SemanticMap m(o);
+		const auto f = detectionSweep(
+		    Label::Stairs, {2.2, -0.35, 0.4}, {2.0, 2.0, 0.8}, flight);
+		m.insert(f.sweep, f.labeled, pose);
+		const auto st = m.instances(Label::Stairs);
+		ASSERT_EQ(st.size(), 1u);
+		if (fromCells)
+		{
+			EXPECT_NEAR(st[0].centroid.x, 2.6, 0.06);
+			EXPECT_NEAR(st[0].centroid.y, 0.0, 0.06);
+		}
+		else
+			EXPECT_NEAR(st[0].centroid.x, 2.2, 1e-6);
+	}
+	// Detections that never come down to the floor (a table top taken for
+	// stairs): not reported.
+	SemanticMap m;
+	const auto f = detectionSweep(
+	    Label::Stairs, {2.2, -0.35, 0.7}, {1.0, 1.0, 0.2}, flight);
+	m.insert(f.sweep, f.labeled, pose);
+	EXPECT_EQ(m.allInstances().size(), 1u);
+	EXPECT_TRUE(m.instances(Label::Stairs).empty());
+}
+
 TEST(SemanticMap, GoalRegionIsFreeCellsWithinReach)
 {
-	SemanticMap m;
+	// A toy washbasin (0.35 m high, no wall): the plausibility checks off.
+	SemanticMap::TOptions o;
+	o.washbasinMinTop = 0;
+	o.washbasinMaxWallDistance = 0;
+	SemanticMap m(o);
 	auto pts = floorFan(1.95);  // the floor up to the basin's foot
 	for (double y = -0.1; y <= 0.1; y += 0.02)
 		pts.push_back({2.0, y, 0.3, Label::Washbasin});
@@ -216,8 +330,37 @@ TEST(SemanticMapOptions, ShippedConfigLoadsAndBadValuesAreRejected)
 	o.loadFromConfigFile(*cfg, "SemanticMap");
 	o.cost.loadFromConfigFile(*cfg, "TravelCost");
 	EXPECT_DOUBLE_EQ(o.resolution, 0.05);
+	EXPECT_DOUBLE_EQ(o.stairsMinDetectionRatio, 0.4) << "shipped value";
 	mrpt::config::CConfigFileMemory bad("[SemanticMap]\nresolution_m = 0\n");
 	EXPECT_THROW(o.loadFromConfigFile(bad, "SemanticMap"), ConfigError);
+	for (const char* badKey :
+	     {"washbasin_min_top_m = -1", "washbasin_max_wall_distance_m = 6",
+	      "stairs_min_detection_ratio = 1.5", "stairs_max_bottom_m = -0.1",
+	      "view_max_bearing_deg = 200", "stairs_centroid_from_cells = maybe"})
+	{
+		mrpt::config::CConfigFileMemory b(
+		    std::string("[SemanticMap]\n") + badKey + "\n");
+		EXPECT_THROW(o.loadFromConfigFile(b, "SemanticMap"), ConfigError)
+		    << badKey;
+	}
+	// The object rules round-trip through save and load.
+	SemanticMap::TOptions changed;
+	changed.washbasinMinTop = 0.7;
+	changed.washbasinMaxWallDistance = 0.5;
+	changed.stairsMinDetectionRatio = 0.3;
+	changed.stairsMaxBottom = 0.2;
+	changed.viewMaxBearingDeg = 80;
+	changed.stairsCentroidFromCells = false;
+	mrpt::config::CConfigFileMemory saved;
+	changed.saveToConfigFile(saved, "SemanticMap");
+	SemanticMap::TOptions back;
+	back.loadFromConfigFile(saved, "SemanticMap");
+	EXPECT_DOUBLE_EQ(back.washbasinMinTop, 0.7);
+	EXPECT_DOUBLE_EQ(back.washbasinMaxWallDistance, 0.5);
+	EXPECT_DOUBLE_EQ(back.stairsMinDetectionRatio, 0.3);
+	EXPECT_DOUBLE_EQ(back.stairsMaxBottom, 0.2);
+	EXPECT_DOUBLE_EQ(back.viewMaxBearingDeg, 80);
+	EXPECT_FALSE(back.stairsCentroidFromCells);
 	mrpt::config::CConfigFileMemory typo(
 	    "[TravelCost]\nrobot_type = hovercraft\n");
 	EXPECT_THROW(o.cost.loadFromConfigFile(typo, "TravelCost"), ConfigError);

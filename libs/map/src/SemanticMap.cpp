@@ -25,13 +25,17 @@ void SemanticMap::TOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	checkKnownKeys(
-	    c, s,
-	    {"resolution_m", "grow_margin_m", "obstacle_min_height_m",
-	     "robot_height_m", "robot_radius_m", "hit_probability",
-	     "free_probability", "occupied_threshold", "free_threshold",
-	     "merge_distance_m", "min_observations", "door_min_observations",
-	     "min_detection_ratio", "view_min_pixels", "door_min_height_m",
-	     "octomap"});
+	    c, s, {"resolution_m",          "grow_margin_m",
+	           "obstacle_min_height_m", "robot_height_m",
+	           "robot_radius_m",        "hit_probability",
+	           "free_probability",      "occupied_threshold",
+	           "free_threshold",        "merge_distance_m",
+	           "min_observations",      "door_min_observations",
+	           "min_detection_ratio",   "stairs_min_detection_ratio",
+	           "view_min_pixels",       "view_max_bearing_deg",
+	           "washbasin_min_top_m",   "washbasin_max_wall_distance_m",
+	           "stairs_max_bottom_m",   "stairs_centroid_from_cells",
+	           "door_min_height_m",     "octomap"});
 	resolution = readChecked(c, s, "resolution_m", resolution, 0.005, 1.0);
 	growMargin = readChecked(c, s, "grow_margin_m", growMargin, 0, 100);
 	obstacleMinHeight =
@@ -54,8 +58,20 @@ void SemanticMap::TOptions::loadFromConfigFile(
 	    c, s, "door_min_observations", doorMinObservations, 1, 1000);
 	minDetectionRatio =
 	    readChecked(c, s, "min_detection_ratio", minDetectionRatio, 0, 1);
+	stairsMinDetectionRatio = readChecked(
+	    c, s, "stairs_min_detection_ratio", stairsMinDetectionRatio, 0, 1);
 	viewMinPixels =
 	    readCheckedInt(c, s, "view_min_pixels", viewMinPixels, 0, 1000000);
+	viewMaxBearingDeg =
+	    readChecked(c, s, "view_max_bearing_deg", viewMaxBearingDeg, 0, 180);
+	washbasinMinTop =
+	    readChecked(c, s, "washbasin_min_top_m", washbasinMinTop, 0, 3);
+	washbasinMaxWallDistance = readChecked(
+	    c, s, "washbasin_max_wall_distance_m", washbasinMaxWallDistance, 0, 5);
+	stairsMaxBottom =
+	    readChecked(c, s, "stairs_max_bottom_m", stairsMaxBottom, 0, 3);
+	stairsCentroidFromCells = readCheckedBool(
+	    c, s, "stairs_centroid_from_cells", stairsCentroidFromCells);
 	doorMinHeight =
 	    readChecked(c, s, "door_min_height_m", doorMinHeight, 0, 10);
 	octomap = readCheckedBool(c, s, "octomap", octomap);
@@ -77,7 +93,13 @@ void SemanticMap::TOptions::saveToConfigFile(
 	c.write(s, "min_observations", minObservations);
 	c.write(s, "door_min_observations", doorMinObservations);
 	c.write(s, "min_detection_ratio", minDetectionRatio);
+	c.write(s, "stairs_min_detection_ratio", stairsMinDetectionRatio);
 	c.write(s, "view_min_pixels", viewMinPixels);
+	c.write(s, "view_max_bearing_deg", viewMaxBearingDeg);
+	c.write(s, "washbasin_min_top_m", washbasinMinTop);
+	c.write(s, "washbasin_max_wall_distance_m", washbasinMaxWallDistance);
+	c.write(s, "stairs_max_bottom_m", stairsMaxBottom);
+	writeBool(c, s, "stairs_centroid_from_cells", stairsCentroidFromCells);
 	c.write(s, "door_min_height_m", doorMinHeight);
 	writeBool(c, s, "octomap", octomap);
 }
@@ -264,13 +286,44 @@ bool SemanticMap::reported(const ObjectInstance& o) const
 	const int minObs = o.label == Label::Door ? m_options.doorMinObservations
 	                                          : m_options.minObservations;
 	if (static_cast<int>(o.observations) < minObs) return false;
-	if (o.label != Label::Door &&
-	    static_cast<double>(o.observations) <
-	        m_options.minDetectionRatio * static_cast<double>(o.views))
+	const double ratio = o.label == Label::Stairs
+	                         ? m_options.stairsMinDetectionRatio
+	                         : m_options.minDetectionRatio;
+	if (o.label != Label::Door && static_cast<double>(o.observations) <
+	                                  ratio * static_cast<double>(o.views))
 		return false;
 	if (o.label == Label::Door && o.extent().z < m_options.doorMinHeight)
 		return false;
+	if (o.label == Label::Stairs && o.minCorner.z > m_options.stairsMaxBottom)
+		return false;
+	if (o.label == Label::Washbasin &&
+	    (o.maxCorner.z < m_options.washbasinMinTop ||
+	     (m_options.washbasinMaxWallDistance > 0 &&
+	      !wallWithin(
+	          o.centroid.x, o.centroid.y, m_options.washbasinMaxWallDistance))))
+		return false;
 	return true;
+}
+
+bool SemanticMap::wallWithin(double x, double y, double radius) const
+{
+	const auto& labels = get(kLabels);
+	const GridGeometry& g = m_geometry;
+	const int r = static_cast<int>(std::ceil(radius / g.resolution));
+	int cx, cy;
+	if (!g.worldToCell(x, y, cx, cy)) return false;
+	for (int dy = -r; dy <= r; dy++)
+		for (int dx = -r; dx <= r; dx++)
+		{
+			if (!g.contains(cy + dy, cx + dx)) continue;
+			if (std::hypot(g.centerX(cx + dx) - x, g.centerY(cy + dy) - y) >
+			    radius)
+				continue;
+			const LabelSet ls(static_cast<LabelSet::mask_t>(
+			    labels[g.index(cy + dy, cx + dx)]));
+			if (ls.contains(Label::Wall)) return true;
+		}
+	return false;
 }
 
 std::vector<ObjectInstance> SemanticMap::instances() const

@@ -229,7 +229,9 @@ void SemanticMap::insert(
 		toWorldBox(d.centroid - half, d.centroid + half, lo, hi);
 		robot.composePoint(d.centroid, wc);
 		int id = 0;
-		mergeObject(d.label, wc, lo, hi, seenThisSweep, id);
+		mergeObject(
+		    d.label, wc, {std::max(d.extent.x, d.extent.y), 0, d.extent.z}, lo,
+		    hi, seenThisSweep, id);
 		if (std::find(viewedThisSweep.begin(), viewedThisSweep.end(), id) ==
 		    viewedThisSweep.end())
 		{
@@ -248,6 +250,12 @@ void SemanticMap::insert(
 			               static_cast<std::size_t>(c)) == d.label;
 		    });
 	}
+	if (m_options.stairsCentroidFromCells)
+		for (auto& o : m_instances)
+			if (o.label == Label::Stairs &&
+			    std::find(seenThisSweep.begin(), seenThisSweep.end(), o.id) !=
+			        seenThisSweep.end())
+				centreOnCells(o);
 	for (const auto& reg : ls.regions)
 	{
 		if (reg.label != Label::Door) continue;
@@ -255,7 +263,9 @@ void SemanticMap::insert(
 		toWorldBox(reg.minCorner, reg.maxCorner, lo, hi);
 		robot.composePoint(reg.centroid, wc);
 		int id = 0;
-		mergeObject(Label::Door, wc, lo, hi, seenThisSweep, id);
+		mergeObject(
+		    Label::Door, wc, {reg.width, 0, reg.height}, lo, hi, seenThisSweep,
+		    id);
 		paint(
 		    id, reg.imageBox,
 		    [&](int r, int c)
@@ -292,6 +302,7 @@ void SemanticMap::countViews(
 	// The tilt axis (rows differ by a few cm: the laser's offset from it).
 	const auto& axis = sweep.sensorPose(sweep.rows() / 2);
 	constexpr double kObjectDepth = 0.4;  // a return this short of it: seen
+	const double maxBearing = m_options.viewMaxBearingDeg * M_PI / 180;
 	const double phiStep =
 	    phis.size() > 1 ? (phis.back() - phis.front()) / (phis.size() - 1) : 1;
 	const double thetaStep =
@@ -311,10 +322,12 @@ void SemanticMap::countViews(
 		if (theta < thetas.front() || theta > thetas.back() ||
 		    phi < phis.front() || phi > phis.back())
 			continue;
-		// Pixels the object would cover at this distance.
-		const auto e = o.extent();
-		const double wide = std::max({e.x, e.y, 0.2}),
-		             high = std::max(e.z, 0.3);
+		if (std::abs(std::atan2(dy, dx)) > maxBearing) continue;
+		// Pixels the object would cover at this distance (its typical
+		// detection size: the union of all boxes would count views from
+		// where a real one is too small for the cascades).
+		const auto e = o.typicalSize();
+		const double wide = std::max(e.x, 0.2), high = std::max(e.z, 0.3);
 		const double px = (wide / d) / phiStep * (high / d) / thetaStep;
 		if (px < m_options.viewMinPixels) continue;
 		const std::size_t r0 = nearest(thetas, theta), c0 = nearest(phis, phi);
@@ -331,9 +344,76 @@ void SemanticMap::countViews(
 	}
 }
 
+void SemanticMap::centreOnCells(ObjectInstance& o) const
+{
+	const GridGeometry& g = m_geometry;
+	const auto& labels = get("labels");
+	int x0, y0, x1, y1;
+	worldToCell(o.minCorner.x, o.minCorner.y, x0, y0);
+	worldToCell(o.maxCorner.x, o.maxCorner.y, x1, y1);
+	x0 = std::max(x0, 0);
+	y0 = std::max(y0, 0);
+	x1 = std::min(x1, g.cols - 1);
+	y1 = std::min(y1, g.rows - 1);
+	if (x1 < x0 || y1 < y0) return;
+	const auto stairs = [&](int cx, int cy)
+	{
+		const LabelSet ls(
+		    static_cast<LabelSet::mask_t>(labels[g.index(cy, cx)]));
+		return ls.contains(Label::Stairs) && !ls.contains(Label::Wall);
+	};
+	// Seeds: stairs cells within half the merge distance of a sighting.
+	const int w = x1 - x0 + 1;
+	std::vector<uint8_t> mark(static_cast<std::size_t>(w) * (y1 - y0 + 1), 0);
+	std::vector<std::pair<int, int>> queue;
+	const double reach = m_options.mergeDistance / 2;
+	for (const auto& s : o.sightings.empty()
+	                         ? std::vector<mrpt::math::TPoint3D>{o.centroid}
+	                         : o.sightings)
+		for (int cy = y0; cy <= y1; cy++)
+			for (int cx = x0; cx <= x1; cx++)
+			{
+				auto& m = mark[static_cast<std::size_t>(cy - y0) * w + cx - x0];
+				if (m || !stairs(cx, cy) ||
+				    std::hypot(g.centerX(cx) - s.x, g.centerY(cy) - s.y) >
+				        reach)
+					continue;
+				m = 1;
+				queue.emplace_back(cx, cy);
+			}
+	// The 8-connected stairs cells around them, inside the footprint.
+	for (std::size_t i = 0; i < queue.size(); i++)
+	{
+		const auto [ax, ay] = queue[i];
+		for (int dy = -1; dy <= 1; dy++)
+			for (int dx = -1; dx <= 1; dx++)
+			{
+				const int cx = ax + dx, cy = ay + dy;
+				if (cx < x0 || cx > x1 || cy < y0 || cy > y1) continue;
+				auto& m = mark[static_cast<std::size_t>(cy - y0) * w + cx - x0];
+				if (m || !stairs(cx, cy)) continue;
+				m = 1;
+				queue.emplace_back(cx, cy);
+			}
+	}
+	// A few cells are no flight (a stray labelled pixel): keep the mean.
+	constexpr std::size_t kMinCells = 20;
+	if (queue.size() < kMinCells) return;
+	int bx0 = x1, by0 = y1, bx1 = x0, by1 = y0;
+	for (const auto& [cx, cy] : queue)
+	{
+		bx0 = std::min(bx0, cx);
+		bx1 = std::max(bx1, cx);
+		by0 = std::min(by0, cy);
+		by1 = std::max(by1, cy);
+	}
+	o.centroid.x = 0.5 * (g.centerX(bx0) + g.centerX(bx1));
+	o.centroid.y = 0.5 * (g.centerY(by0) + g.centerY(by1));
+}
+
 void SemanticMap::mergeObject(
     Label label, const mrpt::math::TPoint3D& centroid,
-    const mrpt::math::TPoint3D& minCorner,
+    const mrpt::math::TPoint3D& size, const mrpt::math::TPoint3D& minCorner,
     const mrpt::math::TPoint3D& maxCorner, std::vector<int>& seenThisSweep,
     int& id)
 {
@@ -362,6 +442,7 @@ void SemanticMap::mergeObject(
 		o.label = label;
 		o.centroid = centroid;
 		o.sightings.push_back(centroid);
+		o.sightingSizes.push_back(size);
 		o.minCorner = minCorner;
 		o.maxCorner = maxCorner;
 		o.observations = 1;
@@ -376,6 +457,7 @@ void SemanticMap::mergeObject(
 	if (!again)
 	{
 		best->addSighting(centroid, m_options.mergeDistance / 2);
+		best->sightingSizes.push_back(size);
 		best->observations++;
 		seenThisSweep.push_back(best->id);
 	}

@@ -23,6 +23,10 @@ struct ObjectInstance
 	/** The detections' centroids, one per sweep that detected it (in
 	 * memory only: a loaded map starts again from its centroid). */
 	std::vector<mrpt::math::TPoint3D> sightings;
+	/** Size of each sighting's detection: x = its width across the line
+	 * of sight (the larger horizontal side), z = its height (in memory
+	 * only, like `sightings`). */
+	std::vector<mrpt::math::TPoint3D> sightingSizes;
 	/** Axis-aligned bounds of all detections. */
 	mrpt::math::TPoint3D minCorner{0, 0, 0}, maxCorner{0, 0, 0};
 	/** Sweeps in which the object was detected. */
@@ -65,6 +69,30 @@ struct ObjectInstance
 		}
 		centroid =
 		    in > 0 ? sumIn * (1.0 / in) : sumAll * (1.0 / sightings.size());
+	}
+
+	/** Typical size of one detection of it (per-axis median of
+	 * `sightingSizes`): unlike extent(), not inflated by the spread of the
+	 * sightings or one box that swallowed a neighbour. extent() when no
+	 * size was recorded (a loaded map, addInstance()). */
+	mrpt::math::TPoint3D typicalSize() const
+	{
+		if (sightingSizes.empty())
+		{
+			const auto e = extent();
+			return {std::max(e.x, e.y), 0, e.z};
+		}
+		auto median = [&](double mrpt::math::TPoint3D::*axis)
+		{
+			std::vector<double> v;
+			for (const auto& s : sightingSizes) v.push_back(s.*axis);
+			std::sort(v.begin(), v.end());
+			const std::size_t h = v.size() / 2;
+			return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
+		};
+		return {
+		    median(&mrpt::math::TPoint3D::x), 0,
+		    median(&mrpt::math::TPoint3D::z)};
 	}
 
 	mrpt::math::TPoint3D extent() const

@@ -82,10 +82,34 @@ public:
 		 * sweeps that had them in view are not reported (furniture that a
 		 * cascade took for an object once in many looks). */
 		double minDetectionRatio = 0.6;
+		/** The same for stairs, whose cascade finds a flight in about half
+		 * of the sweeps that see it (a table taken for stairs: one in
+		 * three or fewer). */
+		double stairsMinDetectionRatio = 0.6;
 		/** A sweep has an object in view when it has line of sight to its
 		 * centroid and the object would cover at least this many pixels
 		 * of it (from its extent and distance). */
 		int viewMinPixels = 150;
+		/** Views count only within this bearing of the robot's heading
+		 * (deg): beside the robot the sweep's poles smear objects and the
+		 * cascades rarely fire. */
+		double viewMaxBearingDeg = 90;
+		/** Washbasins whose detections never reach this height are not
+		 * reported (side tables, chairs, steps taken for one) (m). */
+		double washbasinMinTop = 0.75;
+		/** Washbasins with no wall cell within this distance of their
+		 * centroid are not reported (free-standing tables taken for
+		 * one); 0 = no check (m). */
+		double washbasinMaxWallDistance = 0.6;
+		/** Stairs whose detections never come down to this height are not
+		 * reported: a flight starts at the floor, a table top taken for
+		 * one does not (m). */
+		double stairsMaxBottom = 0.1;
+		/** A staircase's centroid (x, y) is the centre of the cells
+		 * labelled stairs (and not wall) connected to its sightings within
+		 * its footprint: one detection box often holds part of the flight
+		 * only, the labelled cells of all sweeps hold all of it. */
+		bool stairsCentroidFromCells = true;
 		/** Doors whose merged extent is lower than this are not reported
 		 * (fragments of walls or furniture taken for a door) (m). */
 		double doorMinHeight = 1.2;
@@ -214,9 +238,14 @@ private:
 	void countViews(
 	    const Sweep& sweep, const mrpt::poses::CPose3D& robot,
 	    std::vector<int>& viewedThisSweep);
+	/** Sets a staircase's centroid (x, y) from its labelled cells (see
+	 * TOptions::stairsCentroidFromCells). */
+	void centreOnCells(ObjectInstance& o) const;
+	/** True when a cell labelled wall lies within `radius` of (x, y). */
+	bool wallWithin(double x, double y, double radius) const;
 	void mergeObject(
 	    Label label, const mrpt::math::TPoint3D& centroid,
-	    const mrpt::math::TPoint3D& minCorner,
+	    const mrpt::math::TPoint3D& size, const mrpt::math::TPoint3D& minCorner,
 	    const mrpt::math::TPoint3D& maxCorner, std::vector<int>& seenThisSweep,
 	    int& id);
 
