@@ -4,6 +4,9 @@
 // equal OpenCV's box filter.
 #include <gtest/gtest.h>
 #include <semnav/perception/NormalImage.h>
+#include <semnav/perception/PerceptionPipeline.h>
+#include <semnav/perception/RangeSegmentation.h>
+#include <semnav/perception/Roughness.h>
 
 #include <cstring>
 #include <opencv2/core.hpp>
@@ -86,4 +89,32 @@ TEST(SimdKernels, BoxSumsAreOpenCvsBoxFilterInEveryBuild)
 			EXPECT_LT(cv::norm(sums[1], ref, cv::NORM_INF), 1e-3)
 			    << "channels " << src->channels() << " k " << k;
 		}
+}
+
+TEST(SimdKernels, AllBuildsGiveTheSameRoughnessBitForBit)
+{
+	const Sweep sweep = room();
+	NormalImage ni;
+	ni.compute(sweep);
+	RangeSegmentation seg;
+	seg.compute(sweep);
+	Roughness r[2];
+	bothBuilds([&](bool baseline) { r[baseline].compute(ni, seg.areaIds()); });
+	ASSERT_GT(cv::countNonZero(r[1].r() == r[1].r()), 50000);  // not NaN
+	EXPECT_TRUE(sameBits(r[0].r(), r[1].r()));
+	EXPECT_TRUE(sameBits(r[0].rBar(), r[1].rBar()));
+}
+
+TEST(SimdKernels, AllBuildsGiveTheSameLabelsAndRegions)
+{
+	const Sweep sweep = room();
+	PerceptionPipeline pipeline;
+	LabeledSweep out[2];
+	bothBuilds([&](bool baseline) { pipeline.process(sweep, out[baseline]); });
+	ASSERT_GT(out[1].regions.size(), 5u);
+	EXPECT_TRUE(sameBits(out[0].labels, out[1].labels));
+	EXPECT_TRUE(sameBits(out[0].regionIds, out[1].regionIds));
+	ASSERT_EQ(out[0].regions.size(), out[1].regions.size());
+	for (std::size_t i = 0; i < out[0].regions.size(); i++)
+		EXPECT_EQ(out[0].regions[i].centroid, out[1].regions[i].centroid);
 }

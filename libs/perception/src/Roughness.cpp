@@ -45,7 +45,6 @@ Roughness::Roughness(const TOptions& options) : m_options(options) {}
 void Roughness::compute(const NormalImage& normals, const cv::Mat& areaIds)
 {
 	const int rows = normals.normals().rows, cols = normals.normals().cols;
-	constexpr float nan = std::numeric_limits<float>::quiet_NaN();
 	m_r.create(rows, cols, CV_32F);
 	if (rows == 0 || cols == 0)
 	{
@@ -70,21 +69,9 @@ void Roughness::compute(const NormalImage& normals, const cv::Mat& areaIds)
 	    [&](int) { return m_rowSum.data(); },
 	    [&](int r, const float* sums)
 	    {
-		    const auto* N = n->ptr<cv::Vec3f>(r);
-		    const auto* S = reinterpret_cast<const cv::Vec3f*>(sums);
-		    const float* C = m_sumM.ptr<float>(r);
-		    const uint8_t* NM = normals.normalMask().ptr<uint8_t>(r);
-		    float* R = m_r.ptr<float>(r);
-		    for (int c = 0; c < cols; c++)
-		    {
-			    const float cnt = C[c] - 1.0f;
-			    if (!NM[c] || cnt < 0.5f)
-			    {
-				    R[c] = nan;
-				    continue;
-			    }
-			    R[c] = (N[c].dot(S[c]) - N[c].dot(N[c])) / cnt;
-		    }
+		    detail::simdKernels().roughnessRow(
+		        n->ptr<float>(r), sums, m_sumM.ptr<float>(r),
+		        normals.normalMask().ptr<uint8_t>(r), m_r.ptr<float>(r), cols);
 	    });
 	squareMeans(
 	    m_r, areaIds, m_options.squareWidth, m_options.minSquarePixels, m_rBar);

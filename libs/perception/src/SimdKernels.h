@@ -113,6 +113,12 @@ struct SimdKernels
 	 * class (not none), ranges within maxStep, and for vertical and
 	 * oblique pixels normals within acos(cosJoin). */
 	void (*joinMask)(const JoinArgs& a);
+	/** Roughness R of a row: (n . s - n . n) / (count - 1) from the unit
+	 * normals n, their window sums s (x y z per pixel) and the window
+	 * counts of normals; NaN without a normal (normalMask) or neighbour. */
+	void (*roughnessRow)(
+	    const float* normals, const float* sums, const float* counts,
+	    const uint8_t* normalMask, float* r, int cols);
 	/** "baseline" (SSE2) or "avx2". */
 	const char* name;
 };

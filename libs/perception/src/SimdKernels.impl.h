@@ -351,8 +351,46 @@ void joinMask(const JoinArgs& a)
 	}
 }
 
+void roughnessRow(
+    const float* N, const float* S, const float* C, const uint8_t* NM, float* R,
+    int cols)
+{
+	constexpr int kLanes = cv::v_float32::nlanes;
+	constexpr float nan = std::numeric_limits<float>::quiet_NaN();
+	auto one = [&](int c)
+	{
+		const float cnt = C[c] - 1.0f;
+		const float* n = N + 3 * c;
+		const float* s = S + 3 * c;
+		const float ns = n[0] * s[0] + n[1] * s[1] + n[2] * s[2];
+		const float nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+		R[c] = !NM[c] || cnt < 0.5f ? nan : (ns - nn) / cnt;
+	};
+	const cv::v_float32 vOne = cv::vx_setall_f32(1.0f),
+	                    vHalf = cv::vx_setall_f32(0.5f),
+	                    vNan = cv::vx_setall_f32(nan);
+	const cv::v_uint32 vZero = cv::vx_setzero_u32();
+	int c = 0;
+	for (; c + kLanes <= cols; c += kLanes)
+	{
+		cv::v_float32 nx, ny, nz, sx, sy, sz;
+		cv::v_load_deinterleave(N + 3 * c, nx, ny, nz);
+		cv::v_load_deinterleave(S + 3 * c, sx, sy, sz);
+		const cv::v_float32 cnt = cv::vx_load(C + c) - vOne;
+		const cv::v_float32 ns = nx * sx + ny * sy + nz * sz;
+		const cv::v_float32 nn = nx * nx + ny * ny + nz * nz;
+		const cv::v_float32 ok =
+		    cv::v_reinterpret_as_f32(cv::vx_load_expand_q(NM + c) != vZero) &
+		    (cnt >= vHalf);
+		cv::v_store(R + c, cv::v_select(ok, (ns - nn) / cnt, vNan));
+	}
+	for (; c < cols; c++) one(c);
+}
+
+// (In SimdKernels' member order.)
 extern const SimdKernels kKernels = {
-    &pointsRow,    &computeNormals, &addRow,   &subRow,           &boxRow,
-    &normalizeRow, &orientRow,      &joinMask, SEMNAV_KERNEL_NAME};
+    &pointsRow,    &computeNormals,   &addRow,    &subRow,
+    &boxRow,       &normalizeRow,     &orientRow, &joinMask,
+    &roughnessRow, SEMNAV_KERNEL_NAME};
 
 }  // namespace semnav::detail::SEMNAV_KERNEL_NS
