@@ -410,9 +410,13 @@ TEST(MapAccuracy, DISABLED_TrainingSceneObjects)
 	// The cascade training scenes, for diagnosing map rules on more objects
 	// than the held-out and validation scenes hold (run with
 	// --gtest_also_run_disabled_tests; SEMNAV_MAP_DIAG=1 prints every
-	// instance). Measured: 163 of 177 found once, 10 spurious of 176.
+	// instance; about ten minutes, so not in every ctest run). Measured: 163
+	// of 177 found once, 10 spurious of 176; margin of one.
 	std::vector<std::string> names;
 	for (char c = 'a'; c <= 't'; c++)
 		names.push_back(std::string("train_") + c);
-	scoreCascadeScenes(names);
+	const auto all = scoreCascadeScenes(names);
+	ASSERT_GE(all.seen, 176u);
+	EXPECT_GE(all.foundOnce, 162u);
+	EXPECT_LE(all.spurious, 11u);
 }
