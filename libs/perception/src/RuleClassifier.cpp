@@ -482,7 +482,7 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 		// same area and orientation, continuous ranges, and for vertical
 		// and oblique pixels close normals. Precomputed row by row; only
 		// the surface's running mean is checked during the fill.
-		m_join.assign(n, 0);
+		m_join.resize(n);
 		detail::JoinArgs ja;
 		ja.rows = rows;
 		ja.cols = cols;

@@ -79,8 +79,8 @@ struct JoinArgs
 	/** Largest range step and smallest normal dot product (vertical and
 	 * oblique pixels) between joined neighbours. */
 	float maxStep = 0, cosJoin = 0;
-	/** Output, zeroed by the caller: per pixel bit 0 joins the right
-	 * neighbour, 1 the left, 2 the one below (next row), 3 the one above. */
+	/** Output: per pixel bit 0 joins the right neighbour, 1 the left, 2 the
+	 * one below (next row), 3 the one above. */
 	uint8_t* join = nullptr;
 };
 

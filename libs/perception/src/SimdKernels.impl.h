@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <opencv2/core/hal/intrin.hpp>
+#include <vector>
 
 #include "SimdKernels.h"
 
@@ -312,42 +313,44 @@ void joinMask(const JoinArgs& a)
 		    (~angular | cv::v_reinterpret_as_u32(dot >= vCosJoin));
 		cv::v_store(out, m & vOne);
 	};
+	// Per row: the joins to the right and downward as bytes (plain stores),
+	// then each pixel's four bits from them and from the row above's.
 	unsigned bits[kLanes];
+	std::vector<uint8_t> rightRow(cols), downRows(2 * cols, 0);
 	for (int r = 0; r < rows; r++)
 	{
 		const int base = r * cols, end = base + cols;
+		uint8_t* R = rightRow.data() - base;  // indexed by pixel
+		uint8_t* D = downRows.data() + (r & 1) * cols - base;
+		const uint8_t* U = downRows.data() + ((r + 1) & 1) * cols;
 		int p = base;
 		for (; p + kLanes < end; p += kLanes)
 		{
 			joinLanes(p, 1, bits);
 			for (int k = 0; k < kLanes; k++)
+				R[p + k] = static_cast<uint8_t>(bits[k]);
+		}
+		for (; p + 1 < end; p++) R[p] = ok(p, p + 1);
+		R[end - 1] = 0;
+		if (r + 1 < rows)
+		{
+			for (p = base; p + kLanes <= end; p += kLanes)
 			{
-				J[p + k] |= static_cast<uint8_t>(bits[k]);
-				J[p + k + 1] |= static_cast<uint8_t>(bits[k] << 1);
+				joinLanes(p, cols, bits);
+				for (int k = 0; k < kLanes; k++)
+					D[p + k] = static_cast<uint8_t>(bits[k]);
 			}
+			for (; p < end; p++) D[p] = ok(p, p + cols);
 		}
-		for (; p + 1 < end; p++)
-		{
-			const uint8_t right = ok(p, p + 1);
-			J[p] |= right;
-			J[p + 1] |= static_cast<uint8_t>(right << 1);
-		}
-		if (r + 1 == rows) continue;
-		for (p = base; p + kLanes <= end; p += kLanes)
-		{
-			joinLanes(p, cols, bits);
-			for (int k = 0; k < kLanes; k++)
-			{
-				J[p + k] |= static_cast<uint8_t>(bits[k] << 2);
-				J[p + k + cols] |= static_cast<uint8_t>(bits[k] << 3);
-			}
-		}
-		for (; p < end; p++)
-		{
-			const uint8_t down = ok(p, p + cols);
-			J[p] |= static_cast<uint8_t>(down << 2);
-			J[p + cols] |= static_cast<uint8_t>(down << 3);
-		}
+		else
+			std::fill(D + base, D + end, 0);
+		// (U: the row above's downward joins, 0 above row 0.)
+		uint8_t* JR = J + base;
+		const uint8_t *RR = R + base, *DR = D + base;
+		JR[0] = static_cast<uint8_t>(RR[0] | (DR[0] << 2) | (U[0] << 3));
+		for (int c = 1; c < cols; c++)
+			JR[c] = static_cast<uint8_t>(
+			    RR[c] | (RR[c - 1] << 1) | (DR[c] << 2) | (U[c] << 3));
 	}
 }
 
