@@ -16,9 +16,47 @@ void IntegralImages::compute(const cv::Mat& image, bool withTilted)
 	if (image.type() != CV_8UC1)
 		throw CascadeError(
 		    "IntegralImages: expected an 8-bit single-channel image");
+	if (m_strided)
+	{
+		// Views into the strided storage: continuous matrices again.
+		m_sum.release();
+		m_sqsum.release();
+		m_tilted.release();
+		m_strided = false;
+	}
 	const int w = image.cols, h = image.rows;
 	m_sum.create(h + 1, w + 1, CV_32S);
 	m_sqsum.create(h + 1, w + 1, CV_64F);
+	if (withTilted) m_tilted.create(h + 1, w + 1, CV_32S);
+	computeInto(image, withTilted);
+}
+
+void IntegralImages::compute(const cv::Mat& image, bool withTilted, int stride)
+{
+	if (image.type() != CV_8UC1)
+		throw CascadeError(
+		    "IntegralImages: expected an 8-bit single-channel image");
+	const int w = image.cols, h = image.rows;
+	if (stride < w + 1)
+		throw CascadeError("IntegralImages: stride below the image width + 1");
+	const auto region = [&](cv::Mat& store, int type)
+	{
+		if (store.cols != stride || store.rows < h + 1 || store.type() != type)
+			store.create(
+			    std::max(h + 1, store.cols == stride ? store.rows : 0), stride,
+			    type);
+		return store(cv::Rect(0, 0, w + 1, h + 1));
+	};
+	m_sum = region(m_sumStore, CV_32S);
+	m_sqsum = region(m_sqsumStore, CV_64F);
+	if (withTilted) m_tilted = region(m_tiltedStore, CV_32S);
+	m_strided = true;
+	computeInto(image, withTilted);
+}
+
+void IntegralImages::computeInto(const cv::Mat& image, bool withTilted)
+{
+	const int w = image.cols, h = image.rows;
 	std::fill_n(m_sum.ptr<int32_t>(0), w + 1, 0);
 	std::fill_n(m_sqsum.ptr<double>(0), w + 1, 0.0);
 	for (int y = 0; y < h; y++)
@@ -54,7 +92,6 @@ void IntegralImages::compute(const cv::Mat& image, bool withTilted)
 	// below it. Cones whose apex lies left or right of the image still
 	// reach into it, so T is computed on X in [-h, w + h] (every value the
 	// recurrence needs down to row 0) and cropped to [0, w].
-	m_tilted.create(h + 1, w + 1, CV_32S);
 	const int pad = h;
 	const int wp = w + 1 + 2 * pad;
 	m_pad.assign(3 * static_cast<size_t>(wp), 0);
