@@ -440,7 +440,16 @@ namespace
  * per level or per sweep once grown). */
 struct GatedScratch
 {
+	/** A level's ranges (nearest neighbour of the band's), built only in
+	 * the rows whose band row has a range; the others point at zeros. */
 	cv::Mat levelRange;
+	std::vector<const float*> levelRows;
+	std::vector<float> zeros;
+	/** The band's first and last column with a range per row, and the
+	 * band column and row of each level column and row (cv::resize's
+	 * nearest neighbour). */
+	std::vector<int> bandFirst, bandLast, colMap, rowMap;
+	cv::Mat mapIn, mapOut;
 	std::vector<cv::Point> windows;
 	std::vector<CascadeEvaluator::Result> results;
 	/** Per level row: first and last column with a range (first > last:
@@ -608,10 +617,13 @@ void rangeGatedDetect(
 	// lie inside the window, so inside the level.
 	const int hx = win.width / 2, hy = win.height / 2;
 	const int qx = win.width / 4, qy = win.height / 4;
-	// The band's nearest and farthest ranges: a level none of whose
-	// window sides takes them is skipped whole (its nearest-neighbour
-	// ranges are some of the band's).
+	// The band's nearest and farthest ranges (a level none of whose
+	// window sides takes them is skipped whole: its nearest-neighbour
+	// ranges are some of the band's) and each row's first and last column
+	// with a range.
 	float rMin = std::numeric_limits<float>::infinity(), rMax = 0;
+	sc.bandFirst.assign(range.rows, range.cols);
+	sc.bandLast.assign(range.rows, -1);
 	for (int r = 0; r < range.rows; r++)
 	{
 		const float* row = range.ptr<float>(r);
@@ -620,8 +632,23 @@ void rangeGatedDetect(
 			{
 				rMin = std::min(rMin, row[c]);
 				rMax = std::max(rMax, row[c]);
+				sc.bandFirst[r] = std::min(sc.bandFirst[r], c);
+				sc.bandLast[r] = c;
 			}
 	}
+	// cv::resize's nearest neighbour takes level column c from one band
+	// column and level row r from one band row, each from its own axis'
+	// sizes: resizing the indices gives that map.
+	const auto nearestMap =
+	    [&](int from, int to, std::vector<int>& map, bool columns)
+	{
+		sc.mapIn.create(columns ? 1 : from, columns ? from : 1, CV_32S);
+		for (int i = 0; i < from; i++) sc.mapIn.at<int32_t>(i) = i;
+		cv::resize(
+		    sc.mapIn, sc.mapOut, columns ? cv::Size(to, 1) : cv::Size(1, to), 0,
+		    0, cv::INTER_NEAREST);
+		map.assign(sc.mapOut.ptr<int32_t>(), sc.mapOut.ptr<int32_t>() + to);
+	};
 	for (double factor = 1;; factor *= scaleFactor)
 	{
 		const cv::Size ws(
@@ -635,18 +662,39 @@ void rangeGatedDetect(
 		const GateBounds gb(gate, side);
 		if (rMax == 0 || rMin > gb.hi || rMax < std::min(gb.lo, gb.loCut))
 			continue;
-		cv::resize(range, levelRange, sz, 0, 0, cv::INTER_NEAREST);
+		// The level's ranges, as cv::resize(INTER_NEAREST) gives them, in
+		// the rows with a range only.
+		nearestMap(range.cols, sz.width, sc.colMap, true);
+		nearestMap(range.rows, sz.height, sc.rowMap, false);
+		levelRange.create(sz, CV_32F);
+		sc.zeros.assign(sz.width, 0.f);
+		sc.levelRows.resize(sz.height);
 		sc.first.assign(sz.height, sz.width);
 		sc.last.assign(sz.height, -1);
 		for (int r = 0; r < sz.height; r++)
 		{
-			const float* row = levelRange.ptr<float>(r);
-			int c0 = 0, c1 = sz.width - 1;
-			while (c0 < sz.width && !(row[c0] > 0)) c0++;
-			if (c0 == sz.width) continue;
-			while (!(row[c1] > 0)) c1--;
-			sc.first[r] = c0;
-			sc.last[r] = c1;
+			const int br = sc.rowMap[r];
+			if (sc.bandFirst[br] > sc.bandLast[br])
+			{
+				sc.levelRows[r] = sc.zeros.data();
+				continue;
+			}
+			const float* src = range.ptr<float>(br);
+			float* dst = levelRange.ptr<float>(r);
+			for (int c = 0; c < sz.width; c++) dst[c] = src[sc.colMap[c]];
+			sc.levelRows[r] = dst;
+			// Columns mapped into the band row's first..last (the map
+			// never decreases).
+			sc.first[r] = static_cast<int>(
+			    std::lower_bound(
+			        sc.colMap.begin(), sc.colMap.end(), sc.bandFirst[br]) -
+			    sc.colMap.begin());
+			sc.last[r] =
+			    static_cast<int>(
+			        std::upper_bound(
+			            sc.colMap.begin(), sc.colMap.end(), sc.bandLast[br]) -
+			        sc.colMap.begin()) -
+			    1;
 		}
 		const int nx = sz.width + 1 - win.width;
 		const int ny = sz.height + 1 - win.height;
@@ -674,9 +722,9 @@ void rangeGatedDetect(
 			const int x0 = std::max(0, (lo + step - 1) / step * step);
 			const int x1 = std::min(nx - 1, hi);
 			if (x0 > x1) continue;
-			const float* c = levelRange.ptr<float>(cy) + hx;
-			const float* a = levelRange.ptr<float>(cy - qy) + hx;
-			const float* b = levelRange.ptr<float>(cy + qy) + hx;
+			const float* c = sc.levelRows[cy] + hx;
+			const float* a = sc.levelRows[cy - qy] + hx;
+			const float* b = sc.levelRows[cy + qy] + hx;
 			uint8_t* ok = sc.ok.data();
 			// Every column (a plain loop the compiler vectorises), then
 			// the grid's. The nearest sample with a range (windowRange;

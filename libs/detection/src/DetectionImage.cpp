@@ -8,6 +8,21 @@
 
 namespace semnav
 {
+namespace
+{
+/** NormalImage::rgbOf's channel, clamp(lround(128 + 127 v), 0, 255), bit
+ * for bit: the same float 128 + 127 v, rounded half away from zero by
+ * floor(x + 0.5) in double (exact for a float; only x >= 0 survives the
+ * clamp, where the two roundings agree). */
+inline uint8_t channelOf(float v)
+{
+	const float x = 128.0f + 127.0f * v;
+	const double y = std::floor(static_cast<double>(x) + 0.5);
+	if (!(y > 0)) return 0;  // also NaN, as lround's clamp
+	return y >= 255 ? 255 : static_cast<uint8_t>(y);
+}
+}  // namespace
+
 const std::string& channelName(DetectionChannel c)
 {
 	static const std::string names[] = {"grey", "red", "green", "blue", "view"};
@@ -127,8 +142,10 @@ cv::Mat DetectionImage::fromSmoothedNormals(
 				    ca * n[c][0] + sa * n[c][1], -sa * n[c][0] + ca * n[c][1],
 				    n[c][2]);
 			}
-			const cv::Vec3b rgb = NormalImage::rgbOf(v);
-			o[c] = cv::Vec3b(rgb[2], rgb[1], rgb[0]);
+			// NormalImage::rgbOf (r = -y, g = x, b = z), without its
+			// three lround calls per pixel.
+			o[c] =
+			    cv::Vec3b(channelOf(v[2]), channelOf(v[0]), channelOf(-v[1]));
 		}
 	}
 	cv::Mat out;
