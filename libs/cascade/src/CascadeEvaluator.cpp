@@ -239,50 +239,59 @@ void CascadeEvaluator::scanWindows(
 	// windows of the run, so inside the image.
 	const bool simd = simdActive() && (step == 1 || step == 2);
 	const std::size_t nStages = m_cascade.stages.size();
-	// The positions still in, in grid order, with their segments.
-	m_live.clear();
+	// The positions still in, in grid order, with their segments (raw
+	// pointers below: the compiler cannot keep vector data pointers in
+	// registers across the stores).
+	m_live.resize(static_cast<std::size_t>(grid));
+	Live* live = m_live.data();
+	std::size_t nLive = 0;
+	uint8_t* alive = m_alive.data();
+	float* nfs = m_gridNf.data();
+	double* sums = m_gridSums.data();
+	const int32_t* windowOf = m_gridWindow.data();
 	for (std::size_t si = 0; si < segs.size(); si++)
 		for (int j = 0; j < segs[si].count; j++)
-			if (m_alive[segs[si].grid + j])
-				m_live.push_back({segs[si].grid + j, static_cast<int>(si)});
+			if (alive[segs[si].grid + j])
+				live[nLive++] = {segs[si].grid + j, static_cast<int>(si)};
 	const auto runStage = [&](std::size_t s)
 	{
 		const detail::FlatStump* st = m_flat.data() + m_stageBegin[s];
 		const std::size_t n = m_stageBegin[s + 1] - m_stageBegin[s];
-		for (std::size_t k = 0; k < m_live.size();)
+		for (std::size_t k = 0; k < nLive;)
 		{
-			const Segment& sg = segs[m_live[k].segment];
+			const Segment& sg = segs[live[k].segment];
 			const int32_t base = sg.y * stride + sg.x0;
-			const int j = m_live[k].grid - sg.grid;
+			const int j = live[k].grid - sg.grid;
 			if (simd && sg.count >= 8)
 			{
 				// The block of j; with two or more positions in, all eight
 				// at once.
 				const int jb = std::min(j / 8 * 8, sg.count - 8);
 				const int g = sg.grid + jb;
-				std::size_t e = k;
-				while (e < m_live.size() && m_live[e].grid < g + 8) e++;
+				std::size_t e = k + 1;
+				while (e < nLive && live[e].grid < g + 8) e++;
 				const int32_t b = base + step * jb;
 				// The block's loads end (step 2: one entry) past the last
 				// window's corners.
 				if (e - k >= 2 && b + 8 * step - 1 + m_maxOffset <= lastEntry)
 				{
-					double sums[8];
+					double block[8];
 					detail::stageSums8(
-					    st, n, sum0, tilt0, b, step, &m_gridNf[g], sums);
+					    st, n, sum0, tilt0, b, step, nfs + g, block);
 					for (; k < e; k++)
-						m_gridSums[m_live[k].grid] = sums[m_live[k].grid - g];
+						sums[live[k].grid] = block[live[k].grid - g];
 					continue;
 				}
 			}
-			m_gridSums[m_live[k].grid] = detail::stageSum(
-			    st, n, sum0, tilt0, base + step * j, m_gridNf[m_live[k].grid]);
+			sums[live[k].grid] = detail::stageSum(
+			    st, n, sum0, tilt0, base + step * j, nfs[live[k].grid]);
 			k++;
 		}
 	};
 	if (nStages == 0)
 	{
-		for (const Live& l : m_live) results[m_gridWindow[l.grid]].stage = 0;
+		for (std::size_t k = 0; k < nLive; k++)
+			results[windowOf[live[k].grid]].stage = 0;
 		return;
 	}
 	// Stage 0 on every window, then OpenCV's skip in visiting order: the
@@ -293,51 +302,58 @@ void CascadeEvaluator::scanWindows(
 		const float thr0 =
 		    m_cascade.stages[0].threshold - detail::kStageThresholdEps;
 		cv::Point skip(-1, -1);
+		const int* gridOf = m_gridOf.data();
 		for (std::size_t i = 0; i < windows.size(); i++)
 		{
-			const int g = m_gridOf[i];
+			const int g = gridOf[i];
 			if (windows[i] == skip)
 			{
 				results[i].stage = kNotVisited;
-				m_alive[g] = 0;
+				alive[g] = 0;
 				continue;
 			}
-			if (!m_alive[g]) continue;  // variance: stage -1
-			results[i].sum = m_gridSums[g];
-			if (m_gridSums[g] < thr0)
+			if (!alive[g]) continue;  // variance: stage -1
+			results[i].sum = sums[g];
+			if (sums[g] < thr0)
 			{
 				results[i].stage = 0;
-				m_alive[g] = 0;
+				alive[g] = 0;
 				skip = cv::Point(windows[i].x + step, windows[i].y);
 			}
 		}
 		std::size_t kept = 0;
-		for (const Live& l : m_live)
-			if (m_alive[l.grid]) m_live[kept++] = l;
-		m_live.resize(kept);
+		for (std::size_t k = 0; k < nLive; k++)
+			if (alive[live[k].grid]) live[kept++] = live[k];
+		nLive = kept;
 	}
-	for (std::size_t s = 1; s < nStages && !m_live.empty(); s++)
+	Result* res = results.data();
+	for (std::size_t s = 1; s < nStages && nLive > 0; s++)
 	{
 		runStage(s);
 		const float thr =
 		    m_cascade.stages[s].threshold - detail::kStageThresholdEps;
 		std::size_t kept = 0;
-		for (const Live& l : m_live)
+		for (std::size_t k = 0; k < nLive; k++)
 		{
-			Result& r = results[m_gridWindow[l.grid]];
-			r.sum = m_gridSums[l.grid];
-			if (r.sum < thr)
+			const Live l = live[k];
+			const double sum = sums[l.grid];
+			if (sum < thr)
 			{
+				Result& r = res[windowOf[l.grid]];
+				r.sum = sum;
 				r.stage = static_cast<int>(s);
-				m_alive[l.grid] = 0;
 			}
 			else
-				m_live[kept++] = l;
+				live[kept++] = l;
 		}
-		m_live.resize(kept);
+		nLive = kept;
 	}
-	for (const Live& l : m_live)
-		results[m_gridWindow[l.grid]].stage = static_cast<int>(nStages);
+	for (std::size_t k = 0; k < nLive; k++)
+	{
+		Result& r = res[windowOf[live[k].grid]];
+		r.sum = sums[live[k].grid];
+		r.stage = static_cast<int>(nStages);
+	}
 }
 
 }  // namespace semnav
