@@ -457,9 +457,9 @@ struct GatedScratch
 	std::vector<int> first, last;
 	/** Per column of a row of windows: whether the gate takes it. */
 	std::vector<uint8_t> ok;
-	/** Pyramid levels of the bands (band data, level size), shared by the
-	 * classes that search the same band within one detectCandidates(). */
-	std::map<std::tuple<const uint8_t*, int, int>, cv::Mat> levels;
+	/** Pyramid levels of the bands (band data and size, level size), shared by
+	 * the classes that search the same band within one detectCandidates(). */
+	std::map<std::tuple<const uint8_t*, int, int, int, int>, cv::Mat> levels;
 	IntegralImages ii;
 	/** Row stride of the integral images: only grows, so that the
 	 * evaluators compile their features once. */
@@ -753,8 +753,11 @@ void rangeGatedDetect(
 		const cv::Mat* level = &image;
 		if (sz != image.size())
 		{
+			// A band is its data and size (bands of one image may start at
+			// the same row and end at different ones).
 			cv::Mat& l = sc.levels[std::make_tuple(
-			    image.ptr<uint8_t>(), sz.width, sz.height)];
+			    image.ptr<uint8_t>(), image.cols, image.rows, sz.width,
+			    sz.height)];
 			if (l.empty())
 				cv::resize(image, l, sz, 0, 0, cv::INTER_LINEAR_EXACT);
 			level = &l;
