@@ -23,8 +23,9 @@ struct FlatStump;
  * windows whose standard deviation is <= 10 grey levels are skipped);
  * feature values in float times that factor; per stage the sum (double) of
  * the stumps' leaves (value < threshold ? left : right) against the stage
- * threshold minus 1e-5. The trainer uses it to bootstrap negatives; tests
- * compare it with cv::CascadeClassifier window by window.
+ * threshold minus 1e-5. The trainer uses it to bootstrap negatives,
+ * CascadeDetector's range-gated search runs scanWindows() on each pyramid
+ * level; tests compare it with cv::CascadeClassifier window by window.
  *
  * Not thread-safe for setImage() and scanWindows() (scratch buffers);
  * evaluate() is const and may run concurrently once the image is set. */
