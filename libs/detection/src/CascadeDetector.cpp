@@ -509,6 +509,11 @@ CascadeDetector::CascadeDetector(const TOptions& options)
 
 CascadeDetector::~CascadeDetector() = default;
 
+void CascadeDetector::setSimd(bool on)
+{
+	for (auto& ev : m_impl->evaluators) ev.setSimd(on);
+}
+
 namespace
 {
 /** detectMultiScale runs in parallel: its output order varies. A fixed
