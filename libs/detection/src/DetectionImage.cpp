@@ -11,15 +11,16 @@ namespace semnav
 namespace
 {
 /** NormalImage::rgbOf's channel, clamp(lround(128 + 127 v), 0, 255), bit
- * for bit: the same float 128 + 127 v, rounded half away from zero by
+ * for bit: the same float 128 + 127 v, rounded half away from zero as
  * floor(x + 0.5) in double (exact for a float; only x >= 0 survives the
- * clamp, where the two roundings agree). */
+ * clamp, where the two roundings agree), the floor of a positive value by
+ * truncation (no libm call). */
 inline uint8_t channelOf(float v)
 {
 	const float x = 128.0f + 127.0f * v;
-	const double y = std::floor(static_cast<double>(x) + 0.5);
-	if (!(y > 0)) return 0;  // also NaN, as lround's clamp
-	return y >= 255 ? 255 : static_cast<uint8_t>(y);
+	const double y = static_cast<double>(x) + 0.5;
+	if (!(y >= 1)) return 0;  // below 1 (also NaN, as lround's clamp)
+	return y >= 255 ? 255 : static_cast<uint8_t>(static_cast<int>(y));
 }
 }  // namespace
 
