@@ -684,22 +684,25 @@ void rangeGatedDetect(
 				sc.levelRows[r] = sc.zeros.data();
 				continue;
 			}
-			const float* src = range.ptr<float>(br);
-			float* dst = levelRange.ptr<float>(r);
-			for (int c = 0; c < sz.width; c++) dst[c] = src[sc.colMap[c]];
-			sc.levelRows[r] = dst;
 			// Columns mapped into the band row's first..last (the map
-			// never decreases).
-			sc.first[r] = static_cast<int>(
+			// never decreases): outside them the level row is 0.
+			const int c0 = static_cast<int>(
 			    std::lower_bound(
 			        sc.colMap.begin(), sc.colMap.end(), sc.bandFirst[br]) -
 			    sc.colMap.begin());
-			sc.last[r] =
+			const int c1 =
 			    static_cast<int>(
 			        std::upper_bound(
 			            sc.colMap.begin(), sc.colMap.end(), sc.bandLast[br]) -
 			        sc.colMap.begin()) -
 			    1;
+			const float* src = range.ptr<float>(br);
+			float* dst = levelRange.ptr<float>(r);
+			std::fill(dst, dst + sz.width, 0.f);
+			for (int c = c0; c <= c1; c++) dst[c] = src[sc.colMap[c]];
+			sc.levelRows[r] = dst;
+			sc.first[r] = c0;
+			sc.last[r] = c1;
 		}
 		const int nx = sz.width + 1 - win.width;
 		const int ny = sz.height + 1 - win.height;
