@@ -216,10 +216,15 @@ std::pair<std::size_t, std::size_t> expectScanIsEvaluate(
 	const cv::Size win = cascade.windowSize;
 	std::vector<cv::Point> windows;
 	std::mt19937 g(step + 10 * img.cols);
+	// Windows outside the image (evaluate() skips them), one before a row
+	// of windows on the grid and one after it.
+	windows.emplace_back(-step, 0);
 	for (int y = 0; y + win.height <= img.rows; y += step)
+	{
 		for (int x = 0; x + win.width <= img.cols; x += step)
 			if (g() % 3 != 0) windows.emplace_back(x, y);
-	// A window outside the image, as evaluate() skips it.
+		if (y == 0) windows.emplace_back(img.cols - win.width + step, 0);
+	}
 	windows.emplace_back(img.cols, img.rows);
 	std::vector<CascadeEvaluator::Result> expected;
 	cv::Point skip(-1, -1);

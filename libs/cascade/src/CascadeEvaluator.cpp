@@ -192,9 +192,21 @@ void CascadeEvaluator::scanWindows(
 	segs.clear();
 	m_gridOf.resize(windows.size());
 	int grid = 0;
+	const auto inside = [&](cv::Point o)
+	{
+		return o.x >= 0 && o.y >= 0 && o.x + win.width <= img.width &&
+		       o.y + win.height <= img.height;
+	};
 	for (std::size_t i = 0; i < windows.size(); i++)
 	{
 		const cv::Point o = windows[i];
+		// Windows outside the image (stage -1) stay off the grid, so every
+		// position of a segment lies inside the image.
+		if (!inside(o))
+		{
+			m_gridOf[i] = -1;
+			continue;
+		}
 		if (!segs.empty())
 		{
 			Segment& sg = segs.back();
@@ -222,10 +234,8 @@ void CascadeEvaluator::scanWindows(
 	{
 		const cv::Point o = windows[i];
 		const int g = m_gridOf[i];
+		if (g < 0) continue;
 		m_gridWindow[g] = static_cast<int32_t>(i);
-		if (o.x < 0 || o.y < 0 || o.x + win.width > img.width ||
-		    o.y + win.height > img.height)
-			continue;
 		float nf = 1.f;
 		if (!detail::varianceNormFactor(
 		        sum0 + o.y * stride + o.x, sq0 + o.y * sqStride + o.x, stride,
@@ -309,10 +319,10 @@ void CascadeEvaluator::scanWindows(
 			if (windows[i] == skip)
 			{
 				results[i].stage = kNotVisited;
-				alive[g] = 0;
+				if (g >= 0) alive[g] = 0;
 				continue;
 			}
-			if (!alive[g]) continue;  // variance: stage -1
+			if (g < 0 || !alive[g]) continue;  // outside, variance: -1
 			results[i].sum = sums[g];
 			if (sums[g] < thr0)
 			{
