@@ -3,7 +3,8 @@
 // wastebasket, stairs) on one 211 x 361 simulated sweep (panoramic image,
 // near + far passes, 3D size check): as configured in config/cascade.ini
 // (range_scales: every window at the scales its range allows, around
-// object points), without the object-point condition, with object proposals
+// object points; also with the evaluator's portable loop instead of AVX2),
+// without the object-point condition, with object proposals
 // (windows around the regions the rule classifier left to objects, at the sizes
 // the class can have there) and over the whole image (the paper's search, as
 // before the proposals), against baselines in the same run: the whole-image
@@ -84,7 +85,8 @@ CascadeDetector::TOptions shipped()
 	    kSource + "/config/cascade.ini");
 }
 
-void runDetector(benchmark::State& state, CascadeDetector::TOptions opts)
+void runDetector(
+    benchmark::State& state, CascadeDetector::TOptions opts, bool simd = true)
 {
 	const Input& in = input();
 	for (const auto& k : opts.classes)
@@ -94,6 +96,7 @@ void runDetector(benchmark::State& state, CascadeDetector::TOptions opts)
 			return;
 		}
 	CascadeDetector det(opts);
+	det.setSimd(simd);
 	std::size_t found = 0;
 	CascadeDetector::Timings sum;
 	double n = 0;
@@ -134,6 +137,13 @@ void runDetector(benchmark::State& state, CascadeDetector::TOptions opts)
 void BM_ThreeCascades(benchmark::State& s)
 {
 	runDetector(s, shipped());
+}
+
+/** The shipped search with the evaluator's portable loop instead of AVX2
+ * (CascadeDetector::setSimd(false)): the same candidates. */
+void BM_ThreeCascadesPortable(benchmark::State& s)
+{
+	runDetector(s, shipped(), false);
 }
 
 /** All three cascades with object proposals (proposals = true). */
@@ -222,6 +232,9 @@ void BM_DetectionImage(benchmark::State& state)
 }  // namespace
 
 BENCHMARK(BM_ThreeCascades)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ThreeCascadesPortable)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_ThreeCascadesProposals)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

@@ -196,3 +196,111 @@ TEST(CascadeEvaluator, SkipsLowContrastWindowsAsOpenCv)
 	EXPECT_FALSE(ev.evaluate({0, 0}).skipped());
 	EXPECT_TRUE(ev.evaluate({1, 0}).skipped()) << "window leaves the image";
 }
+
+namespace
+{
+/** scanWindows() against evaluate() window by window, with OpenCV's skip
+ * after a stage-0 rejection done by hand: the windows of one level on its
+ * grid (`step`), a pseudo-random third of them left out (the range gate),
+ * SIMD on and off. Returns {accepted, not visited}. */
+std::pair<std::size_t, std::size_t> expectScanIsEvaluate(
+    const HaarCascade& cascade, const cv::Mat& img, int step, int stride)
+{
+	CascadeEvaluator ev(cascade);
+	IntegralImages ii;
+	if (stride > 0)
+		ii.compute(img, cascade.hasTiltedFeatures(), stride);
+	else
+		ii.compute(img, cascade.hasTiltedFeatures());
+	ev.setIntegralImages(ii);
+	const cv::Size win = cascade.windowSize;
+	std::vector<cv::Point> windows;
+	std::mt19937 g(step + 10 * img.cols);
+	// Windows outside the image (evaluate() skips them), one before a row
+	// of windows on the grid and one after it.
+	windows.emplace_back(-step, 0);
+	for (int y = 0; y + win.height <= img.rows; y += step)
+	{
+		for (int x = 0; x + win.width <= img.cols; x += step)
+			if (g() % 3 != 0) windows.emplace_back(x, y);
+		if (y == 0) windows.emplace_back(img.cols - win.width + step, 0);
+	}
+	windows.emplace_back(img.cols, img.rows);
+	std::vector<CascadeEvaluator::Result> expected;
+	cv::Point skip(-1, -1);
+	std::size_t accepted = 0, notVisited = 0;
+	for (const cv::Point& w : windows)
+	{
+		CascadeEvaluator::Result r;
+		if (w == skip)
+		{
+			r.stage = CascadeEvaluator::kNotVisited;
+			notVisited++;
+		}
+		else
+		{
+			r = ev.evaluate(w);
+			if (r.stage == 0) skip = cv::Point(w.x + step, w.y);
+			accepted += ev.accepted(r);
+		}
+		expected.push_back(r);
+	}
+	for (const bool simd : {true, false})
+	{
+		ev.setSimd(simd);
+		std::vector<CascadeEvaluator::Result> got;
+		ev.scanWindows(windows, step, got);
+		if (!simd) EXPECT_FALSE(ev.simdActive());
+		EXPECT_EQ(got.size(), expected.size());
+		for (std::size_t i = 0; i < got.size() && i < expected.size(); i++)
+		{
+			EXPECT_EQ(got[i].stage, expected[i].stage)
+			    << windows[i] << " step " << step << " simd " << simd;
+			// Bit for bit (EXPECT_EQ on doubles, not EXPECT_DOUBLE_EQ).
+			EXPECT_EQ(got[i].sum, expected[i].sum)
+			    << windows[i] << " step " << step << " simd " << simd;
+		}
+	}
+	return {accepted, notVisited};
+}
+}  // namespace
+
+TEST(CascadeEvaluator, ScanWindowsIsEvaluateWithOpenCvsSkip)
+{
+	const HaarCascade& c = trainedCascade();
+	std::size_t accepted = 0, notVisited = 0;
+	for (uint64_t seed : {1, 2})
+		for (int step : {1, 2})
+			for (int stride : {0, 200})
+			{
+				const cv::Mat img = testImage({161, 122}, c.windowSize, seed);
+				const auto [a, n] = expectScanIsEvaluate(c, img, step, stride);
+				accepted += a;
+				notVisited += n;
+			}
+	EXPECT_GT(accepted, 0u) << "weak test: no window accepted";
+	EXPECT_GT(notVisited, 0u) << "weak test: no stage-0 skip";
+	// Nothing to scan.
+	CascadeEvaluator ev(c);
+	ev.setImage(testImage({40, 40}, c.windowSize, 3));
+	std::vector<CascadeEvaluator::Result> r(3);
+	ev.scanWindows({}, 2, r);
+	EXPECT_TRUE(r.empty());
+}
+
+TEST(CascadeEvaluator, ScanWindowsIsEvaluateWithTiltedFeatures)
+{
+	const std::string path =
+	    test::openCvCascade("haarcascade_frontalcatface_extended.xml");
+	if (path.empty())
+		GTEST_SKIP() << "opencv-data is not installed "
+		                "(haarcascade_frontalcatface_extended.xml missing)";
+	const HaarCascade cat = CascadeXml::readFile(path);
+	ASSERT_TRUE(cat.hasTiltedFeatures());
+	for (int step : {1, 2})
+	{
+		const cv::Mat img = testImage({180, 140}, cat.windowSize, 8);
+		expectScanIsEvaluate(cat, img, step, 0);
+		expectScanIsEvaluate(cat, img, step, 190);
+	}
+}

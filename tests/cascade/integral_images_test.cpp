@@ -116,3 +116,36 @@ TEST(IntegralImages, RejectsNonGreyImages)
 	EXPECT_THROW(ii.compute(cv::Mat(4, 4, CV_8UC3)), CascadeError);
 	EXPECT_THROW(ii.compute(cv::Mat(4, 4, CV_32F)), CascadeError);
 }
+
+TEST(IntegralImages, StridedComputeHasTheSameValues)
+{
+	// The strided buffers only grow: a large image, then smaller ones
+	// (and a continuous compute() in between) keep their values exact.
+	IntegralImages strided;
+	for (const cv::Size sz :
+	     {cv::Size(120, 60), cv::Size(33, 21), cv::Size(119, 60),
+	      cv::Size(2, 3)})
+	{
+		const cv::Mat img = test::randomImage(sz, 7 + sz.width);
+		const IntegralImages plain(img, true);
+		strided.compute(img, true, 128);
+		ASSERT_EQ(strided.sum().size(), plain.sum().size()) << sz;
+		EXPECT_EQ(strided.sum().step1(), 128u);
+		EXPECT_EQ(strided.tilted().step1(), 128u);
+		EXPECT_EQ(strided.sqsum().step1(), 128u);
+		EXPECT_EQ(cv::norm(strided.sum(), plain.sum(), cv::NORM_INF), 0) << sz;
+		EXPECT_EQ(cv::norm(strided.sqsum(), plain.sqsum(), cv::NORM_INF), 0)
+		    << sz;
+		EXPECT_EQ(cv::norm(strided.tilted(), plain.tilted(), cv::NORM_INF), 0)
+		    << sz;
+		// Back to continuous matrices.
+		IntegralImages again = strided;
+		again.compute(img, false);
+		EXPECT_TRUE(again.sum().isContinuous());
+		EXPECT_FALSE(again.hasTilted());
+		EXPECT_EQ(cv::norm(again.sum(), plain.sum(), cv::NORM_INF), 0) << sz;
+	}
+	EXPECT_THROW(
+	    strided.compute(test::randomImage({128, 4}, 1), true, 128),
+	    CascadeError);
+}

@@ -5,6 +5,7 @@
 #include <semnav/perception/NormalImage.h>
 
 #include <opencv2/imgproc.hpp>
+#include <random>
 
 using namespace semnav;
 
@@ -86,4 +87,49 @@ TEST(DetectionImage, NamesAndErrors)
 	        cv::Mat(2, 2, CV_32FC1), cv::Mat(2, 2, CV_8U),
 	        DetectionChannel::Grey),
 	    Error);
+}
+
+TEST(DetectionImage, ChannelsAreNormalImageRgbBitForBit)
+{
+	// Every component value whose 128 + 127 v lies at or next to a
+	// rounding midpoint (k + 0.5 and its float neighbours), at the clamp
+	// limits and beyond, against NormalImage::rgbOf.
+	std::vector<float> vs{-2.f, -1.f, -1.0039f, 0.f, -0.f, 1.f, 1.0039f, 2.f};
+	for (int k = -2; k <= 257; k++)
+	{
+		const float v = (k + 0.5f - 128.0f) / 127.0f;
+		vs.push_back(v);
+		vs.push_back(std::nextafter(v, 2.f));
+		vs.push_back(std::nextafter(v, -2.f));
+	}
+	std::mt19937 g(3);
+	std::uniform_real_distribution<float> u(-1.f, 1.f);
+	for (int i = 0; i < 2000; i++) vs.push_back(u(g));
+	const int n = static_cast<int>(vs.size());
+	cv::Mat normals(3, n, CV_32FC3);
+	for (int c = 0; c < n; c++)
+	{
+		// Each value in every component (other components vary too).
+		normals.at<cv::Vec3f>(0, c) = {vs[c], vs[(c + 1) % n], vs[(c + 2) % n]};
+		normals.at<cv::Vec3f>(1, c) = {vs[(c + 2) % n], vs[c], vs[(c + 1) % n]};
+		normals.at<cv::Vec3f>(2, c) = {vs[(c + 1) % n], vs[(c + 2) % n], vs[c]};
+	}
+	const cv::Mat mask(normals.size(), CV_8U, cv::Scalar(1));
+	const cv::Mat red = DetectionImage::fromSmoothedNormals(
+	    normals, mask, DetectionChannel::Red);
+	const cv::Mat green = DetectionImage::fromSmoothedNormals(
+	    normals, mask, DetectionChannel::Green);
+	const cv::Mat blue = DetectionImage::fromSmoothedNormals(
+	    normals, mask, DetectionChannel::Blue);
+	std::size_t mismatches = 0;
+	for (int r = 0; r < normals.rows; r++)
+		for (int c = 0; c < n; c++)
+		{
+			const cv::Vec3b rgb =
+			    NormalImage::rgbOf(normals.at<cv::Vec3f>(r, c));
+			mismatches += red.at<uint8_t>(r, c) != rgb[0];
+			mismatches += green.at<uint8_t>(r, c) != rgb[1];
+			mismatches += blue.at<uint8_t>(r, c) != rgb[2];
+		}
+	EXPECT_EQ(mismatches, 0u);
 }

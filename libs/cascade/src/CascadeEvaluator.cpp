@@ -2,9 +2,12 @@
 #include <semnav/cascade/CascadeError.h>
 #include <semnav/cascade/CascadeEvaluator.h>
 
+#include <algorithm>
 #include <cstddef>
+#include <cstring>
 
 #include "CompiledFeature.h"
+#include "StumpBatch.h"
 
 namespace semnav
 {
@@ -21,17 +24,17 @@ CascadeEvaluator::CascadeEvaluator(HaarCascade cascade)
 
 CascadeEvaluator::~CascadeEvaluator() = default;
 CascadeEvaluator::CascadeEvaluator(CascadeEvaluator&& o) noexcept
-    : m_cascade(std::move(o.m_cascade)),
-      m_compiled(std::move(o.m_compiled)),
-      m_stride(o.m_stride),
-      m_own(std::move(o.m_own)),
-      m_ii(o.m_ii == &o.m_own ? &m_own : o.m_ii)
 {
+	*this = std::move(o);
 }
 CascadeEvaluator& CascadeEvaluator::operator=(CascadeEvaluator&& o) noexcept
 {
 	m_cascade = std::move(o.m_cascade);
 	m_compiled = std::move(o.m_compiled);
+	m_flat = std::move(o.m_flat);
+	m_stageBegin = std::move(o.m_stageBegin);
+	m_maxOffset = o.m_maxOffset;
+	m_simd = o.m_simd;
 	m_stride = o.m_stride;
 	m_own = std::move(o.m_own);
 	m_ii = o.m_ii == &o.m_own ? &m_own : o.m_ii;
@@ -57,12 +60,42 @@ void CascadeEvaluator::setIntegralImages(const IntegralImages& ii)
 
 void CascadeEvaluator::compile()
 {
-	const int stride = m_ii->sum().cols;
+	const int stride = static_cast<int>(m_ii->sum().step1());
 	if (stride == m_stride) return;
 	m_compiled.clear();
 	m_compiled.reserve(m_cascade.features.size());
 	for (const auto& f : m_cascade.features) m_compiled.emplace_back(f, stride);
+	m_flat.clear();
+	m_stageBegin.assign(1, 0);
+	for (const auto& stage : m_cascade.stages)
+	{
+		for (const auto& st : stage.stumps)
+		{
+			const detail::CompiledFeature& f = m_compiled[st.featureIdx];
+			detail::FlatStump fs;
+			for (int i = 0; i < 3; i++)
+			{
+				for (int j = 0; j < 4; j++) fs.ofs[4 * i + j] = f.ofs[i][j];
+				fs.weight[i] = f.weight[i];
+			}
+			fs.rects = f.weight[2] != 0.0f ? 3 : 2;
+			fs.tilted = f.tilted;
+			fs.threshold = st.threshold;
+			fs.leaf[0] = st.left;
+			fs.leaf[1] = st.right;
+			m_flat.push_back(fs);
+		}
+		m_stageBegin.push_back(m_flat.size());
+	}
+	m_maxOffset = 0;
+	for (const auto& fs : m_flat)
+		for (int o : fs.ofs) m_maxOffset = std::max(m_maxOffset, o);
 	m_stride = stride;
+}
+
+bool CascadeEvaluator::simdActive() const
+{
+	return m_simd && detail::cpuHasAvx2();
 }
 
 CascadeEvaluator::Result CascadeEvaluator::evaluate(cv::Point origin) const
@@ -87,7 +120,8 @@ CascadeEvaluator::Result CascadeEvaluator::evaluateStages(
 	    ii.hasTilted() ? ii.tilted().ptr<int32_t>(o.y) + o.x : nullptr;
 	float nf = 1.f;
 	if (!detail::varianceNormFactor(
-	        sum, sq, ii.sum().cols, ii.sqsum().cols, win, nf))
+	        sum, sq, static_cast<int>(ii.sum().step1()),
+	        static_cast<int>(ii.sqsum().step1()), win, nf))
 		return res;
 	const std::size_t end = std::min(first + count, m_cascade.stages.size());
 	for (std::size_t s = first; s < end; s++)
@@ -131,6 +165,205 @@ std::vector<CascadeEvaluator::ScannedWindow> CascadeEvaluator::scanScaleOne()
 			if (r.stage == 0) x += step;  // OpenCV: if (result == 0) x += yStep
 		}
 	return out;
+}
+
+void CascadeEvaluator::scanWindows(
+    const std::vector<cv::Point>& windows, int step,
+    std::vector<Result>& results)
+{
+	results.assign(windows.size(), Result());
+	if (windows.empty()) return;
+	const IntegralImages& ii = *m_ii;
+	const cv::Size win = m_cascade.windowSize;
+	const cv::Size img = ii.imageSize();
+	const int stride = static_cast<int>(ii.sum().step1());
+	const int sqStride = static_cast<int>(ii.sqsum().step1());
+	const int32_t* sum0 = ii.sum().ptr<int32_t>(0);
+	const double* sq0 = ii.sqsum().ptr<double>(0);
+	const int32_t* tilt0 =
+	    ii.hasTilted() ? ii.tilted().ptr<int32_t>(0) : nullptr;
+	// The last entry of the integral images a read may reach.
+	const int64_t lastEntry =
+	    int64_t(ii.sum().rows - 1) * stride + ii.sum().cols - 1;
+	// Windows on a grid: runs of one row, `step` apart (the windows of a
+	// detectMultiScale level), each a segment of grid positions; positions
+	// between the windows of a run are not windows (never alive).
+	std::vector<Segment>& segs = m_segments;
+	segs.clear();
+	m_gridOf.resize(windows.size());
+	int grid = 0;
+	const auto inside = [&](cv::Point o)
+	{
+		return o.x >= 0 && o.y >= 0 && o.x + win.width <= img.width &&
+		       o.y + win.height <= img.height;
+	};
+	for (std::size_t i = 0; i < windows.size(); i++)
+	{
+		const cv::Point o = windows[i];
+		// Windows outside the image (stage -1) stay off the grid, so every
+		// position of a segment lies inside the image.
+		if (!inside(o))
+		{
+			m_gridOf[i] = -1;
+			continue;
+		}
+		if (!segs.empty())
+		{
+			Segment& sg = segs.back();
+			const int dx = o.x - sg.x0;
+			const int j = step > 0 ? dx / step : 0;
+			// Same row, on the grid, further right, not too far (a long gap
+			// would only add dead positions).
+			if (o.y == sg.y && step > 0 && dx % step == 0 && j >= sg.count &&
+			    j - sg.count < 64)
+			{
+				grid += j - sg.count;
+				sg.count = j + 1;
+				m_gridOf[i] = grid++;
+				continue;
+			}
+		}
+		segs.push_back({o.x, o.y, grid, 1});
+		m_gridOf[i] = grid++;
+	}
+	m_alive.assign(grid + 8, 0);
+	m_gridNf.assign(grid + 8, 0.f);
+	m_gridSums.assign(grid + 8, 0.0);
+	m_gridWindow.assign(grid, -1);
+	for (std::size_t i = 0; i < windows.size(); i++)
+	{
+		const cv::Point o = windows[i];
+		const int g = m_gridOf[i];
+		if (g < 0) continue;
+		m_gridWindow[g] = static_cast<int32_t>(i);
+		float nf = 1.f;
+		if (!detail::varianceNormFactor(
+		        sum0 + o.y * stride + o.x, sq0 + o.y * sqStride + o.x, stride,
+		        sqStride, win, nf))
+			continue;
+		m_gridNf[g] = nf;
+		m_alive[g] = 1;
+	}
+	// Dense eight-window blocks (AVX2) cover eight neighbouring positions
+	// of a segment of at least eight: every position lies between two
+	// windows of the run, so inside the image.
+	const bool simd = simdActive() && (step == 1 || step == 2);
+	const std::size_t nStages = m_cascade.stages.size();
+	// The positions still in, in grid order, with their segments (raw
+	// pointers below: the compiler cannot keep vector data pointers in
+	// registers across the stores).
+	m_live.resize(static_cast<std::size_t>(grid));
+	Live* live = m_live.data();
+	std::size_t nLive = 0;
+	uint8_t* alive = m_alive.data();
+	float* nfs = m_gridNf.data();
+	double* sums = m_gridSums.data();
+	const int32_t* windowOf = m_gridWindow.data();
+	for (std::size_t si = 0; si < segs.size(); si++)
+		for (int j = 0; j < segs[si].count; j++)
+			if (alive[segs[si].grid + j])
+				live[nLive++] = {segs[si].grid + j, static_cast<int>(si)};
+	const auto runStage = [&](std::size_t s)
+	{
+		const detail::FlatStump* st = m_flat.data() + m_stageBegin[s];
+		const std::size_t n = m_stageBegin[s + 1] - m_stageBegin[s];
+		for (std::size_t k = 0; k < nLive;)
+		{
+			const Segment& sg = segs[live[k].segment];
+			const int32_t base = sg.y * stride + sg.x0;
+			const int j = live[k].grid - sg.grid;
+			if (simd && sg.count >= 8)
+			{
+				// The block of j; with two or more positions in, all eight
+				// at once.
+				const int jb = std::min(j / 8 * 8, sg.count - 8);
+				const int g = sg.grid + jb;
+				std::size_t e = k + 1;
+				while (e < nLive && live[e].grid < g + 8) e++;
+				const int32_t b = base + step * jb;
+				// The block's loads end (step 2: one entry) past the last
+				// window's corners.
+				if (e - k >= 2 && b + 8 * step - 1 + m_maxOffset <= lastEntry)
+				{
+					double block[8];
+					detail::stageSums8(
+					    st, n, sum0, tilt0, b, step, nfs + g, block);
+					for (; k < e; k++)
+						sums[live[k].grid] = block[live[k].grid - g];
+					continue;
+				}
+			}
+			sums[live[k].grid] = detail::stageSum(
+			    st, n, sum0, tilt0, base + step * j, nfs[live[k].grid]);
+			k++;
+		}
+	};
+	if (nStages == 0)
+	{
+		for (std::size_t k = 0; k < nLive; k++)
+			results[windowOf[live[k].grid]].stage = 0;
+		return;
+	}
+	// Stage 0 on every window, then OpenCV's skip in visiting order: the
+	// window after a stage-0 rejection is not visited (its stage-0 sum is
+	// dropped).
+	runStage(0);
+	{
+		const float thr0 =
+		    m_cascade.stages[0].threshold - detail::kStageThresholdEps;
+		cv::Point skip(-1, -1);
+		const int* gridOf = m_gridOf.data();
+		for (std::size_t i = 0; i < windows.size(); i++)
+		{
+			const int g = gridOf[i];
+			if (windows[i] == skip)
+			{
+				results[i].stage = kNotVisited;
+				if (g >= 0) alive[g] = 0;
+				continue;
+			}
+			if (g < 0 || !alive[g]) continue;  // outside, variance: -1
+			results[i].sum = sums[g];
+			if (sums[g] < thr0)
+			{
+				results[i].stage = 0;
+				alive[g] = 0;
+				skip = cv::Point(windows[i].x + step, windows[i].y);
+			}
+		}
+		std::size_t kept = 0;
+		for (std::size_t k = 0; k < nLive; k++)
+			if (alive[live[k].grid]) live[kept++] = live[k];
+		nLive = kept;
+	}
+	Result* res = results.data();
+	for (std::size_t s = 1; s < nStages && nLive > 0; s++)
+	{
+		runStage(s);
+		const float thr =
+		    m_cascade.stages[s].threshold - detail::kStageThresholdEps;
+		// Without branches (a stage passes 60-70 % of the windows: the
+		// branch is unpredictable): every window gets this stage's result,
+		// which the stage that rejects it or the end overwrites.
+		std::size_t kept = 0;
+		for (std::size_t k = 0; k < nLive; k++)
+		{
+			const Live l = live[k];
+			const double sum = sums[l.grid];
+			Result& r = res[windowOf[l.grid]];
+			r.sum = sum;
+			r.stage = static_cast<int>(s);
+			live[kept] = l;
+			kept += !(sum < thr);
+		}
+		nLive = kept;
+	}
+	for (std::size_t k = 0; k < nLive; k++)
+	{
+		Result& r = res[windowOf[live[k].grid]];
+		r.sum = sums[live[k].grid];
+		r.stage = static_cast<int>(nStages);
+	}
 }
 
 }  // namespace semnav

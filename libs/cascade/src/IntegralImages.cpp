@@ -16,9 +16,47 @@ void IntegralImages::compute(const cv::Mat& image, bool withTilted)
 	if (image.type() != CV_8UC1)
 		throw CascadeError(
 		    "IntegralImages: expected an 8-bit single-channel image");
+	if (m_strided)
+	{
+		// Views into the strided storage: continuous matrices again.
+		m_sum.release();
+		m_sqsum.release();
+		m_tilted.release();
+		m_strided = false;
+	}
 	const int w = image.cols, h = image.rows;
 	m_sum.create(h + 1, w + 1, CV_32S);
 	m_sqsum.create(h + 1, w + 1, CV_64F);
+	if (withTilted) m_tilted.create(h + 1, w + 1, CV_32S);
+	computeInto(image, withTilted);
+}
+
+void IntegralImages::compute(const cv::Mat& image, bool withTilted, int stride)
+{
+	if (image.type() != CV_8UC1)
+		throw CascadeError(
+		    "IntegralImages: expected an 8-bit single-channel image");
+	const int w = image.cols, h = image.rows;
+	if (stride < w + 1)
+		throw CascadeError("IntegralImages: stride below the image width + 1");
+	const auto region = [&](cv::Mat& store, int type)
+	{
+		if (store.cols != stride || store.rows < h + 1 || store.type() != type)
+			store.create(
+			    std::max(h + 1, store.cols == stride ? store.rows : 0), stride,
+			    type);
+		return store(cv::Rect(0, 0, w + 1, h + 1));
+	};
+	m_sum = region(m_sumStore, CV_32S);
+	m_sqsum = region(m_sqsumStore, CV_64F);
+	if (withTilted) m_tilted = region(m_tiltedStore, CV_32S);
+	m_strided = true;
+	computeInto(image, withTilted);
+}
+
+void IntegralImages::computeInto(const cv::Mat& image, bool withTilted)
+{
+	const int w = image.cols, h = image.rows;
 	std::fill_n(m_sum.ptr<int32_t>(0), w + 1, 0);
 	std::fill_n(m_sqsum.ptr<double>(0), w + 1, 0.0);
 	for (int y = 0; y < h; y++)
@@ -29,15 +67,18 @@ void IntegralImages::compute(const cv::Mat& image, bool withTilted)
 		const double* prevSq = m_sqsum.ptr<double>(y);
 		double* curSq = m_sqsum.ptr<double>(y + 1);
 		int32_t row = 0;
-		double rowSq = 0;
+		// Sums of squares are integers: exact in int64 and in double (below
+		// 2^53), so the same doubles as a double running sum, without its
+		// four-cycle dependency chain.
+		int64_t rowSq = 0;
 		cur[0] = 0;
 		curSq[0] = 0;
 		for (int x = 0; x < w; x++)
 		{
 			row += src[x];
-			rowSq += double(src[x]) * src[x];
+			rowSq += int32_t(src[x]) * src[x];
 			cur[x + 1] = prev[x + 1] + row;
-			curSq[x + 1] = prevSq[x + 1] + rowSq;
+			curSq[x + 1] = prevSq[x + 1] + double(rowSq);
 		}
 	}
 	if (!withTilted)
@@ -54,7 +95,6 @@ void IntegralImages::compute(const cv::Mat& image, bool withTilted)
 	// below it. Cones whose apex lies left or right of the image still
 	// reach into it, so T is computed on X in [-h, w + h] (every value the
 	// recurrence needs down to row 0) and cropped to [0, w].
-	m_tilted.create(h + 1, w + 1, CV_32S);
 	const int pad = h;
 	const int wp = w + 1 + 2 * pad;
 	m_pad.assign(3 * static_cast<size_t>(wp), 0);
@@ -68,22 +108,18 @@ void IntegralImages::compute(const cv::Mat& image, bool withTilted)
 		const int32_t* prev2 = rows[(Y + 1) % 3];  // (Y - 2) mod 3
 		const uint8_t* src1 = image.ptr<uint8_t>(Y - 1);
 		const uint8_t* src2 = Y >= 2 ? image.ptr<uint8_t>(Y - 2) : nullptr;
-		// Only X within reach of the rows still to compute are needed.
+		// Only X within reach of the rows still to compute are needed:
+		// i in [Y, wp - 1 - Y], so i - 1 and i + 1 stay inside the row,
+		// and rows[] start at 0 (T(., -1) = T(., 0) = 0).
 		const int reach = h - Y;
 		const int lo = pad - reach, hi = pad + w + reach;
 		for (int i = lo; i <= hi; i++)
-		{
-			const int X = i - pad;
-			int32_t v = (i > 0 ? prev[i - 1] : 0) +
-			            (i + 1 < wp ? prev[i + 1] : 0) -
-			            (Y >= 2 ? prev2[i] : 0);
-			if (X >= 1 && X <= w)
-			{
-				v += src1[X - 1];
-				if (src2) v += src2[X - 1];
-			}
-			cur[i] = v;
-		}
+			cur[i] = prev[i - 1] + prev[i + 1] - prev2[i];
+		// The two new pixels, for X in [1, w].
+		int32_t* c = cur + pad + 1;
+		for (int x = 0; x < w; x++) c[x] += src1[x];
+		if (src2)
+			for (int x = 0; x < w; x++) c[x] += src2[x];
 		std::copy_n(cur + pad, w + 1, m_tilted.ptr<int32_t>(Y));
 	}
 }

@@ -4,6 +4,7 @@
 #include <semnav/cascade/CascadeError.h>
 #include <semnav/cascade/CascadeEvaluator.h>
 #include <semnav/cascade/CascadeXml.h>
+#include <semnav/cascade/IntegralImages.h>
 #include <semnav/cascade/RangeGate.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
@@ -16,7 +17,9 @@
 #include <climits>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/objdetect.hpp>
@@ -431,6 +434,40 @@ std::string CascadeDetector::TOptions::cascadePath(const TClassOptions& c) const
 }
 
 // ------------------------------------------------------------ detector
+namespace
+{
+/** Scratch of the range-gated search, kept between calls (no allocation
+ * per level or per sweep once grown). */
+struct GatedScratch
+{
+	/** A level's ranges (nearest neighbour of the band's), built only in
+	 * the rows whose band row has a range; the others point at zeros. */
+	cv::Mat levelRange;
+	std::vector<const float*> levelRows;
+	std::vector<float> zeros;
+	/** The band's first and last column with a range per row, and the
+	 * band column and row of each level column and row (cv::resize's
+	 * nearest neighbour). */
+	std::vector<int> bandFirst, bandLast, colMap, rowMap;
+	cv::Mat mapIn, mapOut;
+	std::vector<cv::Point> windows;
+	std::vector<CascadeEvaluator::Result> results;
+	/** Per level row: first and last column with a range (first > last:
+	 * none). */
+	std::vector<int> first, last;
+	/** Per column of a row of windows: whether the gate takes it. */
+	std::vector<uint8_t> ok;
+	/** Pyramid levels of the bands (band data and size, level size), shared by
+	 * the classes that search the same band within one detectCandidates(). */
+	std::map<std::tuple<const uint8_t*, int, int, int, int>, cv::Mat> levels;
+	IntegralImages ii;
+	/** Row stride of the integral images: only grows, so that the
+	 * evaluators compile their features once. */
+	int stride = 0;
+};
+
+}  // namespace
+
 struct CascadeDetector::Impl
 {
 	std::vector<cv::CascadeClassifier> classifiers;
@@ -450,6 +487,7 @@ struct CascadeDetector::Impl
 	std::vector<std::vector<ObjectProposal>> proposals;
 	/** Elevations of the first and last row of the detection image. */
 	double el0 = -M_PI / 2, el1 = M_PI / 2;
+	GatedScratch gated;
 };
 
 CascadeDetector::CascadeDetector(const TOptions& options)
@@ -471,6 +509,11 @@ CascadeDetector::CascadeDetector(const TOptions& options)
 
 CascadeDetector::~CascadeDetector() = default;
 
+void CascadeDetector::setSimd(bool on)
+{
+	for (auto& ev : m_impl->evaluators) ev.setSimd(on);
+}
+
 namespace
 {
 /** detectMultiScale runs in parallel: its output order varies. A fixed
@@ -491,28 +534,126 @@ std::vector<std::size_t> fixedOrder(
 	return order;
 }
 
+/** The float ranges RangeGate::accepts(r, side) takes, as bounds on r:
+ * r > 0, r <= hi and r >= (r < cut ? loCut : lo). The gate's size
+ * r x side / perSide (double) never decreases with r, so each bound is
+ * the first or last float of a run, found by bisection over the float bit
+ * patterns: the same decisions as accepts(), bit for bit. */
+struct GateBounds
+{
+	float lo = 0, loCut = 0, hi = 0, cut = 0;
+
+	GateBounds(const RangeGate& g, double side)
+	{
+		const auto size = [&](float r) { return r * side / g.perSide; };
+		hi = lastFloat([&](float r) { return size(r) <= g.hi; });
+		lo = firstFloat([&](float r) { return size(r) >= g.lo; });
+		loCut = firstFloat([&](float r) { return size(r) >= g.loCut; });
+		// r < cutRange (double) <=> r < cutRange rounded up to a float.
+		cut = static_cast<float>(g.cutRange);
+		if (static_cast<double>(cut) < g.cutRange)
+			cut = std::nextafter(cut, std::numeric_limits<float>::infinity());
+	}
+	bool accepts(float r) const
+	{
+		return r > 0 && r <= hi && (r < cut ? r >= loCut : r >= lo);
+	}
+	/** The smallest positive finite float with pred true (pred false then
+	 * true as r grows); infinity when none. */
+	template <class P>
+	static float firstFloat(P pred)
+	{
+		uint32_t a = 1, b = 0x7f800000u;  // pred(b) taken as true
+		while (a < b)
+		{
+			const uint32_t m = a + (b - a) / 2;
+			if (pred(fromBits(m)))
+				b = m;
+			else
+				a = m + 1;
+		}
+		return fromBits(a);
+	}
+	/** The largest positive finite float with pred true (true then false);
+	 * 0 when none. */
+	template <class P>
+	static float lastFloat(P pred)
+	{
+		uint32_t a = 0, b = 0x7f7fffffu;  // pred(a) taken as true
+		while (a < b)
+		{
+			const uint32_t m = a + (b - a + 1) / 2;
+			if (pred(fromBits(m)))
+				a = m;
+			else
+				b = m - 1;
+		}
+		return fromBits(a);
+	}
+	static float fromBits(uint32_t u)
+	{
+		float f;
+		std::memcpy(&f, &u, sizeof(f));
+		return f;
+	}
+};
+
 /** detectMultiScale's search (its pyramid levels, window steps, skip after
  * a stage-0 rejection and grouping) by CascadeEvaluator, but a window is
  * evaluated only where the range at its centre (the nearest of five
  * samples in its central half; `range` 0 = none) passes `gate` for its
- * side. */
-/** detectMultiScale's search (its pyramid levels, window steps, skip after
- * a stage-0 rejection and grouping) by CascadeEvaluator, but a window is
- * evaluated only where the range at its centre (the nearest of five
- * samples in its central half; `range` 0 = none) passes `gate` for its
- * side. The integral images of a level cover only the windows searched. */
+ * side. The integral images of a level cover only the windows searched;
+ * windows none of whose five samples can have a range (rows and columns
+ * without one) are not looked at. */
 void rangeGatedDetect(
     CascadeEvaluator& ev, const cv::Mat& image, const cv::Mat& range,
     double scaleFactor, int minNeighbors, cv::Size minSize, cv::Size maxSize,
     const RangeGate& gate, std::vector<cv::Rect>& found,
-    std::vector<int>& weights)
+    std::vector<int>& weights, GatedScratch& sc)
 {
 	found.clear();
 	weights.clear();
 	const cv::Size win = ev.cascade().windowSize;
 	if (maxSize.area() == 0) maxSize = image.size();
-	cv::Mat level, levelRange;
-	std::vector<cv::Point> windows;
+	sc.stride = std::max(sc.stride, image.cols + 1);
+	cv::Mat& levelRange = sc.levelRange;
+	std::vector<cv::Point>& windows = sc.windows;
+	// The five samples of RangeGate::windowRange, relative to (x, y); they
+	// lie inside the window, so inside the level.
+	const int hx = win.width / 2, hy = win.height / 2;
+	const int qx = win.width / 4, qy = win.height / 4;
+	// The band's nearest and farthest ranges (a level none of whose
+	// window sides takes them is skipped whole: its nearest-neighbour
+	// ranges are some of the band's) and each row's first and last column
+	// with a range.
+	float rMin = std::numeric_limits<float>::infinity(), rMax = 0;
+	sc.bandFirst.assign(range.rows, range.cols);
+	sc.bandLast.assign(range.rows, -1);
+	for (int r = 0; r < range.rows; r++)
+	{
+		const float* row = range.ptr<float>(r);
+		for (int c = 0; c < range.cols; c++)
+			if (row[c] > 0)
+			{
+				rMin = std::min(rMin, row[c]);
+				rMax = std::max(rMax, row[c]);
+				sc.bandFirst[r] = std::min(sc.bandFirst[r], c);
+				sc.bandLast[r] = c;
+			}
+	}
+	// cv::resize's nearest neighbour takes level column c from one band
+	// column and level row r from one band row, each from its own axis'
+	// sizes: resizing the indices gives that map.
+	const auto nearestMap =
+	    [&](int from, int to, std::vector<int>& map, bool columns)
+	{
+		sc.mapIn.create(columns ? 1 : from, columns ? from : 1, CV_32S);
+		for (int i = 0; i < from; i++) sc.mapIn.at<int32_t>(i) = i;
+		cv::resize(
+		    sc.mapIn, sc.mapOut, columns ? cv::Size(to, 1) : cv::Size(1, to), 0,
+		    0, cv::INTER_NEAREST);
+		map.assign(sc.mapOut.ptr<int32_t>(), sc.mapOut.ptr<int32_t>() + to);
+	};
 	for (double factor = 1;; factor *= scaleFactor)
 	{
 		const cv::Size ws(
@@ -523,39 +664,125 @@ void rangeGatedDetect(
 		if (ws.width > maxSize.width || ws.height > maxSize.height) break;
 		if (ws.width < minSize.width || ws.height < minSize.height) continue;
 		const double side = std::max(ws.width, ws.height);
-		cv::resize(range, levelRange, sz, 0, 0, cv::INTER_NEAREST);
+		const GateBounds gb(gate, side);
+		if (rMax == 0 || rMin > gb.hi || rMax < std::min(gb.lo, gb.loCut))
+			continue;
+		// The level's ranges, as cv::resize(INTER_NEAREST) gives them, in
+		// the rows with a range only.
+		nearestMap(range.cols, sz.width, sc.colMap, true);
+		nearestMap(range.rows, sz.height, sc.rowMap, false);
+		levelRange.create(sz, CV_32F);
+		sc.zeros.assign(sz.width, 0.f);
+		sc.levelRows.resize(sz.height);
+		sc.first.assign(sz.height, sz.width);
+		sc.last.assign(sz.height, -1);
+		for (int r = 0; r < sz.height; r++)
+		{
+			const int br = sc.rowMap[r];
+			if (sc.bandFirst[br] > sc.bandLast[br])
+			{
+				sc.levelRows[r] = sc.zeros.data();
+				continue;
+			}
+			// Columns mapped into the band row's first..last (the map
+			// never decreases): outside them the level row is 0.
+			const int c0 = static_cast<int>(
+			    std::lower_bound(
+			        sc.colMap.begin(), sc.colMap.end(), sc.bandFirst[br]) -
+			    sc.colMap.begin());
+			const int c1 =
+			    static_cast<int>(
+			        std::upper_bound(
+			            sc.colMap.begin(), sc.colMap.end(), sc.bandLast[br]) -
+			        sc.colMap.begin()) -
+			    1;
+			const float* src = range.ptr<float>(br);
+			float* dst = levelRange.ptr<float>(r);
+			std::fill(dst, dst + sz.width, 0.f);
+			for (int c = c0; c <= c1; c++) dst[c] = src[sc.colMap[c]];
+			sc.levelRows[r] = dst;
+			sc.first[r] = c0;
+			sc.last[r] = c1;
+		}
 		const int nx = sz.width + 1 - win.width;
 		const int ny = sz.height + 1 - win.height;
 		const int step = factor > 2 ? 1 : 2;
 		windows.clear();
 		cv::Rect box;
+		sc.ok.resize(nx + 1);
+		constexpr float kNone = std::numeric_limits<float>::infinity();
 		for (int y = 0; y < ny; y += step)
-			for (int x = 0; x < nx; x += step)
-			{
-				const float r = RangeGate::windowRange(levelRange, x, y, win);
-				if (!gate.accepts(r, side)) continue;
-				windows.emplace_back(x, y);
-				box |= cv::Rect(x, y, win.width, win.height);
-			}
-		if (windows.empty()) continue;
-		if (sz == image.size())
-			level = image;
-		else
-			cv::resize(image, level, sz, 0, 0, cv::INTER_LINEAR_EXACT);
-		ev.setImage(level(box));
-		cv::Point skip(-1, -1);
-		for (const cv::Point& w : windows)
 		{
-			// OpenCV skips the next x after a rejection by stage 0.
-			if (w == skip) continue;
-			const auto res = ev.evaluate(w - box.tl());
-			if (ev.accepted(res))
+			const int cy = y + hy;
+			const int rows[3] = {cy, cy - qy, cy + qy};
+			// Columns of the samples with a range: the centre column
+			// cx = x + hx, or cx -+ qx in the centre row.
+			int lo = INT_MAX, hi = INT_MIN;
+			for (int i = 0; i < 3; i++)
+			{
+				if (sc.first[rows[i]] > sc.last[rows[i]]) continue;
+				const int reach = i == 0 ? qx : 0;
+				lo = std::min(lo, sc.first[rows[i]] - hx - reach);
+				hi = std::max(hi, sc.last[rows[i]] - hx + reach);
+			}
+			if (lo > hi) continue;
+			// On the step grid from 0.
+			const int x0 = std::max(0, (lo + step - 1) / step * step);
+			const int x1 = std::min(nx - 1, hi);
+			if (x0 > x1) continue;
+			const float* c = sc.levelRows[cy] + hx;
+			const float* a = sc.levelRows[cy - qy] + hx;
+			const float* b = sc.levelRows[cy + qy] + hx;
+			uint8_t* ok = sc.ok.data();
+			// Every column (a plain loop the compiler vectorises), then
+			// the grid's. The nearest sample with a range (windowRange;
+			// none: infinity, which the gate refuses).
+			for (int x = x0; x <= x1; x++)
+			{
+				const float v0 = c[x], v1 = c[x - qx], v2 = c[x + qx],
+				            v3 = a[x], v4 = b[x];
+				float r = v0 > 0 ? v0 : kNone;
+				r = std::min(r, v1 > 0 ? v1 : kNone);
+				r = std::min(r, v2 > 0 ? v2 : kNone);
+				r = std::min(r, v3 > 0 ? v3 : kNone);
+				r = std::min(r, v4 > 0 ? v4 : kNone);
+				const bool nearCut = r < gb.cut;
+				ok[x - x0] = (r <= gb.hi) & ((nearCut & (r >= gb.loCut)) |
+				                             (!nearCut & (r >= gb.lo)));
+			}
+			for (int x = x0; x <= x1; x += step)
+				if (ok[x - x0])
+				{
+					windows.emplace_back(x, y);
+					box |= cv::Rect(x, y, win.width, win.height);
+				}
+		}
+		if (windows.empty()) continue;
+		const cv::Mat* level = &image;
+		if (sz != image.size())
+		{
+			// A band is its data and size (bands of one image may start at
+			// the same row and end at different ones).
+			cv::Mat& l = sc.levels[std::make_tuple(
+			    image.ptr<uint8_t>(), image.cols, image.rows, sz.width,
+			    sz.height)];
+			if (l.empty())
+				cv::resize(image, l, sz, 0, 0, cv::INTER_LINEAR_EXACT);
+			level = &l;
+		}
+		sc.ii.compute(
+		    (*level)(box), ev.cascade().hasTiltedFeatures(), sc.stride);
+		ev.setIntegralImages(sc.ii);
+		for (cv::Point& w : windows) w -= box.tl();
+		ev.scanWindows(windows, step, sc.results);
+		for (std::size_t j = 0; j < windows.size(); j++)
+			if (ev.accepted(sc.results[j]))
+			{
+				const cv::Point w = windows[j] + box.tl();
 				found.emplace_back(
 				    cvRound(w.x * factor), cvRound(w.y * factor), ws.width,
 				    ws.height);
-			else if (res.stage == 0)
-				skip = cv::Point(w.x + step, w.y);
-		}
+			}
 	}
 	cv::groupRectangles(found, weights, minNeighbors, 0.2);
 }
@@ -749,7 +976,7 @@ void CascadeDetector::runCascade(
 			rangeGatedDetect(
 			    m_impl->evaluators[i], band, r, k.scaleFactor, k.minNeighbors,
 			    minSize, maxSize, m_options.rangeGate(k, step, p.upscale),
-			    found, n);
+			    found, n, m_impl->gated);
 		}
 		else
 			classifier.detectMultiScale(
@@ -765,7 +992,11 @@ void CascadeDetector::runCascade(
 			neighbours.push_back(n[j]);
 		}
 	}
-	if (!m_impl->keepScaled) m_impl->scaled.clear();
+	if (!m_impl->keepScaled)
+	{
+		m_impl->scaled.clear();
+		m_impl->gated.levels.clear();
+	}
 }
 
 std::optional<CascadeDetector::Measure> CascadeDetector::measure(
@@ -1010,6 +1241,7 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 			images[ch] = detectionImage(phis, thetas, smoothed, normalMask, ch);
 	}
 	m_impl->scaled.clear();
+	m_impl->gated.levels.clear();
 	m_impl->keepScaled = true;
 	m_timings.image = msSince(t0);
 	const auto tp = Clock::now();
@@ -1149,6 +1381,7 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		m_timings.sizeCheck += msSince(tm);
 	}
 	m_impl->scaled.clear();
+	m_impl->gated.levels.clear();
 	m_impl->keepScaled = false;
 	m_timings.total = msSince(t0);
 	return out;

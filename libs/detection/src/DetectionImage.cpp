@@ -8,6 +8,22 @@
 
 namespace semnav
 {
+namespace
+{
+/** NormalImage::rgbOf's channel, clamp(lround(128 + 127 v), 0, 255), bit
+ * for bit: the same float 128 + 127 v, rounded half away from zero as
+ * floor(x + 0.5) in double (exact for a float; only x >= 0 survives the
+ * clamp, where the two roundings agree), the floor of a positive value by
+ * truncation (no libm call). */
+inline uint8_t channelOf(float v)
+{
+	const float x = 128.0f + 127.0f * v;
+	const double y = static_cast<double>(x) + 0.5;
+	if (!(y >= 1)) return 0;  // below 1 (also NaN, as lround's clamp)
+	return y >= 255 ? 255 : static_cast<uint8_t>(static_cast<int>(y));
+}
+}  // namespace
+
 const std::string& channelName(DetectionChannel c)
 {
 	static const std::string names[] = {"grey", "red", "green", "blue", "view"};
@@ -127,8 +143,10 @@ cv::Mat DetectionImage::fromSmoothedNormals(
 				    ca * n[c][0] + sa * n[c][1], -sa * n[c][0] + ca * n[c][1],
 				    n[c][2]);
 			}
-			const cv::Vec3b rgb = NormalImage::rgbOf(v);
-			o[c] = cv::Vec3b(rgb[2], rgb[1], rgb[0]);
+			// NormalImage::rgbOf (r = -y, g = x, b = z), without its
+			// three lround calls per pixel.
+			o[c] =
+			    cv::Vec3b(channelOf(v[2]), channelOf(v[0]), channelOf(-v[1]));
 		}
 	}
 	cv::Mat out;

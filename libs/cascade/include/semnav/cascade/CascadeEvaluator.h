@@ -13,7 +13,8 @@ namespace semnav
 namespace detail
 {
 struct CompiledFeature;
-}
+struct FlatStump;
+}  // namespace detail
 
 /** Runs a HaarCascade on windows of an image exactly as OpenCV 4's
  * cv::CascadeClassifier does at one scale: integral images of the 8-bit
@@ -22,11 +23,12 @@ struct CompiledFeature;
  * windows whose standard deviation is <= 10 grey levels are skipped);
  * feature values in float times that factor; per stage the sum (double) of
  * the stumps' leaves (value < threshold ? left : right) against the stage
- * threshold minus 1e-5. The trainer uses it to bootstrap negatives; tests
- * compare it with cv::CascadeClassifier window by window.
+ * threshold minus 1e-5. The trainer uses it to bootstrap negatives,
+ * CascadeDetector's range-gated search runs scanWindows() on each pyramid
+ * level; tests compare it with cv::CascadeClassifier window by window.
  *
- * Not thread-safe for setImage(); evaluate() is const and may run
- * concurrently once the image is set. */
+ * Not thread-safe for setImage() and scanWindows() (scratch buffers);
+ * evaluate() is const and may run concurrently once the image is set. */
 class CascadeEvaluator
 {
 public:
@@ -34,12 +36,16 @@ public:
 	struct Result
 	{
 		/** -1: skipped by the variance test (or outside the image);
-		 * 0..n-1: rejected by that stage; n = stage count: accepted. */
+		 * kNotVisited (scanWindows): not evaluated, it follows a window
+		 * rejected by stage 0; 0..n-1: rejected by that stage; n = stage
+		 * count: accepted. */
 		int stage = -1;
 		/** Sum of the last stage evaluated (0 when skipped). */
 		double sum = 0;
 		bool skipped() const { return stage < 0; }
 	};
+	/** Result::stage of a window scanWindows() does not evaluate. */
+	static constexpr int kNotVisited = -2;
 	/** One window of scanScaleOne(). */
 	struct ScannedWindow
 	{
@@ -80,10 +86,53 @@ public:
 	 * (CascadeClassifierInvoker). */
 	std::vector<ScannedWindow> scanScaleOne() const;
 
+	/** Evaluates `windows` (top-left corners, in the row-major order
+	 * detectMultiScale visits one pyramid level whose window step is
+	 * `step`) as detectMultiScale does: a window at (x + step, y) that
+	 * directly follows a window at (x, y) rejected by stage 0 is not
+	 * evaluated (stage kNotVisited); every other result is evaluate()'s
+	 * (same stage and sum, bit for bit). Runs stage by stage over the
+	 * windows still in; with AVX2 (setSimd()) eight neighbouring windows
+	 * of a row at a time. */
+	void scanWindows(
+	    const std::vector<cv::Point>& windows, int step,
+	    std::vector<Result>& results);
+	/** scanWindows() uses AVX2 when the CPU has it (default) or, with
+	 * false, the portable loop; both give the same results. */
+	void setSimd(bool on) { m_simd = on; }
+	/** Whether scanWindows() runs on AVX2 (setSimd and the CPU). */
+	bool simdActive() const;
+
 private:
 	void compile();
 	HaarCascade m_cascade;
 	std::vector<detail::CompiledFeature> m_compiled;
+	/** Every stage's stumps with their features compiled, in order;
+	 * stage s is [m_stageBegin[s], m_stageBegin[s + 1]). */
+	std::vector<detail::FlatStump> m_flat;
+	std::vector<std::size_t> m_stageBegin;
+	bool m_simd = true;
+	/** Largest corner offset of any stump (reads of a window reach this
+	 * far past its top-left entry). */
+	int m_maxOffset = 0;
+	/** scanWindows() scratch: runs of windows of one row on the level's
+	 * grid, and per grid position whether it is still in, its variance
+	 * factor, its last stage sum and its window (-1: none). */
+	struct Segment
+	{
+		int x0, y, grid, count;
+	};
+	std::vector<Segment> m_segments;
+	struct Live
+	{
+		int grid, segment;
+	};
+	std::vector<Live> m_live;
+	std::vector<int> m_gridOf;
+	std::vector<uint8_t> m_alive;
+	std::vector<float> m_gridNf;
+	std::vector<double> m_gridSums;
+	std::vector<int32_t> m_gridWindow;
 	int m_stride = -1;
 	IntegralImages m_own;
 	const IntegralImages* m_ii = &m_own;

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <opencv2/core/mat.hpp>
+#include <vector>
 
 namespace semnav
 {
@@ -26,6 +27,12 @@ public:
 	/** Computes the integral images of a CV_8UC1 image. Buffers are reused
 	 * between calls. Throws CascadeError for another type. */
 	void compute(const cv::Mat& image, bool withTilted = true);
+	/** The same with rows `stride` entries apart (>= cols + 1) in buffers
+	 * that only grow: the levels of a pyramid then share one row stride
+	 * (CascadeEvaluator compiles its features once per stride) and no
+	 * level allocates. The matrices are then not continuous; the values are
+	 * those of compute(). Throws CascadeError when stride < cols + 1. */
+	void compute(const cv::Mat& image, bool withTilted, int stride);
 
 	const cv::Mat& sum() const { return m_sum; }
 	const cv::Mat& sqsum() const { return m_sqsum; }
@@ -52,7 +59,12 @@ public:
 	static bool inTiltedRect(const cv::Rect& r, int px, int py);
 
 private:
+	void computeInto(const cv::Mat& image, bool withTilted);
 	cv::Mat m_sum, m_sqsum, m_tilted;
+	/** Storage of the strided compute() (rows x stride); m_sum etc. are
+	 * regions of it. */
+	cv::Mat m_sumStore, m_sqsumStore, m_tiltedStore;
+	bool m_strided = false;
 	std::vector<int32_t> m_pad;  ///< scratch for the tilted recurrence
 };
 

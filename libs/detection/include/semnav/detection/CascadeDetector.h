@@ -345,6 +345,12 @@ public:
 	    double floorTolerance, double maxDepth, int minPoints,
 	    bool connected = false);
 
+	/** The range-gated search evaluates windows with AVX2 where the CPU has
+	 * it (default) or, with false, with the portable loop: the same
+	 * candidates either way (CascadeEvaluator::setSimd); for benchmarks and
+	 * checks. */
+	void setSimd(bool on);
+
 	const TOptions& options() const { return m_options; }
 	const Timings& lastTimings() const { return m_timings; }
 
