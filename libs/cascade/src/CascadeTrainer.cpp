@@ -251,17 +251,6 @@ double iou(const cv::Rect2d& a, const cv::Rect2d& b)
 	return u > 0 ? i / u : 0;
 }
 
-uint64_t gcd64(uint64_t a, uint64_t b)
-{
-	while (b)
-	{
-		const uint64_t t = a % b;
-		a = b;
-		b = t;
-	}
-	return a;
-}
-
 struct MiningResult
 {
 	std::vector<cv::Mat> windows;
