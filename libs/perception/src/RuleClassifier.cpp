@@ -967,7 +967,10 @@ void RuleClassifier::splitPlanes()
 	{
 		const double half = 0.5 * m_options.planeSplitOffset;
 		constexpr double kStep = 0.1 * M_PI / 180;
-		constexpr double kBin = 0.001;
+		// (d * 1000 rounds to the same bin as d / 0.001 for every float d:
+		// the product is exact in double, the quotient is within 2 ulp of
+		// it, and d * 1000 is never that close to an integer it is not.)
+		constexpr double kBin = 0.001, kBinsPerMetre = 1000;
 		constexpr int kBins = 300;  // 1 mm over +-15 cm
 		const int band =
 		    std::max(1, static_cast<int>(std::lround(2 * half / kBin)));
@@ -999,7 +1002,8 @@ void RuleClassifier::splitPlanes()
 				{
 					const float d = mx * px[i] + my * py[i] - off;
 					const int b =
-					    static_cast<int>(std::floor(d / kBin)) + kBins / 2;
+					    static_cast<int>(std::floor(d * kBinsPerMetre)) +
+					    kBins / 2;
 					if (b >= 0 && b < kBins) hist[b]++;
 				}
 				int run = 0;
