@@ -3,6 +3,8 @@
 // head: theta -15..90 deg, phi -90..90 deg, 0.5 deg), each stage and the
 // whole pipeline; and, as a baseline, normals by per-pixel PCA over the
 // 3 x 3 neighbourhood. Prints the medians and the PCA / NormalImage ratio.
+// BM_Total runs the widest SIMD kernels the CPU has (libs/perception
+// SimdKernels.h), BM_TotalBaselineKernels the portable (SSE2) ones.
 //
 // The sweep is a synthetic office room (tests/perception/SyntheticScene.h,
 // 5 mm range noise), or sweep SEMNAV_BENCH_SWEEP (default 0) of the rawlog
@@ -21,6 +23,7 @@
 #include <map>
 #include <string>
 
+#include "../../libs/perception/src/SimdKernels.h"
 #include "../perception/SyntheticScene.h"
 
 using namespace semnav;
@@ -137,6 +140,22 @@ void BM_Total(benchmark::State& st)
 }
 BENCHMARK(BM_Total)->Unit(benchmark::kMillisecond);
 
+/** The pipeline with the portable (SSE2) builds of the SIMD kernels, as on
+ * a CPU without AVX2. */
+void BM_TotalBaselineKernels(benchmark::State& st)
+{
+	detail::setKernelsBaselineOnly(true);
+	PerceptionPipeline pipeline;
+	LabeledSweep out;
+	for (auto _ : st)
+	{
+		pipeline.process(sweep(), out);
+		benchmark::DoNotOptimize(out.labels.data);
+	}
+	detail::setKernelsBaselineOnly(false);
+}
+BENCHMARK(BM_TotalBaselineKernels)->Unit(benchmark::kMillisecond);
+
 /** Baseline: normal = eigenvector of the smallest eigenvalue of the 3 x 3
  * neighbourhood's covariance, turned toward the sensor. */
 void BM_PcaNormals3x3(benchmark::State& st)
@@ -236,7 +255,8 @@ int main(int argc, char** argv)
 	std::printf("medians, ms (wall / cpu):\n");
 	for (const char* b :
 	     {"BM_NormalImage", "BM_RangeSegmentation", "BM_Roughness",
-	      "BM_RuleClassifier", "BM_Total", "BM_PcaNormals3x3"})
+	      "BM_RuleClassifier", "BM_Total", "BM_TotalBaselineKernels",
+	      "BM_PcaNormals3x3"})
 		if (m.count(b))
 			std::printf("  %-22s %7.3f / %7.3f\n", b, m.at(b), mc.at(b));
 	if (m.count("BM_NormalImage") && m.count("BM_PcaNormals3x3"))
@@ -250,8 +270,8 @@ int main(int argc, char** argv)
 	if (m.count("BM_Total"))
 		std::printf(
 		    "total per sweep (median): %.3f ms wall, %.3f ms cpu (budget 5 "
-		    "ms)\n",
-		    m.at("BM_Total"), mc.at("BM_Total"));
+		    "ms), SIMD kernels: %s\n",
+		    m.at("BM_Total"), mc.at("BM_Total"), detail::simdKernels().name);
 	benchmark::Shutdown();
 	return 0;
 }
