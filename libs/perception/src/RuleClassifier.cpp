@@ -974,7 +974,9 @@ void RuleClassifier::splitPlanes()
 		constexpr int kBins = 300;  // 1 mm over +-15 cm
 		const int band =
 		    std::max(1, static_cast<int>(std::lround(2 * half / kBin)));
-		std::vector<int> hist(kBins);
+		// (Bins 0..kBins-1 and kBins + 1 .. 2 kBins: the two halves; bin
+		// kBins and 2 kBins + 1 take the points outside.)
+		std::vector<int> hist(2 * kBins + 2);
 		std::vector<float> px, py;
 		for (int k = 0; k < nSlots; k++)
 		{
@@ -997,15 +999,27 @@ void RuleClassifier::splitPlanes()
 				const float mx = static_cast<float>(std::cos(ang)),
 				            my = static_cast<float>(std::sin(ang));
 				const float off = static_cast<float>(offset[k]);
+				// (Two histograms, even and odd points, summed after: runs of
+				// neighbouring points fall into one bin, and one histogram
+				// would wait for each increment before the next.)
 				std::fill(hist.begin(), hist.end(), 0);
-				for (std::size_t i = 0; i < px.size(); i++)
+				const std::size_t np = px.size();
+				auto binOf = [&](std::size_t i)
 				{
 					const float d = mx * px[i] + my * py[i] - off;
 					const int b =
 					    static_cast<int>(std::floor(d * kBinsPerMetre)) +
 					    kBins / 2;
-					if (b >= 0 && b < kBins) hist[b]++;
+					return static_cast<unsigned>(b) < kBins ? b : kBins;
+				};
+				std::size_t i = 0;
+				for (; i + 1 < np; i += 2)
+				{
+					hist[binOf(i)]++;
+					hist[kBins + 1 + binOf(i + 1)]++;
 				}
+				if (i < np) hist[binOf(i)]++;
+				for (int b = 0; b < kBins; b++) hist[b] += hist[kBins + 1 + b];
 				int run = 0;
 				for (int b = 0; b < kBins; b++)
 				{
