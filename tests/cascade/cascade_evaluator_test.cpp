@@ -164,15 +164,25 @@ TEST(CascadeEvaluator, AgreesWithOpenCvOnShippedFaceCascade)
 	expectAgreement(face, img);
 }
 
-TEST(CascadeEvaluator, AgreesWithOpenCvOnShippedTiltedCascade)
+/** OpenCV's shipped cascade with 45-degree features (opencv-data). */
+class TiltedCascade : public ::testing::Test
 {
-	const std::string path =
-	    test::openCvCascade("haarcascade_frontalcatface_extended.xml");
-	if (path.empty())
-		GTEST_SKIP() << "opencv-data is not installed "
-		                "(haarcascade_frontalcatface_extended.xml missing)";
-	const HaarCascade cat = CascadeXml::readFile(path);
-	ASSERT_TRUE(cat.hasTiltedFeatures());
+protected:
+	void SetUp() override
+	{
+		const std::string path =
+		    test::openCvCascade("haarcascade_frontalcatface_extended.xml");
+		if (path.empty())
+			GTEST_SKIP() << "opencv-data is not installed "
+			                "(haarcascade_frontalcatface_extended.xml missing)";
+		cat = CascadeXml::readFile(path);
+		ASSERT_TRUE(cat.hasTiltedFeatures());
+	}
+	HaarCascade cat;
+};
+
+TEST_F(TiltedCascade, EvaluatorAgreesWithOpenCv)
+{
 	const cv::Mat img = testImage({180, 140}, cat.windowSize, 8);
 	expectAgreement(cat, img);
 }
@@ -288,15 +298,8 @@ TEST(CascadeEvaluator, ScanWindowsIsEvaluateWithOpenCvsSkip)
 	EXPECT_TRUE(r.empty());
 }
 
-TEST(CascadeEvaluator, ScanWindowsIsEvaluateWithTiltedFeatures)
+TEST_F(TiltedCascade, ScanWindowsIsEvaluate)
 {
-	const std::string path =
-	    test::openCvCascade("haarcascade_frontalcatface_extended.xml");
-	if (path.empty())
-		GTEST_SKIP() << "opencv-data is not installed "
-		                "(haarcascade_frontalcatface_extended.xml missing)";
-	const HaarCascade cat = CascadeXml::readFile(path);
-	ASSERT_TRUE(cat.hasTiltedFeatures());
 	for (int step : {1, 2})
 	{
 		const cv::Mat img = testImage({180, 140}, cat.windowSize, 8);
