@@ -36,6 +36,21 @@ TrainingSweep sweep(uint64_t seed, bool withObject)
 	}
 	return t;
 }
+
+/** Two passes: objects up to 20 px upscaled by 2 in rows 40..90, larger
+ * ones at scale 1 in the whole image. */
+std::vector<DetectionPass> twoPasses()
+{
+	DetectionPass nearPass, farPass;
+	nearPass.rowEnd = 120;
+	nearPass.minSide = 20;
+	farPass.upscale = 2;
+	farPass.rowBegin = 40;
+	farPass.rowEnd = 90;
+	farPass.minSide = 10;
+	farPass.maxSide = 20;
+	return {nearPass, farPass};
+}
 }  // namespace
 
 TEST(SampleGenerator, PositivesAndNegativesAsTheDetectorSeesThem)
@@ -45,17 +60,7 @@ TEST(SampleGenerator, PositivesAndNegativesAsTheDetectorSeesThem)
 	SampleGenerator gen(o);
 	std::vector<TrainingSweep> sweeps{
 	    sweep(1, true), sweep(2, false), sweep(3, false)};
-	// Two passes: objects up to 20 px upscaled by 2 in rows 40..90, larger
-	// ones at scale 1 in the whole image.
-	DetectionPass nearPass, farPass;
-	nearPass.rowEnd = 120;
-	nearPass.minSide = 20;
-	farPass.upscale = 2;
-	farPass.rowBegin = 40;
-	farPass.rowEnd = 90;
-	farPass.minSide = 10;
-	farPass.maxSide = 20;
-	for (auto& s : sweeps) s.passes = {nearPass, farPass};
+	for (auto& s : sweeps) s.passes = twoPasses();
 	const auto res = gen.generate(sweeps, Label::Washbasin, {20, 20}, 7);
 	EXPECT_EQ(res.views, 1u);
 	EXPECT_EQ(res.sweepsWithoutObject, 2u);
@@ -131,17 +136,9 @@ TEST(SampleGenerator, RangeNegativesCarryTheRangeAndGateOfEachPass)
 	SampleGenerator::TOptions o;
 	o.positives = 4;
 	std::vector<TrainingSweep> sweeps{sweep(1, true), sweep(2, false)};
-	DetectionPass nearPass, farPass;
-	nearPass.rowEnd = 120;
-	nearPass.minSide = 20;
-	farPass.upscale = 2;
-	farPass.rowBegin = 40;
-	farPass.rowEnd = 90;
-	farPass.minSide = 10;
-	farPass.maxSide = 20;
 	for (auto& s : sweeps)
 	{
-		s.passes = {nearPass, farPass};
+		s.passes = twoPasses();
 		s.range = cv::Mat(120, 200, CV_32F, cv::Scalar(0));
 		s.range.rowRange(60, 120).setTo(cv::Scalar(3.0));
 		s.gate.perSide = 10;

@@ -64,12 +64,13 @@ void Roughness::compute(const NormalImage& normals, const cv::Mat& areaIds)
 	normals.normalMask().convertTo(m_mask, CV_32F);
 	detail::boxSum(m_mask, m_options.windowHalfWidth, m_sumM, m_tmp);
 	m_rowSum.resize(static_cast<std::size_t>(cols) * 3);
+	const detail::SimdKernels& K = detail::simdKernels();
 	detail::boxSumRows(
 	    *n, m_options.windowHalfWidth, m_tmp,
 	    [&](int) { return m_rowSum.data(); },
 	    [&](int r, const float* sums)
 	    {
-		    detail::simdKernels().roughnessRow(
+		    K.roughnessRow(
 		        n->ptr<float>(r), sums, m_sumM.ptr<float>(r),
 		        normals.normalMask().ptr<uint8_t>(r), m_r.ptr<float>(r), cols);
 	    });
