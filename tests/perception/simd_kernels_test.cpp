@@ -118,3 +118,37 @@ TEST(SimdKernels, AllBuildsGiveTheSameLabelsAndRegions)
 	for (std::size_t i = 0; i < out[0].regions.size(); i++)
 		EXPECT_EQ(out[0].regions[i].centroid, out[1].regions[i].centroid);
 }
+
+TEST(SimdKernels, DistanceBinsAreFloorOfTheDoubleProductInEveryBuild)
+{
+	// Distances around bin edges (d * 1000 near integers), far outside the
+	// histogram and negative, with a count that leaves a scalar tail.
+	std::vector<float> x, y;
+	for (int i = 0; i < 1003; i++)
+	{
+		const float base = -0.2f + 0.0004f * static_cast<float>(i);
+		x.push_back(base + (i % 3 == 0 ? 1e-7f : i % 3 == 1 ? -1e-7f : 0.f));
+		y.push_back(i % 7 == 0 ? 50.0f : 0.25f * static_cast<float>(i % 5));
+	}
+	const float mx = 0.8f, my = 0.6f, off = 0.15f;
+	std::vector<int> expected(x.size());
+	for (std::size_t i = 0; i < x.size(); i++)
+	{
+		const float d = mx * x[i] + my * y[i] - off;
+		const int b = static_cast<int>(std::floor(d * 1000.0)) + 150;
+		expected[i] = b >= 0 && b < 300 ? b : 300;
+	}
+	int inside = 0;
+	for (int b : expected) inside += b < 300;
+	ASSERT_GT(inside, 100);
+	ASSERT_LT(inside, 900);
+	bothBuilds(
+	    [&](bool)
+	    {
+		    std::vector<int> bins(x.size(), -1);
+		    detail::simdKernels().distanceBins(
+		        x.data(), y.data(), static_cast<int>(x.size()), mx, my, off,
+		        1000.0, 150, 300, bins.data());
+		    EXPECT_EQ(bins, expected) << detail::simdKernels().name;
+	    });
+}

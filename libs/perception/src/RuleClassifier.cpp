@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
@@ -36,6 +37,13 @@ constexpr int8_t kNoLabel = -1;
 int8_t lab(Label l)
 {
 	return static_cast<int8_t>(l);
+}
+
+uint64_t load64(const void* p)
+{
+	uint64_t v;
+	std::memcpy(&v, p, sizeof v);
+	return v;
 }
 
 bool isGround(int8_t l)
@@ -976,8 +984,9 @@ void RuleClassifier::splitPlanes()
 		    std::max(1, static_cast<int>(std::lround(2 * half / kBin)));
 		// (Bins 0..kBins-1 and kBins + 1 .. 2 kBins: the two halves; bin
 		// kBins and 2 kBins + 1 take the points outside.)
-		std::vector<int> hist(2 * kBins + 2);
+		std::vector<int> hist(2 * kBins + 2), bins;
 		std::vector<float> px, py;
+		const detail::SimdKernels& K = detail::simdKernels();
 		for (int k = 0; k < nSlots; k++)
 		{
 			const int cnt = start[k + 1] - start[k];
@@ -991,6 +1000,7 @@ void RuleClassifier::splitPlanes()
 				px.push_back(xs[i]);
 				py.push_back(ys[i]);
 			}
+			bins.resize(px.size());
 			const double a0 = std::atan2(normal[k][1], normal[k][0]);
 			int bestScore = -1;
 			double bestA = a0, bestD = offset[k];
@@ -1003,22 +1013,17 @@ void RuleClassifier::splitPlanes()
 				// neighbouring points fall into one bin, and one histogram
 				// would wait for each increment before the next.)
 				std::fill(hist.begin(), hist.end(), 0);
-				const std::size_t np = px.size();
-				auto binOf = [&](std::size_t i)
-				{
-					const float d = mx * px[i] + my * py[i] - off;
-					const int b =
-					    static_cast<int>(std::floor(d * kBinsPerMetre)) +
-					    kBins / 2;
-					return static_cast<unsigned>(b) < kBins ? b : kBins;
-				};
-				std::size_t i = 0;
+				const int np = static_cast<int>(px.size());
+				K.distanceBins(
+				    px.data(), py.data(), np, mx, my, off, kBinsPerMetre,
+				    kBins / 2, kBins, bins.data());
+				int i = 0;
 				for (; i + 1 < np; i += 2)
 				{
-					hist[binOf(i)]++;
-					hist[kBins + 1 + binOf(i + 1)]++;
+					hist[bins[i]]++;
+					hist[kBins + 1 + bins[i + 1]]++;
 				}
-				if (i < np) hist[binOf(i)]++;
+				if (i < np) hist[bins[i]]++;
 				for (int b = 0; b < kBins; b++) hist[b] += hist[kBins + 1 + b];
 				int run = 0;
 				for (int b = 0; b < kBins; b++)
@@ -1128,6 +1133,8 @@ void RuleClassifier::splitPlanes()
 		int bestB = -1;
 		for (int b = 0; b < kBins - 1; b++)
 		{
+			// (An empty bin changes nothing: its split is the previous one.)
+			if (hist[b] == 0) continue;
 			w0 += hist[b];
 			s0 += hist[b] * (b + 0.5);
 			const double w1 = total - w0;
@@ -1647,57 +1654,94 @@ void RuleClassifier::classify(
 		const uint8_t* FR = m_seed.data();
 		const int8_t* LB = m_label.data();
 		m_zeroRow.assign(cols, 0);
+		auto seed = [&](int p, int near)
+		{
+			if ((near != 0) & (LB[p] != kNoLabel)) m_stack.push_back(p);
+		};
 		for (int r = 0; r < rows; r++)
 		{
 			const int base = r * cols;
 			const uint8_t* F = FR + base;
 			const uint8_t* up = r + 1 < rows ? F + cols : m_zeroRow.data();
 			const uint8_t* down = r > 0 ? F - cols : m_zeroRow.data();
-			for (int c = 0; c < cols; c++)
+			if (cols == 1)
 			{
-				const int near = (c > 0 ? F[c - 1] : 0) |
-				                 (c + 1 < cols ? F[c + 1] : 0) | up[c] |
-				                 down[c];
-				if ((near != 0) & (LB[base + c] != kNoLabel))
-					m_stack.push_back(base + c);
+				seed(base, up[0] | down[0]);
+				continue;
 			}
+			seed(base, F[1] | up[0] | down[0]);
+			// Eight pixels at a time (most have no leftover near them):
+			// bit 7 of byte k set where pixel c + k is a seed.
+			int c = 1;
+			for (; c + 9 <= cols; c += 8)
+			{
+				const uint64_t near = load64(F + c - 1) | load64(F + c + 1) |
+				                      load64(up + c) | load64(down + c);
+				if (!near) continue;
+				const uint64_t labelled = ~load64(LB + base + c);  // != -1
+				constexpr uint64_t k7f = 0x7f7f7f7f7f7f7f7full;
+				const uint64_t nonZero = ((labelled & k7f) + k7f) | labelled;
+				uint64_t m = nonZero & (near << 7) & ~k7f;
+				for (; m; m &= m - 1)
+					m_stack.push_back(base + c + (__builtin_ctzll(m) >> 3));
+			}
+			for (; c + 1 < cols; c++)
+				seed(base + c, F[c - 1] | F[c + 1] | up[c] | down[c]);
+			seed(base + cols - 1, F[cols - 2] | up[cols - 1] | down[cols - 1]);
 		}
 	}
 	if (o.classifyLeftoverPixels)
 	{
 		const float tolG = static_cast<float>(o.groundTolerance);
 		const double tolP = o.leftoverPlaneTolerance;
-		auto accepts = [&](int s, int q)
+		// What each labelled surface accepts, compact (read per pixel).
+		m_claim.resize(ns);
+		for (std::size_t i = 0; i < ns; i++)
 		{
-			const Surface& S = m_surfaces[s];
+			const Surface& S = m_surfaces[i];
+			Claim& cl = m_claim[i];
+			cl.label = S.label;
+			cl.kind = isGround(S.label)                 ? Claim::kGround
+			          : S.label == lab(Label::Obstacle) ? Claim::kArea
+			                                            : Claim::kPlane;
+			cl.area = S.area;
+			cl.nx = S.normal[0];
+			cl.ny = S.normal[1];
+			cl.nz = S.normal[2];
+			cl.d = S.planeD();
+		}
+		auto accepts = [&](const Claim& cl, int q)
+		{
 			const cv::Vec3f& x = P[q];
-			if (isGround(S.label)) return std::abs(x[2] - zg) <= tolG;
-			if (S.label == lab(Label::Obstacle))
-				return A[q] >= 1 && A[q] == S.area;
+			if (cl.kind == Claim::kGround) return std::abs(x[2] - zg) <= tolG;
+			if (cl.kind == Claim::kArea) return A[q] >= 1 && A[q] == cl.area;
 			return std::abs(
-			           S.normal[0] * x[0] + S.normal[1] * x[1] +
-			           S.normal[2] * x[2] - S.planeD()) <= tolP;
+			           cl.nx * x[0] + cl.ny * x[1] + cl.nz * x[2] - cl.d) <=
+			       tolP;
 		};
 		// FIFO over the seeds in m_stack: the nearest surface claims first.
+		// (m_seed is cleared where a pixel is claimed: 1 = still open.)
+		uint8_t* open = m_seed.data();
 		for (std::size_t head = 0; head < m_stack.size(); head++)
 		{
 			const int p = m_stack[head];
 			const int r = RO[p], c = CO[p], s = m_owner[p];
+			const Claim& cl = m_claim[s];
 			const int nb[4] = {
 			    c > 0 ? p - 1 : -1, c + 1 < cols ? p + 1 : -1,
 			    r > 0 ? p - cols : -1, r + 1 < rows ? p + cols : -1};
 			for (int q : nb)
 			{
-				if (q < 0 || !PM[q] || m_label[q] != kNoLabel) continue;
-				if (!accepts(s, q)) continue;
-				m_label[q] = m_surfaces[s].label;
+				if (q < 0 || !open[q] || !accepts(cl, q)) continue;
+				open[q] = 0;
+				m_label[q] = cl.label;
 				m_owner[q] = s;
 				m_stack.push_back(q);
 			}
 		}
 		for (int p = 0; p < n; p++)
 		{
-			if (!PM[p] || m_label[p] != kNoLabel) continue;
+			if (!open[p]) continue;
 			const float z = P[p][2];
 			if (std::abs(z - zg) <= tolG)
 				m_label[p] = lab(Label::Floor);
@@ -1898,14 +1942,26 @@ void RuleClassifier::buildRegions(LabeledSweep& out, const cv::Mat& rBar)
 		bool vertical = false;
 	};
 	std::vector<Acc> acc(count);
-	// Runs of one region along a row are summed in locals first.
+	// Runs of one region along a row are summed in locals first: x y z
+	// (and nx ny nz) in the first three lanes of a vector, each lane in
+	// double as a scalar sum would be (the fourth lane, the next pixel's x,
+	// is not used; the last pixel, which has none, is copied first).
 	int rid = -1, rn = 0, rr = 0, rc0 = 0, rc1 = 0, rfirst = -1, rnb = 0;
-	double sx = 0, sy = 0, sz = 0, nx = 0, ny = 0, nz = 0, sb = 0;
-	float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+	double sb = 0;
+	cv::v_float64x2 sxy = cv::v_setzero_f64(), szw = sxy, nxy = sxy, nzw = sxy;
+	cv::v_float32x4 vlo = cv::v_setzero_f32(), vhi = vlo;
 	auto flush = [&]()
 	{
 		if (rid < 0) return;
 		Acc& a = acc[rid];
+		double xy[2], zw[2], nxy2[2], nzw2[2];
+		float lo[4], hi[4];
+		cv::v_store(xy, sxy);
+		cv::v_store(zw, szw);
+		cv::v_store(nxy2, nxy);
+		cv::v_store(nzw2, nzw);
+		cv::v_store(lo, vlo);
+		cv::v_store(hi, vhi);
 		if (a.n == 0)
 		{
 			a.first = rfirst;
@@ -1918,8 +1974,8 @@ void RuleClassifier::buildRegions(LabeledSweep& out, const cv::Mat& rBar)
 		a.n += rn;
 		a.nRbar += rnb;
 		a.sumRbar += sb;
-		a.sum += cv::Vec3d(sx, sy, sz);
-		a.sumN += cv::Vec3d(nx, ny, nz);
+		a.sum += cv::Vec3d(xy[0], xy[1], zw[0]);
+		a.sumN += cv::Vec3d(nxy2[0], nxy2[1], nzw2[0]);
 		for (int k = 0; k < 3; k++)
 		{
 			a.lo[k] = std::min(a.lo[k], lo[k]);
@@ -1963,7 +2019,18 @@ void RuleClassifier::buildRegions(LabeledSweep& out, const cv::Mat& rBar)
 			const int id = RI[p];
 			if (id != rid || c == 0) flush();
 			if (id < 0) continue;
-			const cv::Vec3f& q = P[p];
+			const float* q = P[p].val;
+			const float* nq = NS[p].val;
+			float tail[8];
+			if (p == n - 1)
+			{
+				std::copy(q, q + 3, tail);
+				std::copy(nq, nq + 3, tail + 4);
+				tail[3] = tail[7] = 0;
+				q = tail;
+				nq = tail + 4;
+			}
+			const cv::v_float32x4 vq = cv::v_load(q), vn = cv::v_load(nq);
 			if (rid < 0)
 			{
 				rid = id;
@@ -1972,8 +2039,9 @@ void RuleClassifier::buildRegions(LabeledSweep& out, const cv::Mat& rBar)
 				rc0 = c;
 				rfirst = p;
 				rnb = 0;
-				sx = sy = sz = nx = ny = nz = sb = 0;
-				for (int k = 0; k < 3; k++) lo[k] = hi[k] = q[k];
+				sb = 0;
+				sxy = szw = nxy = nzw = cv::v_setzero_f64();
+				vlo = vhi = vq;
 			}
 			rc1 = c;
 			rn++;
@@ -1984,17 +2052,12 @@ void RuleClassifier::buildRegions(LabeledSweep& out, const cv::Mat& rBar)
 				sb += ok ? v : 0.0f;
 				rnb += ok;
 			}
-			sx += q[0];
-			sy += q[1];
-			sz += q[2];
-			nx += NS[p][0];
-			ny += NS[p][1];
-			nz += NS[p][2];
-			for (int k = 0; k < 3; k++)
-			{
-				lo[k] = std::min(lo[k], q[k]);
-				hi[k] = std::max(hi[k], q[k]);
-			}
+			sxy += cv::v_cvt_f64(vq);
+			szw += cv::v_cvt_f64_high(vq);
+			nxy += cv::v_cvt_f64(vn);
+			nzw += cv::v_cvt_f64_high(vn);
+			vlo = cv::v_min(vq, vlo);  // (as std::min(lo, q), signed zeros too)
+			vhi = cv::v_max(vq, vhi);
 		}
 	flush();
 	// Extent along a vertical region (t = z x n): the projections of its

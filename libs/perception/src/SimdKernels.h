@@ -119,6 +119,12 @@ struct SimdKernels
 	void (*roughnessRow)(
 	    const float* normals, const float* sums, const float* counts,
 	    const uint8_t* normalMask, float* r, int cols);
+	/** Histogram bins of the distances d = mx x + my y - off of n points
+	 * (float, unfused): floor(d * scale) (in double) + offset, or
+	 * `outside` where that is not in [0, outside). */
+	void (*distanceBins)(
+	    const float* x, const float* y, int n, float mx, float my, float off,
+	    double scale, int offset, int outside, int* bins);
 	/** "baseline" (SSE2) or "avx2". */
 	const char* name;
 };

@@ -390,10 +390,45 @@ void roughnessRow(
 	for (; c < cols; c++) one(c);
 }
 
+void distanceBins(
+    const float* x, const float* y, int n, float mx, float my, float off,
+    double scale, int offset, int outside, int* bins)
+{
+	auto one = [&](int i)
+	{
+		const float d = mx * x[i] + my * y[i] - off;
+		const int b = static_cast<int>(std::floor(d * scale)) + offset;
+		bins[i] = static_cast<unsigned>(b) < static_cast<unsigned>(outside)
+		              ? b
+		              : outside;
+	};
+	constexpr int kLanes = cv::v_float32::nlanes;
+	const cv::v_float32 vmx = cv::vx_setall_f32(mx),
+	                    vmy = cv::vx_setall_f32(my),
+	                    voff = cv::vx_setall_f32(off);
+	const cv::v_float64 vscale = cv::vx_setall_f64(scale);
+	const cv::v_int32 voffset = cv::vx_setall_s32(offset),
+	                  vout = cv::vx_setall_s32(outside);
+	int i = 0;
+	for (; i + kLanes <= n; i += kLanes)
+	{
+		const cv::v_float32 d =
+		    vmx * cv::vx_load(x + i) + vmy * cv::vx_load(y + i) - voff;
+		const cv::v_int32 b = cv::v_combine_low(
+		                          cv::v_floor(cv::v_cvt_f64(d) * vscale),
+		                          cv::v_floor(cv::v_cvt_f64_high(d) * vscale)) +
+		                      voffset;
+		const cv::v_int32 in = cv::v_reinterpret_as_s32(
+		    cv::v_reinterpret_as_u32(b) < cv::v_reinterpret_as_u32(vout));
+		cv::v_store(bins + i, cv::v_select(in, b, vout));
+	}
+	for (; i < n; i++) one(i);
+}
+
 // (In SimdKernels' member order.)
 extern const SimdKernels kKernels = {
-    &pointsRow,    &computeNormals,   &addRow,    &subRow,
-    &boxRow,       &normalizeRow,     &orientRow, &joinMask,
-    &roughnessRow, SEMNAV_KERNEL_NAME};
+    &pointsRow,    &computeNormals, &addRow,           &subRow,
+    &boxRow,       &normalizeRow,   &orientRow,        &joinMask,
+    &roughnessRow, &distanceBins,   SEMNAV_KERNEL_NAME};
 
 }  // namespace semnav::detail::SEMNAV_KERNEL_NS

@@ -224,6 +224,20 @@ private:
 	std::vector<uint8_t> m_seed;      ///< leftover pixels (valid, no label)
 	std::vector<uint8_t> m_zeroRow;   ///< zeros beyond the image's rows
 	std::vector<int8_t> m_surfLabel;  ///< label per surface id + 1
+	/** What a labelled surface takes of the leftover pixels next to it. */
+	struct Claim
+	{
+		enum Kind : int8_t
+		{
+			kGround,  ///< points at ground level
+			kArea,    ///< pixels of its range area (obstacles)
+			kPlane    ///< points on its plane
+		};
+		double nx = 0, ny = 0, nz = 0, d = 0;
+		int area = 0;
+		int8_t kind = kPlane, label = -1;
+	};
+	std::vector<Claim> m_claim;
 	/** splitPlanes()'s sums per group (those the plane fit needs). */
 	struct GroupSums
 	{
