@@ -152,3 +152,38 @@ TEST(SimdKernels, DistanceBinsAreFloorOfTheDoubleProductInEveryBuild)
 		    EXPECT_EQ(bins, expected) << detail::simdKernels().name;
 	    });
 }
+
+TEST(SimdKernels, BandBitsAreTheDoubleBandTestInEveryBuild)
+{
+	// Points across a band of +-6 mm around a line, some exactly on its
+	// edges, with a count that is not a multiple of 64.
+	std::vector<float> x, y;
+	for (int i = 0; i < 1001; i++)
+	{
+		x.push_back(0.5f + 0.002f * static_cast<float>(i % 97));
+		y.push_back(-1.0f + 0.0003f * static_cast<float>(i));
+	}
+	const double mx = 0.6, my = 0.8, d = -0.3, half = 0.006;
+	std::vector<uint64_t> expected((x.size() + 63) / 64, 0);
+	int inside = 0;
+	for (std::size_t i = 0; i < x.size(); i++)
+	{
+		const double xi = x[i], yi = y[i];
+		if (std::abs(mx * xi + my * yi - d) <= half)
+		{
+			expected[i / 64] |= uint64_t{1} << (i % 64);
+			inside++;
+		}
+	}
+	ASSERT_GT(inside, 20);
+	ASSERT_LT(inside, 900);
+	bothBuilds(
+	    [&](bool)
+	    {
+		    std::vector<uint64_t> bits(expected.size(), ~uint64_t{0});
+		    detail::simdKernels().bandBits(
+		        x.data(), y.data(), static_cast<int>(x.size()), mx, my, d, half,
+		        bits.data());
+		    EXPECT_EQ(bits, expected) << detail::simdKernels().name;
+	    });
+}

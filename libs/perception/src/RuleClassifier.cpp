@@ -985,6 +985,7 @@ void RuleClassifier::splitPlanes()
 		// (Bins 0..kBins-1 and kBins + 1 .. 2 kBins: the two halves; bin
 		// kBins and 2 kBins + 1 take the points outside.)
 		std::vector<int> hist(2 * kBins + 2), bins;
+		std::vector<uint64_t> inBand;
 		std::vector<float> px, py;
 		const detail::SimdKernels& K = detail::simdKernels();
 		for (int k = 0; k < nSlots; k++)
@@ -1048,18 +1049,21 @@ void RuleClassifier::splitPlanes()
 			// Least squares on the points of that band.
 			// (Points outside the band would add exact zeros: skipped.)
 			double s0 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
-			for (int i = 0; i < cnt; i++)
-			{
-				const double x = xs[i], y = ys[i];
-				if (!(std::abs(bestM[0] * x + bestM[1] * y - bestD) <= half))
-					continue;
-				s0 += 1.0;
-				sx += x;
-				sy += y;
-				sxx += x * x;
-				sxy += x * y;
-				syy += y * y;
-			}
+			inBand.resize((cnt + 63) / 64);
+			K.bandBits(
+			    xs, ys, cnt, bestM[0], bestM[1], bestD, half, inBand.data());
+			for (int w = 0; w < static_cast<int>(inBand.size()); w++)
+				for (uint64_t m = inBand[w]; m; m &= m - 1)
+				{
+					const int i = w * 64 + __builtin_ctzll(m);
+					const double x = xs[i], y = ys[i];
+					s0 += 1.0;
+					sx += x;
+					sy += y;
+					sxx += x * x;
+					sxy += x * y;
+					syy += y * y;
+				}
 			cv::Vec3d m;
 			if (s0 >= m_options.minSurfacePixels &&
 			    normalOf(

@@ -125,6 +125,11 @@ struct SimdKernels
 	void (*distanceBins)(
 	    const float* x, const float* y, int n, float mx, float my, float off,
 	    double scale, int offset, int outside, int* bins);
+	/** Bit i of bits[i / 64] set where |mx x + my y - d| <= half for point
+	 * i of n (in double); (n + 63) / 64 words are written. */
+	void (*bandBits)(
+	    const float* x, const float* y, int n, double mx, double my, double d,
+	    double half, uint64_t* bits);
 	/** "baseline" (SSE2) or "avx2". */
 	const char* name;
 };

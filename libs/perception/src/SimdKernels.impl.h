@@ -425,10 +425,41 @@ void distanceBins(
 	for (; i < n; i++) one(i);
 }
 
+void bandBits(
+    const float* x, const float* y, int n, double mx, double my, double d,
+    double half, uint64_t* bits)
+{
+	std::fill(bits, bits + (n + 63) / 64, uint64_t{0});
+	auto one = [&](int i)
+	{
+		const double xi = x[i], yi = y[i];
+		if (std::abs(mx * xi + my * yi - d) <= half)
+			bits[i / 64] |= uint64_t{1} << (i % 64);
+	};
+	constexpr int kLanes = cv::v_float32::nlanes;  // divides 64
+	const cv::v_float64 vmx = cv::vx_setall_f64(mx),
+	                    vmy = cv::vx_setall_f64(my), vd = cv::vx_setall_f64(d),
+	                    vhalf = cv::vx_setall_f64(half);
+	auto inBand = [&](const cv::v_float64& xs, const cv::v_float64& ys)
+	{ return cv::v_signmask(cv::v_abs(vmx * xs + vmy * ys - vd) <= vhalf); };
+	int i = 0;
+	for (; i + kLanes <= n; i += kLanes)
+	{
+		const cv::v_float32 xs = cv::vx_load(x + i), ys = cv::vx_load(y + i);
+		const uint64_t m = static_cast<uint64_t>(
+		                       inBand(cv::v_cvt_f64(xs), cv::v_cvt_f64(ys))) |
+		                   static_cast<uint64_t>(inBand(
+		                       cv::v_cvt_f64_high(xs), cv::v_cvt_f64_high(ys)))
+		                       << (kLanes / 2);
+		bits[i / 64] |= m << (i % 64);
+	}
+	for (; i < n; i++) one(i);
+}
+
 // (In SimdKernels' member order.)
 extern const SimdKernels kKernels = {
-    &pointsRow,    &computeNormals, &addRow,           &subRow,
-    &boxRow,       &normalizeRow,   &orientRow,        &joinMask,
-    &roughnessRow, &distanceBins,   SEMNAV_KERNEL_NAME};
+    &pointsRow,    &computeNormals, &addRow,    &subRow,
+    &boxRow,       &normalizeRow,   &orientRow, &joinMask,
+    &roughnessRow, &distanceBins,   &bandBits,  SEMNAV_KERNEL_NAME};
 
 }  // namespace semnav::detail::SEMNAV_KERNEL_NS
