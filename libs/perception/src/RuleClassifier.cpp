@@ -678,31 +678,43 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 			if (!hasSide[m_parent[i]] && m_surfLoose[newId[m_parent[i]]] < 0)
 				m_surfLoose[newId[m_parent[i]]] = m_loose[i];
 		firstAccumulated = count;
-		for (const int seed : m_splitPix)
+		// Connected pixels of one group and one side: union-find over the
+		// split pixels (row-major; a component's root is its first pixel,
+		// numbered in that order as a fill from each first pixel would).
+		auto find = [&](int x)
 		{
-			if (m_surf[seed] != -2) continue;
-			const int id = count++;
-			const int g = m_group[seed];
-			const uint8_t side = m_side[seed];
-			m_surfLoose.push_back(m_loose[g]);
-			m_surf[seed] = id;
-			m_stack.push_back(seed);
-			while (!m_stack.empty())
+			while (m_uf[x] != x)
 			{
-				const int p = m_stack.back();
-				m_stack.pop_back();
-				const int r = RO[p], c = CO[p];
-				const int nb[4] = {
-				    c > 0 ? p - 1 : -1, c + 1 < cols ? p + 1 : -1,
-				    r > 0 ? p - cols : -1, r + 1 < rows ? p + cols : -1};
-				for (int q : nb)
-					if (q >= 0 && m_surf[q] == -2 && m_group[q] == g &&
-					    m_side[q] == side)
-					{
-						m_surf[q] = id;
-						m_stack.push_back(q);
-					}
+				m_uf[x] = m_uf[m_uf[x]];
+				x = m_uf[x];
 			}
+			return x;
+		};
+		for (const int p : m_splitPix) m_uf[p] = p;
+		for (const int p : m_splitPix)
+		{
+			const int g = m_group[p];
+			const uint8_t side = m_side[p];
+			auto link = [&](int q)
+			{
+				if (m_surf[q] != -2 || m_group[q] != g || m_side[q] != side)
+					return;
+				const int a = find(q), b = find(p);
+				if (a != b) m_uf[std::max(a, b)] = std::min(a, b);
+			};
+			if (CO[p] > 0) link(p - 1);
+			if (RO[p] > 0) link(p - cols);
+		}
+		for (const int p : m_splitPix)
+		{
+			const int root = find(p);
+			if (root == p)
+			{
+				m_surf[p] = count++;
+				m_surfLoose.push_back(m_loose[m_group[p]]);
+			}
+			else
+				m_surf[p] = m_surf[root];
 		}
 	}
 	computeSurfaceStats(count, firstAccumulated);
@@ -766,6 +778,22 @@ void RuleClassifier::mergeCoplanar()
 		const int* S2 = r + 2 < rows ? S0 + 2 * cols : nullptr;
 		for (int c = 0; c < cols; c++)
 		{
+			// Four pixels whose four neighbours are all their own surface
+			// (a surface's inside, the common case) have nothing to visit.
+			constexpr int kLanes = cv::v_int32x4::nlanes;
+			if (S2 && c + kLanes + 1 < cols)
+			{
+				const cv::v_int32x4 v = cv::v_load(S0 + c);
+				const cv::v_int32x4 same = (v == cv::v_load(S0 + c + 1)) &
+				                           (v == cv::v_load(S0 + c + 2)) &
+				                           (v == cv::v_load(S1 + c)) &
+				                           (v == cv::v_load(S2 + c));
+				if (cv::v_check_all(same))
+				{
+					c += kLanes - 1;
+					continue;
+				}
+			}
 			const int s = S0[c];
 			if (s < 0 || !mergeable(s)) continue;
 			auto visit = [&](int t)
