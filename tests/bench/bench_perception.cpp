@@ -12,6 +12,8 @@
 //   build/tests/bench/bench_perception            (7 repetitions, medians)
 //   SEMNAV_BENCH_RAWLOG=out/sim/office.rawlog
 //   build/tests/bench/bench_perception
+// BM_TotalEverySweep cycles through all of the rawlog's sweeps (the mean
+// per sweep, as semnav-perceive streams them).
 #include <benchmark/benchmark.h>
 #include <semnav/perception/PerceptionPipeline.h>
 #include <semnav/scan/RawlogSweepReader.h>
@@ -156,6 +158,44 @@ void BM_TotalBaselineKernels(benchmark::State& st)
 }
 BENCHMARK(BM_TotalBaselineKernels)->Unit(benchmark::kMillisecond);
 
+/** Every sweep of SEMNAV_BENCH_RAWLOG (without it, the bench's sweep). */
+const std::vector<Sweep>& everySweep()
+{
+	static const std::vector<Sweep> all = []
+	{
+		std::vector<Sweep> v;
+		if (const char* path = std::getenv("SEMNAV_BENCH_RAWLOG"))
+		{
+			RawlogSweepReader reader(path);
+			Sweep s;
+			while (reader.next(s)) v.push_back(s);
+		}
+		if (v.empty()) v.push_back(sweep());
+		return v;
+	}();
+	return all;
+}
+
+/** The pipeline over every sweep of the rawlog in turn, one sweep per
+ * iteration, as semnav-perceive streams them (each sweep's data cold):
+ * the mean time per sweep. */
+void BM_TotalEverySweep(benchmark::State& st)
+{
+	const std::vector<Sweep>& all = everySweep();
+	PerceptionPipeline pipeline;
+	LabeledSweep out;
+	for (const Sweep& s : all) pipeline.process(s, out);  // buffers grown
+	std::size_t k = 0;
+	for (auto _ : st)
+	{
+		pipeline.process(all[k], out);
+		benchmark::DoNotOptimize(out.labels.data);
+		k = (k + 1) % all.size();
+	}
+	st.counters["sweeps"] = static_cast<double>(all.size());
+}
+BENCHMARK(BM_TotalEverySweep)->Unit(benchmark::kMillisecond);
+
 /** Baseline: normal = eigenvector of the smallest eigenvalue of the 3 x 3
  * neighbourhood's covariance, turned toward the sensor. */
 void BM_PcaNormals3x3(benchmark::State& st)
@@ -256,7 +296,7 @@ int main(int argc, char** argv)
 	for (const char* b :
 	     {"BM_NormalImage", "BM_RangeSegmentation", "BM_Roughness",
 	      "BM_RuleClassifier", "BM_Total", "BM_TotalBaselineKernels",
-	      "BM_PcaNormals3x3"})
+	      "BM_TotalEverySweep", "BM_PcaNormals3x3"})
 		if (m.count(b))
 			std::printf("  %-22s %7.3f / %7.3f\n", b, m.at(b), mc.at(b));
 	if (m.count("BM_NormalImage") && m.count("BM_PcaNormals3x3"))
