@@ -52,6 +52,28 @@ bool isGround(int8_t l)
 	       l == lab(Label::Grass);
 }
 
+/** Point p and its normal as vectors, x y z in the first three lanes (the
+ * fourth is the next pixel's x, unused; the last pixel, which has none, is
+ * copied first). */
+void loadPointAndNormal(
+    const cv::Vec3f* points, const cv::Vec3f* normals, int p, int last,
+    cv::v_float32x4& vq, cv::v_float32x4& vn)
+{
+	const float* q = points[p].val;
+	const float* nq = normals[p].val;
+	float tail[8];
+	if (p == last)
+	{
+		std::copy(q, q + 3, tail);
+		std::copy(nq, nq + 3, tail + 4);
+		tail[3] = tail[7] = 0;
+		q = tail;
+		nq = tail + 4;
+	}
+	vq = cv::v_load(q);
+	vn = cv::v_load(nq);
+}
+
 /** Sums pixels into surfaces run by run: consecutive pixels of one
  * surface along a row are accumulated in locals (floats: a run is at most
  * one row long) and added to the surface at the run's end (no
@@ -77,21 +99,9 @@ public:
 	/** Adds pixel p (row r, column c) of surface id >= 0 to the run. */
 	void add(int p, int r, int c, int id)
 	{
-		// x y z (and nx ny nz) in the first three lanes of a vector: the
-		// fourth is the next pixel's x, unused (the last pixel, which has
-		// none, is copied first).
+		cv::v_float32x4 vq, vn;
+		loadPointAndNormal(m_p, m_n, p, m_last, vq, vn);
 		const float* q = m_p[p].val;
-		const float* nq = m_n[p].val;
-		float tail[8];
-		if (p == m_last)
-		{
-			std::copy(q, q + 3, tail);
-			std::copy(nq, nq + 3, tail + 4);
-			tail[3] = tail[7] = 0;
-			q = tail;
-			nq = tail + 4;
-		}
-		const cv::v_float32x4 vq = cv::v_load(q), vn = cv::v_load(nq);
 		if (m_id < 0)
 		{
 			m_id = id;
@@ -1974,10 +1984,9 @@ void RuleClassifier::buildRegions(LabeledSweep& out, const cv::Mat& rBar)
 		bool vertical = false;
 	};
 	std::vector<Acc> acc(count);
-	// Runs of one region along a row are summed in locals first: x y z
-	// (and nx ny nz) in the first three lanes of a vector, each lane in
-	// double as a scalar sum would be (the fourth lane, the next pixel's x,
-	// is not used; the last pixel, which has none, is copied first).
+	// Runs of one region along a row are summed in locals first, x y z
+	// (and nx ny nz) in the first three lanes of vectors, each lane in
+	// double as a scalar sum would be.
 	int rid = -1, rn = 0, rr = 0, rc0 = 0, rc1 = 0, rfirst = -1, rnb = 0;
 	double sb = 0;
 	cv::v_float64x2 sxy = cv::v_setzero_f64(), szw = sxy, nxy = sxy, nzw = sxy;
@@ -2051,18 +2060,8 @@ void RuleClassifier::buildRegions(LabeledSweep& out, const cv::Mat& rBar)
 			const int id = RI[p];
 			if (id != rid || c == 0) flush();
 			if (id < 0) continue;
-			const float* q = P[p].val;
-			const float* nq = NS[p].val;
-			float tail[8];
-			if (p == n - 1)
-			{
-				std::copy(q, q + 3, tail);
-				std::copy(nq, nq + 3, tail + 4);
-				tail[3] = tail[7] = 0;
-				q = tail;
-				nq = tail + 4;
-			}
-			const cv::v_float32x4 vq = cv::v_load(q), vn = cv::v_load(nq);
+			cv::v_float32x4 vq, vn;
+			loadPointAndNormal(P, NS, p, n - 1, vq, vn);
 			if (rid < 0)
 			{
 				rid = id;
