@@ -77,3 +77,22 @@ TEST(ObjectScorer, IssueRules)
 	EXPECT_EQ(t.score(Label::Washbasin).tp, 1u);
 	EXPECT_EQ(t.sweeps(), 1u);
 }
+
+TEST(ObjectScorer, ExcludedObjectsAreNotScored)
+{
+	cv::Mat gt(100, 100, CV_16U, cv::Scalar(0));
+	gt(cv::Rect(10, 10, 20, 10)).setTo(code(Label::Washbasin, 1));
+	gt(cv::Rect(50, 50, 20, 10)).setTo(code(Label::Washbasin, 2));
+	gt(cv::Rect(10, 70, 20, 10)).setTo(code(Label::Washbasin, 3));
+	const std::vector<Label> labels{Label::Washbasin};
+	ObjectScorer s;
+	s.add(
+	    {det(Label::Washbasin, {10, 10, 20, 10}),   // tp
+	     det(Label::Washbasin, {50, 50, 20, 10})},  // of an excluded one
+	    gt, labels, {{Label::Washbasin, 2}, {Label::Washbasin, 3}});
+	const auto w = s.score(Label::Washbasin);
+	EXPECT_EQ(w.tp, 1u);
+	EXPECT_EQ(w.fp, 0u);
+	EXPECT_EQ(w.fn, 0u);  // washbasin 3 is excluded, not missed
+	EXPECT_EQ(w.ignored, 1u);
+}

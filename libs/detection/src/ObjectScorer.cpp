@@ -20,7 +20,7 @@ double ObjectScorer::iou(const cv::Rect& a, const cv::Rect& b)
 
 void ObjectScorer::add(
     const std::vector<Detection>& detections, const cv::Mat& groundTruth,
-    const std::vector<Label>& labels)
+    const std::vector<Label>& labels, const ObjectKeys& excluded)
 {
 	m_sweeps++;
 	const auto objects = GroundTruthObject::fromLabelImage(groundTruth, labels);
@@ -30,7 +30,10 @@ void ObjectScorer::add(
 		std::vector<const GroundTruthObject*> counted, small;
 		for (const auto& o : objects)
 			if (o.label == l)
-				(o.pixels >= m_minPixels ? counted : small).push_back(&o);
+				(o.pixels >= m_minPixels && !excluded.count({l, o.instance})
+				     ? counted
+				     : small)
+				    .push_back(&o);
 		std::vector<const Detection*> dets;
 		for (const auto& d : detections)
 			if (d.label == l) dets.push_back(&d);

@@ -6,6 +6,8 @@
 
 #include <array>
 #include <opencv2/core/mat.hpp>
+#include <set>
+#include <utility>
 #include <vector>
 
 namespace semnav
@@ -34,12 +36,17 @@ public:
 
 	explicit ObjectScorer(int minPixels = 150, double minIou = 0.3);
 
+	/** Ground-truth objects of one sweep, as (label, instance). */
+	using ObjectKeys = std::set<std::pair<Label, int>>;
+
 	/** Adds one sweep: its detections and its CV_16U ground-truth image
 	 * (low byte label, high byte instance). Only labels in `labels` are
-	 * scored. */
+	 * scored. Objects in `excluded` are treated as too small to count
+	 * (not scored; a detection of one is ignored), e.g. views no window
+	 * detector can recognise, for a second figure beside the issue's. */
 	void add(
 	    const std::vector<Detection>& detections, const cv::Mat& groundTruth,
-	    const std::vector<Label>& labels);
+	    const std::vector<Label>& labels, const ObjectKeys& excluded = {});
 
 	Score score(Label l) const;
 	std::size_t sweeps() const { return m_sweeps; }
