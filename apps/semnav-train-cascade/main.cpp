@@ -152,6 +152,8 @@ int main(int argc, char** argv)
 				         {"negatives", s.negatives},
 				         {"stumps", s.weakCount},
 				         {"hit_rate", s.hitRate},
+				         {"calibration_positives", s.calibrationPositives},
+				         {"calibration_hit_rate", s.calibrationHitRate},
 				         {"false_alarm", s.falseAlarm},
 				         {"acceptance_ratio", s.acceptanceRatio},
 				         {"seconds", s.seconds},

@@ -98,6 +98,36 @@ TEST(CascadeTrainer, SameSeedSameXmlWhateverTheThreads)
 	EXPECT_NE(other.xml, reference().xml);
 }
 
+TEST(CascadeTrainer, CalibrationPositivesSetTheStageThresholds)
+{
+	Trained t;
+	test::syntheticTrainingSet({12, 12}, 200, t.pos, t.neg);
+	auto o = test::tinyTrainerOptions();
+	o.numStages = 4;
+	o.calibrationFraction = 0.3;
+	CascadeTrainer tr(o);
+	const HaarCascade c = tr.train(t.pos, t.neg, 42);
+	const auto& rep = tr.report();
+	ASSERT_GE(c.stages.size(), 2u) << rep.stopReason;
+	for (std::size_t s = 0; s < c.stages.size(); s++)
+	{
+		const auto& r = rep.stages[s];
+		// About 30 % held out, none of them boosted on.
+		EXPECT_GT(r.calibrationPositives, 30u) << "stage " << s;
+		EXPECT_LT(r.calibrationPositives, r.positives) << "stage " << s;
+		// The threshold keeps the hit rate on both sets.
+		EXPECT_GE(r.calibrationHitRate, o.minHitRate) << "stage " << s;
+		EXPECT_GE(r.hitRate, o.minHitRate) << "stage " << s;
+		EXPECT_LE(r.falseAlarm, o.maxFalseAlarm + 1e-12) << "stage " << s;
+	}
+	// Same seed, same cascade; not the one trained without calibration.
+	CascadeTrainer again(o);
+	EXPECT_EQ(
+	    CascadeXml::toString(again.train(t.pos, t.neg, 42)),
+	    CascadeXml::toString(c));
+	EXPECT_NE(CascadeXml::toString(c), reference().xml);
+}
+
 TEST(CascadeTrainer, RangeGateChoosesTheNegativeWindows)
 {
 	// A range gate that lets every window through: the same cascade as
@@ -151,7 +181,8 @@ TEST(CascadeTrainer, OptionsLoadSaveAndErrors)
 {
 	CascadeTrainer::TOptions o;
 	mrpt::config::CConfigFileMemory c(
-	    "[T]\nnum_stages = 7\nfeature_mode = core\nmin_hit_rate = 0.99\n");
+	    "[T]\nnum_stages = 7\nfeature_mode = core\nmin_hit_rate = 0.99\n"
+	    "calibration_fraction = 0.25\n");
 	o.loadFromConfigFile(c, "T");
 	EXPECT_EQ(o.numStages, 7);
 	EXPECT_EQ(o.mode, HaarMode::Core);
@@ -162,10 +193,13 @@ TEST(CascadeTrainer, OptionsLoadSaveAndErrors)
 	back.loadFromConfigFile(out, "T");
 	EXPECT_EQ(back.numStages, 7);
 	EXPECT_EQ(back.mode, HaarMode::Core);
+	EXPECT_DOUBLE_EQ(back.calibrationFraction, 0.25);
 	mrpt::config::CConfigFileMemory bad1("[T]\nnum_stagez = 7\n");
 	EXPECT_THROW(o.loadFromConfigFile(bad1, "T"), ConfigError);
 	mrpt::config::CConfigFileMemory bad2("[T]\nmax_false_alarm = 1.5\n");
 	EXPECT_THROW(o.loadFromConfigFile(bad2, "T"), ConfigError);
 	mrpt::config::CConfigFileMemory bad3("[T]\nfeature_mode = diagonal\n");
 	EXPECT_THROW(o.loadFromConfigFile(bad3, "T"), ConfigError);
+	mrpt::config::CConfigFileMemory bad4("[T]\ncalibration_fraction = 1\n");
+	EXPECT_THROW(o.loadFromConfigFile(bad4, "T"), ConfigError);
 }

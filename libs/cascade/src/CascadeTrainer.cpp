@@ -25,23 +25,12 @@ namespace semnav
 const std::vector<std::string>& CascadeTrainer::TOptions::knownKeys()
 {
 	static const std::vector<std::string> keys{
-	    "window_width",
-	    "window_height",
-	    "feature_mode",
-	    "num_stages",
-	    "min_hit_rate",
-	    "max_false_alarm",
-	    "target_false_alarm",
-	    "max_weak_count",
-	    "weight_trim_rate",
-	    "negatives_per_stage",
-	    "feature_bins",
-	    "feature_fraction",
-	    "round_feature_fraction",
-	    "negative_scale_factor",
-	    "negative_max_iou",
-	    "min_negatives",
-	    "threads"};
+	    "window_width",     "window_height",          "feature_mode",
+	    "num_stages",       "min_hit_rate",           "calibration_fraction",
+	    "max_false_alarm",  "target_false_alarm",     "max_weak_count",
+	    "weight_trim_rate", "negatives_per_stage",    "feature_bins",
+	    "feature_fraction", "round_feature_fraction", "negative_scale_factor",
+	    "negative_max_iou", "min_negatives",          "threads"};
 	return keys;
 }
 
@@ -64,6 +53,8 @@ void CascadeTrainer::TOptions::loadFromConfigFile(
 	}
 	o.numStages = readCheckedInt(c, s, "num_stages", numStages, 1, 100);
 	o.minHitRate = readChecked(c, s, "min_hit_rate", minHitRate, 0.5, 1.0);
+	o.calibrationFraction = readChecked(
+	    c, s, "calibration_fraction", calibrationFraction, 0.0, 0.9);
 	o.maxFalseAlarm =
 	    readChecked(c, s, "max_false_alarm", maxFalseAlarm, 0.01, 0.99);
 	o.targetFalseAlarm =
@@ -107,6 +98,7 @@ void CascadeTrainer::TOptions::saveToConfigFile(
 	c.write(s, "feature_mode", haarModeName(mode));
 	c.write(s, "num_stages", std::to_string(numStages));
 	c.write(s, "min_hit_rate", num(minHitRate));
+	c.write(s, "calibration_fraction", num(calibrationFraction));
 	c.write(s, "max_false_alarm", num(maxFalseAlarm));
 	c.write(s, "target_false_alarm", num(targetFalseAlarm));
 	c.write(s, "max_weak_count", std::to_string(maxWeakCount));
@@ -465,13 +457,25 @@ struct StageTrainer
 		const std::size_t N = samples.size(), F = candidates.size();
 		std::vector<double> w(N, 1.0 / double(N)), sums(N, 0.0);
 		std::vector<int> y(N);
-		std::size_t P = 0;
+		// Calibration positives (label 2) have no weight: the stumps do not
+		// fit them, they only set the stage threshold.
+		std::vector<char> calib(N, 0);
+		std::size_t P = 0, C = 0;
 		for (std::size_t i = 0; i < N; i++)
 		{
-			y[i] = samples.label(i);
-			if (y[i] > 0) P++;
+			y[i] = samples.label(i) > 0 ? 1 : -1;
+			calib[i] = samples.label(i) == 2;
+			if (calib[i])
+				C++;
+			else if (y[i] > 0)
+				P++;
 		}
-		const std::size_t Nn = N - P;
+		if (C > 0)
+		{
+			const double wb = 1.0 / double(N - C);
+			for (std::size_t i = 0; i < N; i++) w[i] = calib[i] ? 0.0 : wb;
+		}
+		const std::size_t Nn = N - P - C;
 		HaarCascade::Stage stage;
 		std::vector<double> bestScore(F);
 		std::vector<int> bestSplit(F);
@@ -498,7 +502,7 @@ struct StageTrainer
 					}
 				}
 				for (std::size_t i = 0; i < N; i++)
-					if (w[i] >= thr) active.push_back(uint32_t(i));
+					if (w[i] >= thr && !calib[i]) active.push_back(uint32_t(i));
 			}
 			std::vector<double> wy(N);
 			for (std::size_t i = 0; i < N; i++) wy[i] = w[i] * y[i];
@@ -599,28 +603,53 @@ struct StageTrainer
 
 			// Stage threshold keeping minHitRate of the positives
 			// (opencv_traincascade's CvCascadeBoost::isErrDesired).
-			posSums.clear();
-			for (std::size_t i = 0; i < N; i++)
-				if (y[i] > 0) posSums.push_back(sums[i]);
-			std::sort(posSums.begin(), posSums.end());
-			const std::size_t idx = std::min(
-			    P - 1, std::size_t((1.0 - opt.minHitRate) * double(P)));
-			float thr = static_cast<float>(posSums[idx]);
 			const auto passes = [&](double s, float th)
 			{ return !(s < th - detail::kStageThresholdEps); };
+			// The threshold keeping minHitRate of the positives (boosted
+			// or calibration ones), as a float that keeps them all.
+			const auto keeping = [&](bool ofCalib, std::size_t count)
+			{
+				posSums.clear();
+				for (std::size_t i = 0; i < N; i++)
+					if (y[i] > 0 && bool(calib[i]) == ofCalib)
+						posSums.push_back(sums[i]);
+				std::sort(posSums.begin(), posSums.end());
+				const std::size_t idx = std::min(
+				    count - 1,
+				    std::size_t((1.0 - opt.minHitRate) * double(count)));
+				float th = static_cast<float>(posSums[idx]);
+				const auto hits = [&](float t)
+				{
+					std::size_t h = 0;
+					for (double v : posSums) h += passes(v, t);
+					return h;
+				};
+				// Rounding to float must not lose positives the rank
+				// promised.
+				while (hits(th) < count - idx)
+					th = std::nextafter(
+					    th, -std::numeric_limits<float>::infinity());
+				return th;
+			};
+			float thr = C > 0 ? std::min(keeping(false, P), keeping(true, C))
+			                  : keeping(false, P);
 			const auto hits = [&](float th)
 			{
 				std::size_t h = 0;
-				for (double s : posSums) h += passes(s, th);
+				for (std::size_t i = 0; i < N; i++)
+					h += y[i] > 0 && !calib[i] && passes(sums[i], th);
 				return h;
 			};
-			// Rounding to float must not lose positives the rank promised.
-			while (hits(thr) < P - idx)
-				thr = std::nextafter(
-				    thr, -std::numeric_limits<float>::infinity());
 			std::size_t fa = 0;
 			for (std::size_t i = 0; i < N; i++)
 				if (y[i] < 0 && passes(sums[i], thr)) fa++;
+			if (C > 0)
+			{
+				std::size_t hc = 0;
+				for (std::size_t i = 0; i < N; i++)
+					hc += calib[i] && passes(sums[i], thr);
+				rep.calibrationHitRate = double(hc) / double(C);
+			}
 			stage.threshold = thr;
 			rep.hitRate = double(hits(thr)) / double(P);
 			rep.falseAlarm = Nn ? double(fa) / double(Nn) : 0.0;
@@ -670,6 +699,14 @@ HaarCascade CascadeTrainer::train(
 		}
 		posII.push_back(std::move(ii));
 		posIndex.push_back(static_cast<int>(i));
+	}
+	// Calibration positives: a seeded draw of its own (the other draws are
+	// those of a training without them).
+	std::vector<char> isCalib(posII.size(), 0);
+	if (opt.calibrationFraction > 0)
+	{
+		detail::Random calRng(seed ^ 0x5ca1ab1e0ddba11ULL);
+		for (auto& c : isCalib) c = calRng.uniform() < opt.calibrationFraction;
 	}
 	if (posII.empty())
 		throw CascadeError(
@@ -768,7 +805,12 @@ HaarCascade CascadeTrainer::train(
 		}
 		SampleSet samples(win);
 		for (std::size_t i = 0; i < posII.size(); i++)
-			if (keep[i])
+			if (keep[i] && isCalib[i])
+			{
+				samples.add(positives[posIndex[i]], +2);
+				rep.calibrationPositives++;
+			}
+			else if (keep[i])
 			{
 				samples.add(positives[posIndex[i]], +1);
 				rep.positiveIndices.push_back(posIndex[i]);

@@ -64,6 +64,13 @@ public:
 		int numStages = 20;
 		/** min_hit_rate: per stage, fraction of its positives kept. */
 		double minHitRate = 0.995;
+		/** calibration_fraction: this fraction of the positives (a seeded
+		 * draw) is not boosted on but sets the stage thresholds: each
+		 * stage keeps min_hit_rate of these (still accepted) positives as
+		 * well as of the boosted ones, so that its hit rate holds on
+		 * positives it has not fitted. 0 = none (every positive is
+		 * boosted on). */
+		double calibrationFraction = 0;
 		/** max_false_alarm: per stage, maximum fraction of its negatives
 		 * accepted. */
 		double maxFalseAlarm = 0.5;
@@ -106,6 +113,10 @@ public:
 		float threshold = 0;
 		/** On the stage's own training samples. */
 		double hitRate = 0, falseAlarm = 0;
+		/** Hit rate on the calibration positives still in (0 without). */
+		double calibrationHitRate = 0;
+		/** Calibration positives still in at the stage's start. */
+		std::size_t calibrationPositives = 0;
 		/** Accepted / tried negative windows when the stage's negatives
 		 * were drawn (the cascade so far). */
 		double acceptanceRatio = 0;
