@@ -1,6 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // semnav-train-cascade: trains one class's Haar cascade from simulated
 // datasets and writes it in OpenCV's XML format (DESIGN.md, "Apps").
+#include <semnav/cascade/CascadeEvaluator.h>
 #include <semnav/cascade/CascadeXml.h>
 #include <semnav/common/AtomicFile.h>
 #include <semnav/common/CommandLine.h>
@@ -53,12 +54,21 @@ int main(int argc, char** argv)
 	    "", "samples",
 	    "Also write a mosaic of the first 400 positive samples to this PNG",
 	    false, "", "P.png", cmd);
+	TCLAP::ValueArg<std::string> argScore(
+	    "", "score-positives",
+	    "Do not train: make the positives training would make (same "
+	    "datasets, configuration; --seed) and print how many of them this "
+	    "cascade XML accepts (a cascade accepts most of the positives it was "
+	    "trained on; another seed gives new samples of the same objects)",
+	    false, "", "C.xml", cmd);
 	TCLAP::SwitchArg argJson(
 	    "", "json", "Print a JSON summary on stdout", cmd, false);
 	if (const auto code = cli.parse(argc, argv)) return *code;
-	for (auto* a : {&argLabel, &argDatasets, &argOut})
+	for (auto* a : {&argLabel, &argDatasets})
 		if (a->getValue().empty())
 			return cli.usageError("missing --" + a->getName());
+	if (argScore.getValue().empty() && argOut.getValue().empty())
+		return cli.usageError("missing --out");
 	const auto seed = semnav::CommandLine::parseUnsigned(argSeed.getValue());
 	if (!seed)
 		return cli.usageError(
@@ -77,6 +87,35 @@ int main(int argc, char** argv)
 			    opts = semnav::CascadeTraining::TOptions::fromIniFile(
 			        argConfig.getValue());
 		    const semnav::CascadeTraining training(opts);
+		    if (!argScore.getValue().empty())
+		    {
+			    semnav::CascadeEvaluator ev(
+			        semnav::CascadeXml::readFile(argScore.getValue()));
+			    const auto pos = training.positives(label, datasets, *seed);
+			    std::size_t accepted = 0, lowContrast = 0;
+			    for (const auto& p : pos)
+			    {
+				    ev.setImage(p);
+				    const auto r = ev.evaluate({0, 0});
+				    accepted += ev.accepted(r);
+				    lowContrast += r.skipped();
+			    }
+			    const double f =
+			        pos.empty() ? 0.0 : double(accepted) / double(pos.size());
+			    if (argJson.getValue())
+				    std::cout
+				        << nlohmann::
+				               json{{"positives", pos.size()}, {"accepted", accepted}, {"low_contrast", lowContrast}, {"accepted_fraction", f}}
+				                   .dump()
+				        << std::endl;
+			    else
+				    std::printf(
+				        "%s: %zu of %zu positives accepted (%.3f), %zu of low "
+				        "contrast (never evaluated)\n",
+				        argScore.getValue().c_str(), accepted, pos.size(), f,
+				        lowContrast);
+			    return 0;
+		    }
 		    semnav::ProgressBar bar(
 		        2 + static_cast<std::size_t>(opts.trainerFor(label).numStages),
 		        "training " + argLabel.getValue());

@@ -120,6 +120,21 @@ std::vector<TrainingSweep> CascadeTraining::loadSweeps(
 	return out;
 }
 
+std::vector<cv::Mat> CascadeTraining::positives(
+    Label label, const std::vector<std::string>& dirs, uint64_t seed) const
+{
+	const auto& cls = m_options.detector.classOptions(label);
+	const CascadeTrainer::TOptions& t = m_options.trainerFor(label);
+	std::vector<TrainingSweep> sweeps =
+	    loadSweeps(dirs, m_options.detector.channelOf(cls));
+	const cv::Size win(t.windowWidth, t.windowHeight);
+	for (auto& s : sweeps)
+		s.passes = cls.passes(s.image.rows, s.elevation0, s.elevation1, win);
+	return SampleGenerator(m_options.samplesFor(label))
+	    .generate(sweeps, label, win, seed)
+	    .positives;
+}
+
 CascadeTraining::Result CascadeTraining::run(
     Label label, const std::vector<std::string>& dirs, uint64_t seed,
     const Progress& progress) const

@@ -84,6 +84,12 @@ public:
 	    const std::vector<std::string>& datasetDirs, DetectionChannel channel,
 	    bool withRange = false) const;
 
+	/** The positive samples run() makes for `label` from these datasets
+	 * with this seed (window of the class's [CascadeTrainer] section). */
+	std::vector<cv::Mat> positives(
+	    Label label, const std::vector<std::string>& datasetDirs,
+	    uint64_t seed) const;
+
 	/** Trains `label` (which must have a class section). Throws
 	 * ConfigError, IoError, RawlogError, CascadeError, Error. */
 	Result run(
