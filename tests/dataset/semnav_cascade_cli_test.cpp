@@ -129,6 +129,18 @@ TEST_F(SemnavCascadeCli, TrainDetectAndPerceive)
 	const AppRun again = runApp("semnav-train-cascade", args);
 	ASSERT_EQ(again.code, 0) << again.err;
 	EXPECT_EQ(readFile(out), first);
+	// The cascade accepts the very samples it was trained on (two stages,
+	// 60 positives: each stage keeps them all).
+	const AppRun score = runApp(
+	    "semnav-train-cascade", "--label washbasin --datasets " +
+	                                sim().string() + " --seed 5 --config " +
+	                                config() + " --score-positives " + out +
+	                                " --json");
+	ASSERT_EQ(score.code, 0) << score.err;
+	const auto sj = nlohmann::json::parse(score.out);
+	EXPECT_EQ(sj.at("positives"), 60);
+	EXPECT_EQ(
+	    sj.at("accepted").get<int>() + sj.at("low_contrast").get<int>(), 60);
 
 	const AppRun det = runApp(
 	    "semnav-detect",
@@ -138,6 +150,9 @@ TEST_F(SemnavCascadeCli, TrainDetectAndPerceive)
 	EXPECT_EQ(dj.at("sweeps"), 26);
 	for (const char* k : {"tp", "fp", "fn", "precision", "recall"})
 		EXPECT_TRUE(dj.at("objects").at("washbasin").contains(k)) << k;
+	for (const char* k : {"tp", "fp", "fn", "excluded", "recall"})
+		EXPECT_TRUE(dj.at("objects_recognisable").at("washbasin").contains(k))
+		    << k;
 
 	const std::string rawlog = (sim() / "test_a.rawlog").string();
 	const AppRun p = runApp(
