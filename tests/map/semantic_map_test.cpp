@@ -7,6 +7,7 @@
 #include <semnav/common/Error.h>
 #include <semnav/map/SemanticMap.h>
 
+#include "../common/SavedAndLoaded.h"
 #include "MapTestUtils.h"
 
 using namespace semnav;
@@ -351,10 +352,8 @@ TEST(SemanticMapOptions, ShippedConfigLoadsAndBadValuesAreRejected)
 	changed.stairsMaxBottom = 0.2;
 	changed.viewMaxBearingDeg = 80;
 	changed.stairsCentroidFromCells = false;
-	mrpt::config::CConfigFileMemory saved;
-	changed.saveToConfigFile(saved, "SemanticMap");
-	SemanticMap::TOptions back;
-	back.loadFromConfigFile(saved, "SemanticMap");
+	const SemanticMap::TOptions back =
+	    test::savedAndLoaded(changed, "SemanticMap");
 	EXPECT_DOUBLE_EQ(back.washbasinMinTop, 0.7);
 	EXPECT_DOUBLE_EQ(back.washbasinMaxWallDistance, 0.5);
 	EXPECT_DOUBLE_EQ(back.stairsMinDetectionRatio, 0.3);

@@ -21,6 +21,7 @@
 #include <limits>
 #include <memory>
 
+#include "../common/SavedAndLoaded.h"
 #include "NavTestUtils.h"
 
 using namespace semnav;
@@ -484,10 +485,8 @@ TEST(StopAndScanLocalizer, OptionsRejectUnknownKeysAndOutOfRange)
 	StopAndScanLocalizer::TOptions a;
 	a.maxSweeps = 4;
 	a.rescanDistance = 1.5;
-	mrpt::config::CConfigFileMemory c;
-	a.saveToConfigFile(c, "StopAndScan");
-	StopAndScanLocalizer::TOptions b;
-	b.loadFromConfigFile(c, "StopAndScan");
+	const StopAndScanLocalizer::TOptions b =
+	    test::savedAndLoaded(a, "StopAndScan");
 	EXPECT_EQ(b.maxSweeps, 4);
 	EXPECT_EQ(b.rescanDistance, 1.5);
 	EXPECT_EQ(StopAndScanLocalizer::modeFromName("tracking"), Mode::Tracking);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "../common/SavedAndLoaded.h"
 #include "SyntheticScene.h"
 
 using namespace semnav;
@@ -250,10 +251,7 @@ TEST(NormalImage, OptionsAreCheckedAndRoundTrip)
 	EXPECT_DOUBLE_EQ(o.maxNeighbourDistance, 0.5);
 	EXPECT_NEAR(o.minPairAngle, 10 * M_PI / 180, 1e-12);
 
-	mrpt::config::CConfigFileMemory saved;
-	o.saveToConfigFile(saved, "NormalImage");
-	NormalImage::TOptions back;
-	back.loadFromConfigFile(saved, "NormalImage");
+	const NormalImage::TOptions back = test::savedAndLoaded(o, "NormalImage");
 	EXPECT_DOUBLE_EQ(back.maxNeighbourDistance, 0.5);
 	EXPECT_NEAR(back.minPairAngle, o.minPairAngle, 1e-12);
 

@@ -4,6 +4,7 @@
 #include <semnav/common/Error.h>
 #include <semnav/scan/SweepAssembler.h>
 
+#include "../common/SavedAndLoaded.h"
 #include "ScanTestUtils.h"
 
 using namespace semnav;
@@ -202,10 +203,7 @@ TEST(SweepAssemblerOptions, LoadSaveAndRejectBadKeys)
 	SweepAssembler::TOptions o;
 	o.minValidRange = 0.3;
 	o.splitOnMotion = false;
-	mrpt::config::CConfigFileMemory mem;
-	o.saveToConfigFile(mem, "SweepAssembler");
-	SweepAssembler::TOptions back;
-	back.loadFromConfigFile(mem, "SweepAssembler");
+	SweepAssembler::TOptions back = test::savedAndLoaded(o, "SweepAssembler");
 	EXPECT_DOUBLE_EQ(back.minValidRange, 0.3);
 	EXPECT_FALSE(back.splitOnMotion);
 	EXPECT_NEAR(back.sameTiltTolerance, o.sameTiltTolerance, 1e-12);

@@ -24,6 +24,8 @@
 #include <random>
 #include <sstream>
 
+#include "../common/SavedAndLoaded.h"
+
 using namespace semnav;
 using mrpt::math::TPoint3D;
 using mrpt::math::TPose2D;
@@ -613,10 +615,7 @@ TEST(SimulatorOptions, SaveLoadRoundTripAndErrors)
 	o.robotTurnRate = 45 * kDeg;
 	o.threads = 3;
 	o.bruteForce = true;
-	mrpt::config::CConfigFileMemory mem;
-	o.saveToConfigFile(mem, "Simulator");
-	SimulationRunner::TOptions r;
-	r.loadFromConfigFile(mem, "Simulator");
+	const SimulationRunner::TOptions r = test::savedAndLoaded(o, "Simulator");
 	EXPECT_EQ(r.sensorLabel, "HEAD");
 	EXPECT_NEAR(r.linePeriod, 0.0137, 1e-12);
 	EXPECT_NEAR(r.robotTurnRate, 45 * kDeg, 1e-12);
