@@ -52,6 +52,26 @@ bool isGround(int8_t l)
 	       l == lab(Label::Grass);
 }
 
+/** Union-find (roots are components' smallest pixels): x's root, halving
+ * the path on the way. */
+int findRoot(int* uf, int x)
+{
+	while (uf[x] != x)
+	{
+		uf[x] = uf[uf[x]];
+		x = uf[x];
+	}
+	return x;
+}
+
+/** Joins the components of a and b (the larger root under the smaller). */
+void unite(int* uf, int a, int b)
+{
+	a = findRoot(uf, a);
+	b = findRoot(uf, b);
+	if (a != b) uf[std::max(a, b)] = std::min(a, b);
+}
+
 /** Point p and its normal as vectors, x y z in the first three lanes (the
  * fourth is the next pixel's x, unused; the last pixel, which has none, is
  * copied first). */
@@ -484,7 +504,6 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 	const auto* NS = m_ns->ptr<cv::Vec3f>(0);
 	const float* RG = m_ranges->ptr<float>(0);
 	int count = 0, firstAccumulated = 0;
-	m_stack.clear();
 	if (!byGroup)
 	{
 		// Pass 1: 4-connected pixels of one area and one orientation, with
@@ -521,26 +540,9 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 			m_uf[p] = p;
 			const uint8_t cls = m_class[p];
 			if (cls != kUp && cls != kDown) continue;
-			auto find = [&](int x)
-			{
-				while (m_uf[x] != x)
-				{
-					m_uf[x] = m_uf[m_uf[x]];
-					x = m_uf[x];
-				}
-				return x;
-			};
 			const uint8_t j = m_join[p];
-			if (j & 2)
-			{
-				const int a = find(p - 1), b = find(p);
-				if (a != b) m_uf[std::max(a, b)] = std::min(a, b);
-			}
-			if (j & 8)
-			{
-				const int a = find(p - cols), b = find(p);
-				if (a != b) m_uf[std::max(a, b)] = std::min(a, b);
-			}
+			if (j & 2) unite(m_uf.data(), p - 1, p);
+			if (j & 8) unite(m_uf.data(), p - cols, p);
 		}
 		m_surf.assign(n, -1);
 		m_fillStack.resize(n);
@@ -691,15 +693,6 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 		// Connected pixels of one group and one side: union-find over the
 		// split pixels (row-major; a component's root is its first pixel,
 		// numbered in that order as a fill from each first pixel would).
-		auto find = [&](int x)
-		{
-			while (m_uf[x] != x)
-			{
-				m_uf[x] = m_uf[m_uf[x]];
-				x = m_uf[x];
-			}
-			return x;
-		};
 		for (const int p : m_splitPix) m_uf[p] = p;
 		for (const int p : m_splitPix)
 		{
@@ -709,15 +702,14 @@ void RuleClassifier::buildSurfaces(bool byGroup)
 			{
 				if (m_surf[q] != -2 || m_group[q] != g || m_side[q] != side)
 					return;
-				const int a = find(q), b = find(p);
-				if (a != b) m_uf[std::max(a, b)] = std::min(a, b);
+				unite(m_uf.data(), q, p);
 			};
 			if (CO[p] > 0) link(p - 1);
 			if (RO[p] > 0) link(p - cols);
 		}
 		for (const int p : m_splitPix)
 		{
-			const int root = find(p);
+			const int root = findRoot(m_uf.data(), p);
 			if (root == p)
 			{
 				m_surf[p] = count++;
