@@ -120,18 +120,32 @@ std::vector<TrainingSweep> CascadeTraining::loadSweeps(
 	return out;
 }
 
-std::vector<cv::Mat> CascadeTraining::positives(
-    Label label, const std::vector<std::string>& dirs, uint64_t seed) const
+std::vector<TrainingSweep> CascadeTraining::trainingSweeps(
+    Label label, const std::vector<std::string>& dirs) const
 {
 	const auto& cls = m_options.detector.classOptions(label);
 	const CascadeTrainer::TOptions& t = m_options.trainerFor(label);
-	std::vector<TrainingSweep> sweeps =
-	    loadSweeps(dirs, m_options.detector.channelOf(cls));
+	std::vector<TrainingSweep> sweeps = loadSweeps(
+	    dirs, m_options.detector.channelOf(cls),
+	    m_options.samplesFor(label).rangeNegatives);
 	const cv::Size win(t.windowWidth, t.windowHeight);
 	for (auto& s : sweeps)
+	{
 		s.passes = cls.passes(s.image.rows, s.elevation0, s.elevation1, win);
+		if (!s.range.empty())
+			s.gate = m_options.detector.rangeGate(cls, s.step, 1.0);
+	}
+	return sweeps;
+}
+
+std::vector<cv::Mat> CascadeTraining::positives(
+    Label label, const std::vector<std::string>& dirs, uint64_t seed) const
+{
+	const CascadeTrainer::TOptions& t = m_options.trainerFor(label);
 	return SampleGenerator(m_options.samplesFor(label))
-	    .generate(sweeps, label, win, seed)
+	    .generate(
+	        trainingSweeps(label, dirs), label,
+	        cv::Size(t.windowWidth, t.windowHeight), seed)
 	    .positives;
 }
 
@@ -147,21 +161,13 @@ CascadeTraining::Result CascadeTraining::run(
 	Result res;
 	auto t0 = Clock::now();
 	if (progress) progress(0, steps, "reading datasets");
-	std::vector<TrainingSweep> sweeps = loadSweeps(
-	    dirs, m_options.detector.channelOf(cls),
-	    m_options.samplesFor(label).rangeNegatives);
+	const std::vector<TrainingSweep> sweeps = trainingSweeps(label, dirs);
 	res.sweeps = sweeps.size();
 	res.secondsLoad = secondsSince(t0);
 
 	t0 = Clock::now();
 	if (progress) progress(1, steps, "making samples");
 	const cv::Size win(trainerOptions.windowWidth, trainerOptions.windowHeight);
-	for (auto& s : sweeps)
-	{
-		s.passes = cls.passes(s.image.rows, s.elevation0, s.elevation1, win);
-		if (!s.range.empty())
-			s.gate = m_options.detector.rangeGate(cls, s.step, 1.0);
-	}
 	SampleGenerator gen(m_options.samplesFor(label));
 	auto samples = gen.generate(sweeps, label, win, seed);
 	res.views = samples.views;

@@ -99,6 +99,11 @@ public:
 	const TOptions& options() const { return m_options; }
 
 private:
+	/** The datasets' sweeps as run() trains `label` on them: the class's
+	 * channel and passes (and range gates with range_negatives). */
+	std::vector<TrainingSweep> trainingSweeps(
+	    Label label, const std::vector<std::string>& datasetDirs) const;
+
 	TOptions m_options;
 };
 
