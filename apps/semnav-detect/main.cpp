@@ -16,7 +16,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -73,53 +72,6 @@ cv::Mat drawSweep(
 	}
 	return out;
 }
-double iou(const cv::Rect& a, const cv::Rect& b)
-{
-	const double i = (a & b).area();
-	return i > 0 ? i / (a.area() + b.area() - i) : 0.0;
-}
-
-/** Counted objects (>= 150 pixels) no window detector can be expected to
- * recognise: beside the robot (the mean of their points at a bearing of at
- * least 80 deg, where the tilting scanner sees a thin slice) or with a
- * visible part spanning less than half of their height (top above the
- * ground; objects stand on the floor), e.g. cut by the lowest tilt line. */
-semnav::ObjectScorer::ObjectKeys unrecognisable(
-    const cv::Mat& groundTruth, const cv::Mat& points, double groundZ,
-    const std::vector<semnav::Label>& labels,
-    std::map<semnav::Label, std::size_t>& count)
-{
-	semnav::ObjectScorer::ObjectKeys out;
-	for (const auto& g :
-	     semnav::GroundTruthObject::fromLabelImage(groundTruth, labels))
-	{
-		if (g.pixels < 150) continue;
-		const cv::Mat mask = g.mask(groundTruth);
-		double sx = 0, sy = 0;
-		double zMin = std::numeric_limits<double>::infinity();
-		double zMax = -zMin;
-		int n = 0;
-		for (int r = g.box.y; r < g.box.y + g.box.height; r++)
-			for (int c = g.box.x; c < g.box.x + g.box.width; c++)
-			{
-				const auto& p = points.at<cv::Vec3f>(r, c);
-				if (!mask.at<uint8_t>(r, c) || std::isnan(p[0])) continue;
-				sx += p[0];
-				sy += p[1];
-				zMin = std::min(zMin, double(p[2]));
-				zMax = std::max(zMax, double(p[2]));
-				n++;
-			}
-		if (n == 0) continue;
-		const double bearing = std::abs(std::atan2(sy, sx)) * 180 / M_PI;
-		if (bearing >= 80 || zMax - zMin < 0.5 * (zMax - groundZ))
-		{
-			out.insert({g.label, g.instance});
-			count[g.label]++;
-		}
-	}
-	return out;
-}
 
 /** One stderr line per counted object without a matching accepted
  * detection: its box, pixels, range and bearing, and the candidate of its
@@ -137,7 +89,8 @@ void listMisses(
 		if (!c.accepted) continue;
 		bool matches = false;
 		for (const auto& g : objects)
-			matches |= g.label == c.label && iou(c.measure->box, g.box) >= 0.3;
+			matches |= g.label == c.label &&
+			           semnav::ObjectScorer::iou(c.measure->box, g.box) >= 0.3;
 		if (matches) continue;
 		const auto& m = *c.measure;
 		std::fprintf(
@@ -158,7 +111,7 @@ void listMisses(
 		for (const auto& c : cands)
 		{
 			if (c.label != g.label || !c.measure) continue;
-			const double v = iou(c.measure->box, g.box);
+			const double v = semnav::ObjectScorer::iou(c.measure->box, g.box);
 			if (c.accepted) bestAccepted = std::max(bestAccepted, v);
 			if (v > best)
 			{
@@ -283,11 +236,11 @@ int main(int argc, char** argv)
 					    dets.push_back(d);
 				    }
 				    scorer.add(dets, sweeps[i].groundTruth, labels);
+				    const auto left = scorerRecognisable.unrecognisable(
+				        sweeps[i].groundTruth, ls.points, ls.groundZ, labels);
+				    for (const auto& k : left) excluded[k.first]++;
 				    scorerRecognisable.add(
-				        dets, sweeps[i].groundTruth, labels,
-				        unrecognisable(
-				            sweeps[i].groundTruth, ls.points, ls.groundZ,
-				            labels, excluded));
+				        dets, sweeps[i].groundTruth, labels, left);
 				    if (argMisses.getValue())
 				    {
 					    semnav::ObjectProposals::Params pp;

@@ -3,6 +3,8 @@
 #include <semnav/detection/ObjectScorer.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace semnav
 {
@@ -16,6 +18,38 @@ double ObjectScorer::iou(const cv::Rect& a, const cv::Rect& b)
 	const double i = (a & b).area();
 	const double u = double(a.area()) + double(b.area()) - i;
 	return u > 0 ? i / u : 0.0;
+}
+
+ObjectScorer::ObjectKeys ObjectScorer::unrecognisable(
+    const cv::Mat& groundTruth, const cv::Mat& points, double groundZ,
+    const std::vector<Label>& labels) const
+{
+	ObjectKeys out;
+	for (const auto& g : GroundTruthObject::fromLabelImage(groundTruth, labels))
+	{
+		if (g.pixels < m_minPixels) continue;
+		const cv::Mat mask = g.mask(groundTruth);
+		double sx = 0, sy = 0;
+		double zMin = std::numeric_limits<double>::infinity();
+		double zMax = -zMin;
+		int n = 0;
+		for (int r = g.box.y; r < g.box.y + g.box.height; r++)
+			for (int c = g.box.x; c < g.box.x + g.box.width; c++)
+			{
+				const auto& p = points.at<cv::Vec3f>(r, c);
+				if (!mask.at<uint8_t>(r, c) || std::isnan(p[0])) continue;
+				sx += p[0];
+				sy += p[1];
+				zMin = std::min(zMin, double(p[2]));
+				zMax = std::max(zMax, double(p[2]));
+				n++;
+			}
+		if (n == 0) continue;
+		const double bearing = std::abs(std::atan2(sy, sx)) * 180 / M_PI;
+		if (bearing >= 80 || zMax - zMin < 0.5 * (zMax - groundZ))
+			out.insert({g.label, g.instance});
+	}
+	return out;
 }
 
 void ObjectScorer::add(

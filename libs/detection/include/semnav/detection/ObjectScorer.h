@@ -48,6 +48,16 @@ public:
 	    const std::vector<Detection>& detections, const cv::Mat& groundTruth,
 	    const std::vector<Label>& labels, const ObjectKeys& excluded = {});
 
+	/** The counted objects of a sweep no window detector can be expected
+	 * to recognise (for `excluded`): beside the robot (the mean of their
+	 * points at a bearing of at least 80 deg, where the tilting scanner
+	 * sees a thin slice), or visible over less than half of their height
+	 * (top above `groundZ`: objects stand on the floor), e.g. cut by the
+	 * lowest tilt line. `points`: the sweep's CV_32FC3 points. */
+	ObjectKeys unrecognisable(
+	    const cv::Mat& groundTruth, const cv::Mat& points, double groundZ,
+	    const std::vector<Label>& labels) const;
+
 	Score score(Label l) const;
 	std::size_t sweeps() const { return m_sweeps; }
 
