@@ -9,6 +9,7 @@
 
 #include <opencv2/objdetect.hpp>
 
+#include "../common/SavedAndLoaded.h"
 #include "CascadeTestUtils.h"
 
 using namespace semnav;
@@ -187,10 +188,7 @@ TEST(CascadeTrainer, OptionsLoadSaveAndErrors)
 	EXPECT_EQ(o.numStages, 7);
 	EXPECT_EQ(o.mode, HaarMode::Core);
 	EXPECT_DOUBLE_EQ(o.minHitRate, 0.99);
-	mrpt::config::CConfigFileMemory out;
-	o.saveToConfigFile(out, "T");
-	CascadeTrainer::TOptions back;
-	back.loadFromConfigFile(out, "T");
+	CascadeTrainer::TOptions back = test::savedAndLoaded(o, "T");
 	EXPECT_EQ(back.numStages, 7);
 	EXPECT_EQ(back.mode, HaarMode::Core);
 	EXPECT_DOUBLE_EQ(back.calibrationFraction, 0.25);

@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../common/SavedAndLoaded.h"
+
 using namespace semnav;
 
 namespace
@@ -178,11 +180,8 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	        "stairs\n[CascadeDetector.stairs]\nmin_top_m = 3\nmax_top_m = 2\n"),
 	    ConfigError);
 	// Round trip through save.
-	mrpt::config::CConfigFileMemory out;
 	CascadeDetector::TOptions o;
-	o.saveToConfigFile(out, "CascadeDetector");
-	CascadeDetector::TOptions back;
-	back.loadFromConfigFile(out, "CascadeDetector");
+	CascadeDetector::TOptions back = test::savedAndLoaded(o, "CascadeDetector");
 	ASSERT_EQ(back.classes.size(), o.classes.size());
 	EXPECT_EQ(back.rangeScales, o.rangeScales);
 	EXPECT_DOUBLE_EQ(back.rangeScaleSlack, o.rangeScaleSlack);

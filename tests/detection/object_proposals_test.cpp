@@ -11,6 +11,8 @@
 #include <cmath>
 #include <limits>
 
+#include "../common/SavedAndLoaded.h"
+
 using namespace semnav;
 
 namespace
@@ -253,10 +255,7 @@ TEST(DetectorProposals, OptionsRoundTripAndRangeErrors)
 	EXPECT_DOUBLE_EQ(o.classes[0].maxSize, 2.5);
 	EXPECT_DOUBLE_EQ(o.classes[0].borderPx, 16);
 	EXPECT_EQ(o.classes[0].proposalMinNeighbors, 1);
-	mrpt::config::CConfigFileMemory out;
-	o.saveToConfigFile(out, "CascadeDetector");
-	CascadeDetector::TOptions back;
-	back.loadFromConfigFile(out, "CascadeDetector");
+	CascadeDetector::TOptions back = test::savedAndLoaded(o, "CascadeDetector");
 	EXPECT_EQ(back.proposals, o.proposals);
 	EXPECT_DOUBLE_EQ(back.proposalFill, o.proposalFill);
 	EXPECT_DOUBLE_EQ(back.proposalMargin, o.proposalMargin);

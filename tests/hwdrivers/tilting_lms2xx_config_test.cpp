@@ -7,6 +7,8 @@
 
 #include <string>
 
+#include "../common/SavedAndLoaded.h"
+
 using semnav::CTiltingLMS2xx;
 
 namespace
@@ -107,10 +109,7 @@ TEST(TiltingLms2xxConfig, OptionsSaveAndLoadBack)
 	a.thetaMin = -0.2;
 	a.tiltSpeed = 0.3;
 	a.mount = {0.1, -0.05, 0.6};
-	mrpt::config::CConfigFileMemory cfg;
-	a.saveToConfigFile(cfg, "S");
-	CTiltingLMS2xx::TOptions b;
-	b.loadFromConfigFile(cfg, "S");
+	CTiltingLMS2xx::TOptions b = semnav::test::savedAndLoaded(a, "S");
 	EXPECT_EQ(b.lmsPort, a.lmsPort);
 	EXPECT_EQ(b.baudRate, 500000);
 	EXPECT_NEAR(b.thetaMin, -0.2, 1e-6);

@@ -8,6 +8,7 @@
 #include <limits>
 #include <opencv2/core.hpp>
 
+#include "../common/SavedAndLoaded.h"
 #include "SyntheticScene.h"
 
 using namespace semnav;
@@ -220,10 +221,7 @@ TEST(RuleClassifier, OptionsAreCheckedAndRoundTrip)
 	o.doorMinWidth = 0.8;
 	o.environment = RuleClassifier::TOptions::Environment::Outdoor;
 	o.wallNormalTolerance = 12 * M_PI / 180;
-	mrpt::config::CConfigFileMemory cfg;
-	o.saveToConfigFile(cfg, "RuleClassifier");
-	RuleClassifier::TOptions back;
-	back.loadFromConfigFile(cfg, "RuleClassifier");
+	RuleClassifier::TOptions back = test::savedAndLoaded(o, "RuleClassifier");
 	EXPECT_DOUBLE_EQ(back.doorMinWidth, 0.8);
 	EXPECT_EQ(back.environment, RuleClassifier::TOptions::Environment::Outdoor);
 	EXPECT_NEAR(back.wallNormalTolerance, o.wallNormalTolerance, 1e-12);
