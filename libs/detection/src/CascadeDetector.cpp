@@ -11,6 +11,7 @@
 #include <semnav/common/Percentile.h>
 #include <semnav/common/Timing.h>
 #include <semnav/detection/CascadeDetector.h>
+#include <semnav/detection/ShapeVerifier.h>
 
 #include <algorithm>
 #include <chrono>
@@ -72,7 +73,10 @@ const std::vector<std::string>& CascadeDetector::TClassOptions::knownKeys()
 	    "max_size_m",
 	    "proposal_min_neighbors",
 	    "border_px",
-	    "channel"};
+	    "channel",
+	    "shape_model",
+	    "min_shape_score",
+	    "max_stages"};
 	return keys;
 }
 
@@ -118,6 +122,9 @@ void CascadeDetector::TClassOptions::loadFromConfigFile(
 	o.proposalMinNeighbors = readCheckedInt(
 	    c, s, "proposal_min_neighbors", proposalMinNeighbors, -1, 100);
 	o.borderPx = readChecked(c, s, "border_px", borderPx, 0, 1000);
+	o.shapeModel = c.read_string(s, "shape_model", shapeModel, false);
+	o.minShapeScore = readChecked(c, s, "min_shape_score", minShapeScore, 0, 1);
+	o.maxStages = readCheckedInt(c, s, "max_stages", maxStages, 0, 1000);
 	if (c.keyExists(s, "channel"))
 	{
 		try
@@ -164,6 +171,9 @@ void CascadeDetector::TClassOptions::saveToConfigFile(
 	c.write(s, "proposal_min_neighbors", std::to_string(proposalMinNeighbors));
 	c.write(s, "border_px", num(borderPx));
 	if (channel) c.write(s, "channel", channelName(*channel));
+	c.write(s, "shape_model", shapeModel);
+	c.write(s, "min_shape_score", num(minShapeScore));
+	c.write(s, "max_stages", std::to_string(maxStages));
 }
 
 std::vector<DetectionPass> CascadeDetector::TClassOptions::passes(
@@ -428,7 +438,13 @@ const CascadeDetector::TClassOptions& CascadeDetector::TOptions::classOptions(
 
 std::string CascadeDetector::TOptions::cascadePath(const TClassOptions& c) const
 {
-	const std::filesystem::path p(c.cascade);
+	return resolvePath(c.cascade);
+}
+
+std::string CascadeDetector::TOptions::resolvePath(
+    const std::string& file) const
+{
+	const std::filesystem::path p(file);
 	if (p.is_absolute()) return p.string();
 	return (std::filesystem::path(baseDir) / p).lexically_normal().string();
 }
@@ -488,6 +504,9 @@ struct CascadeDetector::Impl
 	/** Elevations of the first and last row of the detection image. */
 	double el0 = -M_PI / 2, el1 = M_PI / 2;
 	GatedScratch gated;
+	/** Per class (empty: no shape check). */
+	std::vector<ShapeVerifier> verifiers;
+	bool describeShapes = false;
 };
 
 CascadeDetector::CascadeDetector(const TOptions& options)
@@ -503,8 +522,22 @@ CascadeDetector::CascadeDetector(const TOptions& options)
 			throw CascadeError("cv::CascadeClassifier cannot load " + path);
 		m_impl->classifiers.push_back(std::move(cc));
 		m_impl->windows.push_back(c.windowSize);
-		m_impl->evaluators.emplace_back(c);
+		if (k.maxStages > 0 && !m_options.rangeScales)
+			throw ConfigError(
+			    "[CascadeDetector." + labelName(k.label) +
+			    "] max_stages needs range_scales = true");
+		m_impl->evaluators.emplace_back(
+		    k.maxStages > 0 ? c.firstStages(std::size_t(k.maxStages)) : c);
+		m_impl->verifiers.push_back(
+		    k.shapeModel.empty()
+		        ? ShapeVerifier()
+		        : ShapeVerifier::load(m_options.resolvePath(k.shapeModel)));
 	}
+}
+
+void CascadeDetector::describeShapes(bool on)
+{
+	m_impl->describeShapes = on;
 }
 
 CascadeDetector::~CascadeDetector() = default;
@@ -1375,6 +1408,19 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 				c.rejection = "too high";
 			else
 				c.accepted = true;
+			const ShapeVerifier& verifier = m_impl->verifiers[i];
+			if (c.accepted && (!verifier.empty() || m_impl->describeShapes))
+			{
+				c.shape = ObjectShape::describe(
+				    points, normals, normalMask, labels, c.measure->pixels,
+				    pixels, groundZ);
+				c.shapeScore = verifier.score(*c.shape);
+				if (c.shapeScore < k.minShapeScore)
+				{
+					c.accepted = false;
+					c.rejection = "shape";
+				}
+			}
 			out.push_back(std::move(c));
 		}
 		suppressDuplicates(out, first, points.size());

@@ -7,6 +7,7 @@
 #include <semnav/detection/DetectionImage.h>
 #include <semnav/detection/DetectionPass.h>
 #include <semnav/detection/ObjectProposals.h>
+#include <semnav/detection/ObjectShape.h>
 #include <semnav/detection/PanoramicProjection.h>
 #include <semnav/perception/Detection.h>
 #include <semnav/perception/LabeledSweep.h>
@@ -104,6 +105,16 @@ public:
 		/** channel: this class's detection image (DetectionImage); unset:
 		 * the [CascadeDetector] channel. */
 		std::optional<DetectionChannel> channel;
+		/** shape_model: a ShapeVerifier forest (relative paths as
+		 * `cascade`); empty: no shape check. min_shape_score: detections
+		 * that pass the size check but whose ObjectShape the forest scores
+		 * lower are rejected ("shape"). */
+		std::string shapeModel;
+		double minShapeScore = 0.5;
+		/** max_stages: only the first this many stages of the cascade are
+		 * evaluated (0: all; needs range_scales): a looser detector, for
+		 * collecting shape-model samples. */
+		int maxStages = 0;
 	};
 
 	/** INI section [CascadeDetector] plus one [CascadeDetector.<label>]
@@ -131,6 +142,8 @@ public:
 		const TClassOptions& classOptions(Label l) const;
 		/** Resolves a class's cascade path against baseDir. */
 		std::string cascadePath(const TClassOptions& c) const;
+		/** A path relative to baseDir (absolute paths unchanged). */
+		std::string resolvePath(const std::string& file) const;
 		/** The channel a class's cascade sees. */
 		DetectionChannel channelOf(const TClassOptions& c) const
 		{
@@ -249,6 +262,11 @@ public:
 		std::optional<Measure> measure;
 		bool accepted = false;
 		std::string rejection;
+		/** Its ObjectShape and the shape model's score, when its class has
+		 * a shape model (or describeShapes() is on) and it passed the size
+		 * check. */
+		std::optional<ObjectShape::Features> shape;
+		double shapeScore = 1;
 	};
 	/** Wall-clock times of the last detect(), ms (`proposals`: the object
 	 * proposals, or the range images of range_scales). */
@@ -350,6 +368,10 @@ public:
 	 * candidates either way (CascadeEvaluator::setSimd); for benchmarks and
 	 * checks. */
 	void setSimd(bool on);
+	/** Describe every candidate that passes the size check
+	 * (Candidate::shape) even for classes without a shape model: for
+	 * training shape models. */
+	void describeShapes(bool on);
 
 	const TOptions& options() const { return m_options; }
 	const Timings& lastTimings() const { return m_timings; }

@@ -1,0 +1,117 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// semnav-train-shape: trains one class's 3D shape model (ShapeVerifier) on
+// the cascade's candidates in simulated datasets.
+#include <semnav/common/CommandLine.h>
+#include <semnav/common/ProgressBar.h>
+#include <semnav/detection/ShapeTraining.h>
+#include <semnav/detection/ShapeVerifier.h>
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+int main(int argc, char** argv)
+{
+	semnav::CommandLine cli(
+	    "semnav-train-shape",
+	    "Trains the 3D shape model of one object class: runs perception and "
+	    "the cascade (looser than detection) on simulated datasets, "
+	    "describes every candidate that passes the size check (ObjectShape) "
+	    "and labels it by the ground truth, then fits a random forest "
+	    "(cv::ml::RTrees) that the detector's shape check uses.");
+	auto& cmd = cli.cmd();
+	TCLAP::ValueArg<std::string> argLabel(
+	    "", "label", "Object class: washbasin, wastebasket or stairs; required",
+	    false, "", "L", cmd);
+	TCLAP::ValueArg<std::string> argDatasets(
+	    "", "datasets", "Dataset directories (semnav-sim output); required",
+	    false, "", "D1 [D2...]", cmd);
+	TCLAP::UnlabeledMultiArg<std::string> argMore(
+	    "more", "more dataset directories", false, "D2...", cmd);
+	TCLAP::ValueArg<std::string> argConfig(
+	    "", "config", "Detector INI file (config/cascade.ini); required", false,
+	    "", "C.ini", cmd);
+	TCLAP::ValueArg<std::string> argOut(
+	    "", "out", "Output shape model (OpenCV XML); required", false, "",
+	    "L-shape.xml", cmd);
+	TCLAP::ValueArg<int> argNeighbors(
+	    "", "min-neighbors",
+	    "The cascade's min_neighbors while collecting (-1: the config's); "
+	    "default 0",
+	    false, 0, "N", cmd);
+	TCLAP::ValueArg<int> argStages(
+	    "", "max-stages",
+	    "Only the cascade's first N stages while collecting (-1: the "
+	    "config's); default 12",
+	    false, 12, "N", cmd);
+	TCLAP::ValueArg<double> argBalance(
+	    "", "max-objects-per-other",
+	    "At most this many object samples per other sample (0: all); "
+	    "default 2",
+	    false, 2, "R", cmd);
+	TCLAP::ValueArg<int> argTrees(
+	    "", "trees", "Trees in the forest; default 200", false, 200, "N", cmd);
+	TCLAP::ValueArg<int> argSeed(
+	    "", "seed", "Random seed; default 1", false, 1, "N", cmd);
+	TCLAP::SwitchArg argJson(
+	    "", "json", "Print a JSON summary on stdout", cmd, false);
+	if (const auto code = cli.parse(argc, argv)) return *code;
+	for (auto* a : {&argLabel, &argDatasets, &argConfig, &argOut})
+		if (a->getValue().empty())
+			return cli.usageError("missing --" + a->getName());
+	std::vector<std::string> datasets{argDatasets.getValue()};
+	for (const auto& d : argMore.getValue()) datasets.push_back(d);
+
+	return cli.run(
+	    [&]
+	    {
+		    const semnav::Label label =
+		        semnav::labelFromName(argLabel.getValue());
+		    const auto detector =
+		        semnav::CascadeDetector::TOptions::fromIniFile(
+		            argConfig.getValue());
+		    semnav::ShapeTraining::Params params;
+		    params.minNeighbors = argNeighbors.getValue();
+		    params.maxStages = argStages.getValue();
+		    params.maxObjectsPerOther = argBalance.getValue();
+		    params.seed = static_cast<uint64_t>(argSeed.getValue());
+		    std::unique_ptr<semnav::ProgressBar> bar;
+		    std::string current;
+		    const auto samples = semnav::ShapeTraining::collect(
+		        datasets, detector, label, params,
+		        [&](const std::string& dir, std::size_t done, std::size_t all)
+		        {
+			        if (dir != current)
+			        {
+				        bar = std::make_unique<semnav::ProgressBar>(
+				            all, "candidates in " + dir);
+				        current = dir;
+			        }
+			        bar->update(done);
+		        });
+		    bar.reset();
+		    semnav::ShapeVerifier::TrainParams tp;
+		    tp.trees = argTrees.getValue();
+		    tp.seed = static_cast<uint64_t>(argSeed.getValue());
+		    const auto forest = semnav::ShapeVerifier::train(
+		        samples.features, samples.isObject, tp);
+		    forest.save(argOut.getValue());
+		    nlohmann::json j{
+		        {"label", argLabel.getValue()},   {"sweeps", samples.sweeps},
+		        {"objects", samples.objects},     {"others", samples.others},
+		        {"ambiguous", samples.ambiguous}, {"out", argOut.getValue()}};
+		    if (argJson.getValue())
+			    std::cout << j.dump() << std::endl;
+		    else
+			    std::printf(
+			        "%s: %zu sweeps, %zu object and %zu other candidates "
+			        "(%zu ambiguous left out) -> %s\n",
+			        argLabel.getValue().c_str(), samples.sweeps,
+			        samples.objects, samples.others, samples.ambiguous,
+			        argOut.getValue().c_str());
+		    return 0;
+	    });
+}

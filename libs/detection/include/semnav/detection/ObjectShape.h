@@ -1,0 +1,41 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+
+#include <array>
+#include <opencv2/core/mat.hpp>
+#include <vector>
+
+namespace semnav
+{
+/** A 3D shape descriptor of a detected object, from its points and normals
+ * in one sweep: size and position, the height profile, the widths of its
+ * lower, middle and upper thirds, how its surfaces face (up, sideways, how
+ * the side normals turn across it: a cylinder's do, a box face's do not),
+ * the curvature of its front, the spread of its points, the heights its
+ * up-facing surfaces lie at (one for a table, one per step for stairs) and its
+ * surroundings (walls beside it, how much of its box it fills). Used by
+ * ShapeVerifier to tell washbasins from tables, wastebaskets from chairs
+ * and boxes, and stairs from furniture where the window detector cannot. */
+class ObjectShape
+{
+public:
+	static constexpr int kFeatures = 29;
+	using Features = std::array<float, kFeatures>;
+
+	/** Short names of the features, in order. */
+	static const std::array<const char*, kFeatures>& names();
+
+	/** The descriptor of the object whose sweep pixels are `object`.
+	 * `points`, `normals` CV_32FC3 (robot frame, NaN / zero where none),
+	 * `normalMask` CV_8U, `labels` CV_8U rule labels (may be empty),
+	 * `surroundings` the sweep pixels of the box the object was measured in
+	 * (a superset of `object`), `groundZ` the ground height. All zero when
+	 * `object` has no valid point. */
+	static Features describe(
+	    const cv::Mat& points, const cv::Mat& normals,
+	    const cv::Mat& normalMask, const cv::Mat& labels,
+	    const std::vector<cv::Point>& object,
+	    const std::vector<cv::Point>& surroundings, double groundZ);
+};
+
+}  // namespace semnav

@@ -1,0 +1,50 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+
+#include <semnav/detection/ObjectShape.h>
+
+#include <opencv2/core/mat.hpp>
+#include <opencv2/ml.hpp>
+#include <string>
+
+namespace semnav
+{
+/** Tells whether a detected object has the 3D shape of its class: a random
+ * forest (OpenCV's cv::ml::RTrees) over ObjectShape descriptors, trained on
+ * the cascade's candidates in simulated sweeps (objects of the class
+ * against furniture the cascade took for one). The score is the fraction of
+ * trees that vote "object". */
+class ShapeVerifier
+{
+public:
+	struct TrainParams
+	{
+		int trees = 200;
+		int maxDepth = 12;
+		int minSampleCount = 3;
+		/** Seeds OpenCV's random generator: same samples, same forest. */
+		uint64_t seed = 1;
+	};
+
+	ShapeVerifier() = default;
+	/** Trains on `samples` (CV_32F, one ObjectShape::Features per row) with
+	 * `isObject` (CV_32S, 1 object / 0 not). Throws Error without samples
+	 * of both kinds. */
+	static ShapeVerifier train(
+	    const cv::Mat& samples, const cv::Mat& isObject,
+	    const TrainParams& params);
+	/** Loads a forest saved by save(). Throws IoError naming `path` if it
+	 * is missing, corrupt or not a forest over ObjectShape features. */
+	static ShapeVerifier load(const std::string& path);
+	/** Writes the forest (OpenCV XML, temp + rename). */
+	void save(const std::string& path) const;
+
+	bool empty() const { return !m_forest; }
+	/** Fraction of trees voting "object", in [0, 1]. */
+	double score(const ObjectShape::Features& f) const;
+
+private:
+	cv::Ptr<cv::ml::RTrees> m_forest;
+};
+
+}  // namespace semnav

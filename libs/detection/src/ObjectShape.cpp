@@ -1,0 +1,229 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/Label.h>
+#include <semnav/common/Percentile.h>
+#include <semnav/detection/ObjectShape.h>
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/core.hpp>
+
+namespace semnav
+{
+namespace
+{
+/** 95th minus 5th percentile; 0 for fewer than 3 values. */
+float spread(std::vector<double> v)
+{
+	if (v.size() < 3) return 0;
+	const double hi = percentile(v, 0.95);
+	return float(hi - percentile(v, 0.05));
+}
+}  // namespace
+
+const std::array<const char*, ObjectShape::kFeatures>& ObjectShape::names()
+{
+	static const std::array<const char*, kFeatures> n{
+	    "range",         "bearing",      "log_points",   "width",
+	    "depth",         "top",          "bottom",       "height_0_20",
+	    "height_20_40",  "height_40_60", "height_60_80", "height_80_100",
+	    "width_lower",   "width_middle", "width_upper",  "facing_up",
+	    "facing_side",   "side_turn",    "side_oblique", "front_curvature",
+	    "pca_middle",    "pca_least",    "wall_around",  "box_fill",
+	    "top_facing_up", "top_depth",    "up_levels",    "up_height_spread",
+	    "up_slope"};
+	return n;
+}
+
+ObjectShape::Features ObjectShape::describe(
+    const cv::Mat& points, const cv::Mat& normals, const cv::Mat& normalMask,
+    const cv::Mat& labels, const std::vector<cv::Point>& object,
+    const std::vector<cv::Point>& surroundings, double groundZ)
+{
+	Features f{};
+	std::vector<cv::Vec3d> p;
+	std::vector<cv::Vec3d> n;  // zero where none
+	p.reserve(object.size());
+	n.reserve(object.size());
+	cv::Vec3d c(0, 0, 0);
+	for (const auto& px : object)
+	{
+		const auto& q = points.at<cv::Vec3f>(px);
+		if (!std::isfinite(q[0])) continue;
+		p.emplace_back(q[0], q[1], q[2]);
+		c += p.back();
+		n.push_back(
+		    normalMask.at<uint8_t>(px) ? cv::Vec3d(normals.at<cv::Vec3f>(px))
+		                               : cv::Vec3d(0, 0, 0));
+	}
+	if (p.empty()) return f;
+	const double count = double(p.size());
+	c /= count;
+	const double bearing = std::atan2(c[1], c[0]);
+	const cv::Vec2d along(std::cos(bearing), std::sin(bearing));
+	const cv::Vec2d across(-along[1], along[0]);
+	std::vector<double> lat(p.size()), dep(p.size()), h(p.size());
+	for (std::size_t i = 0; i < p.size(); i++)
+	{
+		lat[i] = across[0] * p[i][0] + across[1] * p[i][1];
+		dep[i] = along[0] * p[i][0] + along[1] * p[i][1];
+		h[i] = p[i][2] - groundZ;
+	}
+	const float width = spread(lat), depth = spread(dep);
+	std::vector<double> hs = h;
+	const double top = percentile(hs, 0.95), bottom = percentile(hs, 0.05);
+	f[0] = float(std::hypot(c[0], c[1]));
+	f[1] = float(std::abs(bearing));
+	f[2] = float(std::log(count));
+	f[3] = width;
+	f[4] = depth;
+	f[5] = float(top);
+	f[6] = float(bottom);
+	// Height profile, relative to the top.
+	const double scale = std::max(top, 0.05);
+	std::array<std::vector<double>, 3> thirds;
+	for (std::size_t i = 0; i < p.size(); i++)
+	{
+		const double r = std::clamp(h[i] / scale, 0.0, 0.999);
+		f[7 + int(r * 5)] += float(1 / count);
+		thirds[std::size_t(r * 3)].push_back(lat[i]);
+	}
+	for (int k = 0; k < 3; k++)
+		f[12 + k] = spread(thirds[k]) / std::max(width, 0.01f);
+	// Surfaces: facing up, facing sideways and how the side normals turn.
+	double withNormal = 0, up = 0, side = 0, sc = 0, ss = 0, oblique = 0;
+	double topPoints = 0, topUp = 0;
+	std::vector<double> topDep;
+	std::vector<std::size_t> upPoints;
+	for (std::size_t i = 0; i < p.size(); i++)
+	{
+		const bool atTop = h[i] > top - 0.08;
+		if (atTop)
+		{
+			topPoints++;
+			topDep.push_back(dep[i]);
+		}
+		if (n[i] == cv::Vec3d(0, 0, 0)) continue;
+		withNormal++;
+		if (n[i][2] > 0.8)
+		{
+			up++;
+			upPoints.push_back(i);
+			topUp += atTop;
+		}
+		if (std::abs(n[i][2]) >= 0.3) continue;
+		side++;
+		const double toward = -(along[0] * n[i][0] + along[1] * n[i][1]);
+		const double sideways = across[0] * n[i][0] + across[1] * n[i][1];
+		const double a = std::atan2(sideways, toward);
+		sc += std::cos(a);
+		ss += std::sin(a);
+		oblique += std::abs(std::sin(a));
+	}
+	if (withNormal > 0)
+	{
+		f[15] = float(up / withNormal);
+		f[16] = float(side / withNormal);
+	}
+	if (side > 0)
+	{
+		f[17] = float(1 - std::hypot(sc, ss) / side);
+		f[18] = float(oblique / side);
+	}
+	// Front curvature: depth = a + b lat + k lat^2 (least squares), k times
+	// the width (a convex front facing the sensor has k > 0).
+	if (p.size() >= 6 && width > 0.02f)
+	{
+		double m = 0;
+		for (double v : lat) m += v;
+		m /= count;
+		cv::Matx33d A = cv::Matx33d::zeros();
+		cv::Vec3d b(0, 0, 0);
+		for (std::size_t i = 0; i < p.size(); i++)
+		{
+			const double x = lat[i] - m;
+			const cv::Vec3d row(1, x, x * x);
+			A += row * row.t();
+			b += row * dep[i];
+		}
+		cv::Vec3d k;
+		if (cv::solve(A, b, k, cv::DECOMP_CHOLESKY))
+			f[19] = float(k[2] * width);
+	}
+	// Spread of the points: the middle and least principal axes against the
+	// largest.
+	cv::Matx33d cov = cv::Matx33d::zeros();
+	for (const auto& q : p)
+	{
+		const cv::Vec3d d = q - c;
+		cov += d * d.t();
+	}
+	cv::Vec3d ev;
+	cv::eigen(cv::Mat(cov * (1 / count)), ev);
+	if (ev[0] > 1e-12)
+	{
+		f[20] = float(ev[1] / ev[0]);
+		f[21] = float(ev[2] / ev[0]);
+	}
+	// Surroundings: walls around it and how much of its box it fills.
+	double valid = 0, wall = 0;
+	for (const auto& px : surroundings)
+	{
+		if (!std::isfinite(points.at<cv::Vec3f>(px)[0])) continue;
+		valid++;
+		if (!labels.empty() &&
+		    static_cast<Label>(labels.at<uint8_t>(px)) == Label::Wall)
+			wall++;
+	}
+	if (valid > 0)
+	{
+		f[22] = float(wall / valid);
+		f[23] = float(count / valid);
+	}
+	if (topPoints > 0)
+	{
+		f[24] = float(topUp / topPoints);
+		f[25] = spread(topDep);
+	}
+	// Surfaces facing up: at how many heights (5 cm levels holding 3 % of
+	// them: a table has one, a flight of stairs one per step), over what
+	// span of its height, and how they climb across or along the line of
+	// sight (the correlation of height with position, the larger).
+	if (upPoints.size() >= 3)
+	{
+		std::vector<int> levels(64, 0);
+		std::vector<double> zs;
+		double mz = 0, ml = 0, md = 0;
+		for (std::size_t i : upPoints)
+		{
+			levels[std::size_t(std::clamp(int(h[i] / 0.05), 0, 63))]++;
+			zs.push_back(h[i]);
+			mz += h[i];
+			ml += lat[i];
+			md += dep[i];
+		}
+		const double m = double(upPoints.size());
+		int filled = 0;
+		for (int l : levels) filled += l >= 0.03 * m;
+		f[26] = float(filled);
+		f[27] = spread(zs) / float(std::max(top, 0.05));
+		mz /= m;
+		ml /= m;
+		md /= m;
+		double zz = 0, ll = 0, dd = 0, zl = 0, zd = 0;
+		for (std::size_t i : upPoints)
+		{
+			const double a = h[i] - mz, b = lat[i] - ml, d = dep[i] - md;
+			zz += a * a;
+			ll += b * b;
+			dd += d * d;
+			zl += a * b;
+			zd += a * d;
+		}
+		const auto corr = [&](double xy, double yy)
+		{ return zz > 0 && yy > 0 ? std::abs(xy) / std::sqrt(zz * yy) : 0.0; };
+		f[28] = float(std::max(corr(zl, ll), corr(zd, dd)));
+	}
+	return f;
+}
+
+}  // namespace semnav

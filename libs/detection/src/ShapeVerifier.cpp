@@ -1,0 +1,87 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/AtomicFile.h>
+#include <semnav/common/Error.h>
+#include <semnav/detection/ShapeVerifier.h>
+
+#include <filesystem>
+#include <opencv2/core.hpp>
+
+namespace semnav
+{
+ShapeVerifier ShapeVerifier::train(
+    const cv::Mat& samples, const cv::Mat& isObject, const TrainParams& params)
+{
+	if (samples.type() != CV_32F || samples.cols != ObjectShape::kFeatures ||
+	    isObject.type() != CV_32S || isObject.rows != samples.rows)
+		throw Error(
+		    "ShapeVerifier: samples must be N x ObjectShape::kFeatures");
+	const int objects = cv::countNonZero(isObject);
+	if (objects == 0 || objects == samples.rows)
+		throw Error(
+		    "ShapeVerifier: training needs objects and non-objects (got " +
+		    std::to_string(objects) + " of " + std::to_string(samples.rows) +
+		    ")");
+	cv::theRNG().state = params.seed;
+	ShapeVerifier v;
+	v.m_forest = cv::ml::RTrees::create();
+	v.m_forest->setMaxDepth(params.maxDepth);
+	v.m_forest->setMinSampleCount(params.minSampleCount);
+	v.m_forest->setCalculateVarImportance(false);
+	v.m_forest->setTermCriteria(
+	    cv::TermCriteria(cv::TermCriteria::MAX_ITER, params.trees, 0));
+	v.m_forest->train(
+	    cv::ml::TrainData::create(samples, cv::ml::ROW_SAMPLE, isObject));
+	return v;
+}
+
+ShapeVerifier ShapeVerifier::load(const std::string& path)
+{
+	if (!std::filesystem::is_regular_file(path))
+		throw IoError(path + ": no such shape model");
+	ShapeVerifier v;
+	try
+	{
+		v.m_forest = cv::Algorithm::load<cv::ml::RTrees>(path);
+	}
+	catch (const cv::Exception& e)
+	{
+		throw IoError(path + ": not a shape model (" + e.err + ")");
+	}
+	if (!v.m_forest || !v.m_forest->isTrained() ||
+	    !v.m_forest->isClassifier() ||
+	    v.m_forest->getVarCount() != ObjectShape::kFeatures)
+		throw IoError(
+		    path + ": not a shape model over " +
+		    std::to_string(ObjectShape::kFeatures) + " ObjectShape features");
+	return v;
+}
+
+void ShapeVerifier::save(const std::string& path) const
+{
+	if (!m_forest) throw Error("ShapeVerifier: nothing to save");
+	cv::FileStorage fs(
+	    ".xml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+	fs << m_forest->getDefaultName() << "{";
+	m_forest->write(fs);
+	fs << "}";
+	writeFileAtomically(path, fs.releaseAndGetString());
+}
+
+double ShapeVerifier::score(const ObjectShape::Features& f) const
+{
+	if (!m_forest) return 1;
+	const cv::Mat sample(
+	    1, ObjectShape::kFeatures, CV_32F, const_cast<float*>(f.data()));
+	cv::Mat votes;
+	m_forest->getVotes(sample, votes, 0);
+	// Row 0: the class responses; row 1: this sample's votes per class.
+	double object = 0, all = 0;
+	for (int k = 0; k < votes.cols; k++)
+	{
+		all += votes.at<int>(1, k);
+		if (votes.at<int>(0, k) == 1) object += votes.at<int>(1, k);
+	}
+	return all > 0 ? object / all : 0;
+}
+
+}  // namespace semnav

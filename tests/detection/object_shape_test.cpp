@@ -1,0 +1,255 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <semnav/common/Error.h>
+#include <semnav/common/Label.h>
+#include <semnav/detection/CascadeDetector.h>
+#include <semnav/detection/ObjectShape.h>
+#include <semnav/detection/ShapeVerifier.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <opencv2/core.hpp>
+
+#include "../common/SavedAndLoaded.h"
+
+using namespace semnav;
+
+namespace
+{
+/** Points and normals of a 30 x 30 pixel patch 3 m ahead of the sensor:
+ * the front of an upright cylinder (r 0.15 m, 0.4 m high), or of a box with
+ * a flat front 0.3 m wide. */
+struct Patch
+{
+	cv::Mat points{30, 30, CV_32FC3, cv::Scalar::all(NAN)};
+	cv::Mat normals{30, 30, CV_32FC3, cv::Scalar::all(0)};
+	cv::Mat mask{30, 30, CV_8U, cv::Scalar(0)};
+	cv::Mat labels{30, 30, CV_8U, cv::Scalar(0)};
+	std::vector<cv::Point> object, box;
+};
+
+Patch front(bool cylinder)
+{
+	Patch p;
+	constexpr double r = 0.15, h = 0.4, x0 = 3.0;
+	for (int row = 0; row < 30; row++)
+		for (int col = 0; col < 30; col++)
+		{
+			p.box.emplace_back(col, row);
+			if (col < 5 || col >= 25) continue;  // beside the object
+			const double z = h * row / 29.0;
+			const double s = (col - 14.5) / 10.0;  // -1 .. 1 across
+			cv::Vec3f pt, n;
+			if (cylinder)
+			{
+				const double a = std::asin(s * 0.95);
+				pt = cv::Vec3f(
+				    float(x0 - r * std::cos(a)), float(r * std::sin(a)),
+				    float(z));
+				n = cv::Vec3f(float(-std::cos(a)), float(std::sin(a)), 0);
+			}
+			else
+			{
+				pt = cv::Vec3f(float(x0 - r), float(r * s), float(z));
+				n = cv::Vec3f(-1, 0, 0);
+			}
+			p.points.at<cv::Vec3f>(row, col) = pt;
+			p.normals.at<cv::Vec3f>(row, col) = n;
+			p.mask.at<uint8_t>(row, col) = 1;
+			p.object.emplace_back(col, row);
+		}
+	return p;
+}
+
+ObjectShape::Features describe(const Patch& p)
+{
+	return ObjectShape::describe(
+	    p.points, p.normals, p.mask, p.labels, p.object, p.box, 0.0);
+}
+
+int feature(const char* name)
+{
+	const auto& n = ObjectShape::names();
+	for (int i = 0; i < ObjectShape::kFeatures; i++)
+		if (std::string(n[i]) == name) return i;
+	ADD_FAILURE() << name;
+	return 0;
+}
+
+/** Two clusters of descriptors: objects around +1 in every feature, others
+ * around -1 (seeded). */
+void clusters(cv::Mat& samples, cv::Mat& isObject, int n, uint64_t seed)
+{
+	cv::RNG rng(seed);
+	samples.create(2 * n, ObjectShape::kFeatures, CV_32F);
+	isObject.create(2 * n, 1, CV_32S);
+	for (int i = 0; i < 2 * n; i++)
+	{
+		const bool object = i < n;
+		isObject.at<int>(i) = object ? 1 : 0;
+		for (int k = 0; k < ObjectShape::kFeatures; k++)
+			samples.at<float>(i, k) =
+			    float((object ? 1 : -1) + rng.gaussian(0.7));
+	}
+}
+
+ObjectShape::Features row(const cv::Mat& samples, int i)
+{
+	ObjectShape::Features f;
+	for (int k = 0; k < ObjectShape::kFeatures; k++)
+		f[std::size_t(k)] = samples.at<float>(i, k);
+	return f;
+}
+}  // namespace
+
+TEST(ObjectShape, SizeAndHeightProfileOfAnUprightObject)
+{
+	const auto f = describe(front(false));
+	EXPECT_NEAR(f[std::size_t(feature("range"))], 2.85, 0.01);
+	EXPECT_NEAR(f[std::size_t(feature("bearing"))], 0.0, 0.01);
+	EXPECT_NEAR(f[std::size_t(feature("width"))], 0.27, 0.03);
+	EXPECT_NEAR(f[std::size_t(feature("depth"))], 0.0, 1e-4);
+	EXPECT_NEAR(f[std::size_t(feature("top"))], 0.38, 0.02);
+	EXPECT_NEAR(f[std::size_t(feature("bottom"))], 0.02, 0.02);
+	// Evenly spread over its height: the five height bins share the points.
+	float sum = 0;
+	for (int k = feature("height_0_20"); k <= feature("height_80_100"); k++)
+	{
+		EXPECT_GT(f[std::size_t(k)], 0.12f) << k;
+		sum += f[std::size_t(k)];
+	}
+	EXPECT_NEAR(sum, 1.0, 1e-5);
+	EXPECT_NEAR(f[std::size_t(feature("width_lower"))], 1.0, 0.1);
+	EXPECT_NEAR(f[std::size_t(feature("facing_side"))], 1.0, 1e-6);
+	EXPECT_NEAR(f[std::size_t(feature("facing_up"))], 0.0, 1e-6);
+	// Nothing else in its box has a range.
+	EXPECT_NEAR(f[std::size_t(feature("box_fill"))], 1.0, 1e-5);
+}
+
+TEST(ObjectShape, CylinderTurnsAndBulgesWhereABoxFaceDoesNot)
+{
+	const auto cyl = describe(front(true));
+	const auto box = describe(front(false));
+	const auto turn = std::size_t(feature("side_turn"));
+	const auto curv = std::size_t(feature("front_curvature"));
+	const auto oblique = std::size_t(feature("side_oblique"));
+	EXPECT_GT(cyl[turn], 0.1f);
+	EXPECT_NEAR(box[turn], 0.0, 1e-6);
+	EXPECT_GT(cyl[oblique], 0.4f);
+	EXPECT_NEAR(box[oblique], 0.0, 1e-6);
+	// The cylinder's front is nearer in the middle: depth grows with lat^2.
+	EXPECT_GT(cyl[curv], 0.1f);
+	EXPECT_NEAR(box[curv], 0.0, 1e-3);
+}
+
+TEST(ObjectShape, WallsAroundAndNoPoints)
+{
+	Patch p = front(false);
+	// The columns beside the object are a wall behind it.
+	for (int row = 0; row < 30; row++)
+		for (int col : {0, 1, 2, 3, 4, 25, 26, 27, 28, 29})
+		{
+			p.points.at<cv::Vec3f>(row, col) = cv::Vec3f(3.2f, 0, 0.5f);
+			p.labels.at<uint8_t>(row, col) = uint8_t(Label::Wall);
+		}
+	const auto f = describe(p);
+	EXPECT_NEAR(f[std::size_t(feature("wall_around"))], 10.0 / 30.0, 1e-5);
+	EXPECT_NEAR(f[std::size_t(feature("box_fill"))], 20.0 / 30.0, 1e-5);
+	p.object = {{0, 0}};  // a wall point alone is still described
+	p.points.at<cv::Vec3f>(0, 0) = cv::Vec3f(NAN, NAN, NAN);
+	const auto none = describe(p);
+	EXPECT_TRUE(std::all_of(
+	    none.begin(), none.end(), [](float v) { return v == 0.f; }));
+}
+
+TEST(ShapeVerifier, SeparatesAndRoundTrips)
+{
+	cv::Mat samples, isObject, test, testIsObject;
+	clusters(samples, isObject, 150, 1);
+	clusters(test, testIsObject, 50, 2);
+	ShapeVerifier::TrainParams tp;
+	tp.trees = 30;
+	const auto v = ShapeVerifier::train(samples, isObject, tp);
+	int right = 0;
+	for (int i = 0; i < test.rows; i++)
+		right +=
+		    (v.score(row(test, i)) >= 0.5) == (testIsObject.at<int>(i) == 1);
+	EXPECT_GE(right, 95);
+	const auto dir = std::filesystem::temp_directory_path() /
+	                 ("semnav_shape_" + std::to_string(::getpid()));
+	std::filesystem::create_directories(dir);
+	const auto path = (dir / "s.xml").string();
+	v.save(path);
+	const auto back = ShapeVerifier::load(path);
+	for (int i = 0; i < test.rows; i++)
+		EXPECT_DOUBLE_EQ(back.score(row(test, i)), v.score(row(test, i)));
+	// Same samples and seed, same forest.
+	ShapeVerifier::train(samples, isObject, tp).save(path + "2");
+	std::ifstream a(path), b(path + "2");
+	const std::string sa((std::istreambuf_iterator<char>(a)), {}),
+	    sb((std::istreambuf_iterator<char>(b)), {});
+	EXPECT_EQ(sa, sb);
+	std::filesystem::remove_all(dir);
+}
+
+TEST(ShapeVerifier, BadModelsAndSamplesAreClearErrors)
+{
+	const auto dir = std::filesystem::temp_directory_path() /
+	                 ("semnav_shape_bad_" + std::to_string(::getpid()));
+	std::filesystem::create_directories(dir);
+	const auto path = (dir / "bad.xml").string();
+	std::ofstream(path) << "<?xml version=\"1.0\"?>\n<opencv_storage><x>";
+	for (const auto& p : {path, (dir / "missing.xml").string()}) try
+		{
+			ShapeVerifier::load(p);
+			FAIL() << p;
+		}
+		catch (const IoError& e)
+		{
+			EXPECT_NE(std::string(e.what()).find(p), std::string::npos);
+		}
+	// A forest over other features is not a shape model.
+	{
+		cv::FileStorage fs(path, cv::FileStorage::WRITE);
+		auto f = cv::ml::RTrees::create();
+		f->setMaxDepth(2);
+		f->setTermCriteria({cv::TermCriteria::MAX_ITER, 2, 0});
+		cv::Mat s = (cv::Mat_<float>(4, 2) << 0, 0, 0, 1, 1, 0, 1, 1);
+		cv::Mat r = (cv::Mat_<int>(4, 1) << 0, 0, 1, 1);
+		f->train(s, cv::ml::ROW_SAMPLE, r);
+		fs << f->getDefaultName() << "{";
+		f->write(fs);
+		fs << "}";
+	}
+	EXPECT_THROW(ShapeVerifier::load(path), IoError);
+	std::filesystem::remove_all(dir);
+	cv::Mat samples, isObject;
+	clusters(samples, isObject, 10, 1);
+	isObject.setTo(1);
+	EXPECT_THROW(ShapeVerifier::train(samples, isObject, {}), Error);
+}
+
+TEST(ShapeVerifier, DetectorOptionsLoadSaveAndCheck)
+{
+	mrpt::config::CConfigFileMemory c(
+	    "[CascadeDetector]\nclasses = stairs\nrange_scales = true\n"
+	    "[CascadeDetector.stairs]\nshape_model = s.xml\nmin_shape_score = "
+	    "0.7\nmax_stages = 12\n");
+	CascadeDetector::TOptions o;
+	o.loadFromConfigFile(c, "CascadeDetector");
+	EXPECT_EQ(o.classes[0].shapeModel, "s.xml");
+	EXPECT_DOUBLE_EQ(o.classes[0].minShapeScore, 0.7);
+	EXPECT_EQ(o.classes[0].maxStages, 12);
+	const auto back = test::savedAndLoaded(o, "CascadeDetector");
+	EXPECT_EQ(back.classes[0].shapeModel, "s.xml");
+	EXPECT_DOUBLE_EQ(back.classes[0].minShapeScore, 0.7);
+	EXPECT_EQ(back.classes[0].maxStages, 12);
+	mrpt::config::CConfigFileMemory bad(
+	    "[CascadeDetector]\nclasses = stairs\n"
+	    "[CascadeDetector.stairs]\nmin_shape_score = 1.5\n");
+	EXPECT_THROW(o.loadFromConfigFile(bad, "CascadeDetector"), ConfigError);
+}
