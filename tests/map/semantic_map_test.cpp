@@ -287,6 +287,43 @@ TEST(SemanticMap, StairsCentreOnTheirLabelledCells)
 	EXPECT_TRUE(m.instances(Label::Stairs).empty());
 }
 
+TEST(SemanticMap, AOneOffStairsLabelBesideAFlightDoesNotMoveIt)
+{
+	// The flight of the test above, detected in four sweeps; in a fifth a
+	// false detection also labels a table beside it (x 3.2..4.0) stairs.
+	std::vector<FakePoint> flight, withTable;
+	for (double x = 2.0; x <= 3.2; x += 0.03)
+		for (double y = -0.6; y <= 0.6; y += 0.03)
+			flight.push_back({x, y, 0.2 + 0.3 * (x - 2.0), Label::Stairs});
+	withTable = flight;
+	for (double x = 3.23; x <= 4.0; x += 0.03)
+		for (double y = -0.3; y <= 0.3; y += 0.03)
+			withTable.push_back({x, y, 0.7, Label::Stairs});
+	const mrpt::poses::CPose2D pose(0, 0, 0);
+	for (const double share : {0.25, 0.0})
+	{
+		SemanticMap::TOptions o;
+		o.stairsMinCellShare = share;
+		SemanticMap m(o);
+		for (int k = 0; k < 5; k++)
+		{
+			// The false detection's box holds flight and table.
+			const auto f = k < 4 ? detectionSweep(
+			                           Label::Stairs, {2.6, 0.0, 0.4},
+			                           {1.2, 1.2, 0.8}, flight)
+			                     : detectionSweep(
+			                           Label::Stairs, {3.0, 0.0, 0.4},
+			                           {2.0, 1.2, 0.8}, withTable);
+			m.insert(f.sweep, f.labeled, pose);
+		}
+		const auto st = m.instances(Label::Stairs);
+		ASSERT_EQ(st.size(), 1u);
+		// Labelled in 1 of 5 sweeps: below a quarter of the flight's 5.
+		EXPECT_NEAR(st[0].centroid.x, share > 0 ? 2.6 : 3.0, 0.06) << share;
+		EXPECT_NEAR(st[0].centroid.y, 0.0, 0.06);
+	}
+}
+
 TEST(SemanticMap, GoalRegionIsFreeCellsWithinReach)
 {
 	// A toy washbasin (0.35 m high, no wall): the plausibility checks off.
@@ -337,7 +374,8 @@ TEST(SemanticMapOptions, ShippedConfigLoadsAndBadValuesAreRejected)
 	for (const char* badKey :
 	     {"washbasin_min_top_m = -1", "washbasin_max_wall_distance_m = 6",
 	      "stairs_min_detection_ratio = 1.5", "stairs_max_bottom_m = -0.1",
-	      "view_max_bearing_deg = 200", "stairs_centroid_from_cells = maybe"})
+	      "view_max_bearing_deg = 200", "stairs_centroid_from_cells = maybe",
+	      "stairs_min_cell_share = 2"})
 	{
 		mrpt::config::CConfigFileMemory b(
 		    std::string("[SemanticMap]\n") + badKey + "\n");
@@ -352,6 +390,7 @@ TEST(SemanticMapOptions, ShippedConfigLoadsAndBadValuesAreRejected)
 	changed.stairsMaxBottom = 0.2;
 	changed.viewMaxBearingDeg = 80;
 	changed.stairsCentroidFromCells = false;
+	changed.stairsMinCellShare = 0.4;
 	const SemanticMap::TOptions back =
 	    test::savedAndLoaded(changed, "SemanticMap");
 	EXPECT_DOUBLE_EQ(back.washbasinMinTop, 0.7);
@@ -360,6 +399,7 @@ TEST(SemanticMapOptions, ShippedConfigLoadsAndBadValuesAreRejected)
 	EXPECT_DOUBLE_EQ(back.stairsMaxBottom, 0.2);
 	EXPECT_DOUBLE_EQ(back.viewMaxBearingDeg, 80);
 	EXPECT_FALSE(back.stairsCentroidFromCells);
+	EXPECT_DOUBLE_EQ(back.stairsMinCellShare, 0.4);
 	mrpt::config::CConfigFileMemory typo(
 	    "[TravelCost]\nrobot_type = hovercraft\n");
 	EXPECT_THROW(o.cost.loadFromConfigFile(typo, "TravelCost"), ConfigError);

@@ -21,21 +21,36 @@ const char* kRoughness = "roughness";
 const char* kObservations = "observations";
 }  // namespace
 
+const char* const SemanticMap::kStairsSweeps = "stairs_sweeps";
+
 void SemanticMap::TOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	checkKnownKeys(
-	    c, s, {"resolution_m",          "grow_margin_m",
-	           "obstacle_min_height_m", "robot_height_m",
-	           "robot_radius_m",        "hit_probability",
-	           "free_probability",      "occupied_threshold",
-	           "free_threshold",        "merge_distance_m",
-	           "min_observations",      "door_min_observations",
-	           "min_detection_ratio",   "stairs_min_detection_ratio",
-	           "view_min_pixels",       "view_max_bearing_deg",
-	           "washbasin_min_top_m",   "washbasin_max_wall_distance_m",
-	           "stairs_max_bottom_m",   "stairs_centroid_from_cells",
-	           "door_min_height_m",     "octomap"});
+	    c, s,
+	    {"resolution_m",
+	     "grow_margin_m",
+	     "obstacle_min_height_m",
+	     "robot_height_m",
+	     "robot_radius_m",
+	     "hit_probability",
+	     "free_probability",
+	     "occupied_threshold",
+	     "free_threshold",
+	     "merge_distance_m",
+	     "min_observations",
+	     "door_min_observations",
+	     "min_detection_ratio",
+	     "stairs_min_detection_ratio",
+	     "view_min_pixels",
+	     "view_max_bearing_deg",
+	     "washbasin_min_top_m",
+	     "washbasin_max_wall_distance_m",
+	     "stairs_max_bottom_m",
+	     "stairs_centroid_from_cells",
+	     "stairs_min_cell_share",
+	     "door_min_height_m",
+	     "octomap"});
 	resolution = readChecked(c, s, "resolution_m", resolution, 0.005, 1.0);
 	growMargin = readChecked(c, s, "grow_margin_m", growMargin, 0, 100);
 	obstacleMinHeight =
@@ -72,6 +87,8 @@ void SemanticMap::TOptions::loadFromConfigFile(
 	    readChecked(c, s, "stairs_max_bottom_m", stairsMaxBottom, 0, 3);
 	stairsCentroidFromCells = readCheckedBool(
 	    c, s, "stairs_centroid_from_cells", stairsCentroidFromCells);
+	stairsMinCellShare =
+	    readChecked(c, s, "stairs_min_cell_share", stairsMinCellShare, 0, 1);
 	doorMinHeight =
 	    readChecked(c, s, "door_min_height_m", doorMinHeight, 0, 10);
 	octomap = readCheckedBool(c, s, "octomap", octomap);
@@ -100,6 +117,7 @@ void SemanticMap::TOptions::saveToConfigFile(
 	c.write(s, "washbasin_max_wall_distance_m", washbasinMaxWallDistance);
 	c.write(s, "stairs_max_bottom_m", stairsMaxBottom);
 	writeBool(c, s, "stairs_centroid_from_cells", stairsCentroidFromCells);
+	c.write(s, "stairs_min_cell_share", stairsMinCellShare);
 	c.write(s, "door_min_height_m", doorMinHeight);
 	writeBool(c, s, "octomap", octomap);
 }
@@ -122,6 +140,7 @@ SemanticMap::SemanticMap(const TOptions& options)
 	add(kObjects, 0);
 	add(kRoughness, std::numeric_limits<float>::quiet_NaN());
 	add(kObservations, 0);
+	add(kStairsSweeps, 0);
 }
 
 SemanticMap::~SemanticMap() = default;

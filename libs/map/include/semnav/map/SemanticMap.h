@@ -110,6 +110,12 @@ public:
 		 * its footprint: one detection box often holds part of the flight
 		 * only, the labelled cells of all sweeps hold all of it. */
 		bool stairsCentroidFromCells = true;
+		/** Of those cells, only the ones labelled stairs in at least this
+		 * share of the sweeps that labelled its most labelled cell (layer
+		 * "stairs_sweeps"): one false detection on a table beside a
+		 * flight labels the table once, the flight's cells many times.
+		 * [0, 1]; 0: every labelled cell. */
+		double stairsMinCellShare = 0.25;
 		/** Doors whose merged extent is lower than this are not reported
 		 * (fragments of walls or furniture taken for a door) (m). */
 		double doorMinHeight = 1.2;
@@ -241,6 +247,8 @@ private:
 	/** Sets a staircase's centroid (x, y) from its labelled cells (see
 	 * TOptions::stairsCentroidFromCells). */
 	void centreOnCells(ObjectInstance& o) const;
+	/** Layer: per cell, the sweeps that labelled a point in it stairs. */
+	static const char* const kStairsSweeps;
 	/** True when a cell labelled wall lies within `radius` of (x, y). */
 	bool wallWithin(double x, double y, double radius) const;
 	void mergeObject(
