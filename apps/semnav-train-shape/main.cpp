@@ -6,6 +6,7 @@
 #include <semnav/detection/ShapeTraining.h>
 #include <semnav/detection/ShapeVerifier.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -36,7 +37,7 @@ int main(int argc, char** argv)
 	    "", "C.ini", cmd);
 	TCLAP::ValueArg<std::string> argOut(
 	    "", "out", "Output shape model (OpenCV XML); required", false, "",
-	    "L-shape.xml", cmd);
+	    "L-shape.xml.gz", cmd);
 	TCLAP::ValueArg<int> argNeighbors(
 	    "", "min-neighbors",
 	    "The cascade's min_neighbors while collecting (-1: the config's); "
@@ -52,8 +53,14 @@ int main(int argc, char** argv)
 	    "At most this many object samples per other sample (0: all); "
 	    "default 2",
 	    false, 2, "R", cmd);
+	TCLAP::ValueArg<int> argMaxSamples(
+	    "", "max-samples",
+	    "At most this many samples (a random subset, 0: all); default 30000",
+	    false, 30000, "N", cmd);
 	TCLAP::ValueArg<int> argTrees(
-	    "", "trees", "Trees in the forest; default 200", false, 200, "N", cmd);
+	    "", "trees", "Trees in the forest; default 100", false, 100, "N", cmd);
+	TCLAP::ValueArg<int> argDepth(
+	    "", "max-depth", "Depth of the trees; default 10", false, 10, "N", cmd);
 	TCLAP::ValueArg<int> argSeed(
 	    "", "seed", "Random seed; default 1", false, 1, "N", cmd);
 	TCLAP::SwitchArg argJson(
@@ -78,6 +85,8 @@ int main(int argc, char** argv)
 		    params.maxStages = argStages.getValue();
 		    params.maxObjectsPerOther = argBalance.getValue();
 		    params.seed = static_cast<uint64_t>(argSeed.getValue());
+		    params.maxSamples =
+		        static_cast<std::size_t>(std::max(0, argMaxSamples.getValue()));
 		    std::unique_ptr<semnav::ProgressBar> bar;
 		    std::string current;
 		    const auto samples = semnav::ShapeTraining::collect(
@@ -95,6 +104,7 @@ int main(int argc, char** argv)
 		    bar.reset();
 		    semnav::ShapeVerifier::TrainParams tp;
 		    tp.trees = argTrees.getValue();
+		    tp.maxDepth = argDepth.getValue();
 		    tp.seed = static_cast<uint64_t>(argSeed.getValue());
 		    const auto forest = semnav::ShapeVerifier::train(
 		        samples.features, samples.isObject, tp);

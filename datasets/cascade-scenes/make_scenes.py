@@ -43,6 +43,14 @@ SCENES = [
     ("val_a", 201, 10.0, 8.5),
     ("val_b", 202, 11.5, 8.0),
     ("val_c", 203, 9.5, 8.0),
+    # Added with the shape models: more validation scenes, and held-out
+    # scenes no setting was ever looked at on before the final choice.
+    ("val_d", 204, 10.5, 8.5),
+    ("val_e", 205, 9.0, 8.0),
+    ("val_f", 206, 11.0, 9.0),
+    ("test_d", 104, 10.0, 9.0),
+    ("test_e", 105, 11.5, 8.5),
+    ("test_f", 106, 9.0, 7.5),
 ]
 
 

@@ -212,9 +212,14 @@ TEST_F(CascadeDetection, RangeScalesWithTheGateOpenAreDetectMultiScale)
 {
 	// The range-gated search runs the pyramid, window steps and grouping of
 	// detectMultiScale with the project's evaluator: with a gate that
-	// admits every window with a range, it finds the same boxes.
+	// admits every window with a range, it finds the same boxes. With every
+	// stage: the gate skips windows without a range, so it does not skip
+	// the window after one of them rejected at stage 0 as detectMultiScale
+	// does; the full cascades reject what that lets in, the first stages
+	// (max_stages) keep a few such windows, a box then moves by a pixel.
 	const Simulated& s = scene();
 	PerceptionPipeline p;
+	for (auto& k : opts.classes) k.maxStages = 0;
 	opts.proposals = false;
 	opts.rangeScales = false;
 	CascadeDetector opencv(opts);
@@ -235,10 +240,27 @@ TEST_F(CascadeDetection, RangeScalesWithTheGateOpenAreDetectMultiScale)
 			         sw.phis(), sw.thetas(), ls.normals, ls.normalMask,
 			         ls.points, ls.groundZ, ls.labels, ls.areaIds))
 				out.emplace_back(c.label, c.box);
+			std::sort(
+			    out.begin(), out.end(),
+			    [](const auto& x, const auto& y)
+			    {
+				    return std::make_tuple(
+				               x.first, x.second.x, x.second.y, x.second.width,
+				               x.second.height) <
+				           std::make_tuple(
+				               y.first, y.second.x, y.second.y, y.second.width,
+				               y.second.height);
+			    });
 			return out;
 		};
 		const auto a = run(opencv), b = run(gated);
-		EXPECT_EQ(a, b) << "sweep " << i;
+		EXPECT_EQ(a.size(), b.size()) << "sweep " << i;
+		for (const auto& [x, y] : {std::pair{&a, &b}, std::pair{&b, &a}})
+			for (const auto& w : *x)
+				EXPECT_TRUE(std::find(y->begin(), y->end(), w) != y->end())
+				    << "sweep " << i << ": " << labelName(w.first) << " "
+				    << w.second << " only "
+				    << (x == &a ? "in detectMultiScale" : "range-gated");
 		boxes += a.size();
 	}
 	EXPECT_GT(boxes, 0u);

@@ -516,18 +516,28 @@ CascadeDetector::CascadeDetector(const TOptions& options)
 	{
 		const std::string path = m_options.cascadePath(k);
 		// Our reader gives clear errors; OpenCV then loads the same file.
-		const HaarCascade c = CascadeXml::readFile(path);
+		const HaarCascade full = CascadeXml::readFile(path);
+		const bool truncated =
+		    k.maxStages > 0 && std::size_t(k.maxStages) < full.stages.size();
+		const HaarCascade c =
+		    truncated ? full.firstStages(std::size_t(k.maxStages)) : full;
 		cv::CascadeClassifier cc;
-		if (!cc.load(path))
+		if (!truncated && !cc.load(path))
 			throw CascadeError("cv::CascadeClassifier cannot load " + path);
+		if (truncated)
+		{
+			// OpenCV reads the same first stages from memory.
+			cv::FileStorage fs(
+			    CascadeXml::toString(c),
+			    cv::FileStorage::READ | cv::FileStorage::MEMORY);
+			if (!cc.read(fs.getFirstTopLevelNode()))
+				throw CascadeError(
+				    "cv::CascadeClassifier cannot read the first " +
+				    std::to_string(k.maxStages) + " stages of " + path);
+		}
 		m_impl->classifiers.push_back(std::move(cc));
 		m_impl->windows.push_back(c.windowSize);
-		if (k.maxStages > 0 && !m_options.rangeScales)
-			throw ConfigError(
-			    "[CascadeDetector." + labelName(k.label) +
-			    "] max_stages needs range_scales = true");
-		m_impl->evaluators.emplace_back(
-		    k.maxStages > 0 ? c.firstStages(std::size_t(k.maxStages)) : c);
+		m_impl->evaluators.emplace_back(c);
 		m_impl->verifiers.push_back(
 		    k.shapeModel.empty()
 		        ? ShapeVerifier()

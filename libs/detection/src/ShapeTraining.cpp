@@ -63,35 +63,45 @@ ShapeTraining::Samples ShapeTraining::collect(
 			if (progress) progress(dir, i + 1, sweeps.size());
 		}
 	}
-	if (params.maxObjectsPerOther > 0 &&
-	    double(out.objects) > params.maxObjectsPerOther * double(out.others))
+	// Seeded random subsets: objects to at most maxObjectsPerOther per other,
+	// then both kinds in proportion to at most maxSamples.
+	double keepObjects = double(out.objects), keepOthers = double(out.others);
+	if (params.maxObjectsPerOther > 0)
+		keepObjects =
+		    std::min(keepObjects, params.maxObjectsPerOther * keepOthers);
+	if (params.maxSamples > 0 && keepObjects + keepOthers > params.maxSamples)
 	{
-		// A seeded random subset of the objects.
-		std::vector<std::size_t> objects;
-		for (std::size_t i = 0; i < isObject.size(); i++)
-			if (isObject[i]) objects.push_back(i);
-		cv::RNG rng(params.seed);
-		for (std::size_t i = objects.size(); i > 1; i--)
-			std::swap(objects[i - 1], objects[rng.uniform(0, int(i))]);
-		const auto keep = static_cast<std::size_t>(
-		    params.maxObjectsPerOther * double(out.others));
-		std::vector<bool> drop(isObject.size(), false);
-		for (std::size_t i = keep; i < objects.size(); i++)
-			drop[objects[i]] = true;
-		std::vector<float> keptRows;
-		std::vector<int> kept;
-		for (std::size_t i = 0; i < isObject.size(); i++)
-		{
-			if (drop[i]) continue;
-			keptRows.insert(
-			    keptRows.end(), rows.begin() + long(i * ObjectShape::kFeatures),
-			    rows.begin() + long((i + 1) * ObjectShape::kFeatures));
-			kept.push_back(isObject[i]);
-		}
-		rows.swap(keptRows);
-		isObject.swap(kept);
-		out.objects = keep;
+		const double f = double(params.maxSamples) / (keepObjects + keepOthers);
+		keepObjects *= f;
+		keepOthers *= f;
 	}
+	cv::RNG rng(params.seed);
+	std::vector<bool> keep(isObject.size(), false);
+	for (int kind : {1, 0})
+	{
+		std::vector<std::size_t> idx;
+		for (std::size_t i = 0; i < isObject.size(); i++)
+			if (isObject[i] == kind) idx.push_back(i);
+		for (std::size_t i = idx.size(); i > 1; i--)
+			std::swap(idx[i - 1], idx[std::size_t(rng.uniform(0, int(i)))]);
+		const auto n = std::min(
+		    idx.size(),
+		    static_cast<std::size_t>(kind ? keepObjects : keepOthers));
+		for (std::size_t i = 0; i < n; i++) keep[idx[i]] = true;
+		(kind ? out.objects : out.others) = n;
+	}
+	std::vector<float> keptRows;
+	std::vector<int> kept;
+	for (std::size_t i = 0; i < isObject.size(); i++)
+	{
+		if (!keep[i]) continue;
+		keptRows.insert(
+		    keptRows.end(), rows.begin() + long(i * ObjectShape::kFeatures),
+		    rows.begin() + long((i + 1) * ObjectShape::kFeatures));
+		kept.push_back(isObject[i]);
+	}
+	rows.swap(keptRows);
+	isObject.swap(kept);
 	const int n = static_cast<int>(isObject.size());
 	out.features =
 	    cv::Mat(n, ObjectShape::kFeatures, CV_32F, rows.data()).clone();

@@ -1,5 +1,4 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-#include <semnav/common/AtomicFile.h>
 #include <semnav/common/Error.h>
 #include <semnav/detection/ShapeVerifier.h>
 
@@ -59,12 +58,33 @@ ShapeVerifier ShapeVerifier::load(const std::string& path)
 void ShapeVerifier::save(const std::string& path) const
 {
 	if (!m_forest) throw Error("ShapeVerifier: nothing to save");
-	cv::FileStorage fs(
-	    ".xml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
-	fs << m_forest->getDefaultName() << "{";
-	m_forest->write(fs);
-	fs << "}";
-	writeFileAtomically(path, fs.releaseAndGetString());
+	// OpenCV compresses by the name's ending: a temporary name with the
+	// same ending, then rename.
+	const std::filesystem::path target(path);
+	const bool gz = target.extension() == ".gz";
+	const std::filesystem::path tmp =
+	    target.parent_path() /
+	    ("." + target.filename().string() + ".tmp" + (gz ? ".xml.gz" : ".xml"));
+	try
+	{
+		cv::FileStorage fs(tmp.string(), cv::FileStorage::WRITE);
+		if (!fs.isOpened()) throw IoError(path + ": cannot write");
+		fs << m_forest->getDefaultName() << "{";
+		m_forest->write(fs);
+		fs << "}";
+		fs.release();
+		std::filesystem::rename(tmp, target);
+	}
+	catch (const cv::Exception& e)
+	{
+		std::filesystem::remove(tmp);
+		throw IoError(path + ": cannot write (" + e.err + ")");
+	}
+	catch (const std::filesystem::filesystem_error& e)
+	{
+		std::filesystem::remove(tmp);
+		throw IoError(path + ": cannot write (" + e.what() + ")");
+	}
 }
 
 double ShapeVerifier::score(const ObjectShape::Features& f) const

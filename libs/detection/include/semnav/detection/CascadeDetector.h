@@ -112,8 +112,8 @@ public:
 		std::string shapeModel;
 		double minShapeScore = 0.5;
 		/** max_stages: only the first this many stages of the cascade are
-		 * evaluated (0: all; needs range_scales): a looser detector, for
-		 * collecting shape-model samples. */
+		 * evaluated (0: all): a looser detector, whose false alarms the
+		 * shape check rejects; also for collecting shape-model samples. */
 		int maxStages = 0;
 	};
 

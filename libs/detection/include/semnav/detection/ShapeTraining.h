@@ -43,6 +43,9 @@ public:
 		/** At most this many object samples per other sample (a seeded
 		 * random subset; 0: all). */
 		double maxObjectsPerOther = 0;
+		/** At most this many samples in all (a seeded random subset of
+		 * each kind, in proportion; 0: all). */
+		std::size_t maxSamples = 0;
 		uint64_t seed = 1;
 	};
 

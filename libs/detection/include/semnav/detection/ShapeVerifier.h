@@ -19,9 +19,9 @@ class ShapeVerifier
 public:
 	struct TrainParams
 	{
-		int trees = 200;
-		int maxDepth = 12;
-		int minSampleCount = 3;
+		int trees = 100;
+		int maxDepth = 10;
+		int minSampleCount = 10;
 		/** Seeds OpenCV's random generator: same samples, same forest. */
 		uint64_t seed = 1;
 	};
@@ -36,7 +36,8 @@ public:
 	/** Loads a forest saved by save(). Throws IoError naming `path` if it
 	 * is missing, corrupt or not a forest over ObjectShape features. */
 	static ShapeVerifier load(const std::string& path);
-	/** Writes the forest (OpenCV XML, temp + rename). */
+	/** Writes the forest (OpenCV XML, gzip-compressed when `path` ends in
+	 * .gz; temp + rename). Throws IoError. */
 	void save(const std::string& path) const;
 
 	bool empty() const { return !m_forest; }
