@@ -1174,10 +1174,12 @@ namespace
 {
 /** One object, several boxes (detectMultiScale groups similar boxes only):
  * of accepted candidates sharing most object pixels, the one with the
- * most neighbours (then the most points) stays. */
+ * most neighbours (then the most points) that `verify` (the shape check)
+ * accepts stays. `verify` runs only on candidates no better one covers. */
+template <typename Verify>
 void suppressDuplicates(
     std::vector<CascadeDetector::Candidate>& cands, std::size_t first,
-    cv::Size size)
+    cv::Size size, Verify&& verify)
 {
 	std::vector<std::size_t> order;
 	for (std::size_t i = first; i < cands.size(); i++)
@@ -1203,6 +1205,7 @@ void suppressDuplicates(
 			c.rejection = "duplicate";
 			continue;
 		}
+		if (!verify(c)) continue;
 		for (const auto& p : c.measure->pixels) taken.at<uint8_t>(p) = 1;
 	}
 }
@@ -1367,6 +1370,7 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		m_timings.cascades += msSince(tc);
 		const auto tm = Clock::now();
 		const std::size_t first = out.size();
+		std::vector<std::vector<cv::Point>> searched;
 		for (std::size_t j = 0; j < boxes.size(); j++)
 		{
 			Candidate c;
@@ -1418,22 +1422,30 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 				c.rejection = "too high";
 			else
 				c.accepted = true;
-			const ShapeVerifier& verifier = m_impl->verifiers[i];
-			if (c.accepted && (!verifier.empty() || m_impl->describeShapes))
-			{
+			if (c.accepted && m_impl->describeShapes)
 				c.shape = ObjectShape::describe(
 				    points, normals, normalMask, labels, c.measure->pixels,
 				    pixels, groundZ);
-				c.shapeScore = verifier.score(*c.shape);
-				if (c.shapeScore < k.minShapeScore)
-				{
-					c.accepted = false;
-					c.rejection = "shape";
-				}
-			}
 			out.push_back(std::move(c));
+			searched.push_back(pixels);
 		}
-		suppressDuplicates(out, first, points.size());
+		// The shape check, on the candidates duplicates do not remove.
+		const ShapeVerifier& verifier = m_impl->verifiers[i];
+		suppressDuplicates(
+		    out, first, points.size(),
+		    [&](Candidate& c)
+		    {
+			    if (verifier.empty()) return true;
+			    if (!c.shape)
+				    c.shape = ObjectShape::describe(
+				        points, normals, normalMask, labels, c.measure->pixels,
+				        searched[std::size_t(&c - &out[first])], groundZ);
+			    c.shapeScore = verifier.score(*c.shape);
+			    if (c.shapeScore >= k.minShapeScore) return true;
+			    c.accepted = false;
+			    c.rejection = "shape";
+			    return false;
+		    });
 		m_timings.sizeCheck += msSince(tm);
 	}
 	m_impl->scaled.clear();
