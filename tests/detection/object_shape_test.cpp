@@ -144,6 +144,46 @@ TEST(ObjectShape, CylinderTurnsAndBulgesWhereABoxFaceDoesNot)
 	// The cylinder's front is nearer in the middle: depth grows with lat^2.
 	EXPECT_GT(cyl[curv], 0.1f);
 	EXPECT_NEAR(box[curv], 0.0, 1e-3);
+	// A flat face's normals share one 30 deg bin; the cylinder's spread.
+	const auto faces = std::size_t(feature("side_two_faces"));
+	EXPECT_NEAR(box[faces], 1.0, 1e-6);
+	EXPECT_LT(cyl[faces], 0.6f);
+}
+
+TEST(ObjectShape, StepsFaceUpAtManyHeightsATableTopAtOne)
+{
+	// 30 columns x 30 rows of up-facing points: five steps climbing away
+	// from the sensor (0.17 m rise, 0.3 m run), or one table top at 0.75 m.
+	for (const bool steps : {true, false})
+	{
+		Patch p;
+		for (int row = 0; row < 30; row++)
+			for (int col = 0; col < 30; col++)
+			{
+				const int step = row / 6;
+				const float x = 2.0f + 0.05f * float(row);
+				const float z = steps ? 0.17f * float(step + 1) : 0.75f;
+				p.points.at<cv::Vec3f>(row, col) =
+				    cv::Vec3f(x, 0.03f * float(col - 15), z);
+				p.normals.at<cv::Vec3f>(row, col) = cv::Vec3f(0, 0, 1);
+				p.mask.at<uint8_t>(row, col) = 1;
+				p.object.emplace_back(col, row);
+				p.box.emplace_back(col, row);
+			}
+		const auto f = describe(p);
+		EXPECT_NEAR(f[std::size_t(feature("facing_up"))], 1.0, 1e-6);
+		if (steps)
+		{
+			EXPECT_EQ(f[std::size_t(feature("up_levels"))], 5.f);
+			EXPECT_GT(f[std::size_t(feature("up_height_spread"))], 0.6f);
+			EXPECT_GT(f[std::size_t(feature("up_slope"))], 0.9f);
+		}
+		else
+		{
+			EXPECT_EQ(f[std::size_t(feature("up_levels"))], 1.f);
+			EXPECT_NEAR(f[std::size_t(feature("up_height_spread"))], 0, 1e-6);
+		}
+	}
 }
 
 TEST(ObjectShape, WallsAroundAndNoPoints)

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <opencv2/core.hpp>
 
 namespace semnav
@@ -23,14 +24,14 @@ float spread(std::vector<double> v)
 const std::array<const char*, ObjectShape::kFeatures>& ObjectShape::names()
 {
 	static const std::array<const char*, kFeatures> n{
-	    "range",         "bearing",      "log_points",   "width",
-	    "depth",         "top",          "bottom",       "height_0_20",
-	    "height_20_40",  "height_40_60", "height_60_80", "height_80_100",
-	    "width_lower",   "width_middle", "width_upper",  "facing_up",
-	    "facing_side",   "side_turn",    "side_oblique", "front_curvature",
-	    "pca_middle",    "pca_least",    "wall_around",  "box_fill",
-	    "top_facing_up", "top_depth",    "up_levels",    "up_height_spread",
-	    "up_slope"};
+	    "range",         "bearing",       "log_points",   "width",
+	    "depth",         "top",           "bottom",       "height_0_20",
+	    "height_20_40",  "height_40_60",  "height_60_80", "height_80_100",
+	    "width_lower",   "width_middle",  "width_upper",  "facing_up",
+	    "facing_side",   "side_turn",     "side_oblique", "front_curvature",
+	    "pca_middle",    "pca_least",     "wall_around",  "box_fill",
+	    "top_facing_up", "top_depth",     "up_levels",    "up_height_spread",
+	    "up_slope",      "side_two_faces"};
 	return n;
 }
 
@@ -91,6 +92,7 @@ ObjectShape::Features ObjectShape::describe(
 		f[12 + k] = spread(thirds[k]) / std::max(width, 0.01f);
 	// Surfaces: facing up, facing sideways and how the side normals turn.
 	double withNormal = 0, up = 0, side = 0, sc = 0, ss = 0, oblique = 0;
+	std::array<double, 12> sideBins{};
 	double topPoints = 0, topUp = 0;
 	std::vector<double> topDep;
 	std::vector<std::size_t> upPoints;
@@ -117,6 +119,8 @@ ObjectShape::Features ObjectShape::describe(
 		const double a = std::atan2(sideways, toward);
 		sc += std::cos(a);
 		ss += std::sin(a);
+		sideBins[std::size_t(
+		    std::clamp(int((a + M_PI) / (M_PI / 6)), 0, 11))]++;
 		oblique += std::abs(std::sin(a));
 	}
 	if (withNormal > 0)
@@ -128,6 +132,10 @@ ObjectShape::Features ObjectShape::describe(
 	{
 		f[17] = float(1 - std::hypot(sc, ss) / side);
 		f[18] = float(oblique / side);
+		// Flat faces put their normals into one or two 30 deg bins, a
+		// cylinder spreads them.
+		std::sort(sideBins.begin(), sideBins.end(), std::greater<>());
+		f[29] = float((sideBins[0] + sideBins[1]) / side);
 	}
 	// Front curvature: depth = a + b lat + k lat^2 (least squares), k times
 	// the width (a convex front facing the sensor has k > 0).

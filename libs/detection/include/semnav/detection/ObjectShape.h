@@ -19,7 +19,7 @@ namespace semnav
 class ObjectShape
 {
 public:
-	static constexpr int kFeatures = 29;
+	static constexpr int kFeatures = 30;
 	using Features = std::array<float, kFeatures>;
 
 	/** Short names of the features, in order. */
