@@ -4,6 +4,7 @@
 // precision / recall per class, issue 4's rule).
 #include <semnav/common/AtomicFile.h>
 #include <semnav/common/CommandLine.h>
+#include <semnav/common/DatasetListArg.h>
 #include <semnav/common/ProgressBar.h>
 #include <semnav/detection/CascadeDetector.h>
 #include <semnav/detection/DetectionImage.h>
@@ -161,11 +162,8 @@ int main(int argc, char** argv)
 	    "are visible; a detection is a true positive when its box has IoU >= "
 	    "0.3 with a not yet matched object of its label.");
 	auto& cmd = cli.cmd();
-	TCLAP::ValueArg<std::string> argDatasets(
-	    "", "datasets", "Dataset directories (semnav-sim output); required",
-	    false, "", "D1 [D2...]", cmd);
-	TCLAP::UnlabeledMultiArg<std::string> argMore(
-	    "more", "more dataset directories", false, "D2...", cmd);
+	semnav::DatasetListArg argDatasets(
+	    cmd, "Dataset directories (semnav-sim output); required");
 	TCLAP::ValueArg<std::string> argConfig(
 	    "", "config", "Detector INI file (config/cascade.ini); required", false,
 	    "", "C.ini", cmd);
@@ -181,11 +179,11 @@ int main(int argc, char** argv)
 	    "and the nearest candidate's IoU and fate)",
 	    cmd, false);
 	if (const auto code = cli.parse(argc, argv)) return *code;
-	for (auto* a : {&argDatasets, &argConfig})
+	const std::vector<std::string> datasets = argDatasets.values();
+	if (datasets.empty()) return cli.usageError("missing --datasets");
+	for (auto* a : {&argConfig})
 		if (a->getValue().empty())
 			return cli.usageError("missing --" + a->getName());
-	std::vector<std::string> datasets{argDatasets.getValue()};
-	for (const auto& d : argMore.getValue()) datasets.push_back(d);
 
 	return cli.run(
 	    [&]

@@ -5,6 +5,7 @@
 #include <semnav/cascade/CascadeXml.h>
 #include <semnav/common/AtomicFile.h>
 #include <semnav/common/CommandLine.h>
+#include <semnav/common/DatasetListArg.h>
 #include <semnav/common/Error.h>
 #include <semnav/common/ProgressBar.h>
 #include <semnav/detection/CascadeTraining.h>
@@ -31,14 +32,10 @@ int main(int argc, char** argv)
 	TCLAP::ValueArg<std::string> argLabel(
 	    "", "label", "Object class: washbasin, wastebasket or stairs; required",
 	    false, "", "L", cmd);
-	TCLAP::ValueArg<std::string> argDatasets(
-	    "", "datasets",
+	semnav::DatasetListArg argDatasets(
+	    cmd,
 	    "Dataset directories written by semnav-sim (rawlog + labels); the "
-	    "first one follows --datasets, more may follow it; required",
-	    false, "", "D1 [D2...]", cmd);
-	TCLAP::UnlabeledMultiArg<std::string> argMore(
-	    "more", "more dataset directories (after --datasets D1)", false,
-	    "D2...", cmd);
+	    "first one follows --datasets, more may follow it; required");
 	TCLAP::ValueArg<std::string> argOut(
 	    "", "out", "Output cascade XML; required", false, "", "L.xml", cmd);
 	TCLAP::ValueArg<std::string> argSeed(
@@ -64,7 +61,9 @@ int main(int argc, char** argv)
 	TCLAP::SwitchArg argJson(
 	    "", "json", "Print a JSON summary on stdout", cmd, false);
 	if (const auto code = cli.parse(argc, argv)) return *code;
-	for (auto* a : {&argLabel, &argDatasets})
+	const std::vector<std::string> datasets = argDatasets.values();
+	if (datasets.empty()) return cli.usageError("missing --datasets");
+	for (auto* a : {&argLabel})
 		if (a->getValue().empty())
 			return cli.usageError("missing --" + a->getName());
 	if (argScore.getValue().empty() && argOut.getValue().empty())
@@ -74,8 +73,6 @@ int main(int argc, char** argv)
 		return cli.usageError(
 		    "--seed must be a non-negative integer, got '" +
 		    argSeed.getValue() + "'");
-	std::vector<std::string> datasets{argDatasets.getValue()};
-	for (const auto& d : argMore.getValue()) datasets.push_back(d);
 
 	return cli.run(
 	    [&]

@@ -2,6 +2,7 @@
 // semnav-train-shape: trains one class's 3D shape model (ShapeVerifier) on
 // the cascade's candidates in simulated datasets.
 #include <semnav/common/CommandLine.h>
+#include <semnav/common/DatasetListArg.h>
 #include <semnav/common/ProgressBar.h>
 #include <semnav/detection/ShapeTraining.h>
 #include <semnav/detection/ShapeVerifier.h>
@@ -27,11 +28,8 @@ int main(int argc, char** argv)
 	TCLAP::ValueArg<std::string> argLabel(
 	    "", "label", "Object class: washbasin, wastebasket or stairs; required",
 	    false, "", "L", cmd);
-	TCLAP::ValueArg<std::string> argDatasets(
-	    "", "datasets", "Dataset directories (semnav-sim output); required",
-	    false, "", "D1 [D2...]", cmd);
-	TCLAP::UnlabeledMultiArg<std::string> argMore(
-	    "more", "more dataset directories", false, "D2...", cmd);
+	semnav::DatasetListArg argDatasets(
+	    cmd, "Dataset directories (semnav-sim output); required");
 	TCLAP::ValueArg<std::string> argConfig(
 	    "", "config", "Detector INI file (config/cascade.ini); required", false,
 	    "", "C.ini", cmd);
@@ -46,8 +44,8 @@ int main(int argc, char** argv)
 	TCLAP::ValueArg<int> argStages(
 	    "", "max-stages",
 	    "Only the cascade's first N stages while collecting (-1: the "
-	    "config's); default 12",
-	    false, 12, "N", cmd);
+	    "config's); default 10",
+	    false, 10, "N", cmd);
 	TCLAP::ValueArg<double> argBalance(
 	    "", "max-objects-per-other",
 	    "At most this many object samples per other sample (0: all); "
@@ -66,11 +64,11 @@ int main(int argc, char** argv)
 	TCLAP::SwitchArg argJson(
 	    "", "json", "Print a JSON summary on stdout", cmd, false);
 	if (const auto code = cli.parse(argc, argv)) return *code;
-	for (auto* a : {&argLabel, &argDatasets, &argConfig, &argOut})
+	const std::vector<std::string> datasets = argDatasets.values();
+	if (datasets.empty()) return cli.usageError("missing --datasets");
+	for (auto* a : {&argLabel, &argConfig, &argOut})
 		if (a->getValue().empty())
 			return cli.usageError("missing --" + a->getName());
-	std::vector<std::string> datasets{argDatasets.getValue()};
-	for (const auto& d : argMore.getValue()) datasets.push_back(d);
 
 	return cli.run(
 	    [&]
