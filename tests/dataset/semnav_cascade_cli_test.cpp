@@ -170,3 +170,63 @@ TEST_F(SemnavCascadeCli, TrainDetectAndPerceive)
 	EXPECT_EQ(o.at("fn"), dj.at("objects").at("washbasin").at("fn"));
 	EXPECT_TRUE(fs::exists(kTmp / "perceive" / "sweep_0000_detections.png"));
 }
+
+TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
+{
+	// The shipped washbasin cascade's candidates in test_a: a shape model,
+	// the same bytes for the same seed, and one the detector loads.
+	const fs::path ini = kTmp / "shape.ini";
+	{
+		std::ofstream o(ini);
+		o << "[CascadeDetector]\nclasses = washbasin\nrange_scales = true\n"
+		     "[CascadeDetector.washbasin]\ncascade = "
+		  << kSource
+		  << "/datasets/cascades/washbasin.xml\n"
+		     "shape_model = washbasin-shape.xml.gz\nmax_stages = 14\n"
+		     "min_neighbors = 1\n";
+	}
+	const std::string out = (kTmp / "washbasin-shape.xml.gz").string();
+	const std::string args = "--label washbasin --datasets " + sim().string() +
+	                         " --config " + ini.string() + " --out " + out +
+	                         " --trees 20 --max-samples 2000 --seed 3";
+	// The config names a shape model not written yet: training needs none.
+	const AppRun r = runApp("semnav-train-shape", args + " --json");
+	ASSERT_EQ(r.code, 0) << r.err;
+	const auto j = nlohmann::json::parse(r.out);
+	EXPECT_EQ(j.at("sweeps"), 26);
+	EXPECT_GT(j.at("objects").get<int>(), 0);
+	EXPECT_GT(j.at("others").get<int>(), 0);
+	EXPECT_LE(j.at("objects").get<int>() + j.at("others").get<int>(), 2000);
+	const std::string first = readFile(out);
+	const AppRun again = runApp("semnav-train-shape", args);
+	ASSERT_EQ(again.code, 0) << again.err;
+	EXPECT_EQ(readFile(out), first);
+	const AppRun det = runApp(
+	    "semnav-detect", "--datasets " + sim().string() + " --config " +
+	                         ini.string() + " --json");
+	ASSERT_EQ(det.code, 0) << det.err;
+	EXPECT_GT(
+	    nlohmann::json::parse(det.out).at("objects").at("washbasin").at("tp"),
+	    0);
+	// Bad input: one line, exit 1 (unknown label, missing dataset, a
+	// corrupt model named by the config); bad usage: exit 2.
+	std::ofstream(kTmp / "washbasin-shape.xml.gz") << "not a forest";
+	const AppRun corrupt = runApp(
+	    "semnav-detect",
+	    "--datasets " + sim().string() + " --config " + ini.string());
+	EXPECT_EQ(corrupt.code, 1);
+	EXPECT_EQ(lineCount(corrupt.err), 1u) << corrupt.err;
+	EXPECT_NE(corrupt.err.find("washbasin-shape.xml.gz"), std::string::npos);
+	for (const std::string bad :
+	     {"--label sofa --datasets " + sim().string(),
+	      std::string("--label washbasin --datasets /nonexistent")})
+	{
+		const AppRun e = runApp(
+		    "semnav-train-shape", bad + " --config " + ini.string() +
+		                              " --out " + (kTmp / "x.xml.gz").string());
+		EXPECT_EQ(e.code, 1) << bad;
+		EXPECT_EQ(lineCount(e.err), 1u) << bad << ": " << e.err;
+	}
+	EXPECT_FALSE(fs::exists(kTmp / "x.xml.gz"));
+	EXPECT_EQ(runApp("semnav-train-shape", "--label washbasin").code, 2);
+}
