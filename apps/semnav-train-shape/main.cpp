@@ -115,8 +115,8 @@ int main(int argc, char** argv)
 			    std::cout << j.dump() << std::endl;
 		    else
 			    std::printf(
-			        "%s: %zu sweeps, %zu object and %zu other candidates "
-			        "(%zu ambiguous left out) -> %s\n",
+			        "%s: %zu sweeps, %zu object and %zu other samples "
+			        "(%zu ambiguous candidates left out) -> %s\n",
 			        argLabel.getValue().c_str(), samples.sweeps,
 			        samples.objects, samples.others, samples.ambiguous,
 			        argOut.getValue().c_str());

@@ -1370,6 +1370,9 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		m_timings.cascades += msSince(tc);
 		const auto tm = Clock::now();
 		const std::size_t first = out.size();
+		const ShapeVerifier& verifier = m_impl->verifiers[i];
+		// Per candidate, the pixels it was measured in (for the shape
+		// check's surroundings; kept only when the class has one).
 		std::vector<std::vector<cv::Point>> searched;
 		for (std::size_t j = 0; j < boxes.size(); j++)
 		{
@@ -1427,10 +1430,9 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 				    points, normals, normalMask, labels, c.measure->pixels,
 				    pixels, groundZ);
 			out.push_back(std::move(c));
-			searched.push_back(pixels);
+			if (!verifier.empty()) searched.push_back(std::move(pixels));
 		}
 		// The shape check, on the candidates duplicates do not remove.
-		const ShapeVerifier& verifier = m_impl->verifiers[i];
 		suppressDuplicates(
 		    out, first, points.size(),
 		    [&](Candidate& c)

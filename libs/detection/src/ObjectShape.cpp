@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <opencv2/core.hpp>
+#include <utility>
 
 namespace semnav
 {
@@ -89,7 +90,7 @@ ObjectShape::Features ObjectShape::describe(
 		thirds[std::size_t(r * 3)].push_back(lat[i]);
 	}
 	for (int k = 0; k < 3; k++)
-		f[12 + k] = spread(thirds[k]) / std::max(width, 0.01f);
+		f[12 + k] = spread(std::move(thirds[k])) / std::max(width, 0.01f);
 	// Surfaces: facing up, facing sideways and how the side normals turn.
 	double withNormal = 0, up = 0, side = 0, sc = 0, ss = 0, oblique = 0;
 	std::array<double, 12> sideBins{};
@@ -190,7 +191,7 @@ ObjectShape::Features ObjectShape::describe(
 	if (topPoints > 0)
 	{
 		f[24] = float(topUp / topPoints);
-		f[25] = spread(topDep);
+		f[25] = spread(std::move(topDep));
 	}
 	// Surfaces facing up: at how many heights (5 cm levels holding 3 % of
 	// them: a table has one, a flight of stairs one per step), over what
@@ -213,7 +214,7 @@ ObjectShape::Features ObjectShape::describe(
 		int filled = 0;
 		for (int l : levels) filled += l >= 0.03 * m;
 		f[26] = float(filled);
-		f[27] = spread(zs) / float(std::max(top, 0.05));
+		f[27] = spread(std::move(zs)) / float(std::max(top, 0.05));
 		mz /= m;
 		ml /= m;
 		md /= m;

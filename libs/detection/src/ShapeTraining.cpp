@@ -47,17 +47,15 @@ ShapeTraining::Samples ShapeTraining::collect(
 				for (const auto& g : objects)
 					best = std::max(
 					    best, ObjectScorer::iou(c.measure->box, g.box));
-				if (best >= params.objectIou)
-					out.objects++;
-				else if (best < params.otherIou)
-					out.others++;
-				else
+				const bool object = best >= params.objectIou;
+				if (!object && best >= params.otherIou)
 				{
 					out.ambiguous++;
 					continue;
 				}
+				(object ? out.objects : out.others)++;
 				rows.insert(rows.end(), c.shape->begin(), c.shape->end());
-				isObject.push_back(best >= params.objectIou ? 1 : 0);
+				isObject.push_back(object ? 1 : 0);
 			}
 			out.sweeps++;
 			if (progress) progress(dir, i + 1, sweeps.size());

@@ -108,7 +108,6 @@ void SemanticMap::insert(
 	std::vector<float> roughSum(g.cellCount(), 0.0f);
 	std::vector<uint16_t> roughN(g.cellCount(), 0);
 	std::vector<int> cellOfPixel(static_cast<std::size_t>(rows) * cols, -1);
-	if (!exists(kStairsSweeps)) add(kStairsSweeps, 0);  // a map saved before
 	auto& stairsLayer = get(kStairsSweeps);
 	std::vector<uint8_t> stairsHere(g.cellCount(), 0);
 	for (const auto& p : pts)
@@ -371,21 +370,19 @@ void SemanticMap::centreOnCells(ObjectInstance& o) const
 		return ls.contains(Label::Stairs) && !ls.contains(Label::Wall);
 	};
 	// Cells labelled in too few sweeps, against the footprint's most
-	// labelled one, are no part of the flight.
-	const std::vector<float>* sweeps =
-	    exists(kStairsSweeps) ? &get(kStairsSweeps) : nullptr;
+	// labelled one, are no part of the flight (a map saved without the
+	// counts loads them as 0: every labelled cell counts).
+	const auto& sweeps = get(kStairsSweeps);
 	float most = 0;
-	if (sweeps)
-		for (int cy = y0; cy <= y1; cy++)
-			for (int cx = x0; cx <= x1; cx++)
-				if (labelled(cx, cy))
-					most = std::max(most, (*sweeps)[g.index(cy, cx)]);
+	for (int cy = y0; cy <= y1; cy++)
+		for (int cx = x0; cx <= x1; cx++)
+			if (labelled(cx, cy))
+				most = std::max(most, sweeps[g.index(cy, cx)]);
 	const float least =
 	    std::max(1.0f, static_cast<float>(m_options.stairsMinCellShare) * most);
-	const auto stairs = [&](int cx, int cy)
-	{
+	const auto stairs = [&](int cx, int cy) {
 		return labelled(cx, cy) &&
-		       (!sweeps || most <= 0 || (*sweeps)[g.index(cy, cx)] >= least);
+		       (most <= 0 || sweeps[g.index(cy, cx)] >= least);
 	};
 	// Seeds: stairs cells within half the merge distance of a sighting.
 	const int w = x1 - x0 + 1;

@@ -23,6 +23,7 @@ public:
 	{
 		/** CV_32F, one ObjectShape::Features per row; CV_32S 1 / 0. */
 		cv::Mat features, isObject;
+		/** The object and other samples kept (after the subsets). */
 		std::size_t objects = 0, others = 0;
 		/** Candidates neither clearly an object nor clearly not (left out). */
 		std::size_t ambiguous = 0;
