@@ -39,6 +39,7 @@ void buildMap(SemanticMap& m)
 	d.imageBox = cv::Rect(0, 0, 3, 1);
 	d.centroid = {1.5, 0.8, 0.2};
 	d.extent = {0.3, 0.3, 0.4};
+	d.shapeScore = 0.75;
 	f.labeled.detections = {d};
 	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(1, 1, 0.3));
 	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(1.2, 1, 0.35));
@@ -108,6 +109,8 @@ TEST(MapIO, SaveThenLoadGivesTheSameMap)
 	EXPECT_EQ(ob.id, oa.id);
 	EXPECT_EQ(ob.label, Label::Wastebasket);
 	EXPECT_EQ(ob.observations, 2u);
+	EXPECT_DOUBLE_EQ(ob.bestShapeScore, 0.75);
+	EXPECT_EQ(b.reported(ob), a.reported(oa));
 	EXPECT_NEAR(ob.centroid.x, oa.centroid.x, 1e-9);
 	EXPECT_NEAR(ob.maxCorner.y, oa.maxCorner.y, 1e-9);
 	EXPECT_EQ(b.sweepsInserted(), 2u);

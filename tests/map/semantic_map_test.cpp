@@ -177,6 +177,16 @@ TEST(ObjectInstance, OutlyingSightingsDoNotDragTheCentroid)
 	EXPECT_NEAR(two.centroid.x, 1.0, 1e-9);
 }
 
+TEST(ObjectInstance, InlierSightingsLieNearTheirMedian)
+{
+	ObjectInstance o;
+	o.sightings = {{2.6, 0, 0}, {2.7, 0.1, 0}, {4.3, 0, 0}, {2.5, -0.1, 0}};
+	const auto in = o.inlierSightings(0.6);
+	ASSERT_EQ(in.size(), 3u);
+	for (const auto& s : in) EXPECT_LT(s.x, 3.0);
+	EXPECT_EQ(o.inlierSightings(2.0).size(), 4u);
+}
+
 TEST(ObjectInstance, TypicalSizeIsTheMedianDetectionNotTheUnion)
 {
 	ObjectInstance o;
@@ -324,6 +334,85 @@ TEST(SemanticMap, AOneOffStairsLabelBesideAFlightDoesNotMoveIt)
 	}
 }
 
+TEST(SemanticMap, StairsCentreIgnoresAnOutlyingSighting)
+{
+	// The flight above, detected in four sweeps; in two more a table
+	// 1.7 m beyond its centre (x 4.0..4.6) is taken for stairs, its box so
+	// wide that it overlaps the flight's and merges with it.
+	std::vector<FakePoint> flight, withTable;
+	for (double x = 2.0; x <= 3.2; x += 0.03)
+		for (double y = -0.6; y <= 0.6; y += 0.03)
+			flight.push_back({x, y, 0.2 + 0.3 * (x - 2.0), Label::Stairs});
+	withTable = flight;
+	for (double x = 4.0; x <= 4.6; x += 0.03)
+		for (double y = -0.3; y <= 0.3; y += 0.03)
+			withTable.push_back({x, y, 0.7, Label::Stairs});
+	SemanticMap m;
+	for (int k = 0; k < 6; k++)
+	{
+		const auto f = k < 4 ? detectionSweep(
+		                           Label::Stairs, {2.6, 0.0, 0.4},
+		                           {1.2, 1.2, 0.8}, flight)
+		                     : detectionSweep(
+		                           Label::Stairs, {4.3, 0.0, 0.4},
+		                           {2.6, 1.2, 0.8}, withTable);
+		m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
+	}
+	const auto st = m.instances(Label::Stairs);
+	ASSERT_EQ(st.size(), 1u);
+	EXPECT_EQ(st[0].observations, 6u);
+	// The table's cells (2 of 6 sweeps) pass the cell share, but no
+	// sighting near the median reaches them.
+	EXPECT_NEAR(st[0].centroid.x, 2.6, 0.06);
+	EXPECT_NEAR(st[0].centroid.y, 0.0, 0.06);
+}
+
+TEST(SemanticMap, DoubtfulObjectsNeedMoreEvidence)
+{
+	const mrpt::poses::CPose2D pose(0, 0, 0);
+	auto seen = [&](SemanticMap& m, double shapeScore)
+	{
+		auto f = detectionSweep(
+		    Label::Wastebasket, {2.0, 0.2, 0.2}, {0.3, 0.3, 0.4}, {});
+		f.labeled.detections[0].shapeScore = shapeScore;
+		m.insert(f.sweep, f.labeled, pose);
+	};
+	// One sure detection is an object; one doubtful one is not, two are.
+	{
+		SemanticMap m;
+		seen(m, 0.99);
+		EXPECT_EQ(m.instances(Label::Wastebasket).size(), 1u);
+	}
+	{
+		SemanticMap m;
+		seen(m, 0.6);
+		ASSERT_EQ(m.allInstances().size(), 1u);
+		EXPECT_TRUE(m.instances().empty());
+		seen(m, 0.5);
+		ASSERT_EQ(m.instances(Label::Wastebasket).size(), 1u);
+		EXPECT_DOUBLE_EQ(m.instances()[0].bestShapeScore, 0.6);
+	}
+	{
+		SemanticMap::TOptions o;
+		o.unsureMinObservations = 1;
+		SemanticMap m(o);
+		seen(m, 0.6);
+		EXPECT_EQ(m.instances().size(), 1u) << "rule off";
+	}
+	// Detected in 4 of 7 views: enough for a sure object only.
+	SemanticMap m;
+	ObjectInstance inst;
+	inst.label = Label::Wastebasket;
+	inst.observations = 4;
+	inst.views = 7;
+	inst.bestShapeScore = 1.0;
+	EXPECT_TRUE(m.reported(inst));
+	inst.bestShapeScore = 0.9;
+	EXPECT_FALSE(m.reported(inst));
+	inst.views = 6;
+	EXPECT_TRUE(m.reported(inst));
+}
+
 TEST(SemanticMap, GoalRegionIsFreeCellsWithinReach)
 {
 	// A toy washbasin (0.35 m high, no wall): the plausibility checks off.
@@ -375,7 +464,8 @@ TEST(SemanticMapOptions, ShippedConfigLoadsAndBadValuesAreRejected)
 	     {"washbasin_min_top_m = -1", "washbasin_max_wall_distance_m = 6",
 	      "stairs_min_detection_ratio = 1.5", "stairs_max_bottom_m = -0.1",
 	      "view_max_bearing_deg = 200", "stairs_centroid_from_cells = maybe",
-	      "stairs_min_cell_share = 2"})
+	      "stairs_min_cell_share = 2", "sure_shape_score = 1.1",
+	      "sure_min_detection_ratio = -0.1", "unsure_min_observations = 0"})
 	{
 		mrpt::config::CConfigFileMemory b(
 		    std::string("[SemanticMap]\n") + badKey + "\n");
@@ -391,6 +481,9 @@ TEST(SemanticMapOptions, ShippedConfigLoadsAndBadValuesAreRejected)
 	changed.viewMaxBearingDeg = 80;
 	changed.stairsCentroidFromCells = false;
 	changed.stairsMinCellShare = 0.4;
+	changed.sureShapeScore = 0.8;
+	changed.sureMinDetectionRatio = 0.45;
+	changed.unsureMinObservations = 3;
 	const SemanticMap::TOptions back =
 	    test::savedAndLoaded(changed, "SemanticMap");
 	EXPECT_DOUBLE_EQ(back.washbasinMinTop, 0.7);
@@ -400,6 +493,9 @@ TEST(SemanticMapOptions, ShippedConfigLoadsAndBadValuesAreRejected)
 	EXPECT_DOUBLE_EQ(back.viewMaxBearingDeg, 80);
 	EXPECT_FALSE(back.stairsCentroidFromCells);
 	EXPECT_DOUBLE_EQ(back.stairsMinCellShare, 0.4);
+	EXPECT_DOUBLE_EQ(back.sureShapeScore, 0.8);
+	EXPECT_DOUBLE_EQ(back.sureMinDetectionRatio, 0.45);
+	EXPECT_EQ(back.unsureMinObservations, 3);
 	mrpt::config::CConfigFileMemory typo(
 	    "[TravelCost]\nrobot_type = hovercraft\n");
 	EXPECT_THROW(o.cost.loadFromConfigFile(typo, "TravelCost"), ConfigError);

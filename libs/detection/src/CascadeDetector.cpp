@@ -1472,6 +1472,7 @@ void CascadeDetector::detect(const Sweep& sweep, LabeledSweep& ls)
 		d.centroid = c.measure->centroid;
 		d.extent = c.measure->extent;
 		d.score = c.neighbours;
+		d.shapeScore = c.shapeScore;
 		ls.detections.push_back(d);
 		if (m_options.labelPixels && !ls.labels.empty())
 			for (const auto& p : c.measure->pixels)

@@ -267,6 +267,7 @@ void MapIO::save(const SemanticMap& map, const std::string& dir)
 		emitPoint(e, o.maxCorner);
 		e << YAML::Key << "observations" << YAML::Value << o.observations;
 		e << YAML::Key << "views" << YAML::Value << o.views;
+		e << YAML::Key << "shape_score" << YAML::Value << o.bestShapeScore;
 		e << YAML::EndMap;
 	}
 	e << YAML::EndSeq;
@@ -366,6 +367,9 @@ void MapIO::load(const std::string& dir, SemanticMap& map)
 		    "observations");
 		o.views = n["views"] ? as<std::size_t>(n["views"], file, "views")
 		                     : o.observations;
+		if (n["shape_score"])
+			o.bestShapeScore =
+			    as<double>(n["shape_score"], file, "shape_score");
 		objs.push_back(o);
 	}
 	const auto sweeps = as<std::size_t>(

@@ -42,6 +42,9 @@ void SemanticMap::TOptions::loadFromConfigFile(
 	     "door_min_observations",
 	     "min_detection_ratio",
 	     "stairs_min_detection_ratio",
+	     "sure_shape_score",
+	     "sure_min_detection_ratio",
+	     "unsure_min_observations",
 	     "view_min_pixels",
 	     "view_max_bearing_deg",
 	     "washbasin_min_top_m",
@@ -75,6 +78,12 @@ void SemanticMap::TOptions::loadFromConfigFile(
 	    readChecked(c, s, "min_detection_ratio", minDetectionRatio, 0, 1);
 	stairsMinDetectionRatio = readChecked(
 	    c, s, "stairs_min_detection_ratio", stairsMinDetectionRatio, 0, 1);
+	sureShapeScore =
+	    readChecked(c, s, "sure_shape_score", sureShapeScore, 0, 1);
+	sureMinDetectionRatio = readChecked(
+	    c, s, "sure_min_detection_ratio", sureMinDetectionRatio, 0, 1);
+	unsureMinObservations = readCheckedInt(
+	    c, s, "unsure_min_observations", unsureMinObservations, 1, 1000);
 	viewMinPixels =
 	    readCheckedInt(c, s, "view_min_pixels", viewMinPixels, 0, 1000000);
 	viewMaxBearingDeg =
@@ -111,6 +120,9 @@ void SemanticMap::TOptions::saveToConfigFile(
 	c.write(s, "door_min_observations", doorMinObservations);
 	c.write(s, "min_detection_ratio", minDetectionRatio);
 	c.write(s, "stairs_min_detection_ratio", stairsMinDetectionRatio);
+	c.write(s, "sure_shape_score", sureShapeScore);
+	c.write(s, "sure_min_detection_ratio", sureMinDetectionRatio);
+	c.write(s, "unsure_min_observations", unsureMinObservations);
 	c.write(s, "view_min_pixels", viewMinPixels);
 	c.write(s, "view_max_bearing_deg", viewMaxBearingDeg);
 	c.write(s, "washbasin_min_top_m", washbasinMinTop);
@@ -302,12 +314,16 @@ void SemanticMap::updateCosts()
 
 bool SemanticMap::reported(const ObjectInstance& o) const
 {
-	const int minObs = o.label == Label::Door ? m_options.doorMinObservations
-	                                          : m_options.minObservations;
+	const bool door = o.label == Label::Door;
+	const bool sure = o.bestShapeScore >= m_options.sureShapeScore;
+	int minObs =
+	    door ? m_options.doorMinObservations : m_options.minObservations;
+	if (!door && !sure)
+		minObs = std::max(minObs, m_options.unsureMinObservations);
 	if (static_cast<int>(o.observations) < minObs) return false;
-	const double ratio = o.label == Label::Stairs
-	                         ? m_options.stairsMinDetectionRatio
-	                         : m_options.minDetectionRatio;
+	double ratio = o.label == Label::Stairs ? m_options.stairsMinDetectionRatio
+	                                        : m_options.minDetectionRatio;
+	if (sure) ratio = std::min(ratio, m_options.sureMinDetectionRatio);
 	if (o.label != Label::Door && static_cast<double>(o.observations) <
 	                                  ratio * static_cast<double>(o.views))
 		return false;

@@ -238,7 +238,7 @@ void SemanticMap::insert(
 		int id = 0;
 		mergeObject(
 		    d.label, wc, {std::max(d.extent.x, d.extent.y), 0, d.extent.z}, lo,
-		    hi, seenThisSweep, id);
+		    hi, d.shapeScore, seenThisSweep, id);
 		if (std::find(viewedThisSweep.begin(), viewedThisSweep.end(), id) ==
 		    viewedThisSweep.end())
 		{
@@ -271,8 +271,8 @@ void SemanticMap::insert(
 		robot.composePoint(reg.centroid, wc);
 		int id = 0;
 		mergeObject(
-		    Label::Door, wc, {reg.width, 0, reg.height}, lo, hi, seenThisSweep,
-		    id);
+		    Label::Door, wc, {reg.width, 0, reg.height}, lo, hi, 1.0,
+		    seenThisSweep, id);
 		paint(
 		    id, reg.imageBox,
 		    [&](int r, int c)
@@ -384,14 +384,17 @@ void SemanticMap::centreOnCells(ObjectInstance& o) const
 		return labelled(cx, cy) &&
 		       (most <= 0 || sweeps[g.index(cy, cx)] >= least);
 	};
-	// Seeds: stairs cells within half the merge distance of a sighting.
+	// Seeds: stairs cells within half the merge distance of a sighting
+	// that is no outlier (one farther than the merge distance from the
+	// sightings' median joined by footprint overlap only: a detection of
+	// a table beside the flight).
 	const int w = x1 - x0 + 1;
 	std::vector<uint8_t> mark(static_cast<std::size_t>(w) * (y1 - y0 + 1), 0);
 	std::vector<std::pair<int, int>> queue;
 	const double reach = m_options.mergeDistance / 2;
-	for (const auto& s : o.sightings.empty()
-	                         ? std::vector<mrpt::math::TPoint3D>{o.centroid}
-	                         : o.sightings)
+	auto seeds = o.inlierSightings(m_options.mergeDistance);
+	if (seeds.empty()) seeds.push_back(o.centroid);
+	for (const auto& s : seeds)
 		for (int cy = y0; cy <= y1; cy++)
 			for (int cx = x0; cx <= x1; cx++)
 			{
@@ -436,8 +439,8 @@ void SemanticMap::centreOnCells(ObjectInstance& o) const
 void SemanticMap::mergeObject(
     Label label, const mrpt::math::TPoint3D& centroid,
     const mrpt::math::TPoint3D& size, const mrpt::math::TPoint3D& minCorner,
-    const mrpt::math::TPoint3D& maxCorner, std::vector<int>& seenThisSweep,
-    int& id)
+    const mrpt::math::TPoint3D& maxCorner, double shapeScore,
+    std::vector<int>& seenThisSweep, int& id)
 {
 	// The nearest instance of the label within mergeDistance or whose
 	// footprint overlaps the detection's.
@@ -468,6 +471,7 @@ void SemanticMap::mergeObject(
 		o.minCorner = minCorner;
 		o.maxCorner = maxCorner;
 		o.observations = 1;
+		o.bestShapeScore = shapeScore;
 		m_instances.push_back(o);
 		seenThisSweep.push_back(o.id);
 		id = o.id;
@@ -483,6 +487,7 @@ void SemanticMap::mergeObject(
 		best->observations++;
 		seenThisSweep.push_back(best->id);
 	}
+	best->bestShapeScore = std::max(best->bestShapeScore, shapeScore);
 	best->minCorner = {
 	    std::min(best->minCorner.x, minCorner.x),
 	    std::min(best->minCorner.y, minCorner.y),

@@ -34,6 +34,9 @@ struct ObjectInstance
 	/** Sweeps that had it in view (line of sight to its centroid within
 	 * the sweep's field of view and range), detected or not. */
 	std::size_t views = 0;
+	/** The best shape check score of its detections (Detection::shapeScore;
+	 * 1 for doors and classes without a shape model). */
+	double bestShapeScore = 1;
 
 	/** Adds one sweep's detection centroid and recomputes `centroid` as
 	 * the mean of the sightings within `inlierRadius` (horizontally) of
@@ -45,6 +48,17 @@ struct ObjectInstance
 		if (sightings.empty() && observations > 0)
 			sightings.push_back(centroid);
 		sightings.push_back(c);
+		const auto in = inlierSightings(inlierRadius);
+		const auto& used = in.empty() ? sightings : in;
+		mrpt::math::TPoint3D sum(0, 0, 0);
+		for (const auto& s : used) sum = sum + s;
+		centroid = sum * (1.0 / used.size());
+	}
+
+	/** The sightings within `inlierRadius` (horizontally) of their per-axis
+	 * median. */
+	std::vector<mrpt::math::TPoint3D> inlierSightings(double inlierRadius) const
+	{
 		auto median = [&](double mrpt::math::TPoint3D::*axis)
 		{
 			std::vector<double> v;
@@ -56,19 +70,11 @@ struct ObjectInstance
 		const mrpt::math::TPoint3D m(
 		    median(&mrpt::math::TPoint3D::x), median(&mrpt::math::TPoint3D::y),
 		    median(&mrpt::math::TPoint3D::z));
-		mrpt::math::TPoint3D sumIn(0, 0, 0), sumAll(0, 0, 0);
-		std::size_t in = 0;
+		std::vector<mrpt::math::TPoint3D> in;
 		for (const auto& s : sightings)
-		{
-			sumAll = sumAll + s;
 			if (std::hypot(s.x - m.x, s.y - m.y) <= inlierRadius)
-			{
-				sumIn = sumIn + s;
-				in++;
-			}
-		}
-		centroid =
-		    in > 0 ? sumIn * (1.0 / in) : sumAll * (1.0 / sightings.size());
+				in.push_back(s);
+		return in;
 	}
 
 	/** Typical size of one detection of it (per-axis median of

@@ -86,6 +86,17 @@ public:
 		 * of the sweeps that see it (a table taken for stairs: one in
 		 * three or fewer). */
 		double stairsMinDetectionRatio = 0.6;
+		/** A cascade object is sure when one of its detections scored at
+		 * least this on its class's shape check
+		 * (ObjectInstance::bestShapeScore). */
+		double sureShapeScore = 0.95;
+		/** Sure objects need only this detection ratio (if lower than
+		 * their class's): a real object the cascade missed in a few
+		 * looks. */
+		double sureMinDetectionRatio = 0.5;
+		/** Objects that are not sure need this many detections: a single
+		 * doubtful detection is no object. */
+		int unsureMinObservations = 2;
 		/** A sweep has an object in view when it has line of sight to its
 		 * centroid and the object would cover at least this many pixels
 		 * of it (from its extent and distance). */
@@ -254,8 +265,8 @@ private:
 	void mergeObject(
 	    Label label, const mrpt::math::TPoint3D& centroid,
 	    const mrpt::math::TPoint3D& size, const mrpt::math::TPoint3D& minCorner,
-	    const mrpt::math::TPoint3D& maxCorner, std::vector<int>& seenThisSweep,
-	    int& id);
+	    const mrpt::math::TPoint3D& maxCorner, double shapeScore,
+	    std::vector<int>& seenThisSweep, int& id);
 
 	TOptions m_options;
 	TravelCostModel m_costModel;

@@ -20,6 +20,9 @@ struct Detection
 	mrpt::math::TPoint3D extent{0, 0, 0};
 	/** Detector confidence (larger = surer). */
 	double score = 0;
+	/** The class's 3D shape check score in [0, 1] (1 when the class has
+	 * no shape model). */
+	double shapeScore = 1;
 };
 
 }  // namespace semnav
