@@ -367,6 +367,37 @@ TEST(SemanticMap, StairsCentreIgnoresAnOutlyingSighting)
 	EXPECT_NEAR(st[0].centroid.y, 0.0, 0.06);
 }
 
+TEST(SemanticMap, ABoxHoldingTwoObjectsDoesNotJoinThem)
+{
+	// Two wastebaskets 1.1 m apart; the first detection's box held both
+	// (centroid between them, box over both), the next ones one each.
+	const mrpt::poses::CPose2D pose(0, 0, 0);
+	for (const double joinDistance : {0.4, 0.6})
+	{
+		SemanticMap::TOptions o;
+		o.objectMergeDistance = joinDistance;
+		SemanticMap m(o);
+		const std::vector<std::pair<double, double>> seen = {
+		    {0.55, 1.4}, {0.0, 0.3}, {1.1, 0.3}, {0.02, 0.3}, {1.08, 0.3}};
+		for (const auto& [y, width] : seen)
+		{
+			const auto f = detectionSweep(
+			    Label::Wastebasket, {2.0, y, 0.2}, {0.3, width, 0.4}, {});
+			m.insert(f.sweep, f.labeled, pose);
+		}
+		if (joinDistance < 0.55)
+		{
+			ASSERT_EQ(m.allInstances().size(), 3u);
+			EXPECT_EQ(m.allInstances()[1].observations, 2u);
+			EXPECT_NEAR(m.allInstances()[1].centroid.y, 0.01, 1e-6);
+			EXPECT_EQ(m.allInstances()[2].observations, 2u);
+			EXPECT_NEAR(m.allInstances()[2].centroid.y, 1.09, 1e-6);
+		}
+		else
+			EXPECT_EQ(m.allInstances().size(), 1u) << "one sighting links all";
+	}
+}
+
 TEST(SemanticMap, DoubtfulObjectsNeedMoreEvidence)
 {
 	const mrpt::poses::CPose2D pose(0, 0, 0);
@@ -465,7 +496,8 @@ TEST(SemanticMapOptions, ShippedConfigLoadsAndBadValuesAreRejected)
 	      "stairs_min_detection_ratio = 1.5", "stairs_max_bottom_m = -0.1",
 	      "view_max_bearing_deg = 200", "stairs_centroid_from_cells = maybe",
 	      "stairs_min_cell_share = 2", "sure_shape_score = 1.1",
-	      "sure_min_detection_ratio = -0.1", "unsure_min_observations = 0"})
+	      "sure_min_detection_ratio = -0.1", "unsure_min_observations = 0",
+	      "object_merge_distance_m = 0"})
 	{
 		mrpt::config::CConfigFileMemory b(
 		    std::string("[SemanticMap]\n") + badKey + "\n");
@@ -484,6 +516,7 @@ TEST(SemanticMapOptions, ShippedConfigLoadsAndBadValuesAreRejected)
 	changed.sureShapeScore = 0.8;
 	changed.sureMinDetectionRatio = 0.45;
 	changed.unsureMinObservations = 3;
+	changed.objectMergeDistance = 0.3;
 	const SemanticMap::TOptions back =
 	    test::savedAndLoaded(changed, "SemanticMap");
 	EXPECT_DOUBLE_EQ(back.washbasinMinTop, 0.7);
@@ -496,6 +529,7 @@ TEST(SemanticMapOptions, ShippedConfigLoadsAndBadValuesAreRejected)
 	EXPECT_DOUBLE_EQ(back.sureShapeScore, 0.8);
 	EXPECT_DOUBLE_EQ(back.sureMinDetectionRatio, 0.45);
 	EXPECT_EQ(back.unsureMinObservations, 3);
+	EXPECT_DOUBLE_EQ(back.objectMergeDistance, 0.3);
 	mrpt::config::CConfigFileMemory typo(
 	    "[TravelCost]\nrobot_type = hovercraft\n");
 	EXPECT_THROW(o.cost.loadFromConfigFile(typo, "TravelCost"), ConfigError);

@@ -38,6 +38,7 @@ void SemanticMap::TOptions::loadFromConfigFile(
 	     "occupied_threshold",
 	     "free_threshold",
 	     "merge_distance_m",
+	     "object_merge_distance_m",
 	     "min_observations",
 	     "door_min_observations",
 	     "min_detection_ratio",
@@ -70,6 +71,8 @@ void SemanticMap::TOptions::loadFromConfigFile(
 	freeThreshold = readChecked(c, s, "free_threshold", freeThreshold, 0, 0.5);
 	mergeDistance =
 	    readChecked(c, s, "merge_distance_m", mergeDistance, 0.01, 10);
+	objectMergeDistance = readChecked(
+	    c, s, "object_merge_distance_m", objectMergeDistance, 0.01, 10);
 	minObservations =
 	    readCheckedInt(c, s, "min_observations", minObservations, 1, 1000);
 	doorMinObservations = readCheckedInt(
@@ -116,6 +119,7 @@ void SemanticMap::TOptions::saveToConfigFile(
 	c.write(s, "occupied_threshold", occupiedThreshold);
 	c.write(s, "free_threshold", freeThreshold);
 	c.write(s, "merge_distance_m", mergeDistance);
+	c.write(s, "object_merge_distance_m", objectMergeDistance);
 	c.write(s, "min_observations", minObservations);
 	c.write(s, "door_min_observations", doorMinObservations);
 	c.write(s, "min_detection_ratio", minDetectionRatio);

@@ -443,7 +443,8 @@ void SemanticMap::mergeObject(
     std::vector<int>& seenThisSweep, int& id)
 {
 	// The nearest instance of the label within mergeDistance or whose
-	// footprint overlaps the detection's.
+	// footprint overlaps the detection's (washbasins, wastebaskets: within
+	// objectMergeDistance of one of its sightings).
 	ObjectInstance* best = nullptr;
 	double bestD = std::numeric_limits<double>::infinity();
 	for (auto& o : m_instances)
@@ -454,7 +455,16 @@ void SemanticMap::mergeObject(
 		const bool overlap =
 		    o.minCorner.x <= maxCorner.x && minCorner.x <= o.maxCorner.x &&
 		    o.minCorner.y <= maxCorner.y && minCorner.y <= o.maxCorner.y;
-		if ((d < m_options.mergeDistance || overlap) && d < bestD)
+		bool joins = d < m_options.mergeDistance || overlap;
+		if (label != Label::Stairs && label != Label::Door)
+		{
+			double nearest = d;
+			for (const auto& s : o.sightings)
+				nearest = std::min(
+				    nearest, std::hypot(s.x - centroid.x, s.y - centroid.y));
+			joins = nearest < m_options.objectMergeDistance;
+		}
+		if (joins && d < bestD)
 		{
 			bestD = d;
 			best = &o;

@@ -73,6 +73,11 @@ public:
 		 * overlap (a staircase seen from several sides), are one object
 		 * (m). */
 		double mergeDistance = 0.6;
+		/** Washbasin and wastebasket detections join an instance only
+		 * within this distance of one of its sightings, footprints aside:
+		 * a first detection whose box held two washbasins side by side
+		 * must not make them one (m). */
+		double objectMergeDistance = 0.4;
 		/** Cascade objects (washbasin, wastebasket, stairs) seen in fewer
 		 * sweeps are not reported (one-off detections). */
 		int minObservations = 1;
