@@ -342,3 +342,38 @@ TEST_F(CascadeDetection, ZeroBorderGivesWindowsAtTheImageEdge)
 	// Windows reaching into the border are clipped to the edge.
 	EXPECT_GT(atEdgePadded, atEdgePlain);
 }
+
+TEST_F(CascadeDetection, ClassesInParallelGiveTheSameCandidates)
+{
+	// threads = 0 (all cores, each class on its own thread) against one
+	// thread: the same candidates in the same order, on every sweep.
+	const Simulated& s = scene();
+	PerceptionPipeline p;
+	opts.threads = 1;
+	CascadeDetector one(opts);
+	opts.threads = 0;
+	CascadeDetector all(opts);
+	std::size_t accepted = 0;
+	for (const Sweep& sw : s.sweeps)
+	{
+		const LabeledSweep ls = p.process(sw);
+		const auto run = [&](CascadeDetector& d)
+		{
+			return d.detectCandidates(
+			    sw.phis(), sw.thetas(), ls.normals, ls.normalMask, ls.points,
+			    ls.groundZ, ls.labels, ls.areaIds);
+		};
+		const auto a = run(one), b = run(all);
+		ASSERT_EQ(a.size(), b.size());
+		for (std::size_t j = 0; j < a.size(); j++)
+		{
+			EXPECT_EQ(a[j].label, b[j].label);
+			EXPECT_EQ(a[j].box, b[j].box);
+			EXPECT_EQ(a[j].accepted, b[j].accepted);
+			EXPECT_EQ(a[j].rejection, b[j].rejection);
+			EXPECT_DOUBLE_EQ(a[j].shapeScore, b[j].shapeScore);
+			accepted += a[j].accepted;
+		}
+	}
+	EXPECT_GT(accepted, 10u) << "the scene's objects are found";
+}

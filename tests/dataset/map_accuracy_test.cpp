@@ -176,10 +176,11 @@ void printInstances(const MappedScene& o, const std::vector<Label>& labels)
 		          << (o.map->reported(inst) ? " REPORTED" : " dropped")
 		          << " at (" << inst.centroid.x << ", " << inst.centroid.y
 		          << ", " << inst.centroid.z << ") " << inst.observations << "/"
-		          << inst.views << " shape " << inst.bestShapeScore << " ext (" << inst.extent().x << ", "
-		          << inst.extent().y << ", " << inst.extent().z << ") z "
-		          << inst.minCorner.z << ".." << inst.maxCorner.z
-		          << " true-same-label " << sameLabel << " m; nearest "
+		          << inst.views << " shape " << inst.bestShapeScore << " ext ("
+		          << inst.extent().x << ", " << inst.extent().y << ", "
+		          << inst.extent().z << ") z " << inst.minCorner.z << ".."
+		          << inst.maxCorner.z << " true-same-label " << sameLabel
+		          << " m; nearest "
 		          << (nearest ? labelName(nearest->label) : "-") << " #"
 		          << (nearest ? nearest->id : 0) << " "
 		          << (nearest ? objectComment(o, *nearest) : "") << " at "

@@ -174,6 +174,8 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	EXPECT_THROW(load("[CascadeDetector]\nclasses = sofa\n"), ConfigError);
 	EXPECT_THROW(
 	    load("[CascadeDetector]\nprojection = fisheye\n"), ConfigError);
+	EXPECT_THROW(load("[CascadeDetector]\nthreads = -1\n"), ConfigError);
+	EXPECT_EQ(load("[CascadeDetector]\nthreads = 0\n").threads, 0);
 	EXPECT_THROW(
 	    load(
 	        "[CascadeDetector]\nclasses = "
@@ -181,7 +183,9 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	    ConfigError);
 	// Round trip through save.
 	CascadeDetector::TOptions o;
+	o.threads = 2;
 	CascadeDetector::TOptions back = test::savedAndLoaded(o, "CascadeDetector");
+	EXPECT_EQ(back.threads, 2);
 	ASSERT_EQ(back.classes.size(), o.classes.size());
 	EXPECT_EQ(back.rangeScales, o.rangeScales);
 	EXPECT_DOUBLE_EQ(back.rangeScaleSlack, o.rangeScaleSlack);

@@ -350,12 +350,12 @@ TEST(SemanticMap, StairsCentreIgnoresAnOutlyingSighting)
 	SemanticMap m;
 	for (int k = 0; k < 6; k++)
 	{
-		const auto f = k < 4 ? detectionSweep(
-		                           Label::Stairs, {2.6, 0.0, 0.4},
-		                           {1.2, 1.2, 0.8}, flight)
-		                     : detectionSweep(
-		                           Label::Stairs, {4.3, 0.0, 0.4},
-		                           {2.6, 1.2, 0.8}, withTable);
+		const auto f =
+		    k < 4 ? detectionSweep(
+		                Label::Stairs, {2.6, 0.0, 0.4}, {1.2, 1.2, 0.8}, flight)
+		          : detectionSweep(
+		                Label::Stairs, {4.3, 0.0, 0.4}, {2.6, 1.2, 0.8},
+		                withTable);
 		m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
 	}
 	const auto st = m.instances(Label::Stairs);

@@ -8,6 +8,7 @@
 #include <semnav/cascade/RangeGate.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/ParallelFor.h>
 #include <semnav/common/Percentile.h>
 #include <semnav/common/Timing.h>
 #include <semnav/detection/CascadeDetector.h>
@@ -274,7 +275,8 @@ const std::vector<std::string>& CascadeDetector::TOptions::knownKeys()
 	    "range_scales",
 	    "range_scale_slack",
 	    "range_cut_m",
-	    "range_objects_only"};
+	    "range_objects_only",
+	    "threads"};
 	return keys;
 }
 
@@ -333,6 +335,7 @@ void CascadeDetector::TOptions::loadFromConfigFile(
 	o.rangeCut = readChecked(c, s, "range_cut_m", rangeCut, 0, 100);
 	o.rangeObjectsOnly =
 	    readCheckedBool(c, s, "range_objects_only", rangeObjectsOnly);
+	o.threads = readCheckedInt(c, s, "threads", threads, 0, 64);
 	std::string list;
 	for (const auto& k : classes) list += labelName(k.label) + " ";
 	list = c.read_string(s, "classes", list, false);
@@ -392,6 +395,7 @@ void CascadeDetector::TOptions::saveToConfigFile(
 	c.write(s, "range_scale_slack", num(rangeScaleSlack));
 	c.write(s, "range_cut_m", num(rangeCut));
 	writeBool(c, s, "range_objects_only", rangeObjectsOnly);
+	c.write(s, "threads", std::to_string(threads));
 	for (const auto& k : classes)
 		k.saveToConfigFile(c, s + "." + labelName(k.label));
 }
@@ -490,9 +494,10 @@ struct CascadeDetector::Impl
 	/** The same cascades for the range-gated search (range_scales). */
 	std::vector<CascadeEvaluator> evaluators;
 	std::vector<cv::Size> windows;
-	/** Scaled detection images by upscale, shared by the classes within
-	 * one detectCandidates() call. */
-	std::map<std::tuple<DetectionChannel, double, int, int, int>, cv::Mat>
+	/** Per class: its scaled detection images by upscale, kept within one
+	 * detectCandidates() call (classes may run on their own threads). */
+	std::vector<
+	    std::map<std::tuple<DetectionChannel, double, int, int, int>, cv::Mat>>
 	    scaled;
 	bool keepScaled = false;
 	PanoramicProjection projection;
@@ -503,7 +508,8 @@ struct CascadeDetector::Impl
 	std::vector<std::vector<ObjectProposal>> proposals;
 	/** Elevations of the first and last row of the detection image. */
 	double el0 = -M_PI / 2, el1 = M_PI / 2;
-	GatedScratch gated;
+	/** Per class. */
+	std::vector<GatedScratch> gated;
 	/** Per class (empty: no shape check). */
 	std::vector<ShapeVerifier> verifiers;
 	bool describeShapes = false;
@@ -543,6 +549,8 @@ CascadeDetector::CascadeDetector(const TOptions& options)
 		        ? ShapeVerifier()
 		        : ShapeVerifier::load(m_options.resolvePath(k.shapeModel)));
 	}
+	m_impl->scaled.resize(m_options.classes.size());
+	m_impl->gated.resize(m_options.classes.size());
 }
 
 void CascadeDetector::describeShapes(bool on)
@@ -976,7 +984,7 @@ void CascadeDetector::runCascade(
 		const int padBelow = p.rowBegin == 0 ? border : 0;
 		const auto key = std::make_tuple(
 		    m_options.channelOf(k), p.upscale, p.rowBegin, p.rowEnd, border);
-		cv::Mat& band = m_impl->scaled[key];
+		cv::Mat& band = m_impl->scaled.at(i)[key];
 		if (band.empty())
 		{
 			band = p.apply(image);
@@ -1019,7 +1027,7 @@ void CascadeDetector::runCascade(
 			rangeGatedDetect(
 			    m_impl->evaluators[i], band, r, k.scaleFactor, k.minNeighbors,
 			    minSize, maxSize, m_options.rangeGate(k, step, p.upscale),
-			    found, n, m_impl->gated);
+			    found, n, m_impl->gated.at(i));
 		}
 		else
 			classifier.detectMultiScale(
@@ -1037,8 +1045,8 @@ void CascadeDetector::runCascade(
 	}
 	if (!m_impl->keepScaled)
 	{
-		m_impl->scaled.clear();
-		m_impl->gated.levels.clear();
+		m_impl->scaled.at(i).clear();
+		m_impl->gated.at(i).levels.clear();
 	}
 }
 
@@ -1286,8 +1294,6 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		if (!images.count(ch))
 			images[ch] = detectionImage(phis, thetas, smoothed, normalMask, ch);
 	}
-	m_impl->scaled.clear();
-	m_impl->gated.levels.clear();
 	m_impl->keepScaled = true;
 	m_timings.image = msSince(t0);
 	const auto tp = Clock::now();
@@ -1355,21 +1361,29 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		}
 	}
 	m_timings.proposals = msSince(tp);
-	std::vector<Candidate> out;
-	std::vector<cv::Rect> boxes;
-	std::vector<int> neighbours;
-	std::vector<cv::Point> pixels, centre;
-	for (std::size_t i = 0; i < m_options.classes.size(); i++)
+	// Each class on its own thread (threads): the same candidates, in the
+	// order of the classes.
+	struct ClassResult
+	{
+		std::vector<Candidate> candidates;
+		double cascades = 0, sizeCheck = 0;
+	};
+	std::vector<ClassResult> results(m_options.classes.size());
+	const auto searchClass = [&](std::size_t i)
 	{
 		const TClassOptions& k = m_options.classes[i];
+		std::vector<Candidate>& out = results[i].candidates;
+		std::vector<cv::Rect> boxes;
+		std::vector<int> neighbours;
+		std::vector<cv::Point> pixels, centre;
 		const auto tc = Clock::now();
 		runCascade(
 		    i, images.at(m_options.channelOf(k)), boxes, neighbours,
 		    m_options.proposals ? &m_impl->proposals.at(i) : nullptr, step,
 		    ranges[i]);
-		m_timings.cascades += msSince(tc);
+		results[i].cascades = msSince(tc);
 		const auto tm = Clock::now();
-		const std::size_t first = out.size();
+		const std::size_t first = 0;
 		const ShapeVerifier& verifier = m_impl->verifiers[i];
 		// Per candidate, the pixels it was measured in (for the shape
 		// check's surroundings; kept only when the class has one).
@@ -1448,10 +1462,19 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 			    c.rejection = "shape";
 			    return false;
 		    });
-		m_timings.sizeCheck += msSince(tm);
+		results[i].sizeCheck = msSince(tm);
+	};
+	parallelFor(results.size(), m_options.threads, searchClass);
+	std::vector<Candidate> out;
+	for (auto& r : results)
+	{
+		m_timings.cascades += r.cascades;
+		m_timings.sizeCheck += r.sizeCheck;
+		std::move(
+		    r.candidates.begin(), r.candidates.end(), std::back_inserter(out));
 	}
-	m_impl->scaled.clear();
-	m_impl->gated.levels.clear();
+	for (auto& s : m_impl->scaled) s.clear();
+	for (auto& g : m_impl->gated) g.levels.clear();
 	m_impl->keepScaled = false;
 	m_timings.total = msSince(t0);
 	return out;

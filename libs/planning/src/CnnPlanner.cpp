@@ -2,6 +2,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/ParallelFor.h>
 #include <semnav/planning/CnnPlanner.h>
 #include <semnav/planning/PlanningErrors.h>
 
@@ -116,11 +117,6 @@ void throwEmptyGoals(const GoalLayer& goals)
 	              "radius)");
 }
 
-int resolveThreads(int t)
-{
-	if (t > 0) return t;
-	return std::max(1u, std::thread::hardware_concurrency());
-}
 }  // namespace
 
 CellIndex CnnPlanner::startCell(const GridGeometry& g, double x, double y)

@@ -237,6 +237,10 @@ public:
 		 * at most max_top_m + proposal_top_margin_m high): one of the five
 		 * range samples must be such a point. */
 		bool rangeObjectsOnly = false;
+		/** threads: classes searched in parallel on up to this many
+		 * threads (0: all cores, 1: the calling thread only); the same
+		 * candidates either way. */
+		int threads = 1;
 		/** Directory relative cascade paths are resolved against. */
 		std::string baseDir = ".";
 	};
