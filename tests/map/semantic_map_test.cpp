@@ -217,6 +217,27 @@ semnav::test::FakeSweep detectionSweep(
 	f.labeled.detections = {d};
 	return f;
 }
+
+/** A flight over x 2.0..3.2, y -0.6..0.6 (robot frame), labelled stairs. */
+std::vector<FakePoint> flight()
+{
+	std::vector<FakePoint> pts;
+	for (double x = 2.0; x <= 3.2; x += 0.03)
+		for (double y = -0.6; y <= 0.6; y += 0.03)
+			pts.push_back({x, y, 0.2 + 0.3 * (x - 2.0), Label::Stairs});
+	return pts;
+}
+
+/** The flight and a table top (x x0..x1, y -0.3..0.3, 0.7 m high) that a
+ * false detection labelled stairs too. */
+std::vector<FakePoint> flightAndTable(double x0, double x1)
+{
+	auto pts = flight();
+	for (double x = x0; x <= x1; x += 0.03)
+		for (double y = -0.3; y <= 0.3; y += 0.03)
+			pts.push_back({x, y, 0.7, Label::Stairs});
+	return pts;
+}
 }  // namespace
 
 TEST(SemanticMap, WashbasinsNeedTheirHeightAndAWall)
@@ -262,12 +283,8 @@ TEST(SemanticMap, WashbasinsNeedTheirHeightAndAWall)
 
 TEST(SemanticMap, StairsCentreOnTheirLabelledCells)
 {
-	// A flight over x 2.0..3.2, y -0.6..0.6, labelled stairs; the
-	// detection's points lean to its near right corner: (2.2, -0.35).
-	std::vector<FakePoint> flight;
-	for (double x = 2.0; x <= 3.2; x += 0.03)
-		for (double y = -0.6; y <= 0.6; y += 0.03)
-			flight.push_back({x, y, 0.2 + 0.3 * (x - 2.0), Label::Stairs});
+	// flight(); the detection's points lean to its near right corner:
+	// (2.2, -0.35).
 	const mrpt::poses::CPose2D pose(0, 0, 0);
 	for (const bool fromCells : {true, false})
 	{
@@ -275,7 +292,7 @@ TEST(SemanticMap, StairsCentreOnTheirLabelledCells)
 		o.stairsCentroidFromCells = fromCells;
 		SemanticMap m(o);
 		const auto f = detectionSweep(
-		    Label::Stairs, {2.2, -0.35, 0.4}, {2.0, 2.0, 0.8}, flight);
+		    Label::Stairs, {2.2, -0.35, 0.4}, {2.0, 2.0, 0.8}, flight());
 		m.insert(f.sweep, f.labeled, pose);
 		const auto st = m.instances(Label::Stairs);
 		ASSERT_EQ(st.size(), 1u);
@@ -291,7 +308,7 @@ TEST(SemanticMap, StairsCentreOnTheirLabelledCells)
 	// stairs): not reported.
 	SemanticMap m;
 	const auto f = detectionSweep(
-	    Label::Stairs, {2.2, -0.35, 0.7}, {1.0, 1.0, 0.2}, flight);
+	    Label::Stairs, {2.2, -0.35, 0.7}, {1.0, 1.0, 0.2}, flight());
 	m.insert(f.sweep, f.labeled, pose);
 	EXPECT_EQ(m.allInstances().size(), 1u);
 	EXPECT_TRUE(m.instances(Label::Stairs).empty());
@@ -301,14 +318,7 @@ TEST(SemanticMap, AOneOffStairsLabelBesideAFlightDoesNotMoveIt)
 {
 	// The flight of the test above, detected in four sweeps; in a fifth a
 	// false detection also labels a table beside it (x 3.2..4.0) stairs.
-	std::vector<FakePoint> flight, withTable;
-	for (double x = 2.0; x <= 3.2; x += 0.03)
-		for (double y = -0.6; y <= 0.6; y += 0.03)
-			flight.push_back({x, y, 0.2 + 0.3 * (x - 2.0), Label::Stairs});
-	withTable = flight;
-	for (double x = 3.23; x <= 4.0; x += 0.03)
-		for (double y = -0.3; y <= 0.3; y += 0.03)
-			withTable.push_back({x, y, 0.7, Label::Stairs});
+	const auto withTable = flightAndTable(3.23, 4.0);
 	const mrpt::poses::CPose2D pose(0, 0, 0);
 	for (const double share : {0.25, 0.0})
 	{
@@ -320,7 +330,7 @@ TEST(SemanticMap, AOneOffStairsLabelBesideAFlightDoesNotMoveIt)
 			// The false detection's box holds flight and table.
 			const auto f = k < 4 ? detectionSweep(
 			                           Label::Stairs, {2.6, 0.0, 0.4},
-			                           {1.2, 1.2, 0.8}, flight)
+			                           {1.2, 1.2, 0.8}, flight())
 			                     : detectionSweep(
 			                           Label::Stairs, {3.0, 0.0, 0.4},
 			                           {2.0, 1.2, 0.8}, withTable);
@@ -339,23 +349,16 @@ TEST(SemanticMap, StairsCentreIgnoresAnOutlyingSighting)
 	// The flight above, detected in four sweeps; in two more a table
 	// 1.7 m beyond its centre (x 4.0..4.6) is taken for stairs, its box so
 	// wide that it overlaps the flight's and merges with it.
-	std::vector<FakePoint> flight, withTable;
-	for (double x = 2.0; x <= 3.2; x += 0.03)
-		for (double y = -0.6; y <= 0.6; y += 0.03)
-			flight.push_back({x, y, 0.2 + 0.3 * (x - 2.0), Label::Stairs});
-	withTable = flight;
-	for (double x = 4.0; x <= 4.6; x += 0.03)
-		for (double y = -0.3; y <= 0.3; y += 0.03)
-			withTable.push_back({x, y, 0.7, Label::Stairs});
+	const auto withTable = flightAndTable(4.0, 4.6);
 	SemanticMap m;
 	for (int k = 0; k < 6; k++)
 	{
-		const auto f =
-		    k < 4 ? detectionSweep(
-		                Label::Stairs, {2.6, 0.0, 0.4}, {1.2, 1.2, 0.8}, flight)
-		          : detectionSweep(
-		                Label::Stairs, {4.3, 0.0, 0.4}, {2.6, 1.2, 0.8},
-		                withTable);
+		const auto f = k < 4 ? detectionSweep(
+		                           Label::Stairs, {2.6, 0.0, 0.4},
+		                           {1.2, 1.2, 0.8}, flight())
+		                     : detectionSweep(
+		                           Label::Stairs, {4.3, 0.0, 0.4},
+		                           {2.6, 1.2, 0.8}, withTable);
 		m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
 	}
 	const auto st = m.instances(Label::Stairs);
