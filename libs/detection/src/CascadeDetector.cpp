@@ -1186,11 +1186,11 @@ namespace
  * accepts stays. `verify` runs only on candidates no better one covers. */
 template <typename Verify>
 void suppressDuplicates(
-    std::vector<CascadeDetector::Candidate>& cands, std::size_t first,
-    cv::Size size, Verify&& verify)
+    std::vector<CascadeDetector::Candidate>& cands, cv::Size size,
+    Verify&& verify)
 {
 	std::vector<std::size_t> order;
-	for (std::size_t i = first; i < cands.size(); i++)
+	for (std::size_t i = 0; i < cands.size(); i++)
 		if (cands[i].accepted) order.push_back(i);
 	std::stable_sort(
 	    order.begin(), order.end(),
@@ -1383,7 +1383,6 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		    ranges[i]);
 		results[i].cascades = msSince(tc);
 		const auto tm = Clock::now();
-		const std::size_t first = 0;
 		const ShapeVerifier& verifier = m_impl->verifiers[i];
 		// Per candidate, the pixels it was measured in (for the shape
 		// check's surroundings; kept only when the class has one).
@@ -1448,14 +1447,14 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		}
 		// The shape check, on the candidates duplicates do not remove.
 		suppressDuplicates(
-		    out, first, points.size(),
+		    out, points.size(),
 		    [&](Candidate& c)
 		    {
 			    if (verifier.empty()) return true;
 			    if (!c.shape)
 				    c.shape = ObjectShape::describe(
 				        points, normals, normalMask, labels, c.measure->pixels,
-				        searched[std::size_t(&c - &out[first])], groundZ);
+				        searched[std::size_t(&c - out.data())], groundZ);
 			    c.shapeScore = verifier.score(*c.shape);
 			    if (c.shapeScore >= k.minShapeScore) return true;
 			    c.accepted = false;

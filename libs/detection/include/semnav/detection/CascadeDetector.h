@@ -273,7 +273,8 @@ public:
 		double shapeScore = 1;
 	};
 	/** Wall-clock times of the last detect(), ms (`proposals`: the object
-	 * proposals, or the range images of range_scales). */
+	 * proposals, or the range images of range_scales; `cascades` and
+	 * `sizeCheck` summed over the classes, which may run in parallel). */
 	struct Timings
 	{
 		double image = 0, proposals = 0, cascades = 0, sizeCheck = 0, total = 0;

@@ -69,9 +69,9 @@ public:
 		/** cellState() thresholds on the occupancy probability. */
 		double occupiedThreshold = 0.65;
 		double freeThreshold = 0.35;
-		/** Detections of one label closer than this, or whose footprints
-		 * overlap (a staircase seen from several sides), are one object
-		 * (m). */
+		/** Door and stairs detections of one label closer than this, or
+		 * whose footprints overlap (a staircase seen from several sides),
+		 * are one object (m). */
 		double mergeDistance = 0.6;
 		/** Washbasin and wastebasket detections join an instance only
 		 * within this distance of one of its sightings, footprints aside:
