@@ -414,13 +414,13 @@ TEST(MapAccuracy, DISABLED_TrainingSceneObjects)
 	// The cascade training scenes, for diagnosing map rules on more objects
 	// than the held-out and validation scenes hold (run with
 	// --gtest_also_run_disabled_tests; SEMNAV_MAP_DIAG=1 prints every
-	// instance; about a minute, so not in every ctest run). Measured: 172
-	// of 177 found once, 3 spurious of 178; margin of one.
+	// instance; about a minute, so not in every ctest run). Measured: 174
+	// of 177 found once, 1 spurious of 178; margin of one.
 	std::vector<std::string> names;
 	for (char c = 'a'; c <= 't'; c++)
 		names.push_back(std::string("train_") + c);
 	const auto all = scoreCascadeScenes(names);
 	ASSERT_GE(all.seen, 176u);
-	EXPECT_GE(all.foundOnce, 171u);
-	EXPECT_LE(all.spurious, 4u);
+	EXPECT_GE(all.foundOnce, 173u);
+	EXPECT_LE(all.spurious, 2u);
 }

@@ -131,7 +131,7 @@ public:
 		 * "stairs_sweeps"): one false detection on a table beside a
 		 * flight labels the table once, the flight's cells many times.
 		 * [0, 1]; 0: every labelled cell. */
-		double stairsMinCellShare = 0.25;
+		double stairsMinCellShare = 0.1;
 		/** Doors whose merged extent is lower than this are not reported
 		 * (fragments of walls or furniture taken for a door) (m). */
 		double doorMinHeight = 1.2;
