@@ -415,12 +415,12 @@ TEST(MapAccuracy, DISABLED_TrainingSceneObjects)
 	// than the held-out and validation scenes hold (run with
 	// --gtest_also_run_disabled_tests; SEMNAV_MAP_DIAG=1 prints every
 	// instance; about a minute, so not in every ctest run). Measured: 174
-	// of 177 found once, 1 spurious of 178; margin of one.
+	// of 177 found once, 2 spurious of 179; margin of one.
 	std::vector<std::string> names;
 	for (char c = 'a'; c <= 't'; c++)
 		names.push_back(std::string("train_") + c);
 	const auto all = scoreCascadeScenes(names);
 	ASSERT_GE(all.seen, 176u);
 	EXPECT_GE(all.foundOnce, 173u);
-	EXPECT_LE(all.spurious, 2u);
+	EXPECT_LE(all.spurious, 3u);
 }
