@@ -202,11 +202,10 @@ TEST_F(CascadeDetection, ProposalsKeepMostOfTheWholeImageDetections)
 		    scoreProposed.score(l).fp);
 		EXPECT_GE(scoreProposed.score(l).precision, 0.5) << labelName(l);
 	}
-	// Measured on val_a..f (semnav-detect, shipped settings): 227 of the
-	// 247 whole-image true positives (92 %); on this one scene 30 of 38
-	// (the stairs settings of 14 stages find one flight the proposals
-	// miss); asserted with a margin.
-	EXPECT_GE(double(tpProposed), 0.75 * double(tpWhole));
+	// Measured on val_a..f (semnav-detect, shipped settings): 229 of the
+	// 249 whole-image true positives (92 %); on this one scene 31 of 38;
+	// asserted with a margin.
+	EXPECT_GE(double(tpProposed), 0.8 * double(tpWhole));
 	EXPECT_GT(tpProposed, 0u);
 }
 
