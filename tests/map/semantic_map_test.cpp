@@ -185,6 +185,8 @@ TEST(ObjectInstance, InlierSightingsLieNearTheirMedian)
 	ASSERT_EQ(in.size(), 3u);
 	for (const auto& s : in) EXPECT_LT(s.x, 3.0);
 	EXPECT_EQ(o.inlierSightings(2.0).size(), 4u);
+	EXPECT_TRUE(ObjectInstance().inlierSightings(1.0).empty())
+	    << "no sightings";
 }
 
 TEST(ObjectInstance, TypicalSizeIsTheMedianDetectionNotTheUnion)

@@ -452,11 +452,13 @@ void SemanticMap::mergeObject(
 		if (o.label != label) continue;
 		const double d =
 		    std::hypot(o.centroid.x - centroid.x, o.centroid.y - centroid.y);
-		const bool overlap =
-		    o.minCorner.x <= maxCorner.x && minCorner.x <= o.maxCorner.x &&
-		    o.minCorner.y <= maxCorner.y && minCorner.y <= o.maxCorner.y;
-		bool joins = d < m_options.mergeDistance || overlap;
-		if (label != Label::Stairs && label != Label::Door)
+		bool joins;
+		if (label == Label::Stairs || label == Label::Door)
+			joins =
+			    d < m_options.mergeDistance ||
+			    (o.minCorner.x <= maxCorner.x && minCorner.x <= o.maxCorner.x &&
+			     o.minCorner.y <= maxCorner.y && minCorner.y <= o.maxCorner.y);
+		else
 		{
 			double nearest = d;
 			for (const auto& s : o.sightings)

@@ -56,24 +56,15 @@ struct ObjectInstance
 	}
 
 	/** The sightings within `inlierRadius` (horizontally) of their per-axis
-	 * median. */
+	 * median (none without sightings). */
 	std::vector<mrpt::math::TPoint3D> inlierSightings(double inlierRadius) const
 	{
-		auto median = [&](double mrpt::math::TPoint3D::*axis)
-		{
-			std::vector<double> v;
-			for (const auto& s : sightings) v.push_back(s.*axis);
-			std::sort(v.begin(), v.end());
-			const std::size_t h = v.size() / 2;
-			return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
-		};
-		const mrpt::math::TPoint3D m(
-		    median(&mrpt::math::TPoint3D::x), median(&mrpt::math::TPoint3D::y),
-		    median(&mrpt::math::TPoint3D::z));
 		std::vector<mrpt::math::TPoint3D> in;
+		if (sightings.empty()) return in;
+		const double mx = median(sightings, &mrpt::math::TPoint3D::x),
+		             my = median(sightings, &mrpt::math::TPoint3D::y);
 		for (const auto& s : sightings)
-			if (std::hypot(s.x - m.x, s.y - m.y) <= inlierRadius)
-				in.push_back(s);
+			if (std::hypot(s.x - mx, s.y - my) <= inlierRadius) in.push_back(s);
 		return in;
 	}
 
@@ -88,17 +79,9 @@ struct ObjectInstance
 			const auto e = extent();
 			return {std::max(e.x, e.y), 0, e.z};
 		}
-		auto median = [&](double mrpt::math::TPoint3D::*axis)
-		{
-			std::vector<double> v;
-			for (const auto& s : sightingSizes) v.push_back(s.*axis);
-			std::sort(v.begin(), v.end());
-			const std::size_t h = v.size() / 2;
-			return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
-		};
 		return {
-		    median(&mrpt::math::TPoint3D::x), 0,
-		    median(&mrpt::math::TPoint3D::z)};
+		    median(sightingSizes, &mrpt::math::TPoint3D::x), 0,
+		    median(sightingSizes, &mrpt::math::TPoint3D::z)};
 	}
 
 	mrpt::math::TPoint3D extent() const
@@ -106,6 +89,18 @@ struct ObjectInstance
 		return {
 		    maxCorner.x - minCorner.x, maxCorner.y - minCorner.y,
 		    maxCorner.z - minCorner.z};
+	}
+
+	/** The median of one axis of non-empty `points`. */
+	static double median(
+	    const std::vector<mrpt::math::TPoint3D>& points,
+	    double mrpt::math::TPoint3D::*axis)
+	{
+		std::vector<double> v;
+		for (const auto& p : points) v.push_back(p.*axis);
+		std::sort(v.begin(), v.end());
+		const std::size_t h = v.size() / 2;
+		return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
 	}
 };
 
