@@ -15,6 +15,7 @@
 #include <semnav/sim/SimulationRunner.h>
 #include <semnav/sim/TiltingLaserSimulator.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <opencv2/objdetect.hpp>
@@ -220,7 +221,11 @@ TEST_F(CascadeDetection, RangeScalesWithTheGateOpenAreDetectMultiScale)
 	// (max_stages) keep a few such windows, a box then moves by a pixel.
 	const Simulated& s = scene();
 	PerceptionPipeline p;
-	for (auto& k : opts.classes) k.maxStages = 0;
+	for (auto& k : opts.classes)
+	{
+		k.maxStages = 0;
+		k.windowStep = 0;  // detectMultiScale's steps
+	}
 	opts.proposals = false;
 	opts.rangeScales = false;
 	CascadeDetector opencv(opts);
@@ -265,6 +270,40 @@ TEST_F(CascadeDetection, RangeScalesWithTheGateOpenAreDetectMultiScale)
 		boxes += a.size();
 	}
 	EXPECT_GT(boxes, 0u);
+}
+
+TEST_F(CascadeDetection, WindowStepTwoSearchesFewerWindows)
+{
+	// window_step 2 steps two level pixels at every level, where
+	// detectMultiScale steps one above scale 2: without grouping, fewer
+	// raw windows pass, but the search still finds candidates.
+	const Simulated& s = scene();
+	PerceptionPipeline p;
+	opts.proposals = false;
+	opts.rangeScales = true;
+	for (auto& k : opts.classes) k.minNeighbors = 0;
+	const auto candidates = [&](int step)
+	{
+		for (auto& k : opts.classes) k.windowStep = step;
+		CascadeDetector d(opts);
+		std::size_t n = 0;
+		for (std::size_t i = 0; i < s.sweeps.size(); i += 6)
+		{
+			const Sweep& sw = s.sweeps[i];
+			const LabeledSweep ls = p.process(sw);
+			n += d.detectCandidates(
+			          sw.phis(), sw.thetas(), ls.normals, ls.normalMask,
+			          ls.points, ls.groundZ, ls.labels, ls.areaIds)
+			         .size();
+		}
+		return n;
+	};
+	const std::size_t opencvSteps = candidates(0), two = candidates(2);
+	std::printf(
+	    "candidates: %zu with detectMultiScale's steps, %zu with 2\n",
+	    opencvSteps, two);
+	EXPECT_GT(two, 0u);
+	EXPECT_LT(double(two), 0.8 * double(opencvSteps));
 }
 
 TEST_F(CascadeDetection, RangeScalesKeepTheWholeImageDetections)

@@ -130,6 +130,7 @@ TEST(CascadeDetector, ShippedConfigLoads)
 	EXPECT_DOUBLE_EQ(t.trainer.minHitRate, 0.995);
 	EXPECT_DOUBLE_EQ(t.trainer.maxFalseAlarm, 0.5);
 	EXPECT_TRUE(o.rangeScales);
+	EXPECT_EQ(o.classes[2].windowStep, 2);
 	// A class's [SampleGenerator.<label>] changes only that class.
 	const auto dir = std::filesystem::temp_directory_path() /
 	                 ("semnav_cascade_ini_" + std::to_string(::getpid()));
@@ -181,9 +182,14 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	        "[CascadeDetector]\nclasses = "
 	        "stairs\n[CascadeDetector.stairs]\nmin_top_m = 3\nmax_top_m = 2\n"),
 	    ConfigError);
+	EXPECT_THROW(
+	    load("[CascadeDetector]\nclasses = "
+	         "stairs\n[CascadeDetector.stairs]\nwindow_step = 9\n"),
+	    ConfigError);
 	// Round trip through save.
 	CascadeDetector::TOptions o;
 	o.threads = 2;
+	o.classes[2].windowStep = 2;
 	CascadeDetector::TOptions back = test::savedAndLoaded(o, "CascadeDetector");
 	EXPECT_EQ(back.threads, 2);
 	ASSERT_EQ(back.classes.size(), o.classes.size());
@@ -192,6 +198,8 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	EXPECT_DOUBLE_EQ(back.rangeCut, o.rangeCut);
 	EXPECT_EQ(back.rangeObjectsOnly, o.rangeObjectsOnly);
 	EXPECT_DOUBLE_EQ(back.classes[1].farUpscale, o.classes[1].farUpscale);
+	EXPECT_EQ(back.classes[2].windowStep, 2);
+	EXPECT_EQ(back.classes[0].windowStep, 0);
 	EXPECT_NEAR(
 	    back.classes[0].farMaxElevation, o.classes[0].farMaxElevation, 1e-12);
 }

@@ -96,3 +96,45 @@ TEST(PanoramicProjection, ObjectsBesideTheRobotAreNotSmeared)
 	thetas.back() += 0.01;
 	EXPECT_FALSE(p.sameGrid(phis, thetas));
 }
+
+TEST(PanoramicProjection, SweepPixelsInFindsEverySourcePixel)
+{
+	std::vector<double> phis, thetas;
+	grid(phis, thetas);
+	const PanoramicProjection p(phis, thetas);
+	const cv::Mat& fwd = p.forward();
+	const auto brute = [&](const cv::Rect2d& b)
+	{
+		std::vector<cv::Point> out;
+		for (int r = 0; r < fwd.rows; r++)
+			for (int c = 0; c < fwd.cols; c++)
+			{
+				const cv::Vec2f f = fwd.at<cv::Vec2f>(r, c);
+				if (f[0] >= b.x && f[0] < b.x + b.width && f[1] >= b.y &&
+				    f[1] < b.y + b.height)
+					out.emplace_back(c, r);
+			}
+		return out;
+	};
+	cv::RNG rng(5);
+	std::vector<cv::Point> pixels, inner;
+	std::size_t found = 0;
+	for (int k = 0; k < 200; k++)
+	{
+		// Boxes anywhere, beside the robot and at the image's edges too.
+		const double w = rng.uniform(1.0, 150.0), h = rng.uniform(1.0, 150.0);
+		const cv::Rect2d box(
+		    rng.uniform(-20.0, 370.0) - w / 2,
+		    rng.uniform(-20.0, 220.0) - h / 2, w, h);
+		const cv::Rect2d centre(
+		    box.x + box.width / 4, box.y + box.height / 4, box.width / 2,
+		    box.height / 2);
+		const auto expected = brute(box);
+		EXPECT_EQ(p.sweepPixelsIn(box), expected) << k;
+		p.sweepPixelsIn(box, centre, pixels, inner);
+		EXPECT_EQ(pixels, expected) << k;
+		EXPECT_EQ(inner, brute(centre)) << k;
+		found += expected.size();
+	}
+	EXPECT_GT(found, 100000u);
+}

@@ -62,6 +62,7 @@ const std::vector<std::string>& CascadeDetector::TClassOptions::knownKeys()
 	    "far_max_elevation_deg",
 	    "scale_factor",
 	    "min_neighbors",
+	    "window_step",
 	    "max_size_px",
 	    "min_width_m",
 	    "max_width_m",
@@ -110,6 +111,7 @@ void CascadeDetector::TClassOptions::loadFromConfigFile(
 	o.scaleFactor = readChecked(c, s, "scale_factor", scaleFactor, 1.01, 3.0);
 	o.minNeighbors =
 	    readCheckedInt(c, s, "min_neighbors", minNeighbors, 0, 100);
+	o.windowStep = readCheckedInt(c, s, "window_step", windowStep, 0, 8);
 	o.maxSizePx = readChecked(c, s, "max_size_px", maxSizePx, 0, 10000);
 	o.minWidth = readChecked(c, s, "min_width_m", minWidth, 0, 100);
 	o.maxWidth = readChecked(c, s, "max_width_m", maxWidth, 0, 100);
@@ -159,6 +161,7 @@ void CascadeDetector::TClassOptions::saveToConfigFile(
 	c.write(s, "far_max_elevation_deg", num(farMaxElevation / deg));
 	c.write(s, "scale_factor", num(scaleFactor));
 	c.write(s, "min_neighbors", std::to_string(minNeighbors));
+	c.write(s, "window_step", std::to_string(windowStep));
 	c.write(s, "max_size_px", num(maxSizePx));
 	c.write(s, "min_width_m", num(minWidth));
 	c.write(s, "max_width_m", num(maxWidth));
@@ -649,8 +652,9 @@ struct GateBounds
 	}
 };
 
-/** detectMultiScale's search (its pyramid levels, window steps, skip after
- * a stage-0 rejection and grouping) by CascadeEvaluator, but a window is
+/** detectMultiScale's search (its pyramid levels, window steps unless
+ * `windowStep` > 0 sets them, skip after a stage-0 rejection and grouping)
+ * by CascadeEvaluator, but a window is
  * evaluated only where the range at its centre (the nearest of five
  * samples in its central half; `range` 0 = none) passes `gate` for its
  * side. The integral images of a level cover only the windows searched;
@@ -658,8 +662,8 @@ struct GateBounds
  * without one) are not looked at. */
 void rangeGatedDetect(
     CascadeEvaluator& ev, const cv::Mat& image, const cv::Mat& range,
-    double scaleFactor, int minNeighbors, cv::Size minSize, cv::Size maxSize,
-    const RangeGate& gate, std::vector<cv::Rect>& found,
+    double scaleFactor, int minNeighbors, int windowStep, cv::Size minSize,
+    cv::Size maxSize, const RangeGate& gate, std::vector<cv::Rect>& found,
     std::vector<int>& weights, GatedScratch& sc)
 {
 	found.clear();
@@ -757,7 +761,7 @@ void rangeGatedDetect(
 		}
 		const int nx = sz.width + 1 - win.width;
 		const int ny = sz.height + 1 - win.height;
-		const int step = factor > 2 ? 1 : 2;
+		const int step = windowStep > 0 ? windowStep : factor > 2 ? 1 : 2;
 		windows.clear();
 		cv::Rect box;
 		sc.ok.resize(nx + 1);
@@ -1026,8 +1030,9 @@ void CascadeDetector::runCascade(
 			// s * 1.15 * upscale / (w * step).
 			rangeGatedDetect(
 			    m_impl->evaluators[i], band, r, k.scaleFactor, k.minNeighbors,
-			    minSize, maxSize, m_options.rangeGate(k, step, p.upscale),
-			    found, n, m_impl->gated.at(i));
+			    k.windowStep, minSize, maxSize,
+			    m_options.rangeGate(k, step, p.upscale), found, n,
+			    m_impl->gated.at(i));
 		}
 		else
 			classifier.detectMultiScale(
@@ -1071,26 +1076,15 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 				return false;
 		}
 	};
+	const auto horizontal = [](const cv::Vec3f& p)
+	{ return std::hypot(double(p[0]), double(p[1])); };
 	const auto nonFloor = [&](const cv::Point& px, cv::Vec3f& p)
 	{
 		p = points.at<cv::Vec3f>(px);
 		return std::isfinite(p[0]) && p[2] >= groundZ + floorTolerance &&
 		       !isSurface(px);
 	};
-	// How far the object is: the nearest part (10th percentile of the
-	// horizontal distance) of the box's centre.
-	std::vector<double> centreD;
-	cv::Vec3f p;
-	for (const auto& px : centre)
-		if (nonFloor(px, p))
-			centreD.push_back(std::hypot(double(p[0]), double(p[1])));
-	if (centreD.empty())
-		for (const auto& px : pixels)
-			if (nonFloor(px, p))
-				centreD.push_back(std::hypot(double(p[0]), double(p[1])));
-	if (centreD.empty()) return std::nullopt;
-	const double near = percentile(centreD, 0.1);
-	// Candidates: non-floor, non-surface points not too far behind.
+	if (pixels.empty()) return std::nullopt;
 	int x0 = INT_MAX, y0 = INT_MAX, x1 = -1, y1 = -1;
 	for (const auto& px : pixels)
 	{
@@ -1100,10 +1094,40 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 		y1 = std::max(y1, px.y);
 	}
 	const cv::Rect region(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
+	// Horizontal distance of each of `pixels` that is not floor or surface
+	// (NaN where it is; kNotIn: not one of `pixels`).
+	constexpr double kNotIn = -1;
+	cv::Mat1d dist(region.size(), kNotIn);
+	cv::Vec3f p;
+	for (const auto& px : pixels)
+		dist(px - region.tl()) = nonFloor(px, p)
+		                             ? horizontal(p)
+		                             : std::numeric_limits<double>::quiet_NaN();
+	// How far the object is: the nearest part (10th percentile of the
+	// horizontal distance) of the box's centre.
+	std::vector<double> centreD;
+	for (const auto& px : centre)
+	{
+		const double d = region.contains(px) ? dist(px - region.tl()) : kNotIn;
+		if (d == kNotIn)
+		{
+			if (nonFloor(px, p)) centreD.push_back(horizontal(p));
+		}
+		else if (!std::isnan(d))
+			centreD.push_back(d);
+	}
+	if (centreD.empty())
+		for (const auto& px : pixels)
+		{
+			const double d = dist(px - region.tl());
+			if (!std::isnan(d)) centreD.push_back(d);
+		}
+	if (centreD.empty()) return std::nullopt;
+	const double near = percentile(centreD, 0.1);
+	// Candidates: non-floor, non-surface points not too far behind.
 	cv::Mat cand(region.size(), CV_8U, cv::Scalar(0));
 	for (const auto& px : pixels)
-		if (nonFloor(px, p) &&
-		    std::hypot(double(p[0]), double(p[1])) <= near + maxDepth)
+		if (dist(px - region.tl()) <= near + maxDepth)
 			cand.at<uint8_t>(px - region.tl()) = 1;
 	if (connected)
 	{
@@ -1140,6 +1164,9 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 	}
 	Measure m;
 	std::vector<double> xs, ys, zs;
+	xs.reserve(pixels.size());
+	ys.reserve(pixels.size());
+	zs.reserve(pixels.size());
 	double sx = 0, sy = 0, sz = 0;
 	int c0 = INT_MAX, r0 = INT_MAX, c1 = -1, r1 = -1;
 	for (const auto& px : pixels)
@@ -1168,13 +1195,12 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 	std::vector<double> lateral(m.points);
 	for (std::size_t i = 0; i < m.points; i++)
 		lateral[i] = -std::sin(bearing) * xs[i] + std::cos(bearing) * ys[i];
-	m.width = percentile(lateral, 0.95) - percentile(lateral, 0.05);
+	m.width = percentileSpread(lateral, 0.05, 0.95);
 	const double zTop = percentile(zs, 0.95);
 	m.top = zTop - groundZ;
 	m.extent = {
-	    percentile(xs, 0.95) - percentile(xs, 0.05),
-	    percentile(ys, 0.95) - percentile(ys, 0.05),
-	    zTop - percentile(zs, 0.05)};
+	    percentileSpread(xs, 0.05, 0.95), percentileSpread(ys, 0.05, 0.95),
+	    percentileSpread(zs, 0.05, 0.95)};
 	return m;
 }
 
@@ -1339,6 +1365,16 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 			mask = ObjectProposals::objectMask(
 			    points, labels, areaIds, groundZ, pp);
 		}
+		// Horizontal range of every point (0: none), then each class's.
+		cv::Mat1f horizontal(points.size(), 0.f);
+		for (int r = 0; r < points.rows; r++)
+		{
+			const auto* p = points.ptr<cv::Vec3f>(r);
+			auto* h = horizontal.ptr<float>(r);
+			for (int c = 0; c < points.cols; c++)
+				if (std::isfinite(p[c][0]) && std::isfinite(p[c][1]))
+					h[c] = std::hypot(p[c][0], p[c][1]);
+		}
 		for (std::size_t i = 0; i < m_options.classes.size(); i++)
 		{
 			const double top = m_options.classes[i].maxTop +
@@ -1347,12 +1383,12 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 			for (int r = 0; r < points.rows; r++)
 			{
 				const auto* p = points.ptr<cv::Vec3f>(r);
+				const auto* h = horizontal.ptr<float>(r);
 				const auto* m = mask.empty() ? nullptr : mask.ptr<uint8_t>(r);
 				auto* d = range.ptr<float>(r);
 				for (int c = 0; c < points.cols; c++)
-					if (std::isfinite(p[c][0]) && std::isfinite(p[c][1]) &&
-					    (!m || (m[c] && p[c][2] <= top)))
-						d[c] = std::hypot(p[c][0], p[c][1]);
+					if (h[c] > 0 && (!m || (m[c] && p[c][2] <= top)))
+						d[c] = h[c];
 			}
 			if (m_options.panoramic)
 				range =
@@ -1361,109 +1397,136 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		}
 	}
 	m_timings.proposals = msSince(tp);
-	// Each class on its own thread (threads): the same candidates, in the
-	// order of the classes.
+	// Three steps, each in parallel (threads), with the same candidates in
+	// the order of the classes: the cascades (a class a task), measuring
+	// (a candidate a task) and the shape check (a class a task: its order
+	// matters among duplicates).
 	struct ClassResult
 	{
 		std::vector<Candidate> candidates;
+		/** Per candidate, the pixels it was measured in (the shape check's
+		 * surroundings; kept only when the class has a shape model). */
+		std::vector<std::vector<cv::Point>> searched;
 		double cascades = 0, sizeCheck = 0;
 	};
 	std::vector<ClassResult> results(m_options.classes.size());
-	const auto searchClass = [&](std::size_t i)
-	{
-		const TClassOptions& k = m_options.classes[i];
-		std::vector<Candidate>& out = results[i].candidates;
-		std::vector<cv::Rect> boxes;
-		std::vector<int> neighbours;
-		std::vector<cv::Point> pixels, centre;
-		const auto tc = Clock::now();
-		runCascade(
-		    i, images.at(m_options.channelOf(k)), boxes, neighbours,
-		    m_options.proposals ? &m_impl->proposals.at(i) : nullptr, step,
-		    ranges[i]);
-		results[i].cascades = msSince(tc);
-		const auto tm = Clock::now();
-		const ShapeVerifier& verifier = m_impl->verifiers[i];
-		// Per candidate, the pixels it was measured in (for the shape
-		// check's surroundings; kept only when the class has one).
-		std::vector<std::vector<cv::Point>> searched;
-		for (std::size_t j = 0; j < boxes.size(); j++)
-		{
-			Candidate c;
-			c.label = k.label;
-			c.box = boxes[j];
-			c.neighbours = neighbours[j];
-			// The object is measured in the box grown by measure_margin on
-			// every side (grouped boxes may cut an object); how far it is, in
-			// the box's central half.
-			const cv::Rect2d inner(
-			    c.box.x + c.box.width / 4.0, c.box.y + c.box.height / 4.0,
-			    c.box.width / 2.0, c.box.height / 2.0);
-			const double mg = m_options.measureMargin;
-			const cv::Rect2d b(
-			    c.box.x - mg * c.box.width, c.box.y - mg * c.box.height,
-			    c.box.width * (1 + 2 * mg), c.box.height * (1 + 2 * mg));
-			if (m_options.panoramic)
-			{
-				pixels = m_impl->projection.sweepPixelsIn(b);
-				centre = m_impl->projection.sweepPixelsIn(inner);
-			}
-			else
-			{
-				pixels.clear();
-				centre.clear();
-				const cv::Rect bi =
-				    cv::Rect(b) & cv::Rect(0, 0, points.cols, points.rows);
-				for (int r = bi.y; r < bi.y + bi.height; r++)
-					for (int col = bi.x; col < bi.x + bi.width; col++)
-					{
-						pixels.emplace_back(col, r);
-						if (inner.contains(cv::Point2d(col + 0.5, r + 0.5)))
-							centre.emplace_back(col, r);
-					}
-			}
-			c.measure = measure(
-			    points, labels, pixels, centre, groundZ,
-			    m_options.floorTolerance, k.maxDepth, k.minPoints,
-			    m_options.connectedObject);
-			if (!c.measure)
-				c.rejection = "too few points";
-			else if (c.measure->width < k.minWidth)
-				c.rejection = "too narrow";
-			else if (c.measure->width > k.maxWidth)
-				c.rejection = "too wide";
-			else if (c.measure->top < k.minTop)
-				c.rejection = "too low";
-			else if (c.measure->top > k.maxTop)
-				c.rejection = "too high";
-			else
-				c.accepted = true;
-			if (c.accepted && m_impl->describeShapes)
-				c.shape = ObjectShape::describe(
-				    points, normals, normalMask, labels, c.measure->pixels,
-				    pixels, groundZ);
-			out.push_back(std::move(c));
-			if (!verifier.empty()) searched.push_back(std::move(pixels));
-		}
-		// The shape check, on the candidates duplicates do not remove.
-		suppressDuplicates(
-		    out, points.size(),
-		    [&](Candidate& c)
+	const int threads = m_options.threads;
+	parallelFor(
+	    results.size(), threads,
+	    [&](std::size_t i)
+	    {
+		    const TClassOptions& k = m_options.classes[i];
+		    std::vector<cv::Rect> boxes;
+		    std::vector<int> neighbours;
+		    const auto tc = Clock::now();
+		    runCascade(
+		        i, images.at(m_options.channelOf(k)), boxes, neighbours,
+		        m_options.proposals ? &m_impl->proposals.at(i) : nullptr, step,
+		        ranges[i]);
+		    results[i].cascades = msSince(tc);
+		    auto& cands = results[i].candidates;
+		    cands.resize(boxes.size());
+		    for (std::size_t j = 0; j < boxes.size(); j++)
 		    {
-			    if (verifier.empty()) return true;
-			    if (!c.shape)
-				    c.shape = ObjectShape::describe(
-				        points, normals, normalMask, labels, c.measure->pixels,
-				        searched[std::size_t(&c - out.data())], groundZ);
-			    c.shapeScore = verifier.score(*c.shape);
-			    if (c.shapeScore >= k.minShapeScore) return true;
-			    c.accepted = false;
-			    c.rejection = "shape";
-			    return false;
-		    });
-		results[i].sizeCheck = msSince(tm);
-	};
-	parallelFor(results.size(), m_options.threads, searchClass);
+			    cands[j].label = k.label;
+			    cands[j].box = boxes[j];
+			    cands[j].neighbours = neighbours[j];
+		    }
+		    if (!m_impl->verifiers[i].empty())
+			    results[i].searched.resize(boxes.size());
+	    });
+	std::vector<std::pair<std::size_t, std::size_t>> all;
+	for (std::size_t i = 0; i < results.size(); i++)
+		for (std::size_t j = 0; j < results[i].candidates.size(); j++)
+			all.emplace_back(i, j);
+	std::vector<double> measureMs(all.size());
+	parallelFor(
+	    all.size(), threads,
+	    [&](std::size_t a)
+	    {
+		    const auto tm = Clock::now();
+		    const auto [i, j] = all[a];
+		    const TClassOptions& k = m_options.classes[i];
+		    Candidate& c = results[i].candidates[j];
+		    std::vector<cv::Point> pixels, centre;
+		    // The object is measured in the box grown by measure_margin on
+		    // every side (grouped boxes may cut an object); how far it is,
+		    // in the box's central half.
+		    const cv::Rect2d inner(
+		        c.box.x + c.box.width / 4.0, c.box.y + c.box.height / 4.0,
+		        c.box.width / 2.0, c.box.height / 2.0);
+		    const double mg = m_options.measureMargin;
+		    const cv::Rect2d b(
+		        c.box.x - mg * c.box.width, c.box.y - mg * c.box.height,
+		        c.box.width * (1 + 2 * mg), c.box.height * (1 + 2 * mg));
+		    if (m_options.panoramic)
+			    m_impl->projection.sweepPixelsIn(b, inner, pixels, centre);
+		    else
+		    {
+			    const cv::Rect bi =
+			        cv::Rect(b) & cv::Rect(0, 0, points.cols, points.rows);
+			    for (int r = bi.y; r < bi.y + bi.height; r++)
+				    for (int col = bi.x; col < bi.x + bi.width; col++)
+				    {
+					    pixels.emplace_back(col, r);
+					    if (inner.contains(cv::Point2d(col + 0.5, r + 0.5)))
+						    centre.emplace_back(col, r);
+				    }
+		    }
+		    c.measure = measure(
+		        points, labels, pixels, centre, groundZ,
+		        m_options.floorTolerance, k.maxDepth, k.minPoints,
+		        m_options.connectedObject);
+		    if (!c.measure)
+			    c.rejection = "too few points";
+		    else if (c.measure->width < k.minWidth)
+			    c.rejection = "too narrow";
+		    else if (c.measure->width > k.maxWidth)
+			    c.rejection = "too wide";
+		    else if (c.measure->top < k.minTop)
+			    c.rejection = "too low";
+		    else if (c.measure->top > k.maxTop)
+			    c.rejection = "too high";
+		    else
+			    c.accepted = true;
+		    if (c.accepted && m_impl->describeShapes)
+			    c.shape = ObjectShape::describe(
+			        points, normals, normalMask, labels, c.measure->pixels,
+			        pixels, groundZ);
+		    if (!results[i].searched.empty())
+			    results[i].searched[j] = std::move(pixels);
+		    measureMs[a] = msSince(tm);
+	    });
+	for (std::size_t a = 0; a < all.size(); a++)
+		results[all[a].first].sizeCheck += measureMs[a];
+	parallelFor(
+	    results.size(), threads,
+	    [&](std::size_t i)
+	    {
+		    const auto tm = Clock::now();
+		    const TClassOptions& k = m_options.classes[i];
+		    const ShapeVerifier& verifier = m_impl->verifiers[i];
+		    auto& out = results[i].candidates;
+		    // The shape check, on the candidates duplicates do not remove.
+		    suppressDuplicates(
+		        out, points.size(),
+		        [&](Candidate& c)
+		        {
+			        if (verifier.empty()) return true;
+			        if (!c.shape)
+				        c.shape = ObjectShape::describe(
+				            points, normals, normalMask, labels,
+				            c.measure->pixels,
+				            results[i].searched[std::size_t(&c - out.data())],
+				            groundZ);
+			        c.shapeScore = verifier.score(*c.shape);
+			        if (c.shapeScore >= k.minShapeScore) return true;
+			        c.accepted = false;
+			        c.rejection = "shape";
+			        return false;
+		        });
+		    results[i].sizeCheck += msSince(tm);
+	    });
 	std::vector<Candidate> out;
 	for (auto& r : results)
 	{

@@ -74,6 +74,32 @@ PanoramicProjection::PanoramicProjection(
 			Y[u] = (c < 0 || r < 0) ? -1.f : r;
 		}
 	}
+	m_rowMonotonic.assign(std::size_t(rows), 1);
+	for (int r = 0; r < rows; r++)
+	{
+		const auto* f = m_forward.ptr<cv::Vec2f>(r);
+		for (int c = 1; c < cols; c++)
+			if (f[c][0] < f[c - 1][0]) m_rowMonotonic[std::size_t(r)] = 0;
+	}
+	const int bw = (cols + kBlock - 1) / kBlock,
+	          bh = (rows + kBlock - 1) / kBlock;
+	m_blockBounds.create(bh, bw, CV_32FC4);
+	m_blockBounds.setTo(cv::Scalar(1e9f, 1e9f, -1e9f, -1e9f));
+	for (int v = 0; v < rows; v++)
+	{
+		const auto* X = m_invX.ptr<float>(v);
+		const auto* Y = m_invY.ptr<float>(v);
+		auto* b = m_blockBounds.ptr<cv::Vec4f>(v / kBlock);
+		for (int u = 0; u < cols; u++)
+		{
+			if (X[u] < 0) continue;
+			cv::Vec4f& bb = b[u / kBlock];
+			bb[0] = std::min(bb[0], X[u]);
+			bb[1] = std::min(bb[1], Y[u]);
+			bb[2] = std::max(bb[2], X[u]);
+			bb[3] = std::max(bb[3], Y[u]);
+		}
+	}
 }
 
 bool PanoramicProjection::sameGrid(
@@ -94,43 +120,91 @@ cv::Mat PanoramicProjection::toPanoramic(
 	return out;
 }
 
-std::vector<cv::Point> PanoramicProjection::sweepPixelsIn(
-    const cv::Rect2d& box) const
+cv::Rect PanoramicProjection::sourceRegion(const cv::Rect2d& box) const
 {
-	std::vector<cv::Point> out;
-	if (empty()) return out;
-	// Sweep region to search: the sources of the box's pixels, widened.
+	if (empty()) return {};
 	const cv::Rect pano = cv::Rect(
 	                          static_cast<int>(std::floor(box.x)),
 	                          static_cast<int>(std::floor(box.y)),
 	                          static_cast<int>(std::ceil(box.width)) + 1,
 	                          static_cast<int>(std::ceil(box.height)) + 1) &
 	                      cv::Rect(0, 0, m_size.width, m_size.height);
+	if (pano.empty()) return {};
+	// The bounds of the blocks the box touches hold those of its pixels.
 	float x0 = 1e9f, y0 = 1e9f, x1 = -1e9f, y1 = -1e9f;
-	for (int v = pano.y; v < pano.y + pano.height; v++)
-		for (int u = pano.x; u < pano.x + pano.width; u++)
+	for (int bv = pano.y / kBlock; bv <= (pano.br().y - 1) / kBlock; bv++)
+	{
+		const auto* b = m_blockBounds.ptr<cv::Vec4f>(bv);
+		for (int bu = pano.x / kBlock; bu <= (pano.br().x - 1) / kBlock; bu++)
 		{
-			const float x = m_invX.at<float>(v, u), y = m_invY.at<float>(v, u);
-			if (x < 0) continue;
-			x0 = std::min(x0, x);
-			x1 = std::max(x1, x);
-			y0 = std::min(y0, y);
-			y1 = std::max(y1, y);
+			x0 = std::min(x0, b[bu][0]);
+			y0 = std::min(y0, b[bu][1]);
+			x1 = std::max(x1, b[bu][2]);
+			y1 = std::max(y1, b[bu][3]);
 		}
-	if (x1 < x0) return out;
+	}
+	if (x1 < x0) return {};
 	const int c0 = std::max(0, static_cast<int>(x0) - 3),
 	          c1 = std::min(m_size.width - 1, static_cast<int>(x1) + 4);
 	const int r0 = std::max(0, static_cast<int>(y0) - 3),
 	          r1 = std::min(m_size.height - 1, static_cast<int>(y1) + 4);
-	for (int r = r0; r <= r1; r++)
+	return {c0, r0, c1 - c0 + 1, r1 - r0 + 1};
+}
+
+std::pair<int, int> PanoramicProjection::columnsIn(
+    int r, const cv::Rect& src, const cv::Rect2d& box) const
+{
+	const auto* f = m_forward.ptr<cv::Vec2f>(r);
+	if (!m_rowMonotonic[std::size_t(r)]) return {src.x, src.x + src.width};
+	const auto first = std::partition_point(
+	    f + src.x, f + src.x + src.width,
+	    [&](const cv::Vec2f& v) { return !(v[0] >= box.x); });
+	const auto last = std::partition_point(
+	    first, f + src.x + src.width,
+	    [&](const cv::Vec2f& v) { return v[0] < box.x + box.width; });
+	return {static_cast<int>(first - f), static_cast<int>(last - f)};
+}
+
+std::vector<cv::Point> PanoramicProjection::sweepPixelsIn(
+    const cv::Rect2d& box) const
+{
+	std::vector<cv::Point> out;
+	const cv::Rect src = sourceRegion(box);
+	for (int r = src.y; r < src.y + src.height; r++)
 	{
 		const auto* f = m_forward.ptr<cv::Vec2f>(r);
-		for (int c = c0; c <= c1; c++)
+		const auto [c0, c1] = columnsIn(r, src, box);
+		for (int c = c0; c < c1; c++)
 			if (f[c][0] >= box.x && f[c][0] < box.x + box.width &&
 			    f[c][1] >= box.y && f[c][1] < box.y + box.height)
 				out.emplace_back(c, r);
 	}
 	return out;
+}
+
+void PanoramicProjection::sweepPixelsIn(
+    const cv::Rect2d& box, const cv::Rect2d& inner,
+    std::vector<cv::Point>& pixels, std::vector<cv::Point>& innerPixels) const
+{
+	pixels.clear();
+	innerPixels.clear();
+	const cv::Rect src = sourceRegion(box);
+	for (int r = src.y; r < src.y + src.height; r++)
+	{
+		const auto* f = m_forward.ptr<cv::Vec2f>(r);
+		const auto [c0, c1] = columnsIn(r, src, box);
+		for (int c = c0; c < c1; c++)
+		{
+			const float x = f[c][0], y = f[c][1];
+			if (!(x >= box.x && x < box.x + box.width && y >= box.y &&
+			      y < box.y + box.height))
+				continue;
+			pixels.emplace_back(c, r);
+			if (x >= inner.x && x < inner.x + inner.width && y >= inner.y &&
+			    y < inner.y + inner.height)
+				innerPixels.emplace_back(c, r);
+		}
+	}
 }
 
 }  // namespace semnav

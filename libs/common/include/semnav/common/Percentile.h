@@ -18,4 +18,23 @@ T percentile(std::vector<T>& v, double p)
 	return v[k];
 }
 
+/** percentile(v, pHi) - percentile(v, pLo) for pLo <= pHi, the second
+ * selection within the part the first left below its element. */
+template <typename T>
+T percentileSpread(std::vector<T>& v, double pLo, double pHi)
+{
+	const auto rank = [&](double p)
+	{
+		return std::min(
+		    v.size() - 1,
+		    static_cast<std::size_t>(p * double(v.size() - 1) + 0.5));
+	};
+	const std::size_t hi = rank(pHi), lo = rank(pLo);
+	std::nth_element(v.begin(), v.begin() + static_cast<long>(hi), v.end());
+	std::nth_element(
+	    v.begin(), v.begin() + static_cast<long>(lo),
+	    v.begin() + static_cast<long>(hi));
+	return v[hi] - v[lo];
+}
+
 }  // namespace semnav

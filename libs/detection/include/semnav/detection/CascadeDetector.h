@@ -67,6 +67,10 @@ public:
 		/** scale_factor, min_neighbors: detectMultiScale's. */
 		double scaleFactor = 1.1;
 		int minNeighbors = 3;
+		/** window_step: with range_scales, the step between windows at
+		 * every pyramid level (level pixels); 0: detectMultiScale's (2 up
+		 * to scale 2, 1 above). */
+		int windowStep = 0;
 		/** max_size_px: largest box side searched (detection-image
 		 * pixels; 0: the image). */
 		double maxSizePx = 0;

@@ -1,7 +1,9 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #pragma once
 
+#include <cstdint>
 #include <opencv2/core/mat.hpp>
+#include <utility>
 #include <vector>
 
 namespace semnav
@@ -54,11 +56,33 @@ public:
 	/** The sweep pixels (x = col, y = row) whose panoramic position lies in
 	 * `panoramicBox`. */
 	std::vector<cv::Point> sweepPixelsIn(const cv::Rect2d& panoramicBox) const;
+	/** The same for `panoramicBox` into `pixels` and, of those, the ones in
+	 * `inner` (which must lie within the box) into `innerPixels`, in one
+	 * pass. */
+	void sweepPixelsIn(
+	    const cv::Rect2d& panoramicBox, const cv::Rect2d& inner,
+	    std::vector<cv::Point>& pixels,
+	    std::vector<cv::Point>& innerPixels) const;
 
 private:
 	std::vector<double> m_phis, m_thetas;
 	cv::Size m_size;
 	cv::Mat m_forward, m_invX, m_invY;
+	/** Per kBlock x kBlock block of panoramic pixels, the bounds (x0, y0,
+	 * x1, y1) of their sweep positions (x1 < x0: none). */
+	static constexpr int kBlock = 8;
+	cv::Mat m_blockBounds;
+	/** Per sweep row, whether its panoramic x never decreases along it
+	 * (then the row's pixels in a box are one run of columns). */
+	std::vector<uint8_t> m_rowMonotonic;
+	/** The sweep region holding the sources of `panoramicBox`'s pixels
+	 * (empty: none). */
+	cv::Rect sourceRegion(const cv::Rect2d& panoramicBox) const;
+	/** The columns [first, last) of sweep row `r` in `src` whose panoramic
+	 * x lies in the box's (all of src's columns when the row is not
+	 * monotonic). */
+	std::pair<int, int> columnsIn(
+	    int r, const cv::Rect& src, const cv::Rect2d& box) const;
 };
 
 }  // namespace semnav

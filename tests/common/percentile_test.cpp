@@ -1,0 +1,35 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <gtest/gtest.h>
+#include <semnav/common/Percentile.h>
+
+#include <algorithm>
+#include <random>
+
+using namespace semnav;
+
+TEST(Percentile, RankOfTheSortedValues)
+{
+	std::vector<int> v{5, 1, 4, 2, 3};
+	EXPECT_EQ(percentile(v, 0.0), 1);
+	EXPECT_EQ(percentile(v, 0.5), 3);
+	EXPECT_EQ(percentile(v, 1.0), 5);
+	EXPECT_EQ(percentile(v, 0.3), 2);  // rank round(1.2) = 1
+}
+
+TEST(Percentile, SpreadIsTheDifferenceOfTwoPercentiles)
+{
+	std::mt19937 rng(3);
+	std::uniform_real_distribution<double> u(-5, 5);
+	for (std::size_t n : {1u, 2u, 7u, 100u, 3001u})
+	{
+		std::vector<double> v(n);
+		for (auto& x : v) x = u(rng);
+		std::vector<double> a = v, b = v, c = v;
+		const double expected = percentile(a, 0.95) - percentile(b, 0.05);
+		EXPECT_EQ(percentileSpread(c, 0.05, 0.95), expected) << n;
+		std::sort(v.begin(), v.end());
+		const auto rank = [&](double p)
+		{ return std::min(n - 1, std::size_t(p * double(n - 1) + 0.5)); };
+		EXPECT_EQ(expected, v[rank(0.95)] - v[rank(0.05)]) << n;
+	}
+}
