@@ -1273,34 +1273,90 @@ cv::Mat CascadeDetector::detectionImage(
     const cv::Mat& smoothed, const cv::Mat& normalMask,
     DetectionChannel channel)
 {
+	prepareGrid(
+	    phis, thetas, smoothed.size(), channel == DetectionChannel::View);
+	return gridImage(smoothed, normalMask, channel);
+}
+
+void CascadeDetector::prepareGrid(
+    const std::vector<double>& phis, const std::vector<double>& thetas,
+    cv::Size sweepSize, bool view)
+{
 	if (!thetas.empty())
 	{
 		m_impl->el0 = thetas.front();
 		m_impl->el1 = thetas.back();
 	}
-	cv::Mat rotation;
-	if (channel == DetectionChannel::View)
+	if (view && (m_impl->rotationPhis != phis ||
+	             m_impl->rotationThetas != thetas || m_impl->rotation.empty()))
 	{
-		if (m_impl->rotationPhis != phis || m_impl->rotationThetas != thetas ||
-		    m_impl->rotation.empty())
-		{
-			if (phis.size() != static_cast<std::size_t>(smoothed.cols) ||
-			    thetas.size() != static_cast<std::size_t>(smoothed.rows))
-				throw Error(
-				    "DetectionImage: the view channel needs one bearing per "
-				    "column and one tilt per row");
-			m_impl->rotation = DetectionImage::viewRotation(phis, thetas);
-			m_impl->rotationPhis = phis;
-			m_impl->rotationThetas = thetas;
-		}
-		rotation = m_impl->rotation;
+		if (phis.size() != static_cast<std::size_t>(sweepSize.width) ||
+		    thetas.size() != static_cast<std::size_t>(sweepSize.height))
+			throw Error(
+			    "DetectionImage: the view channel needs one bearing per "
+			    "column and one tilt per row");
+		m_impl->rotation = DetectionImage::viewRotation(phis, thetas);
+		m_impl->rotationPhis = phis;
+		m_impl->rotationThetas = thetas;
 	}
-	const cv::Mat image = DetectionImage::fromSmoothedNormals(
-	    smoothed, normalMask, channel, rotation);
-	if (!m_options.panoramic) return image;
-	if (!m_impl->projection.sameGrid(phis, thetas))
+	if (m_options.panoramic && !m_impl->projection.sameGrid(phis, thetas))
 		m_impl->projection = PanoramicProjection(phis, thetas);
+}
+
+cv::Mat CascadeDetector::gridImage(
+    const cv::Mat& smoothed, const cv::Mat& normalMask,
+    DetectionChannel channel) const
+{
+	const cv::Mat image = DetectionImage::fromSmoothedNormals(
+	    smoothed, normalMask, channel,
+	    channel == DetectionChannel::View ? m_impl->rotation : cv::Mat());
+	if (!m_options.panoramic) return image;
 	return m_impl->projection.toPanoramic(image, cv::INTER_LINEAR);
+}
+
+std::vector<cv::Mat> CascadeDetector::gateRanges(
+    const cv::Mat& points, const cv::Mat& labels, const cv::Mat& areaIds,
+    double groundZ) const
+{
+	cv::Mat mask;
+	if (m_options.rangeObjectsOnly)
+	{
+		ObjectProposals::Params pp;
+		pp.floorTolerance = m_options.floorTolerance;
+		pp.maxHeight = m_options.proposalMaxHeight;
+		mask =
+		    ObjectProposals::objectMask(points, labels, areaIds, groundZ, pp);
+	}
+	// Horizontal range of every point (0: none), then each class's.
+	cv::Mat1f horizontal(points.size(), 0.f);
+	for (int r = 0; r < points.rows; r++)
+	{
+		const auto* p = points.ptr<cv::Vec3f>(r);
+		auto* h = horizontal.ptr<float>(r);
+		for (int c = 0; c < points.cols; c++)
+			if (std::isfinite(p[c][0]) && std::isfinite(p[c][1]))
+				h[c] = std::hypot(p[c][0], p[c][1]);
+	}
+	std::vector<cv::Mat> ranges(m_options.classes.size());
+	for (std::size_t i = 0; i < m_options.classes.size(); i++)
+	{
+		const double top =
+		    m_options.classes[i].maxTop + m_options.proposalTopMargin + groundZ;
+		cv::Mat range(points.size(), CV_32F, cv::Scalar(0));
+		for (int r = 0; r < points.rows; r++)
+		{
+			const auto* p = points.ptr<cv::Vec3f>(r);
+			const auto* h = horizontal.ptr<float>(r);
+			const auto* m = mask.empty() ? nullptr : mask.ptr<uint8_t>(r);
+			auto* d = range.ptr<float>(r);
+			for (int c = 0; c < points.cols; c++)
+				if (h[c] > 0 && (!m || (m[c] && p[c][2] <= top))) d[c] = h[c];
+		}
+		if (m_options.panoramic)
+			range = m_impl->projection.toPanoramic(range, cv::INTER_NEAREST);
+		ranges[i] = range;
+	}
+	return ranges;
 }
 
 std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
@@ -1310,21 +1366,57 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 {
 	const auto t0 = Clock::now();
 	m_timings = Timings();
-	// One detection image per channel in use, from one smoothing.
-	std::map<DetectionChannel, cv::Mat> images;
+	// One detection image per channel in use, from one smoothing, and the
+	// range_scales gate's range images: one parallel step (threads).
 	const cv::Mat smoothed = DetectionImage::smoothNormals(
 	    normals, normalMask, m_options.normalSmoothing);
+	std::vector<DetectionChannel> channels;
 	for (const auto& k : m_options.classes)
-	{
-		const DetectionChannel ch = m_options.channelOf(k);
-		if (!images.count(ch))
-			images[ch] = detectionImage(phis, thetas, smoothed, normalMask, ch);
-	}
+		if (std::find(
+		        channels.begin(), channels.end(), m_options.channelOf(k)) ==
+		    channels.end())
+			channels.push_back(m_options.channelOf(k));
+	prepareGrid(
+	    phis, thetas, smoothed.size(),
+	    std::count(channels.begin(), channels.end(), DetectionChannel::View) >
+	        0);
+	const bool gated = m_options.rangeScales && !m_options.proposals;
+	std::vector<cv::Mat> channelImages(channels.size());
+	std::vector<cv::Mat> ranges(m_options.classes.size());
+	// Task times (the tasks may run in parallel).
+	std::vector<double> imageMs(channels.size(), 0.0);
+	double rangesMs = 0;
+	const double prepareMs = msSince(t0);
+	parallelFor(
+	    channels.size() + (gated ? 1 : 0), m_options.threads,
+	    [&](std::size_t t)
+	    {
+		    const auto tt = Clock::now();
+		    if (t < channels.size())
+		    {
+			    channelImages[t] = gridImage(smoothed, normalMask, channels[t]);
+			    imageMs[t] = msSince(tt);
+		    }
+		    else
+		    {
+			    ranges = gateRanges(points, labels, areaIds, groundZ);
+			    rangesMs = msSince(tt);
+		    }
+	    });
+	std::map<DetectionChannel, cv::Mat> images;
+	for (std::size_t c = 0; c < channels.size(); c++)
+		images[channels[c]] = channelImages[c];
 	m_impl->keepScaled = true;
-	m_timings.image = msSince(t0);
+	m_timings.image = prepareMs;
+	for (double ms : imageMs) m_timings.image += ms;
 	const auto tp = Clock::now();
 	m_impl->proposals.clear();
+	// Both layouts keep the sweep's angular steps.
 	double step = 0;
+	if ((m_options.proposals || gated) && phis.size() > 1 && thetas.size() > 1)
+		step = 0.5 *
+		       ((phis.back() - phis.front()) / double(phis.size() - 1) +
+		        (thetas.back() - thetas.front()) / double(thetas.size() - 1));
 	if (m_options.proposals)
 	{
 		ObjectProposals::Params pp;
@@ -1339,64 +1431,8 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		m_impl->proposals = ObjectProposals::find(
 		    points, labels, areaIds, groundZ,
 		    m_options.panoramic ? &m_impl->projection : nullptr, limits, pp);
-		// Both layouts keep the sweep's angular steps.
-		if (phis.size() > 1 && thetas.size() > 1)
-			step =
-			    0.5 *
-			    ((phis.back() - phis.front()) / double(phis.size() - 1) +
-			     (thetas.back() - thetas.front()) / double(thetas.size() - 1));
 	}
-	// range_scales: per class, the horizontal range of the pixels whose
-	// windows are searched (0 elsewhere), in detection-image layout.
-	std::vector<cv::Mat> ranges(m_options.classes.size());
-	if (m_options.rangeScales && !m_options.proposals)
-	{
-		if (phis.size() > 1 && thetas.size() > 1)
-			step =
-			    0.5 *
-			    ((phis.back() - phis.front()) / double(phis.size() - 1) +
-			     (thetas.back() - thetas.front()) / double(thetas.size() - 1));
-		cv::Mat mask;
-		if (m_options.rangeObjectsOnly)
-		{
-			ObjectProposals::Params pp;
-			pp.floorTolerance = m_options.floorTolerance;
-			pp.maxHeight = m_options.proposalMaxHeight;
-			mask = ObjectProposals::objectMask(
-			    points, labels, areaIds, groundZ, pp);
-		}
-		// Horizontal range of every point (0: none), then each class's.
-		cv::Mat1f horizontal(points.size(), 0.f);
-		for (int r = 0; r < points.rows; r++)
-		{
-			const auto* p = points.ptr<cv::Vec3f>(r);
-			auto* h = horizontal.ptr<float>(r);
-			for (int c = 0; c < points.cols; c++)
-				if (std::isfinite(p[c][0]) && std::isfinite(p[c][1]))
-					h[c] = std::hypot(p[c][0], p[c][1]);
-		}
-		for (std::size_t i = 0; i < m_options.classes.size(); i++)
-		{
-			const double top = m_options.classes[i].maxTop +
-			                   m_options.proposalTopMargin + groundZ;
-			cv::Mat range(points.size(), CV_32F, cv::Scalar(0));
-			for (int r = 0; r < points.rows; r++)
-			{
-				const auto* p = points.ptr<cv::Vec3f>(r);
-				const auto* h = horizontal.ptr<float>(r);
-				const auto* m = mask.empty() ? nullptr : mask.ptr<uint8_t>(r);
-				auto* d = range.ptr<float>(r);
-				for (int c = 0; c < points.cols; c++)
-					if (h[c] > 0 && (!m || (m[c] && p[c][2] <= top)))
-						d[c] = h[c];
-			}
-			if (m_options.panoramic)
-				range =
-				    m_impl->projection.toPanoramic(range, cv::INTER_NEAREST);
-			ranges[i] = range;
-		}
-	}
-	m_timings.proposals = msSince(tp);
+	m_timings.proposals = msSince(tp) + rangesMs;
 	// Three steps, each in parallel (threads), with the same candidates in
 	// the order of the classes: the cascades (a class a task), measuring
 	// (a candidate a task) and the shape check (a class a task: its order

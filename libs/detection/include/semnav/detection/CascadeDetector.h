@@ -276,9 +276,11 @@ public:
 		std::optional<ObjectShape::Features> shape;
 		double shapeScore = 1;
 	};
-	/** Wall-clock times of the last detect(), ms (`proposals`: the object
-	 * proposals, or the range images of range_scales; `cascades` and
-	 * `sizeCheck` summed over the classes, which may run in parallel). */
+	/** Times of the last detect(), ms: `image` the detection images,
+	 * `proposals` the object proposals or the range images of
+	 * range_scales, `cascades` and `sizeCheck` (measuring and the shape
+	 * check), each summed over its tasks, which may run in parallel;
+	 * `total` wall-clock. */
 	struct Timings
 	{
 		double image = 0, proposals = 0, cascades = 0, sizeCheck = 0, total = 0;
@@ -386,6 +388,21 @@ public:
 	const Timings& lastTimings() const { return m_timings; }
 
 private:
+	/** Keeps the grid's elevations, view rotation (when `view`) and
+	 * projection for the images of this grid. */
+	void prepareGrid(
+	    const std::vector<double>& phis, const std::vector<double>& thetas,
+	    cv::Size sweepSize, bool view);
+	/** A detection image of the prepared grid. */
+	cv::Mat gridImage(
+	    const cv::Mat& smoothed, const cv::Mat& normalMask,
+	    DetectionChannel channel) const;
+	/** range_scales: per class, the horizontal range of the pixels whose
+	 * windows are searched (0 elsewhere), in detection-image layout. */
+	std::vector<cv::Mat> gateRanges(
+	    const cv::Mat& points, const cv::Mat& labels, const cv::Mat& areaIds,
+	    double groundZ) const;
+
 	struct Impl;
 	TOptions m_options;
 	std::unique_ptr<Impl> m_impl;
