@@ -1195,12 +1195,15 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 	std::vector<double> lateral(m.points);
 	for (std::size_t i = 0; i < m.points; i++)
 		lateral[i] = -std::sin(bearing) * xs[i] + std::cos(bearing) * ys[i];
-	m.width = percentileSpread(lateral, 0.05, 0.95);
-	const double zTop = percentile(zs, 0.95);
+	const auto spread = [](std::vector<double>& v)
+	{
+		const auto [lo, hi] = percentiles(v, 0.05, 0.95);
+		return hi - lo;
+	};
+	m.width = spread(lateral);
+	const auto [zBottom, zTop] = percentiles(zs, 0.05, 0.95);
 	m.top = zTop - groundZ;
-	m.extent = {
-	    percentileSpread(xs, 0.05, 0.95), percentileSpread(ys, 0.05, 0.95),
-	    percentileSpread(zs, 0.05, 0.95)};
+	m.extent = {spread(xs), spread(ys), zTop - zBottom};
 	return m;
 }
 

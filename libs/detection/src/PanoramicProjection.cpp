@@ -10,6 +10,14 @@ namespace semnav
 {
 namespace
 {
+/** Whether the panoramic position `f` lies in `box` (left and top edges
+ * included). */
+bool inBox(const cv::Rect2d& box, const cv::Vec2f& f)
+{
+	return f[0] >= box.x && f[0] < box.x + box.width && f[1] >= box.y &&
+	       f[1] < box.y + box.height;
+}
+
 /** Fractional index of x in increasing v; -1 outside. */
 float fractionalIndex(const std::vector<double>& v, double x)
 {
@@ -168,17 +176,8 @@ std::pair<int, int> PanoramicProjection::columnsIn(
 std::vector<cv::Point> PanoramicProjection::sweepPixelsIn(
     const cv::Rect2d& box) const
 {
-	std::vector<cv::Point> out;
-	const cv::Rect src = sourceRegion(box);
-	for (int r = src.y; r < src.y + src.height; r++)
-	{
-		const auto* f = m_forward.ptr<cv::Vec2f>(r);
-		const auto [c0, c1] = columnsIn(r, src, box);
-		for (int c = c0; c < c1; c++)
-			if (f[c][0] >= box.x && f[c][0] < box.x + box.width &&
-			    f[c][1] >= box.y && f[c][1] < box.y + box.height)
-				out.emplace_back(c, r);
-	}
+	std::vector<cv::Point> out, none;
+	sweepPixelsIn(box, cv::Rect2d(), out, none);
 	return out;
 }
 
@@ -195,14 +194,9 @@ void PanoramicProjection::sweepPixelsIn(
 		const auto [c0, c1] = columnsIn(r, src, box);
 		for (int c = c0; c < c1; c++)
 		{
-			const float x = f[c][0], y = f[c][1];
-			if (!(x >= box.x && x < box.x + box.width && y >= box.y &&
-			      y < box.y + box.height))
-				continue;
+			if (!inBox(box, f[c])) continue;
 			pixels.emplace_back(c, r);
-			if (x >= inner.x && x < inner.x + inner.width && y >= inner.y &&
-			    y < inner.y + inner.height)
-				innerPixels.emplace_back(c, r);
+			if (inBox(inner, f[c])) innerPixels.emplace_back(c, r);
 		}
 	}
 }

@@ -3,38 +3,40 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace semnav
 {
+/** The rank round(p (n - 1)) of the p-th percentile (p in 0..1) of n > 0
+ * values. */
+inline std::size_t percentileRank(std::size_t n, double p)
+{
+	return std::min(n - 1, static_cast<std::size_t>(p * double(n - 1) + 0.5));
+}
+
 /** The p-th percentile (p in 0..1) of a non-empty `v`: the element of rank
- * round(p (n - 1)). Reorders `v` (std::nth_element). */
+ * percentileRank(). Reorders `v` (std::nth_element). */
 template <typename T>
 T percentile(std::vector<T>& v, double p)
 {
-	const std::size_t k = std::min(
-	    v.size() - 1, static_cast<std::size_t>(p * double(v.size() - 1) + 0.5));
+	const std::size_t k = percentileRank(v.size(), p);
 	std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
 	return v[k];
 }
 
-/** percentile(v, pHi) - percentile(v, pLo) for pLo <= pHi, the second
+/** {percentile(v, pLo), percentile(v, pHi)} for pLo <= pHi, the second
  * selection within the part the first left below its element. */
 template <typename T>
-T percentileSpread(std::vector<T>& v, double pLo, double pHi)
+std::pair<T, T> percentiles(std::vector<T>& v, double pLo, double pHi)
 {
-	const auto rank = [&](double p)
-	{
-		return std::min(
-		    v.size() - 1,
-		    static_cast<std::size_t>(p * double(v.size() - 1) + 0.5));
-	};
-	const std::size_t hi = rank(pHi), lo = rank(pLo);
+	const std::size_t hi = percentileRank(v.size(), pHi),
+	                  lo = percentileRank(v.size(), pLo);
 	std::nth_element(v.begin(), v.begin() + static_cast<long>(hi), v.end());
 	std::nth_element(
 	    v.begin(), v.begin() + static_cast<long>(lo),
 	    v.begin() + static_cast<long>(hi));
-	return v[hi] - v[lo];
+	return {v[lo], v[hi]};
 }
 
 }  // namespace semnav
