@@ -94,15 +94,26 @@ void listMisses(
 			           semnav::ObjectScorer::iou(c.measure->box, g.box) >= 0.3;
 		if (matches) continue;
 		const auto& m = *c.measure;
+		// The ground-truth object most of its points belong to.
+		std::map<uint16_t, std::size_t> on;
+		for (const auto& p : m.pixels) on[groundTruth.at<uint16_t>(p)]++;
+		const auto most = std::max_element(
+		    on.begin(), on.end(),
+		    [](const auto& a, const auto& b) { return a.second < b.second; });
+		const int code = most == on.end() ? 0 : most->first;
 		std::fprintf(
 		    stderr,
 		    "false %s sweep %zu %s box %dx%d+%d+%d, range %.2f m, bearing "
-		    "%.0f deg, width %.2f m, top %.2f m, %zu points\n",
+		    "%.0f deg, width %.2f m, top %.2f m, %zu points, shape score "
+		    "%.2f, mostly on %s #%d\n",
 		    std::filesystem::path(dir).filename().c_str(), sweep,
 		    semnav::labelName(c.label).c_str(), m.box.width, m.box.height,
 		    m.box.x, m.box.y, std::hypot(m.centroid.x, m.centroid.y),
 		    std::atan2(m.centroid.y, m.centroid.x) * 180 / M_PI, m.width, m.top,
-		    m.points);
+		    m.points, c.shapeScore,
+		    semnav::labelName(semnav::labelFromId(unsigned(code & 0xff)))
+		        .c_str(),
+		    code >> 8);
 	}
 	for (const auto& g : objects)
 	{

@@ -8,6 +8,7 @@
 #include <semnav/cascade/CascadeEvaluator.h>
 #include <semnav/cascade/CascadeXml.h>
 #include <semnav/detection/CascadeDetector.h>
+#include <semnav/detection/GroundTruthObject.h>
 #include <semnav/detection/ObjectScorer.h>
 #include <semnav/perception/PerceptionPipeline.h>
 #include <semnav/sim/RayCaster.h>
@@ -19,6 +20,7 @@
 #include <filesystem>
 #include <map>
 #include <opencv2/objdetect.hpp>
+#include <set>
 
 using namespace semnav;
 
@@ -416,4 +418,61 @@ TEST_F(CascadeDetection, ClassesInParallelGiveTheSameCandidates)
 		}
 	}
 	EXPECT_GT(accepted, 10u) << "the scene's objects are found";
+}
+
+TEST_F(CascadeDetection, SegmentCandidatesReachObjectsTheWindowsMiss)
+{
+	// Without the shape check, the ground-truth objects some candidate of
+	// their class measures (passes the size check, IoU >= 0.3): the 3D
+	// segments add objects to the cascade's, and lose none of them.
+	const Simulated& s = scene();
+	PerceptionPipeline p;
+	for (auto& k : opts.classes)
+	{
+		k.shapeModel.clear();
+		k.segmentCandidates = false;
+	}
+	CascadeDetector windows(opts);
+	for (auto& k : opts.classes) k.segmentCandidates = true;
+	CascadeDetector segments(opts);
+	const std::vector<Label> labels{
+	    Label::Washbasin, Label::Wastebasket, Label::Stairs};
+	std::size_t reachedByWindows = 0, reachedWithSegments = 0, fromSegment = 0;
+	for (std::size_t i = 0; i < s.sweeps.size(); i++)
+	{
+		const Sweep& sw = s.sweeps[i];
+		const LabeledSweep ls = p.process(sw);
+		const auto reached = [&](CascadeDetector& d)
+		{
+			const auto cands = d.detectCandidates(
+			    sw.phis(), sw.thetas(), ls.normals, ls.normalMask, ls.points,
+			    ls.groundZ, ls.labels, ls.areaIds);
+			std::set<std::pair<Label, int>> out;
+			for (const auto& c : cands)
+			{
+				if (c.fromSegment)
+				{
+					fromSegment++;
+					EXPECT_EQ(c.neighbours, 0);
+				}
+				if (!c.measure || c.rejection.rfind("too", 0) == 0) continue;
+				for (const auto& g : GroundTruthObject::fromLabelImage(
+				         s.groundTruth[i], labels))
+					if (g.pixels >= 150 && g.label == c.label &&
+					    ObjectScorer::iou(c.measure->box, g.box) >= 0.3)
+						out.insert({g.label, g.instance});
+			}
+			return out;
+		};
+		const auto a = reached(windows), b = reached(segments);
+		for (const auto& o : a) EXPECT_TRUE(b.count(o)) << "sweep " << i;
+		reachedByWindows += a.size();
+		reachedWithSegments += b.size();
+	}
+	std::printf(
+	    "objects reached by windows %zu, with segments %zu (%zu segment "
+	    "candidates)\n",
+	    reachedByWindows, reachedWithSegments, fromSegment);
+	EXPECT_GT(fromSegment, 0u);
+	EXPECT_GT(reachedWithSegments, reachedByWindows);
 }

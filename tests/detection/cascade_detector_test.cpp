@@ -186,10 +186,18 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	    load("[CascadeDetector]\nclasses = "
 	         "stairs\n[CascadeDetector.stairs]\nwindow_step = 9\n"),
 	    ConfigError);
+	EXPECT_THROW(
+	    load("[CascadeDetector]\nsegment_range_gap_m = -0.1\n"), ConfigError);
+	EXPECT_THROW(
+	    load("[CascadeDetector]\nclasses = "
+	         "stairs\n[CascadeDetector.stairs]\nsegment_candidates = maybe\n"),
+	    ConfigError);
 	// Round trip through save.
 	CascadeDetector::TOptions o;
 	o.threads = 2;
 	o.classes[2].windowStep = 2;
+	o.classes[1].segmentCandidates = true;
+	o.segmentRangeGap = 0.25;
 	CascadeDetector::TOptions back = test::savedAndLoaded(o, "CascadeDetector");
 	EXPECT_EQ(back.threads, 2);
 	ASSERT_EQ(back.classes.size(), o.classes.size());
@@ -200,6 +208,9 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	EXPECT_DOUBLE_EQ(back.classes[1].farUpscale, o.classes[1].farUpscale);
 	EXPECT_EQ(back.classes[2].windowStep, 2);
 	EXPECT_EQ(back.classes[0].windowStep, 0);
+	EXPECT_TRUE(back.classes[1].segmentCandidates);
+	EXPECT_FALSE(back.classes[0].segmentCandidates);
+	EXPECT_DOUBLE_EQ(back.segmentRangeGap, 0.25);
 	EXPECT_NEAR(
 	    back.classes[0].farMaxElevation, o.classes[0].farMaxElevation, 1e-12);
 }

@@ -78,7 +78,8 @@ const std::vector<std::string>& CascadeDetector::TClassOptions::knownKeys()
 	    "channel",
 	    "shape_model",
 	    "min_shape_score",
-	    "max_stages"};
+	    "max_stages",
+	    "segment_candidates"};
 	return keys;
 }
 
@@ -128,6 +129,8 @@ void CascadeDetector::TClassOptions::loadFromConfigFile(
 	o.shapeModel = c.read_string(s, "shape_model", shapeModel, false);
 	o.minShapeScore = readChecked(c, s, "min_shape_score", minShapeScore, 0, 1);
 	o.maxStages = readCheckedInt(c, s, "max_stages", maxStages, 0, 1000);
+	o.segmentCandidates =
+	    readCheckedBool(c, s, "segment_candidates", segmentCandidates);
 	if (c.keyExists(s, "channel"))
 	{
 		try
@@ -178,6 +181,7 @@ void CascadeDetector::TClassOptions::saveToConfigFile(
 	c.write(s, "shape_model", shapeModel);
 	c.write(s, "min_shape_score", num(minShapeScore));
 	c.write(s, "max_stages", std::to_string(maxStages));
+	writeBool(c, s, "segment_candidates", segmentCandidates);
 }
 
 std::vector<DetectionPass> CascadeDetector::TClassOptions::passes(
@@ -279,6 +283,7 @@ const std::vector<std::string>& CascadeDetector::TOptions::knownKeys()
 	    "range_scale_slack",
 	    "range_cut_m",
 	    "range_objects_only",
+	    "segment_range_gap_m",
 	    "threads"};
 	return keys;
 }
@@ -338,6 +343,8 @@ void CascadeDetector::TOptions::loadFromConfigFile(
 	o.rangeCut = readChecked(c, s, "range_cut_m", rangeCut, 0, 100);
 	o.rangeObjectsOnly =
 	    readCheckedBool(c, s, "range_objects_only", rangeObjectsOnly);
+	o.segmentRangeGap =
+	    readChecked(c, s, "segment_range_gap_m", segmentRangeGap, 0, 100);
 	o.threads = readCheckedInt(c, s, "threads", threads, 0, 64);
 	std::string list;
 	for (const auto& k : classes) list += labelName(k.label) + " ";
@@ -398,6 +405,7 @@ void CascadeDetector::TOptions::saveToConfigFile(
 	c.write(s, "range_scale_slack", num(rangeScaleSlack));
 	c.write(s, "range_cut_m", num(rangeCut));
 	writeBool(c, s, "range_objects_only", rangeObjectsOnly);
+	c.write(s, "segment_range_gap_m", num(segmentRangeGap));
 	c.write(s, "threads", std::to_string(threads));
 	for (const auto& k : classes)
 		k.saveToConfigFile(c, s + "." + labelName(k.label));
@@ -1362,6 +1370,28 @@ std::vector<cv::Mat> CascadeDetector::gateRanges(
 	return ranges;
 }
 
+std::vector<std::vector<ObjectProposal>> CascadeDetector::objectSegments(
+    const cv::Mat& points, const cv::Mat& labels, const cv::Mat& areaIds,
+    double groundZ) const
+{
+	ObjectProposals::Params pp;
+	pp.floorTolerance = m_options.floorTolerance;
+	pp.maxHeight = m_options.proposalMaxHeight;
+	pp.minPixels = m_options.proposalMinPixels;
+	pp.joinRadius = 1;
+	pp.rangeGap = m_options.segmentRangeGap;
+	// One height limit per class (a class without segment candidates gets
+	// none: its limit is below the ground).
+	std::vector<double> limits;
+	for (const auto& k : m_options.classes)
+		limits.push_back(
+		    k.segmentCandidates ? k.maxTop + m_options.proposalTopMargin
+		                        : -1.0);
+	return ObjectProposals::find(
+	    points, labels, areaIds, groundZ,
+	    m_options.panoramic ? &m_impl->projection : nullptr, limits, pp);
+}
+
 std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
     const std::vector<double>& phis, const std::vector<double>& thetas,
     const cv::Mat& normals, const cv::Mat& normalMask, const cv::Mat& points,
@@ -1388,10 +1418,15 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	std::vector<cv::Mat> ranges(m_options.classes.size());
 	// Task times (the tasks may run in parallel).
 	std::vector<double> imageMs(channels.size(), 0.0);
-	double rangesMs = 0;
+	double rangesMs = 0, segmentsMs = 0;
+	std::vector<std::vector<ObjectProposal>> segments;
+	const bool segmented = std::any_of(
+	    m_options.classes.begin(), m_options.classes.end(),
+	    [](const TClassOptions& k) { return k.segmentCandidates; });
 	const double prepareMs = msSince(t0);
 	parallelFor(
-	    channels.size() + (gated ? 1 : 0), m_options.threads,
+	    channels.size() + (gated ? 1 : 0) + (segmented ? 1 : 0),
+	    m_options.threads,
 	    [&](std::size_t t)
 	    {
 		    const auto tt = Clock::now();
@@ -1400,10 +1435,15 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 			    channelImages[t] = gridImage(smoothed, normalMask, channels[t]);
 			    imageMs[t] = msSince(tt);
 		    }
-		    else
+		    else if (gated && t == channels.size())
 		    {
 			    ranges = gateRanges(points, labels, areaIds, groundZ);
 			    rangesMs = msSince(tt);
+		    }
+		    else
+		    {
+			    segments = objectSegments(points, labels, areaIds, groundZ);
+			    segmentsMs = msSince(tt);
 		    }
 	    });
 	std::map<DetectionChannel, cv::Mat> images;
@@ -1435,7 +1475,7 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		    points, labels, areaIds, groundZ,
 		    m_options.panoramic ? &m_impl->projection : nullptr, limits, pp);
 	}
-	m_timings.proposals = msSince(tp) + rangesMs;
+	m_timings.proposals = msSince(tp) + rangesMs + segmentsMs;
 	// Three steps, each in parallel (threads), with the same candidates in
 	// the order of the classes: the cascades (a class a task), measuring
 	// (a candidate a task) and the shape check (a class a task: its order
@@ -1471,8 +1511,16 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 			    cands[j].box = boxes[j];
 			    cands[j].neighbours = neighbours[j];
 		    }
+		    if (k.segmentCandidates)
+			    for (const ObjectProposal& p : segments.at(i))
+			    {
+				    Candidate& c = cands.emplace_back();
+				    c.label = k.label;
+				    c.box = p.box;
+				    c.fromSegment = true;
+			    }
 		    if (!m_impl->verifiers[i].empty())
-			    results[i].searched.resize(boxes.size());
+			    results[i].searched.resize(cands.size());
 	    });
 	std::vector<std::pair<std::size_t, std::size_t>> all;
 	for (std::size_t i = 0; i < results.size(); i++)

@@ -119,6 +119,12 @@ public:
 		 * evaluated (0: all): a looser detector, whose false alarms the
 		 * shape check rejects; also for collecting shape-model samples. */
 		int maxStages = 0;
+		/** segment_candidates: every 3D segment of the object points at
+		 * most max_top_m + proposal_top_margin_m high (ObjectProposals
+		 * regions, segment_range_gap_m apart) is also a candidate, measured
+		 * and shape-checked as the cascade's boxes are: objects the window
+		 * search misses or boxes badly still get a candidate. */
+		bool segmentCandidates = false;
 	};
 
 	/** INI section [CascadeDetector] plus one [CascadeDetector.<label>]
@@ -241,6 +247,10 @@ public:
 		 * at most max_top_m + proposal_top_margin_m high): one of the five
 		 * range samples must be such a point. */
 		bool rangeObjectsOnly = false;
+		/** segment_range_gap_m: neighbouring object pixels (8-connected)
+		 * whose horizontal ranges differ by more than this (+ 5 % of the
+		 * range) are in different segments (segment_candidates). */
+		double segmentRangeGap = 0.15;
 		/** threads: classes searched in parallel on up to this many
 		 * threads (0: all cores, 1: the calling thread only); the same
 		 * candidates either way. */
@@ -267,6 +277,8 @@ public:
 		/** In detection-image coordinates (panoramic or sweep). */
 		cv::Rect box;
 		int neighbours = 0;
+		/** A 3D segment (segment_candidates), not a cascade box. */
+		bool fromSegment = false;
 		std::optional<Measure> measure;
 		bool accepted = false;
 		std::string rejection;
@@ -400,6 +412,12 @@ private:
 	/** range_scales: per class, the horizontal range of the pixels whose
 	 * windows are searched (0 elsewhere), in detection-image layout. */
 	std::vector<cv::Mat> gateRanges(
+	    const cv::Mat& points, const cv::Mat& labels, const cv::Mat& areaIds,
+	    double groundZ) const;
+	/** segment_candidates: per class, the 3D segments of its object points
+	 * (none for classes without segment candidates), in detection-image
+	 * layout. */
+	std::vector<std::vector<ObjectProposal>> objectSegments(
 	    const cv::Mat& points, const cv::Mat& labels, const cv::Mat& areaIds,
 	    double groundZ) const;
 
