@@ -189,6 +189,8 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	EXPECT_THROW(
 	    load("[CascadeDetector]\nsegment_range_gap_m = -0.1\n"), ConfigError);
 	EXPECT_THROW(
+	    load("[CascadeDetector]\nsegment_max_taller = -1\n"), ConfigError);
+	EXPECT_THROW(
 	    load("[CascadeDetector]\nclasses = "
 	         "stairs\n[CascadeDetector.stairs]\nsegment_candidates = maybe\n"),
 	    ConfigError);
@@ -198,6 +200,8 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	o.classes[2].windowStep = 2;
 	o.classes[1].segmentCandidates = true;
 	o.segmentRangeGap = 0.25;
+	o.segmentMaxTaller = 0.5;
+	o.classes[1].cascadeSupport = true;
 	CascadeDetector::TOptions back = test::savedAndLoaded(o, "CascadeDetector");
 	EXPECT_EQ(back.threads, 2);
 	ASSERT_EQ(back.classes.size(), o.classes.size());
@@ -211,6 +215,9 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	EXPECT_TRUE(back.classes[1].segmentCandidates);
 	EXPECT_FALSE(back.classes[0].segmentCandidates);
 	EXPECT_DOUBLE_EQ(back.segmentRangeGap, 0.25);
+	EXPECT_DOUBLE_EQ(back.segmentMaxTaller, 0.5);
+	EXPECT_TRUE(back.classes[1].cascadeSupport);
+	EXPECT_FALSE(back.classes[2].cascadeSupport);
 	EXPECT_NEAR(
 	    back.classes[0].farMaxElevation, o.classes[0].farMaxElevation, 1e-12);
 }

@@ -153,6 +153,12 @@ TEST(DetectorProposals, RegionsSplitByRangeAndHeightLimit)
 	ASSERT_TRUE(at(all, {45, 5}));
 	EXPECT_EQ(at(all, {45, 5}), at(all, {58, 5}));
 	EXPECT_EQ(at(all, {45, 5})->box, cv::Rect(45, 1, 14, 39));
+	// The legs below 0.65 m are the feet of something taller (the top joins
+	// them); the objects are whole.
+	EXPECT_GT(at(low, {45, 5})->tallerPixels, 0);
+	EXPECT_GT(at(low, {58, 5})->tallerPixels, 0);
+	EXPECT_EQ(at(low, {15, 10})->tallerPixels, 0);
+	EXPECT_EQ(at(all, {45, 5})->tallerPixels, 0);
 	// Small regions are dropped.
 	auto big = params();
 	big.minPixels = 500;

@@ -12,6 +12,7 @@
 #include <semnav/common/Percentile.h>
 #include <semnav/common/Timing.h>
 #include <semnav/detection/CascadeDetector.h>
+#include <semnav/detection/ObjectScorer.h>
 #include <semnav/detection/ShapeVerifier.h>
 
 #include <algorithm>
@@ -79,7 +80,8 @@ const std::vector<std::string>& CascadeDetector::TClassOptions::knownKeys()
 	    "shape_model",
 	    "min_shape_score",
 	    "max_stages",
-	    "segment_candidates"};
+	    "segment_candidates",
+	    "cascade_support"};
 	return keys;
 }
 
@@ -131,6 +133,7 @@ void CascadeDetector::TClassOptions::loadFromConfigFile(
 	o.maxStages = readCheckedInt(c, s, "max_stages", maxStages, 0, 1000);
 	o.segmentCandidates =
 	    readCheckedBool(c, s, "segment_candidates", segmentCandidates);
+	o.cascadeSupport = readCheckedBool(c, s, "cascade_support", cascadeSupport);
 	if (c.keyExists(s, "channel"))
 	{
 		try
@@ -182,6 +185,7 @@ void CascadeDetector::TClassOptions::saveToConfigFile(
 	c.write(s, "min_shape_score", num(minShapeScore));
 	c.write(s, "max_stages", std::to_string(maxStages));
 	writeBool(c, s, "segment_candidates", segmentCandidates);
+	writeBool(c, s, "cascade_support", cascadeSupport);
 }
 
 std::vector<DetectionPass> CascadeDetector::TClassOptions::passes(
@@ -284,6 +288,7 @@ const std::vector<std::string>& CascadeDetector::TOptions::knownKeys()
 	    "range_cut_m",
 	    "range_objects_only",
 	    "segment_range_gap_m",
+	    "segment_max_taller",
 	    "threads"};
 	return keys;
 }
@@ -345,6 +350,8 @@ void CascadeDetector::TOptions::loadFromConfigFile(
 	    readCheckedBool(c, s, "range_objects_only", rangeObjectsOnly);
 	o.segmentRangeGap =
 	    readChecked(c, s, "segment_range_gap_m", segmentRangeGap, 0, 100);
+	o.segmentMaxTaller =
+	    readChecked(c, s, "segment_max_taller", segmentMaxTaller, 0, 1e6);
 	o.threads = readCheckedInt(c, s, "threads", threads, 0, 64);
 	std::string list;
 	for (const auto& k : classes) list += labelName(k.label) + " ";
@@ -406,6 +413,7 @@ void CascadeDetector::TOptions::saveToConfigFile(
 	c.write(s, "range_cut_m", num(rangeCut));
 	writeBool(c, s, "range_objects_only", rangeObjectsOnly);
 	c.write(s, "segment_range_gap_m", num(segmentRangeGap));
+	c.write(s, "segment_max_taller", num(segmentMaxTaller));
 	c.write(s, "threads", std::to_string(threads));
 	for (const auto& k : classes)
 		k.saveToConfigFile(c, s + "." + labelName(k.label));
@@ -1217,6 +1225,22 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 
 namespace
 {
+/** A measured candidate's ObjectShape, with its cascade support if its
+ * class uses it (cascade_support). */
+ObjectShape::Features describeCandidate(
+    const cv::Mat& points, const cv::Mat& normals, const cv::Mat& normalMask,
+    const cv::Mat& labels, const CascadeDetector::TClassOptions& k,
+    const CascadeDetector::Candidate& c,
+    const std::vector<cv::Point>& surroundings, double groundZ)
+{
+	auto f = ObjectShape::describe(
+	    points, normals, normalMask, labels, c.measure->pixels, surroundings,
+	    groundZ);
+	if (k.cascadeSupport)
+		f[ObjectShape::kCascadeSupport] = float(c.cascadeSupport);
+	return f;
+}
+
 /** One object, several boxes (detectMultiScale groups similar boxes only):
  * of accepted candidates sharing most object pixels, the one with the
  * most neighbours (then the most points) that `verify` (the shape check)
@@ -1514,11 +1538,17 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		    if (k.segmentCandidates)
 			    for (const ObjectProposal& p : segments.at(i))
 			    {
+				    if (p.tallerPixels > m_options.segmentMaxTaller * p.pixels)
+					    continue;
 				    Candidate& c = cands.emplace_back();
 				    c.label = k.label;
 				    c.box = p.box;
 				    c.fromSegment = true;
 			    }
+		    for (auto& c : cands)
+			    for (std::size_t j = 0; j < boxes.size(); j++)
+				    if (ObjectScorer::iou(c.box, boxes[j]) >= 0.3)
+					    c.cascadeSupport += std::max(1, neighbours[j]);
 		    if (!m_impl->verifiers[i].empty())
 			    results[i].searched.resize(cands.size());
 	    });
@@ -1577,9 +1607,8 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		    else
 			    c.accepted = true;
 		    if (c.accepted && m_impl->describeShapes)
-			    c.shape = ObjectShape::describe(
-			        points, normals, normalMask, labels, c.measure->pixels,
-			        pixels, groundZ);
+			    c.shape = describeCandidate(
+			        points, normals, normalMask, labels, k, c, pixels, groundZ);
 		    if (!results[i].searched.empty())
 			    results[i].searched[j] = std::move(pixels);
 		    measureMs[a] = msSince(tm);
@@ -1601,9 +1630,8 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		        {
 			        if (verifier.empty()) return true;
 			        if (!c.shape)
-				        c.shape = ObjectShape::describe(
-				            points, normals, normalMask, labels,
-				            c.measure->pixels,
+				        c.shape = describeCandidate(
+				            points, normals, normalMask, labels, k, c,
 				            results[i].searched[std::size_t(&c - out.data())],
 				            groundZ);
 			        c.shapeScore = verifier.score(*c.shape);

@@ -146,7 +146,7 @@ std::vector<ObjectProposal> ObjectProposals::regions(
 			const int id = ++n;
 			ranges.clear();
 			heights.clear();
-			int x0 = c0, x1 = c0, y0 = r0, y1 = r0;
+			int x0 = c0, x1 = c0, y0 = r0, y1 = r0, taller = 0;
 			ids.at<int>(r0, c0) = id;
 			stack.assign(1, cv::Point(c0, r0));
 			while (!stack.empty())
@@ -170,12 +170,22 @@ std::vector<ObjectProposal> ObjectProposals::regions(
 					auto* o = ids.ptr<int>(y);
 					for (int x = std::max(0, a.x - rad);
 					     x <= std::min(range.cols - 1, a.x + rad); x++)
-						if (!o[x] && d[x] > 0 && h[x] <= topLimit &&
-						    std::abs(d[x] - ra) <= gap)
+					{
+						if (!(d[x] > 0) || std::abs(d[x] - ra) > gap) continue;
+						if (h[x] > topLimit)
 						{
-							o[x] = id;
-							stack.emplace_back(x, y);
+							// Marked -id: counted once per region.
+							if (o[x] != -id)
+							{
+								o[x] = -id;
+								taller++;
+							}
+							continue;
 						}
+						if (o[x]) continue;
+						o[x] = id;
+						stack.emplace_back(x, y);
+					}
 				}
 			}
 			if (static_cast<int>(ranges.size()) < params.minPixels) continue;
@@ -186,6 +196,7 @@ std::vector<ObjectProposal> ObjectProposals::regions(
 			p.farRange = percentile(ranges, 0.9);
 			p.bottom = percentile(heights, 0.05);
 			p.top = percentile(heights, 0.95);
+			p.tallerPixels = taller;
 			out.push_back(p);
 		}
 	return out;

@@ -25,14 +25,22 @@ float spread(std::vector<double> v)
 const std::array<const char*, ObjectShape::kFeatures>& ObjectShape::names()
 {
 	static const std::array<const char*, kFeatures> n{
-	    "range",         "bearing",       "log_points",   "width",
-	    "depth",         "top",           "bottom",       "height_0_20",
-	    "height_20_40",  "height_40_60",  "height_60_80", "height_80_100",
-	    "width_lower",   "width_middle",  "width_upper",  "facing_up",
-	    "facing_side",   "side_turn",     "side_oblique", "front_curvature",
-	    "pca_middle",    "pca_least",     "wall_around",  "box_fill",
-	    "top_facing_up", "top_depth",     "up_levels",    "up_height_spread",
-	    "up_slope",      "side_two_faces"};
+	    "range",          "bearing",
+	    "log_points",     "width",
+	    "depth",          "top",
+	    "bottom",         "height_0_20",
+	    "height_20_40",   "height_40_60",
+	    "height_60_80",   "height_80_100",
+	    "width_lower",    "width_middle",
+	    "width_upper",    "facing_up",
+	    "facing_side",    "side_turn",
+	    "side_oblique",   "front_curvature",
+	    "pca_middle",     "pca_least",
+	    "wall_around",    "box_fill",
+	    "top_facing_up",  "top_depth",
+	    "up_levels",      "up_height_spread",
+	    "up_slope",       "side_two_faces",
+	    "cascade_support"};
 	return n;
 }
 

@@ -125,6 +125,10 @@ public:
 		 * and shape-checked as the cascade's boxes are: objects the window
 		 * search misses or boxes badly still get a candidate. */
 		bool segmentCandidates = false;
+		/** cascade_support: the shape model also sees how many of the
+		 * class's cascade windows cover a candidate
+		 * (Candidate::cascadeSupport); false: it sees 0. */
+		bool cascadeSupport = false;
 	};
 
 	/** INI section [CascadeDetector] plus one [CascadeDetector.<label>]
@@ -251,6 +255,11 @@ public:
 		 * whose horizontal ranges differ by more than this (+ 5 % of the
 		 * range) are in different segments (segment_candidates). */
 		double segmentRangeGap = 0.15;
+		/** segment_max_taller: a segment joined by more higher object
+		 * pixels than this fraction of its own (ObjectProposal::
+		 * tallerPixels) is the lower part of something taller, not a
+		 * candidate. */
+		double segmentMaxTaller = 0.1;
 		/** threads: classes searched in parallel on up to this many
 		 * threads (0: all cores, 1: the calling thread only); the same
 		 * candidates either way. */
@@ -279,6 +288,10 @@ public:
 		int neighbours = 0;
 		/** A 3D segment (segment_candidates), not a cascade box. */
 		bool fromSegment = false;
+		/** Raw cascade windows of its class on it: the neighbours (at
+		 * least 1 each) of the class's cascade boxes with IoU >= 0.3 with
+		 * its box (ObjectShape::kCascadeSupport). */
+		int cascadeSupport = 0;
 		std::optional<Measure> measure;
 		bool accepted = false;
 		std::string rejection;

@@ -26,6 +26,11 @@ struct ObjectProposal
 	double bottom = 0;
 	/** Height of its top above the ground (m, 95th percentile). */
 	double top = 0;
+	/** Object pixels higher than the height limit that join it (range
+	 * within the gap, within the join radius): the region is the lower
+	 * part of something taller (a pillar, a cabinet, a washbasin's
+	 * pedestal). */
+	int tallerPixels = 0;
 };
 
 /** Region proposals for the cascades: the rule classifier labels floor,

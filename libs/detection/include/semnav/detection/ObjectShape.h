@@ -19,11 +19,17 @@ namespace semnav
 class ObjectShape
 {
 public:
-	static constexpr int kFeatures = 30;
+	static constexpr int kFeatures = 31;
 	using Features = std::array<float, kFeatures>;
 
 	/** Short names of the features, in order. */
 	static const std::array<const char*, kFeatures>& names();
+
+	/** Index of the one feature describe() leaves 0: how many of its
+	 * class's cascade windows cover the candidate (CascadeDetector fills
+	 * it; the forest weighs the window detector's evidence with the
+	 * shape). */
+	static constexpr int kCascadeSupport = 30;
 
 	/** The descriptor of the object whose sweep pixels are `object`.
 	 * `points`, `normals` CV_32FC3 (robot frame, NaN / zero where none),
