@@ -132,6 +132,20 @@ void listMisses(
 			}
 		}
 		if (bestAccepted >= 0.3) continue;
+		const auto fate = [](const semnav::CascadeDetector::Candidate* c)
+		{
+			if (!c) return std::string("(no measured candidate)");
+			char buf[160];
+			std::snprintf(
+			    buf, sizeof(buf),
+			    "(%s%s%s; %s, width %.2f m, top %.2f m, %zu points, shape "
+			    "score %.2f)",
+			    c->accepted ? "accepted" : "rejected: ",
+			    c->accepted ? "" : c->rejection.c_str(), "",
+			    c->fromSegment ? "segment" : "cascade box", c->measure->width,
+			    c->measure->top, c->measure->points, c->shapeScore);
+			return std::string(buf);
+		};
 		const cv::Mat mask = g.mask(groundTruth);
 		cv::Vec3d sum(0, 0, 0);
 		int n = 0, inProposals = 0;
@@ -154,11 +168,7 @@ void listMisses(
 		    semnav::labelName(g.label).c_str(), g.instance, g.box.width,
 		    g.box.height, g.box.x, g.box.y, g.pixels, std::hypot(m[0], m[1]),
 		    std::atan2(m[1], m[0]) * 180 / M_PI, m[2],
-		    n ? 100.0 * inProposals / n : 0.0, best,
-		    !nearest ? "(no measured candidate)"
-		    : nearest->accepted
-		        ? "(accepted)"
-		        : ("(rejected: " + nearest->rejection + ")").c_str());
+		    n ? 100.0 * inProposals / n : 0.0, best, fate(nearest).c_str());
 	}
 }
 }  // namespace
