@@ -138,12 +138,15 @@ void listMisses(
 			char buf[160];
 			std::snprintf(
 			    buf, sizeof(buf),
-			    "(%s%s%s; %s, width %.2f m, top %.2f m, %zu points, shape "
-			    "score %.2f)",
+			    "(%s%s; %s, width %.2f m, top %.2f m, %zu points, %s)",
 			    c->accepted ? "accepted" : "rejected: ",
-			    c->accepted ? "" : c->rejection.c_str(), "",
+			    c->accepted ? "" : c->rejection.c_str(),
 			    c->fromSegment ? "segment" : "cascade box", c->measure->width,
-			    c->measure->top, c->measure->points, c->shapeScore);
+			    c->measure->top, c->measure->points,
+			    c->shape ? ("shape score " +
+			                std::to_string(c->shapeScore).substr(0, 4))
+			                   .c_str()
+			             : "no shape check");
 			return std::string(buf);
 		};
 		const cv::Mat mask = g.mask(groundTruth);
