@@ -205,9 +205,29 @@ TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 	    "semnav-detect", "--datasets " + sim().string() + " --config " +
 	                         ini.string() + " --json");
 	ASSERT_EQ(det.code, 0) << det.err;
-	EXPECT_GT(
-	    nlohmann::json::parse(det.out).at("objects").at("washbasin").at("tp"),
-	    0);
+	const auto dj = nlohmann::json::parse(det.out);
+	EXPECT_GT(dj.at("objects").at("washbasin").at("tp"), 0);
+	// --misses: a line per counted object no accepted detection matches
+	// (at most the false negatives) and per false detection, each saying
+	// where it is and what the nearest candidate became.
+	const AppRun misses = runApp(
+	    "semnav-detect", "--datasets " + sim().string() + " --config " +
+	                         ini.string() + " --misses");
+	ASSERT_EQ(misses.code, 0) << misses.err;
+	std::istringstream lines(misses.err);
+	int missLines = 0, falseLines = 0;
+	for (std::string line; std::getline(lines, line);)
+	{
+		if (line.rfind("miss ", 0) == 0)
+		{
+			missLines++;
+			EXPECT_NE(line.find("nearest candidate IoU"), std::string::npos)
+			    << line;
+		}
+		falseLines += line.rfind("false ", 0) == 0;
+	}
+	EXPECT_LE(missLines, dj.at("objects").at("washbasin").at("fn").get<int>());
+	EXPECT_GT(missLines + falseLines, 0);
 	// Bad input: one line, exit 1 (unknown label, missing dataset, a
 	// corrupt model named by the config); bad usage: exit 2.
 	std::ofstream(kTmp / "washbasin-shape.xml.gz") << "not a forest";
