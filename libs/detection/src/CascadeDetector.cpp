@@ -1063,36 +1063,70 @@ void CascadeDetector::runCascade(
 	}
 }
 
+namespace
+{
+/** measure()'s scratch, per thread (no allocation per candidate once
+ * grown). */
+struct MeasureScratch
+{
+	/** Per pixel of the region padded by one on every side (0 on the
+	 * border, so that neighbours need no bounds checks): flags. */
+	std::vector<uint8_t> state;
+	std::vector<double> centreD;
+	std::vector<int> queue;
+	std::vector<double> lateral;
+};
+thread_local MeasureScratch tlMeasure;
+
+/** Whether std::hypot(x, y) <= t, mostly without computing it: x^2 + y^2
+ * in double (exact squares of floats, one rounding) decides unless it lies
+ * within 1e-6 (relative) of t^2, far beyond the rounding of that sum and
+ * hypot's 1 ulp; there hypot itself decides. */
+inline bool hypotAtMost(float x, float y, double t)
+{
+	const double s = double(x) * double(x) + double(y) * double(y);
+	const double t2 = t * t;
+	if (s < t2 * (1 - 1e-6)) return true;
+	if (s > t2 * (1 + 1e-6)) return false;
+	return std::hypot(double(x), double(y)) <= t;
+}
+}  // namespace
+
 std::optional<CascadeDetector::Measure> CascadeDetector::measure(
     const cv::Mat& points, const cv::Mat& labels,
     const std::vector<cv::Point>& pixels, const std::vector<cv::Point>& centre,
     double groundZ, double floorTolerance, double maxDepth, int minPoints,
     bool connected)
 {
-	// Ground labels (floor, sidewalk, grass) are left to the height test:
-	// the rules' ground areas can swallow the top of a low object.
-	const auto isSurface = [&](const cv::Point& px)
+	if (pixels.empty()) return std::nullopt;
+	MeasureScratch& sc = tlMeasure;
+	const bool hasLabels = !labels.empty();
+	const double zFloor = groundZ + floorTolerance;
+	const auto pointAt = [&](int x, int y) -> const cv::Vec3f&
+	{ return points.ptr<cv::Vec3f>(y)[x]; };
+	// Not floor (within floorTolerance of the ground) nor a surface. Ground
+	// labels (floor, sidewalk, grass) are left to the height test: the
+	// rules' ground areas can swallow the top of a low object.
+	const auto nonFloor = [&](int x, int y)
 	{
-		if (labels.empty()) return false;
-		switch (static_cast<Label>(labels.at<uint8_t>(px)))
+		const cv::Vec3f& p = pointAt(x, y);
+		if (!(std::isfinite(p[0]) && p[2] >= zFloor)) return false;
+		if (!hasLabels) return true;
+		switch (static_cast<Label>(labels.ptr<uint8_t>(y)[x]))
 		{
 			case Label::Ceiling:
 			case Label::Wall:
 			case Label::Door:
-				return true;
-			default:
 				return false;
+			default:
+				return true;
 		}
 	};
-	const auto horizontal = [](const cv::Vec3f& p)
-	{ return std::hypot(double(p[0]), double(p[1])); };
-	const auto nonFloor = [&](const cv::Point& px, cv::Vec3f& p)
+	const auto horizontal = [&](int x, int y)
 	{
-		p = points.at<cv::Vec3f>(px);
-		return std::isfinite(p[0]) && p[2] >= groundZ + floorTolerance &&
-		       !isSurface(px);
+		const cv::Vec3f& p = pointAt(x, y);
+		return std::hypot(double(p[0]), double(p[1]));
 	};
-	if (pixels.empty()) return std::nullopt;
 	int x0 = INT_MAX, y0 = INT_MAX, x1 = -1, y1 = -1;
 	for (const auto& px : pixels)
 	{
@@ -1102,85 +1136,96 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 		y1 = std::max(y1, px.y);
 	}
 	const cv::Rect region(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
-	// Horizontal distance of each of `pixels` that is not floor or surface
-	// (NaN where it is; kNotIn: not one of `pixels`).
-	constexpr double kNotIn = -1;
-	cv::Mat1d dist(region.size(), kNotIn);
-	cv::Vec3f p;
+	// Flags per pixel of the region: one of `pixels`, and not floor or
+	// surface; a candidate (not too far behind); kept (connected).
+	constexpr uint8_t kIn = 1, kValid = 2, kCand = 4, kKept = 8;
+	const int pw = region.width + 2;
+	const auto padded = [&](int x, int y)
+	{ return std::size_t((y - y0 + 1) * pw + (x - x0 + 1)); };
+	std::vector<uint8_t>& state = sc.state;
+	state.assign(std::size_t(pw) * std::size_t(region.height + 2), 0);
 	for (const auto& px : pixels)
-		dist(px - region.tl()) = nonFloor(px, p)
-		                             ? horizontal(p)
-		                             : std::numeric_limits<double>::quiet_NaN();
+		state[padded(px.x, px.y)] = nonFloor(px.x, px.y) ? kIn | kValid : kIn;
 	// How far the object is: the nearest part (10th percentile of the
 	// horizontal distance) of the box's centre.
-	std::vector<double> centreD;
+	std::vector<double>& centreD = sc.centreD;
+	centreD.clear();
 	for (const auto& px : centre)
 	{
-		const double d = region.contains(px) ? dist(px - region.tl()) : kNotIn;
-		if (d == kNotIn)
-		{
-			if (nonFloor(px, p)) centreD.push_back(horizontal(p));
-		}
-		else if (!std::isnan(d))
-			centreD.push_back(d);
+		const uint8_t f = region.contains(px) ? state[padded(px.x, px.y)] : 0;
+		if (f & kIn ? f & kValid : nonFloor(px.x, px.y))
+			centreD.push_back(horizontal(px.x, px.y));
 	}
 	if (centreD.empty())
 		for (const auto& px : pixels)
-		{
-			const double d = dist(px - region.tl());
-			if (!std::isnan(d)) centreD.push_back(d);
-		}
+			if (state[padded(px.x, px.y)] & kValid)
+				centreD.push_back(horizontal(px.x, px.y));
 	if (centreD.empty()) return std::nullopt;
-	const double near = percentile(centreD, 0.1);
+	const double far = percentile(centreD, 0.1) + maxDepth;
 	// Candidates: non-floor, non-surface points not too far behind.
-	cv::Mat cand(region.size(), CV_8U, cv::Scalar(0));
 	for (const auto& px : pixels)
-		if (dist(px - region.tl()) <= near + maxDepth)
-			cand.at<uint8_t>(px - region.tl()) = 1;
+	{
+		uint8_t& f = state[padded(px.x, px.y)];
+		const cv::Vec3f& p = pointAt(px.x, px.y);
+		if ((f & kValid) && hypotAtMost(p[0], p[1], far)) f |= kCand;
+	}
+	// Object points, for the reservations below.
+	std::size_t kept = 0;
 	if (connected)
 	{
 		// Keep the candidates connected to the centre's: 8-neighbours
-		// closer in 3D than a gap growing with the range.
-		cv::Mat keep(region.size(), CV_8U, cv::Scalar(0));
-		std::vector<cv::Point> queue;
+		// closer in 3D than a gap growing with the range (the kept set is
+		// what the centre reaches, in any visiting order).
+		std::vector<int>& queue = sc.queue;
+		queue.clear();
 		for (const auto& px : centre)
-			if (region.contains(px) && cand.at<uint8_t>(px - region.tl()) &&
-			    !keep.at<uint8_t>(px - region.tl()))
+			if (region.contains(px))
 			{
-				keep.at<uint8_t>(px - region.tl()) = 1;
-				queue.push_back(px);
+				uint8_t& f = state[padded(px.x, px.y)];
+				if ((f & (kCand | kKept)) == kCand)
+				{
+					f |= kKept;
+					queue.push_back(int(padded(px.x, px.y)));
+				}
 			}
+		const int offsets[8] = {-pw - 1, -pw,    -pw + 1, -1,
+		                        1,       pw - 1, pw,      pw + 1};
 		for (std::size_t i = 0; i < queue.size(); i++)
 		{
-			const cv::Point a = queue[i];
-			const cv::Vec3f pa = points.at<cv::Vec3f>(a);
+			const int a = queue[i];
+			const int ax = a % pw - 1 + x0, ay = a / pw - 1 + y0;
+			const cv::Vec3f pa = pointAt(ax, ay);
 			const double gap = 0.08 + 0.03 * std::sqrt(pa.dot(pa));
-			for (int dy = -1; dy <= 1; dy++)
-				for (int dx = -1; dx <= 1; dx++)
-				{
-					const cv::Point b(a.x + dx, a.y + dy);
-					if (!region.contains(b)) continue;
-					const cv::Point l = b - region.tl();
-					if (!cand.at<uint8_t>(l) || keep.at<uint8_t>(l)) continue;
-					const cv::Vec3f d = points.at<cv::Vec3f>(b) - pa;
-					if (std::sqrt(d.dot(d)) > gap) continue;
-					keep.at<uint8_t>(l) = 1;
-					queue.push_back(b);
-				}
+			for (int k = 0; k < 8; k++)
+			{
+				const int b = a + offsets[k];
+				uint8_t& f = state[std::size_t(b)];
+				if ((f & (kCand | kKept)) != kCand) continue;
+				const cv::Vec3f d =
+				    pointAt(b % pw - 1 + x0, b / pw - 1 + y0) - pa;
+				if (std::sqrt(d.dot(d)) > gap) continue;
+				f |= kKept;
+				queue.push_back(b);
+			}
 		}
-		cand = keep;
+		kept = queue.size();
 	}
+	else
+		for (const auto& px : pixels)
+			kept += (state[padded(px.x, px.y)] & kCand) != 0;
+	const uint8_t keep = connected ? kKept : kCand;
 	Measure m;
 	std::vector<double> xs, ys, zs;
-	xs.reserve(pixels.size());
-	ys.reserve(pixels.size());
-	zs.reserve(pixels.size());
+	xs.reserve(kept);
+	ys.reserve(kept);
+	zs.reserve(kept);
+	m.pixels.reserve(kept);
 	double sx = 0, sy = 0, sz = 0;
 	int c0 = INT_MAX, r0 = INT_MAX, c1 = -1, r1 = -1;
 	for (const auto& px : pixels)
 	{
-		if (!cand.at<uint8_t>(px - region.tl())) continue;
-		p = points.at<cv::Vec3f>(px);
+		if (!(state[padded(px.x, px.y)] & keep)) continue;
+		const cv::Vec3f& p = pointAt(px.x, px.y);
 		xs.push_back(p[0]);
 		ys.push_back(p[1]);
 		zs.push_back(p[2]);
@@ -1200,9 +1245,11 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 	m.centroid = {sx / n, sy / n, sz / n};
 	// Extent across the line of sight to the centroid.
 	const double bearing = std::atan2(m.centroid.y, m.centroid.x);
-	std::vector<double> lateral(m.points);
+	const double sinB = std::sin(bearing), cosB = std::cos(bearing);
+	std::vector<double>& lateral = sc.lateral;
+	lateral.resize(m.points);
 	for (std::size_t i = 0; i < m.points; i++)
-		lateral[i] = -std::sin(bearing) * xs[i] + std::cos(bearing) * ys[i];
+		lateral[i] = -sinB * xs[i] + cosB * ys[i];
 	const auto spread = [](std::vector<double>& v)
 	{
 		const auto [lo, hi] = percentiles(v, 0.05, 0.95);
