@@ -4,6 +4,7 @@
 #include <semnav/cascade/CascadeError.h>
 #include <semnav/cascade/CascadeEvaluator.h>
 #include <semnav/cascade/CascadeXml.h>
+#include <semnav/cascade/ExactResize.h>
 #include <semnav/cascade/IntegralImages.h>
 #include <semnav/cascade/RangeGate.h>
 #include <semnav/common/ConfigChecks.h>
@@ -488,9 +489,9 @@ struct GatedScratch
 	std::vector<int> first, last;
 	/** Per column of a row of windows: whether the gate takes it. */
 	std::vector<uint8_t> ok;
-	/** Pyramid levels of the bands (band data and size, level size), shared by
-	 * the classes that search the same band within one detectCandidates(). */
-	std::map<std::tuple<const uint8_t*, int, int, int, int>, cv::Mat> levels;
+	/** The part of a pyramid level its windows cover. */
+	ExactResize resize;
+	cv::Mat levelPart;
 	IntegralImages ii;
 	/** Row stride of the integral images: only grows, so that the
 	 * evaluators compile their features once. */
@@ -665,7 +666,8 @@ struct GateBounds
  * by CascadeEvaluator, but a window is
  * evaluated only where the range at its centre (the nearest of five
  * samples in its central half; `range` 0 = none) passes `gate` for its
- * side. The integral images of a level cover only the windows searched;
+ * side. A level is resized (ExactResize) and its integral images computed
+ * only over the windows searched;
  * windows none of whose five samples can have a range (rows and columns
  * without one) are not looked at. */
 void rangeGatedDetect(
@@ -821,20 +823,14 @@ void rangeGatedDetect(
 				}
 		}
 		if (windows.empty()) continue;
-		const cv::Mat* level = &image;
+		// The level (cv::resize, INTER_LINEAR_EXACT) only where windows are.
+		cv::Mat part = image(box);
 		if (sz != image.size())
 		{
-			// A band is its data and size (bands of one image may start at
-			// the same row and end at different ones).
-			cv::Mat& l = sc.levels[std::make_tuple(
-			    image.ptr<uint8_t>(), image.cols, image.rows, sz.width,
-			    sz.height)];
-			if (l.empty())
-				cv::resize(image, l, sz, 0, 0, cv::INTER_LINEAR_EXACT);
-			level = &l;
+			sc.resize.resize(image, sz, box, sc.levelPart);
+			part = sc.levelPart;
 		}
-		sc.ii.compute(
-		    (*level)(box), ev.cascade().hasTiltedFeatures(), sc.stride);
+		sc.ii.compute(part, ev.cascade().hasTiltedFeatures(), sc.stride);
 		ev.setIntegralImages(sc.ii);
 		for (cv::Point& w : windows) w -= box.tl();
 		ev.scanWindows(windows, step, sc.results);
@@ -1059,7 +1055,6 @@ void CascadeDetector::runCascade(
 	if (!m_impl->keepScaled)
 	{
 		m_impl->scaled.at(i).clear();
-		m_impl->gated.at(i).levels.clear();
 	}
 }
 
@@ -1670,7 +1665,6 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		    r.candidates.begin(), r.candidates.end(), std::back_inserter(out));
 	}
 	for (auto& s : m_impl->scaled) s.clear();
-	for (auto& g : m_impl->gated) g.levels.clear();
 	m_impl->keepScaled = false;
 	m_timings.total = msSince(t0);
 	return out;
