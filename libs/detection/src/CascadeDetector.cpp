@@ -1380,6 +1380,40 @@ std::vector<cv::Mat> CascadeDetector::gateRanges(
 		mask =
 		    ObjectProposals::objectMask(points, labels, areaIds, groundZ, pp);
 	}
+	const std::size_t nc = m_options.classes.size();
+	std::vector<cv::Mat> ranges(nc);
+	std::vector<double> tops(nc);
+	for (std::size_t i = 0; i < nc; i++)
+		tops[i] =
+		    m_options.classes[i].maxTop + m_options.proposalTopMargin + groundZ;
+	const cv::Mat& nearest = m_impl->projection.nearestSource();
+	if (m_options.panoramic && nearest.size() == points.size() &&
+	    points.isContinuous() && (mask.empty() || mask.isContinuous()))
+	{
+		// Panoramic directly, every class in one pass: the nearest sweep
+		// pixel's range (PanoramicProjection::toPanoramic's INTER_NEAREST).
+		std::vector<float*> d(nc);
+		for (std::size_t i = 0; i < nc; i++)
+		{
+			ranges[i].create(points.size(), CV_32F);
+			d[i] = ranges[i].ptr<float>();
+		}
+		const auto* p = points.ptr<cv::Vec3f>();
+		const uint8_t* m = mask.empty() ? nullptr : mask.ptr<uint8_t>();
+		const int32_t* src = nearest.ptr<int32_t>();
+		for (int j = 0; j < points.rows * points.cols; j++)
+		{
+			// The horizontal range (0: none) of the points the mask keeps.
+			const int k = src[j];
+			float h = 0;
+			if (k >= 0 && (!m || m[k]) && std::isfinite(p[k][0]) &&
+			    std::isfinite(p[k][1]))
+				h = std::hypot(p[k][0], p[k][1]);
+			for (std::size_t i = 0; i < nc; i++)
+				d[i][j] = h > 0 && (!m || p[k][2] <= tops[i]) ? h : 0.f;
+		}
+		return ranges;
+	}
 	// Horizontal range of every point (0: none), then each class's.
 	cv::Mat1f horizontal(points.size(), 0.f);
 	for (int r = 0; r < points.rows; r++)
@@ -1390,11 +1424,9 @@ std::vector<cv::Mat> CascadeDetector::gateRanges(
 			if (std::isfinite(p[c][0]) && std::isfinite(p[c][1]))
 				h[c] = std::hypot(p[c][0], p[c][1]);
 	}
-	std::vector<cv::Mat> ranges(m_options.classes.size());
-	for (std::size_t i = 0; i < m_options.classes.size(); i++)
+	for (std::size_t i = 0; i < nc; i++)
 	{
-		const double top =
-		    m_options.classes[i].maxTop + m_options.proposalTopMargin + groundZ;
+		const double top = tops[i];
 		cv::Mat range(points.size(), CV_32F, cv::Scalar(0));
 		for (int r = 0; r < points.rows; r++)
 		{

@@ -82,6 +82,17 @@ PanoramicProjection::PanoramicProjection(
 			Y[u] = (c < 0 || r < 0) ? -1.f : r;
 		}
 	}
+	// cv::remap's nearest neighbours, by remapping the pixel indices
+	// (exact in float below 2^24).
+	if (rows * cols < (1 << 24))
+	{
+		cv::Mat index(rows, cols, CV_32F), nearest;
+		for (int i = 0; i < rows * cols; i++) index.at<float>(i) = float(i);
+		cv::remap(
+		    index, nearest, m_invX, m_invY, cv::INTER_NEAREST,
+		    cv::BORDER_CONSTANT, cv::Scalar::all(-1));
+		nearest.convertTo(m_nearest, CV_32S);
+	}
 	m_rowMonotonic.assign(std::size_t(rows), 1);
 	for (int r = 0; r < rows; r++)
 	{
@@ -122,6 +133,39 @@ cv::Mat PanoramicProjection::toPanoramic(
 	if (sweepImage.size() != m_size)
 		throw Error("PanoramicProjection: image size differs from the grid");
 	cv::Mat out;
+	if (interpolation == cv::INTER_NEAREST && !m_nearest.empty() &&
+	    sweepImage.isContinuous())
+	{
+		// The same copies as cv::remap, without its per-pixel rounding.
+		out.create(m_size, sweepImage.type());
+		const int32_t* idx = m_nearest.ptr<int32_t>();
+		const int n = m_size.area();
+		const auto copy = [&](auto zero)
+		{
+			using T = decltype(zero);
+			const T* src = sweepImage.ptr<T>();
+			T* dst = out.ptr<T>();
+			for (int i = 0; i < n; i++)
+				dst[i] = idx[i] < 0 ? zero : src[idx[i]];
+		};
+		switch (sweepImage.elemSize())
+		{
+			case 1:
+				copy(uint8_t(0));
+				return out;
+			case 2:
+				copy(uint16_t(0));
+				return out;
+			case 4:
+				copy(uint32_t(0));
+				return out;
+			case 8:
+				copy(uint64_t(0));
+				return out;
+			default:
+				break;
+		}
+	}
 	cv::remap(
 	    sweepImage, out, m_invX, m_invY, interpolation, cv::BORDER_CONSTANT,
 	    cv::Scalar::all(0));
