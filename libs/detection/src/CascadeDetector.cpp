@@ -1070,6 +1070,8 @@ struct MeasureScratch
 	std::vector<double> centreD;
 	std::vector<int> queue;
 	std::vector<double> lateral;
+	std::vector<double> select[2];
+	std::vector<uint8_t> buckets;
 };
 thread_local MeasureScratch tlMeasure;
 
@@ -1156,7 +1158,18 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 			if (state[padded(px.x, px.y)] & kValid)
 				centreD.push_back(horizontal(px.x, px.y));
 	if (centreD.empty()) return std::nullopt;
-	const double far = percentile(centreD, 0.1) + maxDepth;
+	// percentilesOf() needs no NaN (a y may be one); percentile() on the
+	// same values in the same order otherwise.
+	const auto hasNaN = [](const std::vector<double>& v)
+	{
+		return std::any_of(
+		    v.begin(), v.end(), [](double x) { return std::isnan(x); });
+	};
+	const double far =
+	    (hasNaN(centreD)
+	         ? percentile(centreD, 0.1)
+	         : percentilesOf(centreD, 0.1, 0.1, sc.select, sc.buckets).first) +
+	    maxDepth;
 	// Candidates: non-floor, non-surface points not too far behind.
 	for (const auto& px : pixels)
 	{
@@ -1245,13 +1258,19 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 	lateral.resize(m.points);
 	for (std::size_t i = 0; i < m.points; i++)
 		lateral[i] = -sinB * xs[i] + cosB * ys[i];
-	const auto spread = [](std::vector<double>& v)
+	// The 5th and 95th percentiles.
+	const auto ends = [&](std::vector<double>& v)
 	{
-		const auto [lo, hi] = percentiles(v, 0.05, 0.95);
+		return hasNaN(v) ? percentiles(v, 0.05, 0.95)
+		                 : percentilesOf(v, 0.05, 0.95, sc.select, sc.buckets);
+	};
+	const auto spread = [&](std::vector<double>& v)
+	{
+		const auto [lo, hi] = ends(v);
 		return hi - lo;
 	};
 	m.width = spread(lateral);
-	const auto [zBottom, zTop] = percentiles(zs, 0.05, 0.95);
+	const auto [zBottom, zTop] = ends(zs);
 	m.top = zTop - groundZ;
 	m.extent = {spread(xs), spread(ys), zTop - zBottom};
 	return m;
