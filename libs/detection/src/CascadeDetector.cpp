@@ -489,6 +489,14 @@ struct GatedScratch
 	std::vector<int> first, last;
 	/** Per column of a row of windows: whether the gate takes it. */
 	std::vector<uint8_t> ok;
+	/** A level's windows in clusters: the column spans of a band, a
+	 * cluster's windows and their indices, and which were accepted. */
+	std::vector<std::pair<int, int>> spans;
+	std::vector<int> cover, spanOf;
+	std::vector<std::size_t> spanStart, fill;
+	std::vector<cv::Point> part;
+	std::vector<std::size_t> partIndex;
+	std::vector<uint8_t> accepted;
 	/** The part of a pyramid level its windows cover. */
 	ExactResize resize;
 	cv::Mat levelPart;
@@ -773,7 +781,6 @@ void rangeGatedDetect(
 		const int ny = sz.height + 1 - win.height;
 		const int step = windowStep > 0 ? windowStep : factor > 2 ? 1 : 2;
 		windows.clear();
-		cv::Rect box;
 		sc.ok.resize(nx + 1);
 		constexpr float kNone = std::numeric_limits<float>::infinity();
 		for (int y = 0; y < ny; y += step)
@@ -819,29 +826,87 @@ void rangeGatedDetect(
 				if (ok[x - x0])
 				{
 					windows.emplace_back(x, y);
-					box |= cv::Rect(x, y, win.width, win.height);
 				}
 		}
 		if (windows.empty()) continue;
-		// The level (cv::resize, INTER_LINEAR_EXACT) only where windows are.
-		cv::Mat part = image(box);
-		if (sz != image.size())
+		// Clusters of windows apart from each other (bands of window rows
+		// less than a window height apart, then in a band the columns of
+		// overlapping windows): each cluster's part of the level
+		// (cv::resize, INTER_LINEAR_EXACT) and integral images cover its
+		// windows only, as a window reads within itself. Neighbours on a
+		// row (OpenCV's skip after a stage-0 rejection) share a cluster.
+		sc.accepted.assign(windows.size(), 0);
+		for (std::size_t i0 = 0, i1; i0 < windows.size(); i0 = i1)
 		{
-			sc.resize.resize(image, sz, box, sc.levelPart);
-			part = sc.levelPart;
-		}
-		sc.ii.compute(part, ev.cascade().hasTiltedFeatures(), sc.stride);
-		ev.setIntegralImages(sc.ii);
-		for (cv::Point& w : windows) w -= box.tl();
-		ev.scanWindows(windows, step, sc.results);
-		for (std::size_t j = 0; j < windows.size(); j++)
-			if (ev.accepted(sc.results[j]))
+			for (i1 = i0 + 1; i1 < windows.size() &&
+			                  windows[i1].y - windows[i1 - 1].y < win.height;
+			     i1++)
+				;
+			// The band's columns covered by windows (a difference array),
+			// in runs.
+			sc.cover.assign(std::size_t(sz.width + 1), 0);
+			for (std::size_t i = i0; i < i1; i++)
 			{
-				const cv::Point w = windows[j] + box.tl();
-				found.emplace_back(
-				    cvRound(w.x * factor), cvRound(w.y * factor), ws.width,
-				    ws.height);
+				sc.cover[std::size_t(windows[i].x)]++;
+				sc.cover[std::size_t(windows[i].x + win.width)]--;
 			}
+			sc.spans.clear();
+			sc.spanOf.resize(std::size_t(sz.width));
+			for (int x = 0, n = 0; x < sz.width; x++)
+			{
+				const int before = n;
+				n += sc.cover[std::size_t(x)];
+				if (n > 0 && before == 0)
+					sc.spans.emplace_back(x, x + 1);
+				else if (n > 0)
+					sc.spans.back().second = x + 1;
+				sc.spanOf[std::size_t(x)] = int(sc.spans.size()) - 1;
+			}
+			// The band's windows by span (a stable counting sort: each
+			// span's in row-major order).
+			const std::size_t nSpans = sc.spans.size();
+			sc.spanStart.assign(nSpans + 1, 0);
+			for (std::size_t i = i0; i < i1; i++)
+				sc.spanStart
+				    [std::size_t(sc.spanOf[std::size_t(windows[i].x)]) + 1]++;
+			for (std::size_t k = 0; k < nSpans; k++)
+				sc.spanStart[k + 1] += sc.spanStart[k];
+			sc.partIndex.resize(i1 - i0);
+			sc.fill.assign(sc.spanStart.begin(), sc.spanStart.end() - 1);
+			for (std::size_t i = i0; i < i1; i++)
+				sc.partIndex[sc.fill[std::size_t(
+				    sc.spanOf[std::size_t(windows[i].x)])]++] = i;
+			for (std::size_t k = 0; k < nSpans; k++)
+			{
+				const std::size_t* idx = sc.partIndex.data() + sc.spanStart[k];
+				const std::size_t count = sc.spanStart[k + 1] - sc.spanStart[k];
+				// The span's columns, its first and last window's rows.
+				const cv::Rect box(
+				    sc.spans[k].first, windows[idx[0]].y,
+				    sc.spans[k].second - sc.spans[k].first,
+				    windows[idx[count - 1]].y + win.height - windows[idx[0]].y);
+				sc.part.resize(count);
+				for (std::size_t j = 0; j < count; j++)
+					sc.part[j] = windows[idx[j]] - box.tl();
+				cv::Mat part = image(box);
+				if (sz != image.size())
+				{
+					sc.resize.resize(image, sz, box, sc.levelPart);
+					part = sc.levelPart;
+				}
+				sc.ii.compute(
+				    part, ev.cascade().hasTiltedFeatures(), sc.stride);
+				ev.setIntegralImages(sc.ii);
+				ev.scanWindows(sc.part, step, sc.results);
+				for (std::size_t j = 0; j < count; j++)
+					sc.accepted[idx[j]] = ev.accepted(sc.results[j]);
+			}
+		}
+		for (std::size_t j = 0; j < windows.size(); j++)
+			if (sc.accepted[j])
+				found.emplace_back(
+				    cvRound(windows[j].x * factor),
+				    cvRound(windows[j].y * factor), ws.width, ws.height);
 	}
 	cv::groupRectangles(found, weights, minNeighbors, 0.2);
 }
