@@ -169,3 +169,28 @@ TEST(PanoramicProjection, NearestIsRemapsNearest)
 	EXPECT_EQ(mn, -1);
 	EXPECT_LT(mx, 211 * 361);
 }
+
+TEST(PanoramicProjection, LinearIsRemapsLinear)
+{
+	// toPanoramic(INTER_LINEAR) remaps with fixed-point maps made once:
+	// the same images as cv::remap with the float inverse maps.
+	std::vector<double> phis, thetas;
+	grid(phis, thetas);
+	const PanoramicProjection p(phis, thetas);
+	cv::RNG rng(4);
+	for (const int type : {CV_8U, CV_16U, CV_32F, CV_8UC3})
+	{
+		cv::Mat img(211, 361, type);
+		rng.fill(img, cv::RNG::UNIFORM, 0, 256);
+		cv::Mat expected;
+		cv::remap(
+		    img, expected, p.inverseX(), p.inverseY(), cv::INTER_LINEAR,
+		    cv::BORDER_CONSTANT, cv::Scalar::all(0));
+		const cv::Mat got = p.toPanoramic(img, cv::INTER_LINEAR);
+		ASSERT_EQ(got.type(), type);
+		EXPECT_EQ(
+		    std::memcmp(got.data, expected.data, got.total() * got.elemSize()),
+		    0)
+		    << type;
+	}
+}

@@ -93,6 +93,7 @@ PanoramicProjection::PanoramicProjection(
 		    cv::BORDER_CONSTANT, cv::Scalar::all(-1));
 		nearest.convertTo(m_nearest, CV_32S);
 	}
+	cv::convertMaps(m_invX, m_invY, m_fixedXY, m_fixedA, CV_16SC2);
 	m_rowMonotonic.assign(std::size_t(rows), 1);
 	for (int r = 0; r < rows; r++)
 	{
@@ -166,9 +167,14 @@ cv::Mat PanoramicProjection::toPanoramic(
 				break;
 		}
 	}
-	cv::remap(
-	    sweepImage, out, m_invX, m_invY, interpolation, cv::BORDER_CONSTANT,
-	    cv::Scalar::all(0));
+	if (interpolation == cv::INTER_LINEAR)
+		cv::remap(
+		    sweepImage, out, m_fixedXY, m_fixedA, interpolation,
+		    cv::BORDER_CONSTANT, cv::Scalar::all(0));
+	else
+		cv::remap(
+		    sweepImage, out, m_invX, m_invY, interpolation, cv::BORDER_CONSTANT,
+		    cv::Scalar::all(0));
 	return out;
 }
 

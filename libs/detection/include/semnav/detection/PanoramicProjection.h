@@ -74,6 +74,9 @@ private:
 	std::vector<double> m_phis, m_thetas;
 	cv::Size m_size;
 	cv::Mat m_forward, m_invX, m_invY, m_nearest;
+	/** The inverse maps in cv::remap's fixed point (cv::convertMaps,
+	 * CV_16SC2 + CV_16UC1), which cv::remap otherwise derives per call. */
+	cv::Mat m_fixedXY, m_fixedA;
 	/** Per kBlock x kBlock block of panoramic pixels, the bounds (x0, y0,
 	 * x1, y1) of their sweep positions (x1 < x0: none). */
 	static constexpr int kBlock = 8;
