@@ -702,17 +702,24 @@ void rangeGatedDetect(
 	float rMin = std::numeric_limits<float>::infinity(), rMax = 0;
 	sc.bandFirst.assign(range.rows, range.cols);
 	sc.bandLast.assign(range.rows, -1);
+	constexpr float kInf = std::numeric_limits<float>::infinity();
 	for (int r = 0; r < range.rows; r++)
 	{
+		// From both ends to the first range, then the extremes between
+		// without branches (ranges are >= 0; 0 = none).
 		const float* row = range.ptr<float>(r);
-		for (int c = 0; c < range.cols; c++)
-			if (row[c] > 0)
-			{
-				rMin = std::min(rMin, row[c]);
-				rMax = std::max(rMax, row[c]);
-				sc.bandFirst[r] = std::min(sc.bandFirst[r], c);
-				sc.bandLast[r] = c;
-			}
+		int first = 0, last = range.cols - 1;
+		while (first < range.cols && !(row[first] > 0)) first++;
+		if (first == range.cols) continue;
+		while (!(row[last] > 0)) last--;
+		sc.bandFirst[r] = first;
+		sc.bandLast[r] = last;
+		for (int c = first; c <= last; c++)
+		{
+			const float v = row[c];
+			rMin = std::min(rMin, v > 0 ? v : kInf);
+			rMax = std::max(rMax, v);
+		}
 	}
 	// cv::resize's nearest neighbour takes level column c from one band
 	// column and level row r from one band row, each from its own axis'
