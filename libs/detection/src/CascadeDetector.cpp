@@ -1700,7 +1700,11 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		    const auto [i, j] = all[a];
 		    const TClassOptions& k = m_options.classes[i];
 		    Candidate& c = results[i].candidates[j];
-		    std::vector<cv::Point> pixels, centre;
+		    // The centre's pixels in a buffer per thread (the box's are kept
+		    // for the shape check).
+		    thread_local std::vector<cv::Point> centre;
+		    centre.clear();
+		    std::vector<cv::Point> pixels;
 		    // The object is measured in the box grown by measure_margin on
 		    // every side (grouped boxes may cut an object); how far it is,
 		    // in the box's central half.

@@ -238,9 +238,9 @@ void PanoramicProjection::sweepPixelsIn(
 	pixels.clear();
 	innerPixels.clear();
 	const cv::Rect src = sourceRegion(box);
-	// At most the source region (no reallocation while filling).
+	// At most the source region (no reallocation while filling; callers
+	// may keep `innerPixels` between calls).
 	pixels.reserve(std::size_t(src.area()));
-	innerPixels.reserve(std::size_t(src.area()));
 	for (int r = src.y; r < src.y + src.height; r++)
 	{
 		const auto* f = m_forward.ptr<cv::Vec2f>(r);
