@@ -5,8 +5,63 @@
 #include <algorithm>
 #include <cmath>
 
+#include "StumpBatch.h"
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define SEMNAV_EXACT_RESIZE_AVX2 1
+#endif
+
 namespace semnav
 {
+namespace
+{
+/** One output row from the vertically interpolated row `v` (scalar). */
+void horizontal(
+    const uint16_t* v, const int* j, const uint16_t* w0, const uint16_t* w1,
+    int begin, int end, uint8_t* o)
+{
+	for (int x = begin; x < end; x++)
+	{
+		const uint16_t* p = v + j[x];
+		o[x] = static_cast<uint8_t>(
+		    (uint32_t(w0[x]) * p[0] + uint32_t(w1[x]) * p[1] + (1u << 15)) >>
+		    16);
+	}
+}
+
+#ifdef SEMNAV_EXACT_RESIZE_AVX2
+/** The same, eight columns at a time: both taps of a column in one 32-bit
+ * gather, their weights in one 16-bit pair (`w`); the taps (up to 65280)
+ * offset by -32768 for the signed multiply-add, which the weights' sum
+ * (256) gives back. Returns the columns done. */
+__attribute__((target("avx2"))) int horizontal8(
+    const uint16_t* v, const int* j, const int32_t* w, int n, uint8_t* o)
+{
+	const __m256i flip = _mm256_set1_epi32(int32_t(0x80008000u));
+	const __m256i back = _mm256_set1_epi32((32768 << 8) + (1 << 15));
+	int x = 0;
+	for (; x + 8 <= n; x += 8)
+	{
+		const __m256i idx =
+		    _mm256_loadu_si256(reinterpret_cast<const __m256i*>(j + x));
+		const __m256i pair =
+		    _mm256_i32gather_epi32(reinterpret_cast<const int*>(v), idx, 2);
+		const __m256i weights =
+		    _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + x));
+		const __m256i sum = _mm256_add_epi32(
+		    _mm256_madd_epi16(_mm256_xor_si256(pair, flip), weights), back);
+		const __m256i px = _mm256_srli_epi32(sum, 16);
+		const __m128i p16 = _mm_packus_epi32(
+		    _mm256_castsi256_si128(px), _mm256_extracti128_si256(px, 1));
+		_mm_storel_epi64(
+		    reinterpret_cast<__m128i*>(o + x), _mm_packus_epi16(p16, p16));
+	}
+	return x;
+}
+#endif
+}  // namespace
+
 void ExactResize::taps(int srcSize, int dstSize, int begin, int end, Taps& t)
 {
 	const int n = end - begin;
@@ -68,6 +123,15 @@ void ExactResize::resize(
 		m_offset[std::size_t(x)] = m_x.i0[std::size_t(x)] - c0;
 	uint16_t* v = m_column.data();
 	const int* j = m_offset.data();
+	const bool avx2 = detail::cpuHasAvx2();
+	if (avx2)
+	{
+		m_weights.resize(std::size_t(w));
+		for (int x = 0; x < w; x++)
+			m_weights[std::size_t(x)] = int32_t(
+			    uint32_t(m_x.w0[std::size_t(x)]) |
+			    uint32_t(m_x.w1[std::size_t(x)]) << 16);
+	}
 	const uint16_t* w0 = m_x.w0.data();
 	const uint16_t* w1 = m_x.w1.data();
 	// OpenCV interpolates each source row horizontally (exact integers,
@@ -83,14 +147,11 @@ void ExactResize::resize(
 		for (int c = 0; c < nc; c++)
 			v[c] = static_cast<uint16_t>(v0 * s0[c] + v1 * s1[c]);
 		uint8_t* o = out.ptr<uint8_t>(y);
-		for (int x = 0; x < w; x++)
-		{
-			const uint16_t* p = v + j[x];
-			o[x] = static_cast<uint8_t>(
-			    (uint32_t(w0[x]) * p[0] + uint32_t(w1[x]) * p[1] +
-			     (1u << 15)) >>
-			    16);
-		}
+		int done = 0;
+#ifdef SEMNAV_EXACT_RESIZE_AVX2
+		if (avx2) done = horizontal8(v, j, m_weights.data(), w, o);
+#endif
+		horizontal(v, j, w0, w1, done, w, o);
 	}
 }
 

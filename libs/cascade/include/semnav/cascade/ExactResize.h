@@ -39,8 +39,10 @@ private:
 	Taps m_x, m_y;
 	/** Two source rows interpolated vertically (8 fractional bits). */
 	std::vector<uint16_t> m_column;
-	/** Per column of the region, its first tap in m_column. */
+	/** Per column of the region, its first tap in m_column, and (AVX2)
+	 * its two weights as a 16-bit pair. */
 	std::vector<int> m_offset;
+	std::vector<int32_t> m_weights;
 };
 
 }  // namespace semnav
