@@ -3,6 +3,8 @@
 #include <semnav/common/Percentile.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <random>
 #include <utility>
 
@@ -33,5 +35,39 @@ TEST(Percentile, TwoAtOnceAreTheTwoPercentiles)
 		{ return std::min(n - 1, std::size_t(p * double(n - 1) + 0.5)); };
 		EXPECT_EQ(lo, v[rank(0.05)]) << n;
 		EXPECT_EQ(hi, v[rank(0.95)]) << n;
+	}
+}
+
+TEST(Percentile, BucketedAreTheSamePercentiles)
+{
+	// percentilesOf: the values of percentiles(), `v` unchanged, with ties,
+	// a lone outlier (one crowded bucket), all equal, and infinities.
+	std::mt19937 rng(5);
+	std::uniform_real_distribution<double> u(-5, 5);
+	std::vector<double> s[2];
+	std::vector<uint8_t> buckets;
+	const auto check = [&](const std::vector<double>& v, double lo, double hi)
+	{
+		std::vector<double> c = v;
+		const auto expected = percentiles(c, lo, hi);
+		const std::vector<double> before = v;
+		EXPECT_EQ(percentilesOf(v, lo, hi, s, buckets), expected) << v.size();
+		EXPECT_EQ(v, before);
+	};
+	for (std::size_t n : {1u, 2u, 3u, 7u, 100u, 470u, 3001u})
+	{
+		std::vector<double> v(n);
+		for (auto& x : v) x = u(rng);
+		check(v, 0.05, 0.95);
+		check(v, 0.1, 0.1);
+		check(v, 0.0, 1.0);
+		for (auto& x : v) x = std::round(x);  // ties
+		check(v, 0.05, 0.95);
+		v[0] = 1e12;  // everything else in the first bucket
+		check(v, 0.05, 0.95);
+		v[n / 2] = std::numeric_limits<double>::infinity();
+		check(v, 0.05, 0.95);
+		std::fill(v.begin(), v.end(), 2.5);
+		check(v, 0.05, 0.95);
 	}
 }

@@ -133,3 +133,44 @@ TEST(DetectionImage, ChannelsAreNormalImageRgbBitForBit)
 		}
 	EXPECT_EQ(mismatches, 0u);
 }
+
+TEST(DetectionImage, GreyIsCvtColorOfTheRgbBitForBit)
+{
+	// The grey channel is made without the colour image, with
+	// cv::cvtColor's 8-bit fixed point: first that formula for every
+	// colour, then the channel on random normals against cvtColor.
+	cv::Mat all(4096, 4096, CV_8UC3);
+	for (int i = 0; i < (1 << 24); i++)
+		all.at<cv::Vec3b>(i) = {
+		    uint8_t(i & 255), uint8_t((i >> 8) & 255), uint8_t(i >> 16)};
+	cv::Mat grey;
+	cv::cvtColor(all, grey, cv::COLOR_BGR2GRAY);
+	std::size_t formula = 0;
+	for (int i = 0; i < (1 << 24); i++)
+	{
+		const cv::Vec3b p = all.at<cv::Vec3b>(i);
+		formula +=
+		    grey.at<uint8_t>(i) !=
+		    ((p[0] * 3735 + p[1] * 19235 + p[2] * 9798 + (1 << 14)) >> 15);
+	}
+	EXPECT_EQ(formula, 0u);
+	std::mt19937 g(5);
+	std::uniform_real_distribution<float> u(-1.05f, 1.05f);
+	cv::Mat normals(300, 400, CV_32FC3), mask(300, 400, CV_8U);
+	for (int i = 0; i < 300 * 400; i++)
+	{
+		normals.at<cv::Vec3f>(i) = {u(g), u(g), u(g)};
+		mask.at<uint8_t>(i) = (i % 7) != 0;
+	}
+	cv::Mat bgr(normals.size(), CV_8UC3, cv::Scalar::all(0)), expected;
+	for (int i = 0; i < 300 * 400; i++)
+		if (mask.at<uint8_t>(i))
+		{
+			const cv::Vec3b rgb = NormalImage::rgbOf(normals.at<cv::Vec3f>(i));
+			bgr.at<cv::Vec3b>(i) = {rgb[2], rgb[1], rgb[0]};
+		}
+	cv::cvtColor(bgr, expected, cv::COLOR_BGR2GRAY);
+	const cv::Mat got = DetectionImage::fromSmoothedNormals(
+	    normals, mask, DetectionChannel::Grey);
+	EXPECT_EQ(cv::countNonZero(got != expected), 0);
+}

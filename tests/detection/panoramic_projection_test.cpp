@@ -3,6 +3,7 @@
 #include <semnav/detection/PanoramicProjection.h>
 
 #include <cmath>
+#include <cstring>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -137,4 +138,59 @@ TEST(PanoramicProjection, SweepPixelsInFindsEverySourcePixel)
 		found += expected.size();
 	}
 	EXPECT_GT(found, 100000u);
+}
+
+TEST(PanoramicProjection, NearestIsRemapsNearest)
+{
+	// toPanoramic(INTER_NEAREST) copies nearestSource()'s pixels: the same
+	// images as cv::remap with the inverse maps, for every pixel size.
+	std::vector<double> phis, thetas;
+	grid(phis, thetas);
+	const PanoramicProjection p(phis, thetas);
+	cv::RNG rng(3);
+	for (const int type : {CV_8U, CV_16U, CV_32F, CV_32FC2, CV_64F})
+	{
+		cv::Mat img(211, 361, type);
+		rng.fill(img, cv::RNG::UNIFORM, 1, 200);
+		cv::Mat expected;
+		cv::remap(
+		    img, expected, p.inverseX(), p.inverseY(), cv::INTER_NEAREST,
+		    cv::BORDER_CONSTANT, cv::Scalar::all(0));
+		const cv::Mat got = p.toPanoramic(img, cv::INTER_NEAREST);
+		ASSERT_EQ(got.type(), type);
+		EXPECT_EQ(
+		    std::memcmp(got.data, expected.data, got.total() * got.elemSize()),
+		    0)
+		    << type;
+	}
+	// Pixels without a source are -1 in the map and 0 in the image.
+	double mn, mx;
+	cv::minMaxLoc(p.nearestSource(), &mn, &mx);
+	EXPECT_EQ(mn, -1);
+	EXPECT_LT(mx, 211 * 361);
+}
+
+TEST(PanoramicProjection, LinearIsRemapsLinear)
+{
+	// toPanoramic(INTER_LINEAR) remaps with fixed-point maps made once:
+	// the same images as cv::remap with the float inverse maps.
+	std::vector<double> phis, thetas;
+	grid(phis, thetas);
+	const PanoramicProjection p(phis, thetas);
+	cv::RNG rng(4);
+	for (const int type : {CV_8U, CV_16U, CV_32F, CV_8UC3})
+	{
+		cv::Mat img(211, 361, type);
+		rng.fill(img, cv::RNG::UNIFORM, 0, 256);
+		cv::Mat expected;
+		cv::remap(
+		    img, expected, p.inverseX(), p.inverseY(), cv::INTER_LINEAR,
+		    cv::BORDER_CONSTANT, cv::Scalar::all(0));
+		const cv::Mat got = p.toPanoramic(img, cv::INTER_LINEAR);
+		ASSERT_EQ(got.type(), type);
+		EXPECT_EQ(
+		    std::memcmp(got.data, expected.data, got.total() * got.elemSize()),
+		    0)
+		    << type;
+	}
 }

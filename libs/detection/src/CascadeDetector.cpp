@@ -4,6 +4,7 @@
 #include <semnav/cascade/CascadeError.h>
 #include <semnav/cascade/CascadeEvaluator.h>
 #include <semnav/cascade/CascadeXml.h>
+#include <semnav/cascade/ExactResize.h>
 #include <semnav/cascade/IntegralImages.h>
 #include <semnav/cascade/RangeGate.h>
 #include <semnav/common/ConfigChecks.h>
@@ -496,9 +497,17 @@ struct GatedScratch
 	std::vector<int> first, last;
 	/** Per column of a row of windows: whether the gate takes it. */
 	std::vector<uint8_t> ok;
-	/** Pyramid levels of the bands (band data and size, level size), shared by
-	 * the classes that search the same band within one detectCandidates(). */
-	std::map<std::tuple<const uint8_t*, int, int, int, int>, cv::Mat> levels;
+	/** A level's windows in clusters: the column spans of a band, a
+	 * cluster's windows and their indices, and which were accepted. */
+	std::vector<std::pair<int, int>> spans;
+	std::vector<int> cover, spanOf;
+	std::vector<std::size_t> spanStart, fill;
+	std::vector<cv::Point> part;
+	std::vector<std::size_t> partIndex;
+	std::vector<uint8_t> accepted;
+	/** The part of a pyramid level its windows cover. */
+	ExactResize resize;
+	cv::Mat levelPart;
 	IntegralImages ii;
 	/** Row stride of the integral images: only grows, so that the
 	 * evaluators compile their features once. */
@@ -673,7 +682,8 @@ struct GateBounds
  * by CascadeEvaluator, but a window is
  * evaluated only where the range at its centre (the nearest of five
  * samples in its central half; `range` 0 = none) passes `gate` for its
- * side. The integral images of a level cover only the windows searched;
+ * side. A level is resized (ExactResize) and its integral images computed
+ * only over the windows searched;
  * windows none of whose five samples can have a range (rows and columns
  * without one) are not looked at. */
 void rangeGatedDetect(
@@ -700,17 +710,24 @@ void rangeGatedDetect(
 	float rMin = std::numeric_limits<float>::infinity(), rMax = 0;
 	sc.bandFirst.assign(range.rows, range.cols);
 	sc.bandLast.assign(range.rows, -1);
+	constexpr float kInf = std::numeric_limits<float>::infinity();
 	for (int r = 0; r < range.rows; r++)
 	{
+		// From both ends to the first range, then the extremes between
+		// without branches (ranges are >= 0; 0 = none).
 		const float* row = range.ptr<float>(r);
-		for (int c = 0; c < range.cols; c++)
-			if (row[c] > 0)
-			{
-				rMin = std::min(rMin, row[c]);
-				rMax = std::max(rMax, row[c]);
-				sc.bandFirst[r] = std::min(sc.bandFirst[r], c);
-				sc.bandLast[r] = c;
-			}
+		int first = 0, last = range.cols - 1;
+		while (first < range.cols && !(row[first] > 0)) first++;
+		if (first == range.cols) continue;
+		while (!(row[last] > 0)) last--;
+		sc.bandFirst[r] = first;
+		sc.bandLast[r] = last;
+		for (int c = first; c <= last; c++)
+		{
+			const float v = row[c];
+			rMin = std::min(rMin, v > 0 ? v : kInf);
+			rMax = std::max(rMax, v);
+		}
 	}
 	// cv::resize's nearest neighbour takes level column c from one band
 	// column and level row r from one band row, each from its own axis'
@@ -779,7 +796,6 @@ void rangeGatedDetect(
 		const int ny = sz.height + 1 - win.height;
 		const int step = windowStep > 0 ? windowStep : factor > 2 ? 1 : 2;
 		windows.clear();
-		cv::Rect box;
 		sc.ok.resize(nx + 1);
 		constexpr float kNone = std::numeric_limits<float>::infinity();
 		for (int y = 0; y < ny; y += step)
@@ -825,35 +841,87 @@ void rangeGatedDetect(
 				if (ok[x - x0])
 				{
 					windows.emplace_back(x, y);
-					box |= cv::Rect(x, y, win.width, win.height);
 				}
 		}
 		if (windows.empty()) continue;
-		const cv::Mat* level = &image;
-		if (sz != image.size())
+		// Clusters of windows apart from each other (bands of window rows
+		// less than a window height apart, then in a band the columns of
+		// overlapping windows): each cluster's part of the level
+		// (cv::resize, INTER_LINEAR_EXACT) and integral images cover its
+		// windows only, as a window reads within itself. Neighbours on a
+		// row (OpenCV's skip after a stage-0 rejection) share a cluster.
+		sc.accepted.assign(windows.size(), 0);
+		for (std::size_t i0 = 0, i1; i0 < windows.size(); i0 = i1)
 		{
-			// A band is its data and size (bands of one image may start at
-			// the same row and end at different ones).
-			cv::Mat& l = sc.levels[std::make_tuple(
-			    image.ptr<uint8_t>(), image.cols, image.rows, sz.width,
-			    sz.height)];
-			if (l.empty())
-				cv::resize(image, l, sz, 0, 0, cv::INTER_LINEAR_EXACT);
-			level = &l;
-		}
-		sc.ii.compute(
-		    (*level)(box), ev.cascade().hasTiltedFeatures(), sc.stride);
-		ev.setIntegralImages(sc.ii);
-		for (cv::Point& w : windows) w -= box.tl();
-		ev.scanWindows(windows, step, sc.results);
-		for (std::size_t j = 0; j < windows.size(); j++)
-			if (ev.accepted(sc.results[j]))
+			for (i1 = i0 + 1; i1 < windows.size() &&
+			                  windows[i1].y - windows[i1 - 1].y < win.height;
+			     i1++)
+				;
+			// The band's columns covered by windows (a difference array),
+			// in runs.
+			sc.cover.assign(std::size_t(sz.width + 1), 0);
+			for (std::size_t i = i0; i < i1; i++)
 			{
-				const cv::Point w = windows[j] + box.tl();
-				found.emplace_back(
-				    cvRound(w.x * factor), cvRound(w.y * factor), ws.width,
-				    ws.height);
+				sc.cover[std::size_t(windows[i].x)]++;
+				sc.cover[std::size_t(windows[i].x + win.width)]--;
 			}
+			sc.spans.clear();
+			sc.spanOf.resize(std::size_t(sz.width));
+			for (int x = 0, n = 0; x < sz.width; x++)
+			{
+				const int before = n;
+				n += sc.cover[std::size_t(x)];
+				if (n > 0 && before == 0)
+					sc.spans.emplace_back(x, x + 1);
+				else if (n > 0)
+					sc.spans.back().second = x + 1;
+				sc.spanOf[std::size_t(x)] = int(sc.spans.size()) - 1;
+			}
+			// The band's windows by span (a stable counting sort: each
+			// span's in row-major order).
+			const std::size_t nSpans = sc.spans.size();
+			sc.spanStart.assign(nSpans + 1, 0);
+			for (std::size_t i = i0; i < i1; i++)
+				sc.spanStart
+				    [std::size_t(sc.spanOf[std::size_t(windows[i].x)]) + 1]++;
+			for (std::size_t k = 0; k < nSpans; k++)
+				sc.spanStart[k + 1] += sc.spanStart[k];
+			sc.partIndex.resize(i1 - i0);
+			sc.fill.assign(sc.spanStart.begin(), sc.spanStart.end() - 1);
+			for (std::size_t i = i0; i < i1; i++)
+				sc.partIndex[sc.fill[std::size_t(
+				    sc.spanOf[std::size_t(windows[i].x)])]++] = i;
+			for (std::size_t k = 0; k < nSpans; k++)
+			{
+				const std::size_t* idx = sc.partIndex.data() + sc.spanStart[k];
+				const std::size_t count = sc.spanStart[k + 1] - sc.spanStart[k];
+				// The span's columns, its first and last window's rows.
+				const cv::Rect box(
+				    sc.spans[k].first, windows[idx[0]].y,
+				    sc.spans[k].second - sc.spans[k].first,
+				    windows[idx[count - 1]].y + win.height - windows[idx[0]].y);
+				sc.part.resize(count);
+				for (std::size_t j = 0; j < count; j++)
+					sc.part[j] = windows[idx[j]] - box.tl();
+				cv::Mat part = image(box);
+				if (sz != image.size())
+				{
+					sc.resize.resize(image, sz, box, sc.levelPart);
+					part = sc.levelPart;
+				}
+				sc.ii.compute(
+				    part, ev.cascade().hasTiltedFeatures(), sc.stride);
+				ev.setIntegralImages(sc.ii);
+				ev.scanWindows(sc.part, step, sc.results);
+				for (std::size_t j = 0; j < count; j++)
+					sc.accepted[idx[j]] = ev.accepted(sc.results[j]);
+			}
+		}
+		for (std::size_t j = 0; j < windows.size(); j++)
+			if (sc.accepted[j])
+				found.emplace_back(
+				    cvRound(windows[j].x * factor),
+				    cvRound(windows[j].y * factor), ws.width, ws.height);
 	}
 	cv::groupRectangles(found, weights, minNeighbors, 0.2);
 }
@@ -1067,9 +1135,39 @@ void CascadeDetector::runCascade(
 	if (!m_impl->keepScaled)
 	{
 		m_impl->scaled.at(i).clear();
-		m_impl->gated.at(i).levels.clear();
 	}
 }
+
+namespace
+{
+/** measure()'s scratch, per thread (no allocation per candidate once
+ * grown). */
+struct MeasureScratch
+{
+	/** Per pixel of the region padded by one on every side (0 on the
+	 * border, so that neighbours need no bounds checks): flags. */
+	std::vector<uint8_t> state;
+	std::vector<double> centreD;
+	std::vector<int> queue;
+	std::vector<double> lateral;
+	std::vector<double> select[2];
+	std::vector<uint8_t> buckets;
+};
+thread_local MeasureScratch tlMeasure;
+
+/** Whether std::hypot(x, y) <= t, mostly without computing it: x^2 + y^2
+ * in double (exact squares of floats, one rounding) decides unless it lies
+ * within 1e-6 (relative) of t^2, far beyond the rounding of that sum and
+ * hypot's 1 ulp; there hypot itself decides. */
+inline bool hypotAtMost(float x, float y, double t)
+{
+	const double s = double(x) * double(x) + double(y) * double(y);
+	const double t2 = t * t;
+	if (s < t2 * (1 - 1e-6)) return true;
+	if (s > t2 * (1 + 1e-6)) return false;
+	return std::hypot(double(x), double(y)) <= t;
+}
+}  // namespace
 
 std::optional<CascadeDetector::Measure> CascadeDetector::measure(
     const cv::Mat& points, const cv::Mat& labels,
@@ -1077,30 +1175,35 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
     double groundZ, double floorTolerance, double maxDepth, int minPoints,
     bool connected)
 {
-	// Ground labels (floor, sidewalk, grass) are left to the height test:
-	// the rules' ground areas can swallow the top of a low object.
-	const auto isSurface = [&](const cv::Point& px)
+	if (pixels.empty()) return std::nullopt;
+	MeasureScratch& sc = tlMeasure;
+	const bool hasLabels = !labels.empty();
+	const double zFloor = groundZ + floorTolerance;
+	const auto pointAt = [&](int x, int y) -> const cv::Vec3f&
+	{ return points.ptr<cv::Vec3f>(y)[x]; };
+	// Not floor (within floorTolerance of the ground) nor a surface. Ground
+	// labels (floor, sidewalk, grass) are left to the height test: the
+	// rules' ground areas can swallow the top of a low object.
+	const auto nonFloor = [&](int x, int y)
 	{
-		if (labels.empty()) return false;
-		switch (static_cast<Label>(labels.at<uint8_t>(px)))
+		const cv::Vec3f& p = pointAt(x, y);
+		if (!(std::isfinite(p[0]) && p[2] >= zFloor)) return false;
+		if (!hasLabels) return true;
+		switch (static_cast<Label>(labels.ptr<uint8_t>(y)[x]))
 		{
 			case Label::Ceiling:
 			case Label::Wall:
 			case Label::Door:
-				return true;
-			default:
 				return false;
+			default:
+				return true;
 		}
 	};
-	const auto horizontal = [](const cv::Vec3f& p)
-	{ return std::hypot(double(p[0]), double(p[1])); };
-	const auto nonFloor = [&](const cv::Point& px, cv::Vec3f& p)
+	const auto horizontal = [&](int x, int y)
 	{
-		p = points.at<cv::Vec3f>(px);
-		return std::isfinite(p[0]) && p[2] >= groundZ + floorTolerance &&
-		       !isSurface(px);
+		const cv::Vec3f& p = pointAt(x, y);
+		return std::hypot(double(p[0]), double(p[1]));
 	};
-	if (pixels.empty()) return std::nullopt;
 	int x0 = INT_MAX, y0 = INT_MAX, x1 = -1, y1 = -1;
 	for (const auto& px : pixels)
 	{
@@ -1110,85 +1213,107 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 		y1 = std::max(y1, px.y);
 	}
 	const cv::Rect region(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
-	// Horizontal distance of each of `pixels` that is not floor or surface
-	// (NaN where it is; kNotIn: not one of `pixels`).
-	constexpr double kNotIn = -1;
-	cv::Mat1d dist(region.size(), kNotIn);
-	cv::Vec3f p;
+	// Flags per pixel of the region: one of `pixels`, and not floor or
+	// surface; a candidate (not too far behind); kept (connected).
+	constexpr uint8_t kIn = 1, kValid = 2, kCand = 4, kKept = 8;
+	const int pw = region.width + 2;
+	const auto padded = [&](int x, int y)
+	{ return std::size_t((y - y0 + 1) * pw + (x - x0 + 1)); };
+	std::vector<uint8_t>& state = sc.state;
+	state.assign(std::size_t(pw) * std::size_t(region.height + 2), 0);
 	for (const auto& px : pixels)
-		dist(px - region.tl()) = nonFloor(px, p)
-		                             ? horizontal(p)
-		                             : std::numeric_limits<double>::quiet_NaN();
+		state[padded(px.x, px.y)] = nonFloor(px.x, px.y) ? kIn | kValid : kIn;
 	// How far the object is: the nearest part (10th percentile of the
 	// horizontal distance) of the box's centre.
-	std::vector<double> centreD;
+	std::vector<double>& centreD = sc.centreD;
+	centreD.clear();
 	for (const auto& px : centre)
 	{
-		const double d = region.contains(px) ? dist(px - region.tl()) : kNotIn;
-		if (d == kNotIn)
-		{
-			if (nonFloor(px, p)) centreD.push_back(horizontal(p));
-		}
-		else if (!std::isnan(d))
-			centreD.push_back(d);
+		const uint8_t f = region.contains(px) ? state[padded(px.x, px.y)] : 0;
+		if (f & kIn ? f & kValid : nonFloor(px.x, px.y))
+			centreD.push_back(horizontal(px.x, px.y));
 	}
 	if (centreD.empty())
 		for (const auto& px : pixels)
-		{
-			const double d = dist(px - region.tl());
-			if (!std::isnan(d)) centreD.push_back(d);
-		}
+			if (state[padded(px.x, px.y)] & kValid)
+				centreD.push_back(horizontal(px.x, px.y));
 	if (centreD.empty()) return std::nullopt;
-	const double near = percentile(centreD, 0.1);
+	// percentilesOf() needs no NaN (a y may be one); percentile() on the
+	// same values in the same order otherwise.
+	const auto hasNaN = [](const std::vector<double>& v)
+	{
+		return std::any_of(
+		    v.begin(), v.end(), [](double x) { return std::isnan(x); });
+	};
+	const double far =
+	    (hasNaN(centreD)
+	         ? percentile(centreD, 0.1)
+	         : percentilesOf(centreD, 0.1, 0.1, sc.select, sc.buckets).first) +
+	    maxDepth;
 	// Candidates: non-floor, non-surface points not too far behind.
-	cv::Mat cand(region.size(), CV_8U, cv::Scalar(0));
 	for (const auto& px : pixels)
-		if (dist(px - region.tl()) <= near + maxDepth)
-			cand.at<uint8_t>(px - region.tl()) = 1;
+	{
+		uint8_t& f = state[padded(px.x, px.y)];
+		const cv::Vec3f& p = pointAt(px.x, px.y);
+		if ((f & kValid) && hypotAtMost(p[0], p[1], far)) f |= kCand;
+	}
+	// Object points, for the reservations below.
+	std::size_t kept = 0;
 	if (connected)
 	{
 		// Keep the candidates connected to the centre's: 8-neighbours
-		// closer in 3D than a gap growing with the range.
-		cv::Mat keep(region.size(), CV_8U, cv::Scalar(0));
-		std::vector<cv::Point> queue;
+		// closer in 3D than a gap growing with the range (the kept set is
+		// what the centre reaches, in any visiting order).
+		std::vector<int>& queue = sc.queue;
+		queue.clear();
 		for (const auto& px : centre)
-			if (region.contains(px) && cand.at<uint8_t>(px - region.tl()) &&
-			    !keep.at<uint8_t>(px - region.tl()))
+			if (region.contains(px))
 			{
-				keep.at<uint8_t>(px - region.tl()) = 1;
-				queue.push_back(px);
+				uint8_t& f = state[padded(px.x, px.y)];
+				if ((f & (kCand | kKept)) == kCand)
+				{
+					f |= kKept;
+					queue.push_back(int(padded(px.x, px.y)));
+				}
 			}
+		const int offsets[8] = {-pw - 1, -pw,    -pw + 1, -1,
+		                        1,       pw - 1, pw,      pw + 1};
 		for (std::size_t i = 0; i < queue.size(); i++)
 		{
-			const cv::Point a = queue[i];
-			const cv::Vec3f pa = points.at<cv::Vec3f>(a);
+			const int a = queue[i];
+			const int ax = a % pw - 1 + x0, ay = a / pw - 1 + y0;
+			const cv::Vec3f pa = pointAt(ax, ay);
 			const double gap = 0.08 + 0.03 * std::sqrt(pa.dot(pa));
-			for (int dy = -1; dy <= 1; dy++)
-				for (int dx = -1; dx <= 1; dx++)
-				{
-					const cv::Point b(a.x + dx, a.y + dy);
-					if (!region.contains(b)) continue;
-					const cv::Point l = b - region.tl();
-					if (!cand.at<uint8_t>(l) || keep.at<uint8_t>(l)) continue;
-					const cv::Vec3f d = points.at<cv::Vec3f>(b) - pa;
-					if (std::sqrt(d.dot(d)) > gap) continue;
-					keep.at<uint8_t>(l) = 1;
-					queue.push_back(b);
-				}
+			for (int k = 0; k < 8; k++)
+			{
+				const int b = a + offsets[k];
+				uint8_t& f = state[std::size_t(b)];
+				if ((f & (kCand | kKept)) != kCand) continue;
+				const cv::Vec3f d =
+				    pointAt(b % pw - 1 + x0, b / pw - 1 + y0) - pa;
+				if (std::sqrt(d.dot(d)) > gap) continue;
+				f |= kKept;
+				queue.push_back(b);
+			}
 		}
-		cand = keep;
+		kept = queue.size();
 	}
+	else
+		for (const auto& px : pixels)
+			kept += (state[padded(px.x, px.y)] & kCand) != 0;
+	const uint8_t keep = connected ? kKept : kCand;
 	Measure m;
 	std::vector<double> xs, ys, zs;
-	xs.reserve(pixels.size());
-	ys.reserve(pixels.size());
-	zs.reserve(pixels.size());
+	xs.reserve(kept);
+	ys.reserve(kept);
+	zs.reserve(kept);
+	m.pixels.reserve(kept);
 	double sx = 0, sy = 0, sz = 0;
 	int c0 = INT_MAX, r0 = INT_MAX, c1 = -1, r1 = -1;
 	for (const auto& px : pixels)
 	{
-		if (!cand.at<uint8_t>(px - region.tl())) continue;
-		p = points.at<cv::Vec3f>(px);
+		if (!(state[padded(px.x, px.y)] & keep)) continue;
+		const cv::Vec3f& p = pointAt(px.x, px.y);
 		xs.push_back(p[0]);
 		ys.push_back(p[1]);
 		zs.push_back(p[2]);
@@ -1208,16 +1333,24 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 	m.centroid = {sx / n, sy / n, sz / n};
 	// Extent across the line of sight to the centroid.
 	const double bearing = std::atan2(m.centroid.y, m.centroid.x);
-	std::vector<double> lateral(m.points);
+	const double sinB = std::sin(bearing), cosB = std::cos(bearing);
+	std::vector<double>& lateral = sc.lateral;
+	lateral.resize(m.points);
 	for (std::size_t i = 0; i < m.points; i++)
-		lateral[i] = -std::sin(bearing) * xs[i] + std::cos(bearing) * ys[i];
-	const auto spread = [](std::vector<double>& v)
+		lateral[i] = -sinB * xs[i] + cosB * ys[i];
+	// The 5th and 95th percentiles.
+	const auto ends = [&](std::vector<double>& v)
 	{
-		const auto [lo, hi] = percentiles(v, 0.05, 0.95);
+		return hasNaN(v) ? percentiles(v, 0.05, 0.95)
+		                 : percentilesOf(v, 0.05, 0.95, sc.select, sc.buckets);
+	};
+	const auto spread = [&](std::vector<double>& v)
+	{
+		const auto [lo, hi] = ends(v);
 		return hi - lo;
 	};
 	m.width = spread(lateral);
-	const auto [zBottom, zTop] = percentiles(zs, 0.05, 0.95);
+	const auto [zBottom, zTop] = ends(zs);
 	m.top = zTop - groundZ;
 	m.extent = {spread(xs), spread(ys), zTop - zBottom};
 	return m;
@@ -1362,6 +1495,40 @@ std::vector<cv::Mat> CascadeDetector::gateRanges(
 		mask =
 		    ObjectProposals::objectMask(points, labels, areaIds, groundZ, pp);
 	}
+	const std::size_t nc = m_options.classes.size();
+	std::vector<cv::Mat> ranges(nc);
+	std::vector<double> tops(nc);
+	for (std::size_t i = 0; i < nc; i++)
+		tops[i] =
+		    m_options.classes[i].maxTop + m_options.proposalTopMargin + groundZ;
+	const cv::Mat& nearest = m_impl->projection.nearestSource();
+	if (m_options.panoramic && nearest.size() == points.size() &&
+	    points.isContinuous() && (mask.empty() || mask.isContinuous()))
+	{
+		// Panoramic directly, every class in one pass: the nearest sweep
+		// pixel's range (PanoramicProjection::toPanoramic's INTER_NEAREST).
+		std::vector<float*> d(nc);
+		for (std::size_t i = 0; i < nc; i++)
+		{
+			ranges[i].create(points.size(), CV_32F);
+			d[i] = ranges[i].ptr<float>();
+		}
+		const auto* p = points.ptr<cv::Vec3f>();
+		const uint8_t* m = mask.empty() ? nullptr : mask.ptr<uint8_t>();
+		const int32_t* src = nearest.ptr<int32_t>();
+		for (int j = 0; j < points.rows * points.cols; j++)
+		{
+			// The horizontal range (0: none) of the points the mask keeps.
+			const int k = src[j];
+			float h = 0;
+			if (k >= 0 && (!m || m[k]) && std::isfinite(p[k][0]) &&
+			    std::isfinite(p[k][1]))
+				h = std::hypot(p[k][0], p[k][1]);
+			for (std::size_t i = 0; i < nc; i++)
+				d[i][j] = h > 0 && (!m || p[k][2] <= tops[i]) ? h : 0.f;
+		}
+		return ranges;
+	}
 	// Horizontal range of every point (0: none), then each class's.
 	cv::Mat1f horizontal(points.size(), 0.f);
 	for (int r = 0; r < points.rows; r++)
@@ -1372,11 +1539,9 @@ std::vector<cv::Mat> CascadeDetector::gateRanges(
 			if (std::isfinite(p[c][0]) && std::isfinite(p[c][1]))
 				h[c] = std::hypot(p[c][0], p[c][1]);
 	}
-	std::vector<cv::Mat> ranges(m_options.classes.size());
-	for (std::size_t i = 0; i < m_options.classes.size(); i++)
+	for (std::size_t i = 0; i < nc; i++)
 	{
-		const double top =
-		    m_options.classes[i].maxTop + m_options.proposalTopMargin + groundZ;
+		const double top = tops[i];
 		cv::Mat range(points.size(), CV_32F, cv::Scalar(0));
 		for (int r = 0; r < points.rows; r++)
 		{
@@ -1565,7 +1730,11 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		    const auto [i, j] = all[a];
 		    const TClassOptions& k = m_options.classes[i];
 		    Candidate& c = results[i].candidates[j];
-		    std::vector<cv::Point> pixels, centre;
+		    // The centre's pixels in a buffer per thread (the box's are kept
+		    // for the shape check).
+		    thread_local std::vector<cv::Point> centre;
+		    centre.clear();
+		    std::vector<cv::Point> pixels;
 		    // The object is measured in the box grown by measure_margin on
 		    // every side (grouped boxes may cut an object); how far it is,
 		    // in the box's central half.
@@ -1651,7 +1820,6 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		    r.candidates.begin(), r.candidates.end(), std::back_inserter(out));
 	}
 	for (auto& s : m_impl->scaled) s.clear();
-	for (auto& g : m_impl->gated) g.levels.clear();
 	m_impl->keepScaled = false;
 	m_timings.total = msSince(t0);
 	return out;

@@ -125,16 +125,25 @@ cv::Mat DetectionImage::fromSmoothedNormals(
 		throw Error(
 		    "DetectionImage: the view channel needs the sweep's rotation "
 		    "(one bearing per column and one tilt per row)");
-	cv::Mat bgr(sm.size(), CV_8UC3, cv::Scalar::all(0));
+	// One channel of NormalImage::rgbOf (r = -y, g = x, b = z) per pixel,
+	// grey as cv::cvtColor(COLOR_BGR2GRAY) computes it for 8 bits in
+	// OpenCV 4 (fixed point, 15 bits: 0.299, 0.587, 0.114 as 9798, 19235,
+	// 3735; DetectionImage's test checks every colour), without the colour
+	// image.
+	cv::Mat out(sm.size(), CV_8U);
 	for (int r = 0; r < sm.rows; r++)
 	{
 		const auto* n = sm.ptr<cv::Vec3f>(r);
 		const auto* m = normalMask.ptr<uint8_t>(r);
 		const auto* rot = view ? rotation.ptr<cv::Vec2f>(r) : nullptr;
-		auto* o = bgr.ptr<cv::Vec3b>(r);
+		auto* o = out.ptr<uint8_t>(r);
 		for (int c = 0; c < sm.cols; c++)
 		{
-			if (!m[c]) continue;
+			if (!m[c])
+			{
+				o[c] = 0;
+				continue;
+			}
 			cv::Vec3f v = n[c];
 			if (view)
 			{
@@ -143,28 +152,26 @@ cv::Mat DetectionImage::fromSmoothedNormals(
 				    ca * n[c][0] + sa * n[c][1], -sa * n[c][0] + ca * n[c][1],
 				    n[c][2]);
 			}
-			// NormalImage::rgbOf (r = -y, g = x, b = z), without its
-			// three lround calls per pixel.
-			o[c] =
-			    cv::Vec3b(channelOf(v[2]), channelOf(v[0]), channelOf(-v[1]));
+			switch (channel)
+			{
+				case DetectionChannel::Grey:
+				case DetectionChannel::View:
+					o[c] = static_cast<uint8_t>(
+					    (channelOf(v[2]) * 3735 + channelOf(v[0]) * 19235 +
+					     channelOf(-v[1]) * 9798 + (1 << 14)) >>
+					    15);
+					break;
+				case DetectionChannel::Red:
+					o[c] = channelOf(-v[1]);
+					break;
+				case DetectionChannel::Green:
+					o[c] = channelOf(v[0]);
+					break;
+				case DetectionChannel::Blue:
+					o[c] = channelOf(v[2]);
+					break;
+			}
 		}
-	}
-	cv::Mat out;
-	switch (channel)
-	{
-		case DetectionChannel::Grey:
-		case DetectionChannel::View:
-			cv::cvtColor(bgr, out, cv::COLOR_BGR2GRAY);
-			break;
-		case DetectionChannel::Red:
-			cv::extractChannel(bgr, out, 2);
-			break;
-		case DetectionChannel::Green:
-			cv::extractChannel(bgr, out, 1);
-			break;
-		case DetectionChannel::Blue:
-			cv::extractChannel(bgr, out, 0);
-			break;
 	}
 	return out;
 }

@@ -82,6 +82,18 @@ PanoramicProjection::PanoramicProjection(
 			Y[u] = (c < 0 || r < 0) ? -1.f : r;
 		}
 	}
+	// cv::remap's nearest neighbours, by remapping the pixel indices
+	// (exact in float below 2^24).
+	if (rows * cols < (1 << 24))
+	{
+		cv::Mat index(rows, cols, CV_32F), nearest;
+		for (int i = 0; i < rows * cols; i++) index.at<float>(i) = float(i);
+		cv::remap(
+		    index, nearest, m_invX, m_invY, cv::INTER_NEAREST,
+		    cv::BORDER_CONSTANT, cv::Scalar::all(-1));
+		nearest.convertTo(m_nearest, CV_32S);
+	}
+	cv::convertMaps(m_invX, m_invY, m_fixedXY, m_fixedA, CV_16SC2);
 	m_rowMonotonic.assign(std::size_t(rows), 1);
 	for (int r = 0; r < rows; r++)
 	{
@@ -122,9 +134,47 @@ cv::Mat PanoramicProjection::toPanoramic(
 	if (sweepImage.size() != m_size)
 		throw Error("PanoramicProjection: image size differs from the grid");
 	cv::Mat out;
-	cv::remap(
-	    sweepImage, out, m_invX, m_invY, interpolation, cv::BORDER_CONSTANT,
-	    cv::Scalar::all(0));
+	if (interpolation == cv::INTER_NEAREST && !m_nearest.empty() &&
+	    sweepImage.isContinuous())
+	{
+		// The same copies as cv::remap, without its per-pixel rounding.
+		out.create(m_size, sweepImage.type());
+		const int32_t* idx = m_nearest.ptr<int32_t>();
+		const int n = m_size.area();
+		const auto copy = [&](auto zero)
+		{
+			using T = decltype(zero);
+			const T* src = sweepImage.ptr<T>();
+			T* dst = out.ptr<T>();
+			for (int i = 0; i < n; i++)
+				dst[i] = idx[i] < 0 ? zero : src[idx[i]];
+		};
+		switch (sweepImage.elemSize())
+		{
+			case 1:
+				copy(uint8_t(0));
+				return out;
+			case 2:
+				copy(uint16_t(0));
+				return out;
+			case 4:
+				copy(uint32_t(0));
+				return out;
+			case 8:
+				copy(uint64_t(0));
+				return out;
+			default:
+				break;
+		}
+	}
+	if (interpolation == cv::INTER_LINEAR)
+		cv::remap(
+		    sweepImage, out, m_fixedXY, m_fixedA, interpolation,
+		    cv::BORDER_CONSTANT, cv::Scalar::all(0));
+	else
+		cv::remap(
+		    sweepImage, out, m_invX, m_invY, interpolation, cv::BORDER_CONSTANT,
+		    cv::Scalar::all(0));
 	return out;
 }
 
@@ -188,6 +238,9 @@ void PanoramicProjection::sweepPixelsIn(
 	pixels.clear();
 	innerPixels.clear();
 	const cv::Rect src = sourceRegion(box);
+	// At most the source region (no reallocation while filling; callers
+	// may keep `innerPixels` between calls).
+	pixels.reserve(std::size_t(src.area()));
 	for (int r = src.y; r < src.y + src.height; r++)
 	{
 		const auto* f = m_forward.ptr<cv::Vec2f>(r);

@@ -42,8 +42,14 @@ public:
 	cv::Size size() const { return m_size; }
 
 	/** Sweep-layout image -> panoramic image (pixels without a source are
-	 * 0). cv::INTER_LINEAR for images, cv::INTER_NEAREST for labels. */
+	 * 0). cv::INTER_LINEAR for images, cv::INTER_NEAREST for labels (a copy
+	 * of nearestSource()'s pixels: cv::remap's nearest neighbours). */
 	cv::Mat toPanoramic(const cv::Mat& sweepImage, int interpolation) const;
+	/** Per panoramic pixel, the sweep pixel (row * cols + col) that
+	 * cv::remap(INTER_NEAREST) with the inverse maps copies there, -1 where
+	 * none (CV_32S, of the sweep's size; empty for grids of 2^24 pixels
+	 * or more). */
+	const cv::Mat& nearestSource() const { return m_nearest; }
 
 	/** Panoramic position (x = col, y = row, fractional) of every sweep
 	 * pixel, CV_32FC2 of the sweep's size. */
@@ -67,7 +73,10 @@ public:
 private:
 	std::vector<double> m_phis, m_thetas;
 	cv::Size m_size;
-	cv::Mat m_forward, m_invX, m_invY;
+	cv::Mat m_forward, m_invX, m_invY, m_nearest;
+	/** The inverse maps in cv::remap's fixed point (cv::convertMaps,
+	 * CV_16SC2 + CV_16UC1), which cv::remap otherwise derives per call. */
+	cv::Mat m_fixedXY, m_fixedA;
 	/** Per kBlock x kBlock block of panoramic pixels, the bounds (x0, y0,
 	 * x1, y1) of their sweep positions (x1 < x0: none). */
 	static constexpr int kBlock = 8;
