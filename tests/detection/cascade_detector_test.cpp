@@ -131,6 +131,15 @@ TEST(CascadeDetector, ShippedConfigLoads)
 	EXPECT_DOUBLE_EQ(t.trainer.maxFalseAlarm, 0.5);
 	EXPECT_TRUE(o.rangeScales);
 	EXPECT_EQ(o.classes[2].windowStep, 2);
+	// Washbasins and wastebaskets take segment candidates and weigh cascade
+	// support; stairs do neither (their forest was trained so).
+	for (std::size_t k : {0, 1})
+	{
+		EXPECT_TRUE(o.classes[k].segmentCandidates);
+		EXPECT_TRUE(o.classes[k].cascadeSupport);
+	}
+	EXPECT_FALSE(o.classes[2].segmentCandidates);
+	EXPECT_FALSE(o.classes[2].cascadeSupport);
 	// A class's [SampleGenerator.<label>] changes only that class.
 	const auto dir = std::filesystem::temp_directory_path() /
 	                 ("semnav_cascade_ini_" + std::to_string(::getpid()));
