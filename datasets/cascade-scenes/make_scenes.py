@@ -51,6 +51,14 @@ SCENES = [
     ("test_d", 104, 10.0, 9.0),
     ("test_e", 105, 11.5, 8.5),
     ("test_f", 106, 9.0, 7.5),
+    # Added with the segment candidates: six more validation scenes (more
+    # pillars, boxes and far flights to choose settings on).
+    ("val_g", 207, 10.0, 9.0),
+    ("val_h", 208, 11.5, 8.5),
+    ("val_i", 209, 9.5, 7.5),
+    ("val_j", 210, 10.5, 8.0),
+    ("val_k", 211, 12.0, 8.5),
+    ("val_l", 212, 9.0, 8.5),
 ]
 
 
