@@ -118,9 +118,12 @@ std::vector<std::vector<ObjectProposal>> ObjectProposals::find(
 		height = projection->toPanoramic(height, cv::INTER_NEAREST);
 	}
 	std::vector<std::vector<ObjectProposal>> out;
+	// A negative limit keeps no point (nothing to search).
 	for (double limit : topLimits)
 		out.push_back(
-		    regions(range, height, static_cast<float>(limit), params));
+		    limit < 0
+		        ? std::vector<ObjectProposal>()
+		        : regions(range, height, static_cast<float>(limit), params));
 	return out;
 }
 
