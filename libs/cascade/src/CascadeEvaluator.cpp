@@ -245,8 +245,9 @@ void CascadeEvaluator::scanWindows(
 		m_alive[g] = 1;
 	}
 	// Dense eight-window blocks (AVX2) cover eight neighbouring positions
-	// of a segment of at least eight: every position lies between two
-	// windows of the run, so inside the image.
+	// of a segment of at least eight (every position lies between two
+	// windows of the run, so inside the image), or a shorter segment and
+	// the positions after it (dropped).
 	const bool simd = simdActive() && (step == 1 || step == 2);
 	const std::size_t nStages = m_cascade.stages.size();
 	// The positions still in, in grid order, with their segments (raw
@@ -272,14 +273,18 @@ void CascadeEvaluator::scanWindows(
 			const Segment& sg = segs[live[k].segment];
 			const int32_t base = sg.y * stride + sg.x0;
 			const int j = live[k].grid - sg.grid;
-			if (simd && sg.count >= 8)
+			if (simd)
 			{
 				// The block of j; with two or more positions in, all eight
-				// at once.
-				const int jb = std::min(j / 8 * 8, sg.count - 8);
+				// at once. A segment shorter than eight is one block whose
+				// lanes past its end are computed and dropped (their reads
+				// stay within the integral images: checked below).
+				const int jb =
+				    sg.count >= 8 ? std::min(j / 8 * 8, sg.count - 8) : 0;
 				const int g = sg.grid + jb;
+				const int gEnd = std::min(g + 8, sg.grid + sg.count);
 				std::size_t e = k + 1;
-				while (e < nLive && live[e].grid < g + 8) e++;
+				while (e < nLive && live[e].grid < gEnd) e++;
 				const int32_t b = base + step * jb;
 				// The block's loads end (step 2: one entry) past the last
 				// window's corners.
