@@ -140,6 +140,33 @@ TEST(PanoramicProjection, SweepPixelsInFindsEverySourcePixel)
 	EXPECT_GT(found, 100000u);
 }
 
+namespace
+{
+/** toPanoramic(img, interpolation) gives cv::remap's image with the
+ * inverse maps, byte for byte, for random images of each type. */
+void expectSameAsRemap(
+    const PanoramicProjection& p, int interpolation,
+    std::initializer_list<int> types, uint64_t seed, double lo, double hi)
+{
+	cv::RNG rng(seed);
+	for (const int type : types)
+	{
+		cv::Mat img(211, 361, type);
+		rng.fill(img, cv::RNG::UNIFORM, lo, hi);
+		cv::Mat expected;
+		cv::remap(
+		    img, expected, p.inverseX(), p.inverseY(), interpolation,
+		    cv::BORDER_CONSTANT, cv::Scalar::all(0));
+		const cv::Mat got = p.toPanoramic(img, interpolation);
+		ASSERT_EQ(got.type(), type);
+		EXPECT_EQ(
+		    std::memcmp(got.data, expected.data, got.total() * got.elemSize()),
+		    0)
+		    << type;
+	}
+}
+}  // namespace
+
 TEST(PanoramicProjection, NearestIsRemapsNearest)
 {
 	// toPanoramic(INTER_NEAREST) copies nearestSource()'s pixels: the same
@@ -147,22 +174,9 @@ TEST(PanoramicProjection, NearestIsRemapsNearest)
 	std::vector<double> phis, thetas;
 	grid(phis, thetas);
 	const PanoramicProjection p(phis, thetas);
-	cv::RNG rng(3);
-	for (const int type : {CV_8U, CV_16U, CV_32F, CV_32FC2, CV_64F})
-	{
-		cv::Mat img(211, 361, type);
-		rng.fill(img, cv::RNG::UNIFORM, 1, 200);
-		cv::Mat expected;
-		cv::remap(
-		    img, expected, p.inverseX(), p.inverseY(), cv::INTER_NEAREST,
-		    cv::BORDER_CONSTANT, cv::Scalar::all(0));
-		const cv::Mat got = p.toPanoramic(img, cv::INTER_NEAREST);
-		ASSERT_EQ(got.type(), type);
-		EXPECT_EQ(
-		    std::memcmp(got.data, expected.data, got.total() * got.elemSize()),
-		    0)
-		    << type;
-	}
+	expectSameAsRemap(
+	    p, cv::INTER_NEAREST, {CV_8U, CV_16U, CV_32F, CV_32FC2, CV_64F}, 3, 1,
+	    200);
 	// Pixels without a source are -1 in the map and 0 in the image.
 	double mn, mx;
 	cv::minMaxLoc(p.nearestSource(), &mn, &mx);
@@ -177,20 +191,6 @@ TEST(PanoramicProjection, LinearIsRemapsLinear)
 	std::vector<double> phis, thetas;
 	grid(phis, thetas);
 	const PanoramicProjection p(phis, thetas);
-	cv::RNG rng(4);
-	for (const int type : {CV_8U, CV_16U, CV_32F, CV_8UC3})
-	{
-		cv::Mat img(211, 361, type);
-		rng.fill(img, cv::RNG::UNIFORM, 0, 256);
-		cv::Mat expected;
-		cv::remap(
-		    img, expected, p.inverseX(), p.inverseY(), cv::INTER_LINEAR,
-		    cv::BORDER_CONSTANT, cv::Scalar::all(0));
-		const cv::Mat got = p.toPanoramic(img, cv::INTER_LINEAR);
-		ASSERT_EQ(got.type(), type);
-		EXPECT_EQ(
-		    std::memcmp(got.data, expected.data, got.total() * got.elemSize()),
-		    0)
-		    << type;
-	}
+	expectSameAsRemap(
+	    p, cv::INTER_LINEAR, {CV_8U, CV_16U, CV_32F, CV_8UC3}, 4, 0, 256);
 }
