@@ -265,14 +265,13 @@ int main(int argc, char** argv)
 				        dets, sweeps[i].groundTruth, labels, left);
 				    if (argMisses.getValue())
 				    {
-					    semnav::ObjectProposals::Params pp;
-					    pp.floorTolerance = opts.floorTolerance;
-					    pp.maxHeight = opts.proposalMaxHeight;
 					    listMisses(
 					        dir, i, sweeps[i].groundTruth, ls.points,
 					        semnav::ObjectProposals::objectMask(
 					            ls.points, ls.labels, ls.areaIds, ls.groundZ,
-					            pp),
+					            opts.proposalParams(
+					                opts.proposalJoinPx,
+					                opts.proposalRangeGap)),
 					        labels, cands);
 				    }
 				    if (!argOut.getValue().empty())

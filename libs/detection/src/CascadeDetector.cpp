@@ -460,6 +460,18 @@ const CascadeDetector::TClassOptions& CascadeDetector::TOptions::classOptions(
 	throw ConfigError("no cascade is configured for " + labelName(l));
 }
 
+ObjectProposals::Params CascadeDetector::TOptions::proposalParams(
+    int joinRadius, double rangeGap) const
+{
+	ObjectProposals::Params pp;
+	pp.floorTolerance = floorTolerance;
+	pp.maxHeight = proposalMaxHeight;
+	pp.minPixels = proposalMinPixels;
+	pp.joinRadius = joinRadius;
+	pp.rangeGap = rangeGap;
+	return pp;
+}
+
 std::string CascadeDetector::TOptions::cascadePath(const TClassOptions& c) const
 {
 	return resolvePath(c.cascade);
@@ -838,10 +850,7 @@ void rangeGatedDetect(
 				                             (!nearCut & (r >= gb.lo)));
 			}
 			for (int x = x0; x <= x1; x += step)
-				if (ok[x - x0])
-				{
-					windows.emplace_back(x, y);
-				}
+				if (ok[x - x0]) windows.emplace_back(x, y);
 		}
 		if (windows.empty()) continue;
 		// Clusters of windows apart from each other (bands of window rows
@@ -1132,10 +1141,7 @@ void CascadeDetector::runCascade(
 			neighbours.push_back(n[j]);
 		}
 	}
-	if (!m_impl->keepScaled)
-	{
-		m_impl->scaled.at(i).clear();
-	}
+	if (!m_impl->keepScaled) m_impl->scaled.at(i).clear();
 }
 
 namespace
@@ -1488,19 +1494,15 @@ std::vector<cv::Mat> CascadeDetector::gateRanges(
 {
 	cv::Mat mask;
 	if (m_options.rangeObjectsOnly)
-	{
-		ObjectProposals::Params pp;
-		pp.floorTolerance = m_options.floorTolerance;
-		pp.maxHeight = m_options.proposalMaxHeight;
-		mask =
-		    ObjectProposals::objectMask(points, labels, areaIds, groundZ, pp);
-	}
+		mask = ObjectProposals::objectMask(
+		    points, labels, areaIds, groundZ,
+		    m_options.proposalParams(
+		        m_options.proposalJoinPx, m_options.proposalRangeGap));
 	const std::size_t nc = m_options.classes.size();
 	std::vector<cv::Mat> ranges(nc);
 	std::vector<double> tops(nc);
 	for (std::size_t i = 0; i < nc; i++)
-		tops[i] =
-		    m_options.classes[i].maxTop + m_options.proposalTopMargin + groundZ;
+		tops[i] = m_options.proposalTop(m_options.classes[i]) + groundZ;
 	const cv::Mat& nearest = m_impl->projection.nearestSource();
 	if (m_options.panoramic && nearest.size() == points.size() &&
 	    points.isContinuous() && (mask.empty() || mask.isContinuous()))
@@ -1563,22 +1565,15 @@ std::vector<std::vector<ObjectProposal>> CascadeDetector::objectSegments(
     const cv::Mat& points, const cv::Mat& labels, const cv::Mat& areaIds,
     double groundZ) const
 {
-	ObjectProposals::Params pp;
-	pp.floorTolerance = m_options.floorTolerance;
-	pp.maxHeight = m_options.proposalMaxHeight;
-	pp.minPixels = m_options.proposalMinPixels;
-	pp.joinRadius = 1;
-	pp.rangeGap = m_options.segmentRangeGap;
 	// One height limit per class (a class without segment candidates gets
 	// none: its limit is below the ground).
 	std::vector<double> limits;
 	for (const auto& k : m_options.classes)
-		limits.push_back(
-		    k.segmentCandidates ? k.maxTop + m_options.proposalTopMargin
-		                        : -1.0);
+		limits.push_back(k.segmentCandidates ? m_options.proposalTop(k) : -1.0);
 	return ObjectProposals::find(
 	    points, labels, areaIds, groundZ,
-	    m_options.panoramic ? &m_impl->projection : nullptr, limits, pp);
+	    m_options.panoramic ? &m_impl->projection : nullptr, limits,
+	    m_options.proposalParams(1, m_options.segmentRangeGap));
 }
 
 std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
@@ -1651,18 +1646,14 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		        (thetas.back() - thetas.front()) / double(thetas.size() - 1));
 	if (m_options.proposals)
 	{
-		ObjectProposals::Params pp;
-		pp.floorTolerance = m_options.floorTolerance;
-		pp.maxHeight = m_options.proposalMaxHeight;
-		pp.minPixels = m_options.proposalMinPixels;
-		pp.joinRadius = m_options.proposalJoinPx;
-		pp.rangeGap = m_options.proposalRangeGap;
 		std::vector<double> limits;
 		for (const auto& k : m_options.classes)
-			limits.push_back(k.maxTop + m_options.proposalTopMargin);
+			limits.push_back(m_options.proposalTop(k));
 		m_impl->proposals = ObjectProposals::find(
 		    points, labels, areaIds, groundZ,
-		    m_options.panoramic ? &m_impl->projection : nullptr, limits, pp);
+		    m_options.panoramic ? &m_impl->projection : nullptr, limits,
+		    m_options.proposalParams(
+		        m_options.proposalJoinPx, m_options.proposalRangeGap));
 	}
 	m_timings.proposals = msSince(tp) + rangesMs + segmentsMs;
 	// Three steps, each in parallel (threads), with the same candidates in

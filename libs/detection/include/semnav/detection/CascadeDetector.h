@@ -158,6 +158,17 @@ public:
 		std::string cascadePath(const TClassOptions& c) const;
 		/** A path relative to baseDir (absolute paths unchanged). */
 		std::string resolvePath(const std::string& file) const;
+		/** ObjectProposals::Params of these options (floor tolerance,
+		 * height, size) with a join radius and a range gap: the proposals'
+		 * (proposal_join_px, proposal_range_gap_m) or the segments'. */
+		ObjectProposals::Params proposalParams(
+		    int joinRadius, double rangeGap) const;
+		/** How high above the ground class `c`'s proposals and segments
+		 * reach (max_top_m + proposal_top_margin_m). */
+		double proposalTop(const TClassOptions& c) const
+		{
+			return c.maxTop + proposalTopMargin;
+		}
 		/** The channel a class's cascade sees. */
 		DetectionChannel channelOf(const TClassOptions& c) const
 		{
