@@ -59,6 +59,28 @@ SCENES = [
     ("val_j", 210, 10.5, 8.0),
     ("val_k", 211, 12.0, 8.5),
     ("val_l", 212, 9.0, 8.5),
+    # Added for the shape forests (train_u..an): twenty more training scenes,
+    # twice the flights of stairs to learn from (one flight per scene).
+    ("train_u", 31, 9.5, 7.5),
+    ("train_v", 32, 11.0, 7.0),
+    ("train_w", 33, 10.5, 7.5),
+    ("train_x", 34, 8.5, 8.0),
+    ("train_y", 35, 8.5, 8.0),
+    ("train_z", 36, 8.5, 7.0),
+    ("train_aa", 37, 10.0, 8.5),
+    ("train_ab", 38, 9.0, 7.5),
+    ("train_ac", 39, 10.5, 9.0),
+    ("train_ad", 40, 10.5, 8.0),
+    ("train_ae", 41, 12.0, 7.0),
+    ("train_af", 42, 11.5, 7.5),
+    ("train_ag", 43, 9.0, 7.0),
+    ("train_ah", 44, 9.5, 8.5),
+    ("train_ai", 45, 9.0, 8.0),
+    ("train_aj", 46, 10.5, 7.5),
+    ("train_ak", 47, 10.5, 7.0),
+    ("train_al", 48, 8.5, 7.5),
+    ("train_am", 49, 11.0, 8.0),
+    ("train_an", 50, 9.5, 8.0),
 ]
 
 
