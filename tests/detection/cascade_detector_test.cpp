@@ -139,6 +139,11 @@ TEST(CascadeDetector, ShippedConfigLoads)
 		EXPECT_TRUE(o.classes[k].cascadeSupport);
 	}
 	EXPECT_DOUBLE_EQ(o.classes[2].minWidth, 0.3);
+	// Washbasins and wastebaskets need 100 object points (ground truth
+	// counts an object from 150 pixels; fewer were slivers of one).
+	EXPECT_EQ(o.classes[0].minPoints, 100);
+	EXPECT_EQ(o.classes[1].minPoints, 100);
+	EXPECT_EQ(o.classes[2].minPoints, 15);
 	// A class's [SampleGenerator.<label>] changes only that class.
 	const auto dir = std::filesystem::temp_directory_path() /
 	                 ("semnav_cascade_ini_" + std::to_string(::getpid()));
