@@ -13,12 +13,27 @@ namespace semnav
 {
 namespace
 {
+/** The 5th and 95th percentiles of a non-empty `v` (percentilesOf, a
+ * scratch per thread; on a copy if a value is NaN). */
+std::pair<double, double> ends(const std::vector<double>& v)
+{
+	thread_local std::vector<double> select[2];
+	thread_local std::vector<uint8_t> buckets;
+	if (std::any_of(
+	        v.begin(), v.end(), [](double x) { return std::isnan(x); }))
+	{
+		std::vector<double> copy = v;
+		return percentiles(copy, 0.05, 0.95);
+	}
+	return percentilesOf(v, 0.05, 0.95, select, buckets);
+}
+
 /** 95th minus 5th percentile; 0 for fewer than 3 values. */
-float spread(std::vector<double> v)
+float spread(const std::vector<double>& v)
 {
 	if (v.size() < 3) return 0;
-	const double hi = percentile(v, 0.95);
-	return float(hi - percentile(v, 0.05));
+	const auto [lo, hi] = ends(v);
+	return float(hi - lo);
 }
 }  // namespace
 
@@ -79,8 +94,7 @@ ObjectShape::Features ObjectShape::describe(
 		h[i] = p[i][2] - groundZ;
 	}
 	const float width = spread(lat), depth = spread(dep);
-	std::vector<double> hs = h;
-	const double top = percentile(hs, 0.95), bottom = percentile(hs, 0.05);
+	const auto [bottom, top] = ends(h);
 	f[0] = float(std::hypot(c[0], c[1]));
 	f[1] = float(std::abs(bearing));
 	f[2] = float(std::log(count));
@@ -98,7 +112,7 @@ ObjectShape::Features ObjectShape::describe(
 		thirds[std::size_t(r * 3)].push_back(lat[i]);
 	}
 	for (int k = 0; k < 3; k++)
-		f[12 + k] = spread(std::move(thirds[k])) / std::max(width, 0.01f);
+		f[12 + k] = spread(thirds[k]) / std::max(width, 0.01f);
 	// Surfaces: facing up, facing sideways and how the side normals turn.
 	double withNormal = 0, up = 0, side = 0, sc = 0, ss = 0, oblique = 0;
 	std::array<double, 12> sideBins{};
@@ -199,7 +213,7 @@ ObjectShape::Features ObjectShape::describe(
 	if (topPoints > 0)
 	{
 		f[24] = float(topUp / topPoints);
-		f[25] = spread(std::move(topDep));
+		f[25] = spread(topDep);
 	}
 	// Surfaces facing up: at how many heights (5 cm levels holding 3 % of
 	// them: a table has one, a flight of stairs one per step), over what
@@ -222,7 +236,7 @@ ObjectShape::Features ObjectShape::describe(
 		int filled = 0;
 		for (int l : levels) filled += l >= 0.03 * m;
 		f[26] = float(filled);
-		f[27] = spread(std::move(zs)) / float(std::max(top, 0.05));
+		f[27] = spread(zs) / float(std::max(top, 0.05));
 		mz /= m;
 		ml /= m;
 		md /= m;
