@@ -19,8 +19,7 @@ std::pair<double, double> ends(const std::vector<double>& v)
 {
 	thread_local std::vector<double> select[2];
 	thread_local std::vector<uint8_t> buckets;
-	if (std::any_of(
-	        v.begin(), v.end(), [](double x) { return std::isnan(x); }))
+	if (std::any_of(v.begin(), v.end(), [](double x) { return std::isnan(x); }))
 	{
 		std::vector<double> copy = v;
 		return percentiles(copy, 0.05, 0.95);
