@@ -1244,17 +1244,8 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 			if (state[padded(px.x, px.y)] & kValid)
 				centreD.push_back(horizontal(px.x, px.y));
 	if (centreD.empty()) return std::nullopt;
-	// percentilesOf() needs no NaN (a y may be one); percentile() on the
-	// same values in the same order otherwise.
-	const auto hasNaN = [](const std::vector<double>& v)
-	{
-		return std::any_of(
-		    v.begin(), v.end(), [](double x) { return std::isnan(x); });
-	};
 	const double far =
-	    (hasNaN(centreD)
-	         ? percentile(centreD, 0.1)
-	         : percentilesOf(centreD, 0.1, 0.1, sc.select, sc.buckets).first) +
+	    percentilesOf(centreD, 0.1, 0.1, sc.select, sc.buckets).first +
 	    maxDepth;
 	// Candidates: non-floor, non-surface points not too far behind.
 	for (const auto& px : pixels)
@@ -1345,12 +1336,9 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 	for (std::size_t i = 0; i < m.points; i++)
 		lateral[i] = -sinB * xs[i] + cosB * ys[i];
 	// The 5th and 95th percentiles.
-	const auto ends = [&](std::vector<double>& v)
-	{
-		return hasNaN(v) ? percentiles(v, 0.05, 0.95)
-		                 : percentilesOf(v, 0.05, 0.95, sc.select, sc.buckets);
-	};
-	const auto spread = [&](std::vector<double>& v)
+	const auto ends = [&](const std::vector<double>& v)
+	{ return percentilesOf(v, 0.05, 0.95, sc.select, sc.buckets); };
+	const auto spread = [&](const std::vector<double>& v)
 	{
 		const auto [lo, hi] = ends(v);
 		return hi - lo;

@@ -14,16 +14,11 @@ namespace semnav
 namespace
 {
 /** The 5th and 95th percentiles of a non-empty `v` (percentilesOf, a
- * scratch per thread; on a copy if a value is NaN). */
+ * scratch per thread). */
 std::pair<double, double> ends(const std::vector<double>& v)
 {
 	thread_local std::vector<double> select[2];
 	thread_local std::vector<uint8_t> buckets;
-	if (std::any_of(v.begin(), v.end(), [](double x) { return std::isnan(x); }))
-	{
-		std::vector<double> copy = v;
-		return percentiles(copy, 0.05, 0.95);
-	}
 	return percentilesOf(v, 0.05, 0.95, select, buckets);
 }
 

@@ -42,8 +42,9 @@ std::pair<T, T> percentiles(std::vector<T>& v, double pLo, double pHi)
 }
 
 /** {percentile(v, pLo), percentile(v, pHi)} (pLo <= pHi) of a non-empty
- * floating-point `v` without NaN, leaving `v` as it is (the value of a rank
- * is the same whatever selects it): the values are counted into 256
+ * floating-point `v`, leaving `v` as it is (the value of a rank is the
+ * same whatever selects it; with a NaN, percentiles() on a copy in
+ * `scratch[0]`, as on `v` itself): the values are counted into 256
  * buckets of equal width between the smallest and the largest (a map that
  * never decreases, so each rank lies in a known bucket), then the buckets
  * of the two ranks are selected from. Its comparisons mostly go the same
@@ -58,17 +59,19 @@ std::pair<T, T> percentilesOf(
 	const std::size_t rank[2] = {
 	    percentileRank(n, pLo), percentileRank(n, pHi)};
 	T lo = v[0], hi = v[0];
+	bool nan = false;
 	for (const T& x : v)
 	{
 		lo = x < lo ? x : lo;
 		hi = x > hi ? x : hi;
+		nan |= x != x;
 	}
 	const T width = hi - lo;
 	const T scale = T(256) / width;
-	if (!(width > 0) || !(width < std::numeric_limits<T>::infinity()) ||
+	if (nan || !(width > 0) || !(width < std::numeric_limits<T>::infinity()) ||
 	    !(scale < std::numeric_limits<T>::infinity()))
 	{
-		if (!(width > 0)) return {lo, lo};  // all equal
+		if (!nan && !(width > 0)) return {lo, lo};  // all equal
 		scratch[0].assign(v.begin(), v.end());
 		return percentiles(scratch[0], pLo, pHi);
 	}
