@@ -74,6 +74,32 @@ cv::Mat drawSweep(
 	return out;
 }
 
+/** Which ground-truth objects `pixels` lie on: the two largest shares,
+ * e.g. "62 % washbasin #6, 30 % wall #2". */
+std::string pointsOn(
+    const cv::Mat& groundTruth, const std::vector<cv::Point>& pixels)
+{
+	std::map<uint16_t, std::size_t> on;
+	for (const auto& p : pixels) on[groundTruth.at<uint16_t>(p)]++;
+	std::vector<std::pair<std::size_t, uint16_t>> shares;
+	for (const auto& [code, n] : on) shares.emplace_back(n, code);
+	std::sort(shares.rbegin(), shares.rend());
+	std::string out;
+	for (std::size_t i = 0; i < std::min<std::size_t>(2, shares.size()); i++)
+	{
+		const auto [n, code] = shares[i];
+		char buf[80];
+		std::snprintf(
+		    buf, sizeof(buf), "%s%.0f %% %s #%d", i ? ", " : "",
+		    100.0 * double(n) / double(pixels.size()),
+		    semnav::labelName(semnav::labelFromId(unsigned(code & 0xff)))
+		        .c_str(),
+		    code >> 8);
+		out += buf;
+	}
+	return out.empty() ? "no points" : out;
+}
+
 /** One stderr line per counted object without a matching accepted
  * detection: its box, pixels, range and bearing, and the candidate of its
  * label that overlaps it most (IoU of the measured box, fate). */
@@ -94,26 +120,16 @@ void listMisses(
 			           semnav::ObjectScorer::iou(c.measure->box, g.box) >= 0.3;
 		if (matches) continue;
 		const auto& m = *c.measure;
-		// The ground-truth object most of its points belong to.
-		std::map<uint16_t, std::size_t> on;
-		for (const auto& p : m.pixels) on[groundTruth.at<uint16_t>(p)]++;
-		const auto most = std::max_element(
-		    on.begin(), on.end(),
-		    [](const auto& a, const auto& b) { return a.second < b.second; });
-		const int code = most == on.end() ? 0 : most->first;
 		std::fprintf(
 		    stderr,
 		    "false %s sweep %zu %s box %dx%d+%d+%d, range %.2f m, bearing "
 		    "%.0f deg, width %.2f m, top %.2f m, %zu points, shape score "
-		    "%.2f, mostly on %s #%d\n",
+		    "%.2f, on %s\n",
 		    std::filesystem::path(dir).filename().c_str(), sweep,
 		    semnav::labelName(c.label).c_str(), m.box.width, m.box.height,
 		    m.box.x, m.box.y, std::hypot(m.centroid.x, m.centroid.y),
 		    std::atan2(m.centroid.y, m.centroid.x) * 180 / M_PI, m.width, m.top,
-		    m.points, c.shapeScore,
-		    semnav::labelName(semnav::labelFromId(unsigned(code & 0xff)))
-		        .c_str(),
-		    code >> 8);
+		    m.points, c.shapeScore, pointsOn(groundTruth, m.pixels).c_str());
 	}
 	for (const auto& g : objects)
 	{
@@ -132,13 +148,13 @@ void listMisses(
 			}
 		}
 		if (bestAccepted >= 0.3) continue;
-		const auto fate = [](const semnav::CascadeDetector::Candidate* c)
+		const auto fate = [&](const semnav::CascadeDetector::Candidate* c)
 		{
 			if (!c) return std::string("(no measured candidate)");
-			char buf[160];
+			char buf[320];
 			std::snprintf(
 			    buf, sizeof(buf),
-			    "(%s%s; %s, width %.2f m, top %.2f m, %zu points, %s)",
+			    "(%s%s; %s, width %.2f m, top %.2f m, %zu points, %s; on %s)",
 			    c->accepted ? "accepted" : "rejected: ",
 			    c->accepted ? "" : c->rejection.c_str(),
 			    c->fromSegment ? "segment" : "cascade box", c->measure->width,
@@ -146,7 +162,8 @@ void listMisses(
 			    c->shape ? ("shape score " +
 			                std::to_string(c->shapeScore).substr(0, 4))
 			                   .c_str()
-			             : "no shape check");
+			             : "no shape check",
+			    pointsOn(groundTruth, c->measure->pixels).c_str());
 			return std::string(buf);
 		};
 		const cv::Mat mask = g.mask(groundTruth);

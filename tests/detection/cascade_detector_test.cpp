@@ -78,6 +78,12 @@ TEST(CascadeDetector, MeasureSeparatesObjectFromFloorAndWall)
 	const auto w = CascadeDetector::measure(
 	    pts, cv::Mat(), all, centre, 0.0, 0.04, 2.0, 10);
 	EXPECT_GT(w->points, 400u);
+	// Unless the wall behind is cut off (it is 0.7 m long in the patch).
+	const auto cut = CascadeDetector::measure(
+	    pts, cv::Mat(), all, centre, 0.0, 0.04, 2.0, 10, false, 0.5);
+	ASSERT_TRUE(cut.has_value());
+	EXPECT_EQ(cut->points, 400u);
+	EXPECT_EQ(cut->box, cv::Rect(20, 20, 20, 20));
 	// Too few points.
 	EXPECT_FALSE(
 	    CascadeDetector::measure(pts, labels, all, centre, 0.0, 0.04, 0.5, 500)
@@ -144,6 +150,11 @@ TEST(CascadeDetector, ShippedConfigLoads)
 	EXPECT_EQ(o.classes[0].minPoints, 100);
 	EXPECT_EQ(o.classes[1].minPoints, 100);
 	EXPECT_EQ(o.classes[2].minPoints, 15);
+	// Washbasin and stairs forests were trained with the back wall cut off;
+	// the wastebasket's without (it did worse with).
+	EXPECT_DOUBLE_EQ(o.classes[0].backWallLength, 0.8);
+	EXPECT_DOUBLE_EQ(o.classes[1].backWallLength, 0);
+	EXPECT_DOUBLE_EQ(o.classes[2].backWallLength, 0.8);
 	// A class's [SampleGenerator.<label>] changes only that class.
 	const auto dir = std::filesystem::temp_directory_path() /
 	                 ("semnav_cascade_ini_" + std::to_string(::getpid()));

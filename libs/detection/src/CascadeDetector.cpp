@@ -12,6 +12,7 @@
 #include <semnav/common/ParallelFor.h>
 #include <semnav/common/Percentile.h>
 #include <semnav/common/Timing.h>
+#include <semnav/detection/BackWall.h>
 #include <semnav/detection/CascadeDetector.h>
 #include <semnav/detection/ObjectScorer.h>
 #include <semnav/detection/ShapeVerifier.h>
@@ -82,7 +83,8 @@ const std::vector<std::string>& CascadeDetector::TClassOptions::knownKeys()
 	    "min_shape_score",
 	    "max_stages",
 	    "segment_candidates",
-	    "cascade_support"};
+	    "cascade_support",
+	    "back_wall_length_m"};
 	return keys;
 }
 
@@ -135,6 +137,8 @@ void CascadeDetector::TClassOptions::loadFromConfigFile(
 	o.segmentCandidates =
 	    readCheckedBool(c, s, "segment_candidates", segmentCandidates);
 	o.cascadeSupport = readCheckedBool(c, s, "cascade_support", cascadeSupport);
+	o.backWallLength =
+	    readChecked(c, s, "back_wall_length_m", backWallLength, 0, 100);
 	if (c.keyExists(s, "channel"))
 	{
 		try
@@ -187,6 +191,7 @@ void CascadeDetector::TClassOptions::saveToConfigFile(
 	c.write(s, "max_stages", std::to_string(maxStages));
 	writeBool(c, s, "segment_candidates", segmentCandidates);
 	writeBool(c, s, "cascade_support", cascadeSupport);
+	c.write(s, "back_wall_length_m", num(backWallLength));
 }
 
 std::vector<DetectionPass> CascadeDetector::TClassOptions::passes(
@@ -1158,6 +1163,8 @@ struct MeasureScratch
 	std::vector<double> lateral;
 	std::vector<double> select[2];
 	std::vector<uint8_t> buckets;
+	std::vector<cv::Point2d> wallXy;
+	std::vector<std::size_t> wallAt;
 };
 thread_local MeasureScratch tlMeasure;
 
@@ -1179,7 +1186,7 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
     const cv::Mat& points, const cv::Mat& labels,
     const std::vector<cv::Point>& pixels, const std::vector<cv::Point>& centre,
     double groundZ, double floorTolerance, double maxDepth, int minPoints,
-    bool connected)
+    bool connected, double backWallLength)
 {
 	if (pixels.empty()) return std::nullopt;
 	MeasureScratch& sc = tlMeasure;
@@ -1253,6 +1260,24 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 		uint8_t& f = state[padded(px.x, px.y)];
 		const cv::Vec3f& p = pointAt(px.x, px.y);
 		if ((f & kValid) && hypotAtMost(p[0], p[1], far)) f |= kCand;
+	}
+	if (backWallLength > 0)
+	{
+		sc.wallXy.clear();
+		sc.wallAt.clear();
+		for (const auto& px : pixels)
+			if (state[padded(px.x, px.y)] & kCand)
+			{
+				const cv::Vec3f& p = pointAt(px.x, px.y);
+				sc.wallXy.emplace_back(p[0], p[1]);
+				sc.wallAt.push_back(padded(px.x, px.y));
+			}
+		BackWall::Params wp;
+		wp.minLength = backWallLength;
+		if (const auto wall = BackWall::find(sc.wallXy, wp))
+			for (std::size_t i = 0; i < sc.wallXy.size(); i++)
+				if (wall->distance(sc.wallXy[i]) >= -wp.tolerance)
+					state[sc.wallAt[i]] &= uint8_t(~kCand);
 	}
 	// Object points, for the reservations below.
 	std::size_t kept = 0;
@@ -1741,7 +1766,7 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		    c.measure = measure(
 		        points, labels, pixels, centre, groundZ,
 		        m_options.floorTolerance, k.maxDepth, k.minPoints,
-		        m_options.connectedObject);
+		        m_options.connectedObject, k.backWallLength);
 		    if (!c.measure)
 			    c.rejection = "too few points";
 		    else if (c.measure->width < k.minWidth)

@@ -129,6 +129,10 @@ public:
 		 * class's cascade windows cover a candidate
 		 * (Candidate::cascadeSupport); false: it sees 0. */
 		bool cascadeSupport = false;
+		/** back_wall_length_m: a wall at least this long behind the
+		 * object's points (BackWall) is cut off before it is measured; 0:
+		 * none. */
+		double backWallLength = 0;
 	};
 
 	/** INI section [CascadeDetector] plus one [CascadeDetector.<label>]
@@ -401,14 +405,15 @@ public:
 	 * the ground) nor labelled as a surface in `labels` (if not empty),
 	 * within max_depth_m (horizontally) behind the nearest part (10th
 	 * percentile) of those among `centre` (the box's central half) and,
-	 * with `connected`, connected to those of the centre; nothing when
-	 * fewer than min_points. */
+	 * with `connected`, connected to those of the centre; without the
+	 * points on or behind a BackWall at least `backWallLength` long (0:
+	 * none); nothing when fewer than min_points. */
 	static std::optional<Measure> measure(
 	    const cv::Mat& points, const cv::Mat& labels,
 	    const std::vector<cv::Point>& pixels,
 	    const std::vector<cv::Point>& centre, double groundZ,
 	    double floorTolerance, double maxDepth, int minPoints,
-	    bool connected = false);
+	    bool connected = false, double backWallLength = 0);
 
 	/** The range-gated search evaluates windows with AVX2 where the CPU has
 	 * it (default) or, with false, with the portable loop: the same
