@@ -35,7 +35,19 @@ std::optional<BackWall::Line> BackWall::find(
 {
 	const std::size_t n = xy.size();
 	if (n < 20) return std::nullopt;
+	// No line of minLength fits in a smaller box.
+	double x0 = xy[0].x, x1 = x0, y0 = xy[0].y, y1 = y0;
+	for (const auto& p : xy)
+	{
+		x0 = std::min(x0, p.x);
+		x1 = std::max(x1, p.x);
+		y0 = std::min(y0, p.y);
+		y1 = std::max(y1, p.y);
+	}
+	if (std::hypot(x1 - x0, y1 - y0) < params.minLength) return std::nullopt;
 	const std::size_t stride = std::max<std::size_t>(1, n / kScoredPoints);
+	const std::size_t scored = (n + stride - 1) / stride;
+	const double maxBehindScored = params.maxBehind * double(scored);
 	// The line with the most points on it and few behind.
 	std::minstd_rand rng(12345);
 	std::uniform_int_distribution<std::size_t> pick(0, n - 1);
@@ -45,14 +57,15 @@ std::optional<BackWall::Line> BackWall::find(
 	{
 		const auto l = lineThrough(xy[pick(rng)], xy[pick(rng)]);
 		if (!l) continue;
-		std::size_t on = 0, behind = 0, scored = 0;
-		for (std::size_t i = 0; i < n; i += stride, scored++)
+		std::size_t on = 0, behind = 0;
+		for (std::size_t i = 0; i < n; i += stride)
 		{
 			const double s = l->distance(xy[i]);
 			on += std::abs(s) <= params.tolerance;
 			behind += s > params.tolerance;
+			if (double(behind) > maxBehindScored) break;
 		}
-		if (double(behind) > params.maxBehind * double(scored)) continue;
+		if (double(behind) > maxBehindScored) continue;
 		if (on > bestOn)
 		{
 			bestOn = on;
