@@ -10,6 +10,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/objdetect.hpp>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -218,13 +219,21 @@ TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 	int missLines = 0, falseLines = 0;
 	for (std::string line; std::getline(lines, line);)
 	{
+		// ...and which ground-truth objects its points lie on.
+		const std::regex on("on [0-9]+ % [a-z]+ #[0-9]+");
 		if (line.rfind("miss ", 0) == 0)
 		{
 			missLines++;
 			EXPECT_NE(line.find("nearest candidate IoU"), std::string::npos)
 			    << line;
+			if (line.find("no measured candidate") == std::string::npos)
+				EXPECT_TRUE(std::regex_search(line, on)) << line;
 		}
-		falseLines += line.rfind("false ", 0) == 0;
+		if (line.rfind("false ", 0) == 0)
+		{
+			falseLines++;
+			EXPECT_TRUE(std::regex_search(line, on)) << line;
+		}
 	}
 	EXPECT_LE(missLines, dj.at("objects").at("washbasin").at("fn").get<int>());
 	EXPECT_GT(missLines + falseLines, 0);
