@@ -157,7 +157,7 @@ TEST(CascadeDetector, ShippedConfigLoads)
 	EXPECT_DOUBLE_EQ(o.classes[2].backWallLength, 0.8);
 	// Stairs boxes are grouped (every raw window a candidate let the box
 	// with the most points win among duplicates); no wastebasket far pass.
-	EXPECT_EQ(o.classes[2].minNeighbors, 1);
+	EXPECT_EQ(o.classes[2].minNeighbors, 8);
 	EXPECT_DOUBLE_EQ(o.classes[1].farUpscale, 0);
 	// A class's [SampleGenerator.<label>] changes only that class.
 	const auto dir = std::filesystem::temp_directory_path() /
