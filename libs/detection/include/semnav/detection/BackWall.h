@@ -9,12 +9,12 @@ namespace semnav
 {
 /** The wall behind an object, in the top view of a detection's points: a
  * straight line that the sensor (the origin) sees everything else in front
- * of and that reaches past the rest on the sides. Washbasins and
- * wastebaskets stand against walls; beside the robot a wall is seen over a
- * few rows only and the rule classifier leaves it to objects, so a
- * detection's points hold the object and a slab of its wall (the shape
- * check then scores a wall, not the object). CascadeDetector::measure cuts
- * it off (back_wall_length_m). A stair's top riser has the lower steps in
+ * of and that reaches past the rest on the sides. Washbasins and stairs
+ * stand against walls; beside the robot a wall is seen over a few rows only
+ * and the rule classifier leaves it to objects, so a detection's points
+ * hold the object and a slab of its wall (the shape check then scores a
+ * wall, not the object). CascadeDetector::measure cuts it off
+ * (back_wall_length_m). A stair's top riser has the lower steps in
  * front of it but does not reach past them, a box's front face has nothing
  * in front: neither is a back wall. */
 class BackWall
