@@ -387,8 +387,9 @@ TEST_F(CascadeDetection, ZeroBorderGivesWindowsAtTheImageEdge)
 
 TEST_F(CascadeDetection, ClassesInParallelGiveTheSameCandidates)
 {
-	// threads = 0 (all cores, each class on its own thread) against one
-	// thread: the same candidates in the same order, on every sweep.
+	// threads = 0 (all cores; each class, and each range-gated pass of a
+	// class, on its own thread) against one thread: the same candidates in
+	// the same order, on every sweep.
 	const Simulated& s = scene();
 	PerceptionPipeline p;
 	opts.threads = 1;
@@ -411,6 +412,8 @@ TEST_F(CascadeDetection, ClassesInParallelGiveTheSameCandidates)
 		{
 			EXPECT_EQ(a[j].label, b[j].label);
 			EXPECT_EQ(a[j].box, b[j].box);
+			EXPECT_EQ(a[j].neighbours, b[j].neighbours);
+			EXPECT_EQ(a[j].cascadeSupport, b[j].cascadeSupport);
 			EXPECT_EQ(a[j].accepted, b[j].accepted);
 			EXPECT_EQ(a[j].rejection, b[j].rejection);
 			EXPECT_DOUBLE_EQ(a[j].shapeScore, b[j].shapeScore);

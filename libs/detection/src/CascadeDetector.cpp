@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/objdetect.hpp>
 #include <sstream>
@@ -531,16 +532,27 @@ struct GatedScratch
 	int stride = 0;
 };
 
+/** A class's detection passes (TClassOptions::passes: near, far). */
+constexpr int kMaxPasses = 2;
+
+/** Index of a class's pass in the per-pass scratch. */
+std::size_t slot(std::size_t classIndex, std::size_t pass)
+{
+	return classIndex * kMaxPasses + pass;
+}
+
 }  // namespace
 
 struct CascadeDetector::Impl
 {
 	std::vector<cv::CascadeClassifier> classifiers;
-	/** The same cascades for the range-gated search (range_scales). */
+	/** The same cascades for the range-gated search (range_scales), per
+	 * class and pass (slot()). */
 	std::vector<CascadeEvaluator> evaluators;
 	std::vector<cv::Size> windows;
-	/** Per class: its scaled detection images by upscale, kept within one
-	 * detectCandidates() call (classes may run on their own threads). */
+	/** Per class and pass (slot()): its scaled detection images by
+	 * upscale, kept within one detectCandidates() call (passes may run on
+	 * their own threads). */
 	std::vector<
 	    std::map<std::tuple<DetectionChannel, double, int, int, int>, cv::Mat>>
 	    scaled;
@@ -553,7 +565,7 @@ struct CascadeDetector::Impl
 	std::vector<std::vector<ObjectProposal>> proposals;
 	/** Elevations of the first and last row of the detection image. */
 	double el0 = -M_PI / 2, el1 = M_PI / 2;
-	/** Per class. */
+	/** Per class and pass (slot()). */
 	std::vector<GatedScratch> gated;
 	/** Per class (empty: no shape check). */
 	std::vector<ShapeVerifier> verifiers;
@@ -588,14 +600,16 @@ CascadeDetector::CascadeDetector(const TOptions& options)
 		}
 		m_impl->classifiers.push_back(std::move(cc));
 		m_impl->windows.push_back(c.windowSize);
-		m_impl->evaluators.emplace_back(c);
+		// One per pass: a class's passes may run on their own threads.
+		for (int pass = 0; pass < kMaxPasses; pass++)
+			m_impl->evaluators.emplace_back(c);
 		m_impl->verifiers.push_back(
 		    k.shapeModel.empty()
 		        ? ShapeVerifier()
 		        : ShapeVerifier::load(m_options.resolvePath(k.shapeModel)));
 	}
-	m_impl->scaled.resize(m_options.classes.size());
-	m_impl->gated.resize(m_options.classes.size());
+	m_impl->scaled.resize(m_options.classes.size() * kMaxPasses);
+	m_impl->gated.resize(m_options.classes.size() * kMaxPasses);
 }
 
 void CascadeDetector::describeShapes(bool on)
@@ -1014,7 +1028,7 @@ std::vector<CascadeDetector::SearchRegion> CascadeDetector::searchRegions(
 void CascadeDetector::runCascade(
     std::size_t i, const cv::Mat& image, std::vector<cv::Rect>& boxes,
     std::vector<int>& neighbours, const std::vector<ObjectProposal>* proposals,
-    double step, const cv::Mat& range)
+    double step, const cv::Mat& range, int pass)
 {
 	const TClassOptions& k = m_options.classes.at(i);
 	const cv::Size win = m_impl->windows[i];
@@ -1028,6 +1042,7 @@ void CascadeDetector::runCascade(
 	for (std::size_t pi = 0; pi < passes.size(); pi++)
 	{
 		const DetectionPass& p = passes[pi];
+		if (pass >= 0 && pi != std::size_t(pass)) continue;
 		if (p.rowEnd <= p.rowBegin) continue;
 		if (proposals)
 		{
@@ -1086,7 +1101,7 @@ void CascadeDetector::runCascade(
 		const int padBelow = p.rowBegin == 0 ? border : 0;
 		const auto key = std::make_tuple(
 		    m_options.channelOf(k), p.upscale, p.rowBegin, p.rowEnd, border);
-		cv::Mat& band = m_impl->scaled.at(i)[key];
+		cv::Mat& band = m_impl->scaled.at(slot(i, pi))[key];
 		if (band.empty())
 		{
 			band = p.apply(image);
@@ -1127,10 +1142,10 @@ void CascadeDetector::runCascade(
 			// object of size s (the window's 1 / 1.15) at range
 			// s * 1.15 * upscale / (w * step).
 			rangeGatedDetect(
-			    m_impl->evaluators[i], band, r, k.scaleFactor, k.minNeighbors,
-			    k.windowStep, minSize, maxSize,
+			    m_impl->evaluators[slot(i, pi)], band, r, k.scaleFactor,
+			    k.minNeighbors, k.windowStep, minSize, maxSize,
 			    m_options.rangeGate(k, step, p.upscale), found, n,
-			    m_impl->gated.at(i));
+			    m_impl->gated.at(slot(i, pi)));
 		}
 		else
 			classifier.detectMultiScale(
@@ -1146,7 +1161,9 @@ void CascadeDetector::runCascade(
 			neighbours.push_back(n[j]);
 		}
 	}
-	if (!m_impl->keepScaled) m_impl->scaled.at(i).clear();
+	if (!m_impl->keepScaled)
+		for (int pi = 0; pi < kMaxPasses; pi++)
+			if (pass < 0 || pi == pass) m_impl->scaled.at(slot(i, pi)).clear();
 }
 
 namespace
@@ -1254,13 +1271,20 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 	const double far =
 	    percentilesOf(centreD, 0.1, 0.1, sc.select, sc.buckets).first +
 	    maxDepth;
-	// Candidates: non-floor, non-surface points not too far behind.
+	// Candidates: non-floor, non-surface points not too far behind. The
+	// object is some of them: too few, and it is too small.
+	std::size_t candidates = 0;
 	for (const auto& px : pixels)
 	{
 		uint8_t& f = state[padded(px.x, px.y)];
 		const cv::Vec3f& p = pointAt(px.x, px.y);
-		if ((f & kValid) && hypotAtMost(p[0], p[1], far)) f |= kCand;
+		if ((f & kValid) && hypotAtMost(p[0], p[1], far))
+		{
+			f |= kCand;
+			candidates++;
+		}
 	}
+	if (static_cast<int>(candidates) < minPoints) return std::nullopt;
 	if (backWallLength > 0)
 	{
 		sc.wallXy.clear();
@@ -1683,19 +1707,77 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	};
 	std::vector<ClassResult> results(m_options.classes.size());
 	const int threads = m_options.threads;
+	// The cascades: a task per class, or per pass where the passes are
+	// range-gated (each pass has its own scratch), the larger bands first.
+	struct CascadeTask
+	{
+		std::size_t classIndex = 0;
+		int pass = -1;
+		double work = 0;
+		std::vector<cv::Rect> boxes;
+		std::vector<int> neighbours;
+		double ms = 0;
+	};
+	std::vector<CascadeTask> tasks;
+	for (std::size_t i = 0; i < m_options.classes.size(); i++)
+	{
+		const TClassOptions& k = m_options.classes[i];
+		const cv::Mat& image = images.at(m_options.channelOf(k));
+		if (!gated || ranges[i].empty() || step <= 0)
+		{
+			tasks.push_back({i, -1, HUGE_VAL, {}, {}, 0});
+			continue;
+		}
+		const auto passes =
+		    k.passes(image.rows, m_impl->el0, m_impl->el1, m_impl->windows[i]);
+		for (std::size_t pi = 0; pi < passes.size(); pi++)
+			tasks.push_back(
+			    {i,
+			     int(pi),
+			     (passes[pi].rowEnd - passes[pi].rowBegin) *
+			         passes[pi].upscale * passes[pi].upscale,
+			     {},
+			     {},
+			     0});
+	}
+	std::vector<std::size_t> largestFirst(tasks.size());
+	std::iota(largestFirst.begin(), largestFirst.end(), 0);
+	std::stable_sort(
+	    largestFirst.begin(), largestFirst.end(),
+	    [&](std::size_t a, std::size_t b)
+	    { return tasks[a].work > tasks[b].work; });
+	parallelFor(
+	    tasks.size(), threads,
+	    [&](std::size_t t)
+	    {
+		    CascadeTask& task = tasks[largestFirst[t]];
+		    const std::size_t i = task.classIndex;
+		    const auto tc = Clock::now();
+		    runCascade(
+		        i, images.at(m_options.channelOf(m_options.classes[i])),
+		        task.boxes, task.neighbours,
+		        m_options.proposals ? &m_impl->proposals.at(i) : nullptr, step,
+		        ranges[i], task.pass);
+		    task.ms = msSince(tc);
+	    });
 	parallelFor(
 	    results.size(), threads,
 	    [&](std::size_t i)
 	    {
 		    const TClassOptions& k = m_options.classes[i];
+		    // The passes' boxes in pass order.
 		    std::vector<cv::Rect> boxes;
 		    std::vector<int> neighbours;
-		    const auto tc = Clock::now();
-		    runCascade(
-		        i, images.at(m_options.channelOf(k)), boxes, neighbours,
-		        m_options.proposals ? &m_impl->proposals.at(i) : nullptr, step,
-		        ranges[i]);
-		    results[i].cascades = msSince(tc);
+		    for (const CascadeTask& task : tasks)
+			    if (task.classIndex == i)
+			    {
+				    boxes.insert(
+				        boxes.end(), task.boxes.begin(), task.boxes.end());
+				    neighbours.insert(
+				        neighbours.end(), task.neighbours.begin(),
+				        task.neighbours.end());
+				    results[i].cascades += task.ms;
+			    }
 		    auto& cands = results[i].candidates;
 		    cands.resize(boxes.size());
 		    for (std::size_t j = 0; j < boxes.size(); j++)

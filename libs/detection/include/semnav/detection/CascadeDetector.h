@@ -275,9 +275,10 @@ public:
 		 * tallerPixels) is the lower part of something taller, not a
 		 * candidate. */
 		double segmentMaxTaller = 0.1;
-		/** threads: classes searched in parallel on up to this many
-		 * threads (0: all cores, 1: the calling thread only); the same
-		 * candidates either way. */
+		/** threads: classes (and a class's range-gated passes) searched,
+		 * and candidates measured, in parallel on up to this many threads
+		 * (0: all cores, 1: the calling thread only); the same candidates
+		 * either way. */
 		int threads = 1;
 		/** Directory relative cascade paths are resolved against. */
 		std::string baseDir = ".";
@@ -372,12 +373,14 @@ public:
 	 * searchRegions() of each pass are searched; without, every window,
 	 * or with range_scales and a `range` image (CV_32F, horizontal range
 	 * of each detection-image pixel, 0 where none) and `step`, every
-	 * window at the scales its centre's range allows. */
+	 * window at the scales its centre's range allows. `pass` >= 0: only
+	 * that one of the class's passes (a range-gated pass may run beside
+	 * the class's others). */
 	void runCascade(
 	    std::size_t classIndex, const cv::Mat& detectionImage,
 	    std::vector<cv::Rect>& boxes, std::vector<int>& neighbours,
 	    const std::vector<ObjectProposal>* proposals = nullptr, double step = 0,
-	    const cv::Mat& range = cv::Mat());
+	    const cv::Mat& range = cv::Mat(), int pass = -1);
 
 	/** Where one pass searches around proposals: an image region and the
 	 * range of window sides (detection-image pixels). */
