@@ -1620,10 +1620,9 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 {
 	const auto t0 = Clock::now();
 	m_timings = Timings();
-	// One detection image per channel in use, from one smoothing, and the
-	// range_scales gate's range images: one parallel step (threads).
-	const cv::Mat smoothed = DetectionImage::smoothNormals(
-	    normals, normalMask, m_options.normalSmoothing);
+	// One detection image per channel in use, from one smoothing, the
+	// range_scales gate's range images and the segments: one parallel step
+	// (threads), the longest task first.
 	std::vector<DetectionChannel> channels;
 	for (const auto& k : m_options.classes)
 		if (std::find(
@@ -1631,48 +1630,60 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		    channels.end())
 			channels.push_back(m_options.channelOf(k));
 	prepareGrid(
-	    phis, thetas, smoothed.size(),
+	    phis, thetas, normals.size(),
 	    std::count(channels.begin(), channels.end(), DetectionChannel::View) >
 	        0);
 	const bool gated = m_options.rangeScales && !m_options.proposals;
 	std::vector<cv::Mat> channelImages(channels.size());
 	std::vector<cv::Mat> ranges(m_options.classes.size());
 	// Task times (the tasks may run in parallel).
-	std::vector<double> imageMs(channels.size(), 0.0);
-	double rangesMs = 0, segmentsMs = 0;
+	double imageMs = 0, rangesMs = 0, segmentsMs = 0;
 	std::vector<std::vector<ObjectProposal>> segments;
 	const bool segmented = std::any_of(
 	    m_options.classes.begin(), m_options.classes.end(),
 	    [](const TClassOptions& k) { return k.segmentCandidates; });
 	const double prepareMs = msSince(t0);
+	enum class Task
+	{
+		Images,
+		Segments,
+		Ranges
+	};
+	std::vector<Task> prepare{Task::Images};
+	if (segmented) prepare.push_back(Task::Segments);
+	if (gated) prepare.push_back(Task::Ranges);
 	parallelFor(
-	    channels.size() + (gated ? 1 : 0) + (segmented ? 1 : 0),
-	    m_options.threads,
+	    prepare.size(), m_options.threads,
 	    [&](std::size_t t)
 	    {
 		    const auto tt = Clock::now();
-		    if (t < channels.size())
+		    switch (prepare[t])
 		    {
-			    channelImages[t] = gridImage(smoothed, normalMask, channels[t]);
-			    imageMs[t] = msSince(tt);
-		    }
-		    else if (gated && t == channels.size())
-		    {
-			    ranges = gateRanges(points, labels, areaIds, groundZ);
-			    rangesMs = msSince(tt);
-		    }
-		    else
-		    {
-			    segments = objectSegments(points, labels, areaIds, groundZ);
-			    segmentsMs = msSince(tt);
+			    case Task::Images:
+			    {
+				    const cv::Mat smoothed = DetectionImage::smoothNormals(
+				        normals, normalMask, m_options.normalSmoothing);
+				    for (std::size_t c = 0; c < channels.size(); c++)
+					    channelImages[c] =
+					        gridImage(smoothed, normalMask, channels[c]);
+				    imageMs = msSince(tt);
+				    break;
+			    }
+			    case Task::Segments:
+				    segments = objectSegments(points, labels, areaIds, groundZ);
+				    segmentsMs = msSince(tt);
+				    break;
+			    case Task::Ranges:
+				    ranges = gateRanges(points, labels, areaIds, groundZ);
+				    rangesMs = msSince(tt);
+				    break;
 		    }
 	    });
 	std::map<DetectionChannel, cv::Mat> images;
 	for (std::size_t c = 0; c < channels.size(); c++)
 		images[channels[c]] = channelImages[c];
 	m_impl->keepScaled = true;
-	m_timings.image = prepareMs;
-	for (double ms : imageMs) m_timings.image += ms;
+	m_timings.image = prepareMs + imageMs;
 	const auto tp = Clock::now();
 	m_impl->proposals.clear();
 	// Both layouts keep the sweep's angular steps.
