@@ -1705,15 +1705,12 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	}
 	m_timings.proposals = msSince(tp) + rangesMs + segmentsMs;
 	// Three steps, each in parallel (threads), with the same candidates in
-	// the order of the classes: the cascades (a class a task), measuring
-	// (a candidate a task) and the shape check (a class a task: its order
-	// matters among duplicates).
+	// the order of the classes: the cascades (a class or pass a task),
+	// measuring, describing and scoring (a candidate a task) and the shape
+	// check (a class a task: its order matters among duplicates).
 	struct ClassResult
 	{
 		std::vector<Candidate> candidates;
-		/** Per candidate, the pixels it was measured in (the shape check's
-		 * surroundings; kept only when the class has a shape model). */
-		std::vector<std::vector<cv::Point>> searched;
 		double cascades = 0, sizeCheck = 0;
 	};
 	std::vector<ClassResult> results(m_options.classes.size());
@@ -1811,8 +1808,6 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 			    for (std::size_t j = 0; j < boxes.size(); j++)
 				    if (ObjectScorer::iou(c.box, boxes[j]) >= 0.3)
 					    c.cascadeSupport += std::max(1, neighbours[j]);
-		    if (!m_impl->verifiers[i].empty())
-			    results[i].searched.resize(cands.size());
 	    });
 	std::vector<std::pair<std::size_t, std::size_t>> all;
 	for (std::size_t i = 0; i < results.size(); i++)
@@ -1872,11 +1867,14 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 			    c.rejection = "too high";
 		    else
 			    c.accepted = true;
-		    if (c.accepted && m_impl->describeShapes)
+		    // Its shape and score here, a candidate a task (the shape check
+		    // below compares the scores of the ones duplicates leave).
+		    const ShapeVerifier& verifier = m_impl->verifiers[i];
+		    if (c.accepted && (m_impl->describeShapes || !verifier.empty()))
 			    c.shape = describeCandidate(
 			        points, normals, normalMask, labels, k, c, pixels, groundZ);
-		    if (!results[i].searched.empty())
-			    results[i].searched[j] = std::move(pixels);
+		    if (c.accepted && !verifier.empty())
+			    c.shapeScore = verifier.score(*c.shape);
 		    measureMs[a] = msSince(tm);
 	    });
 	for (std::size_t a = 0; a < all.size(); a++)
@@ -1887,21 +1885,15 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	    {
 		    const auto tm = Clock::now();
 		    const TClassOptions& k = m_options.classes[i];
-		    const ShapeVerifier& verifier = m_impl->verifiers[i];
 		    auto& out = results[i].candidates;
 		    // The shape check, on the candidates duplicates do not remove.
 		    suppressDuplicates(
 		        out, points.size(),
 		        [&](Candidate& c)
 		        {
-			        if (verifier.empty()) return true;
-			        if (!c.shape)
-				        c.shape = describeCandidate(
-				            points, normals, normalMask, labels, k, c,
-				            results[i].searched[std::size_t(&c - out.data())],
-				            groundZ);
-			        c.shapeScore = verifier.score(*c.shape);
-			        if (c.shapeScore >= k.minShapeScore) return true;
+			        if (m_impl->verifiers[i].empty() ||
+			            c.shapeScore >= k.minShapeScore)
+				        return true;
 			        c.accepted = false;
 			        c.rejection = "shape";
 			        return false;
