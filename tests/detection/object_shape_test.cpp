@@ -236,6 +236,40 @@ TEST(ShapeVerifier, SeparatesAndRoundTrips)
 	std::filesystem::remove_all(dir);
 }
 
+TEST(ShapeVerifier, FlatTreesVoteAsOpenCv)
+{
+	// The shipped forests and a small trained one, on features drawn around
+	// the values candidates have (and on exact zeros, a common value): the
+	// flat trees' score is RTrees::getVotes', to the last bit.
+	std::vector<ShapeVerifier> models;
+	for (const char* l : {"washbasin", "wastebasket", "stairs"})
+		models.push_back(ShapeVerifier::load(
+		    std::string(SEMNAV_SOURCE_DIR) + "/datasets/cascades/" + l +
+		    "-shape.xml.gz"));
+	cv::Mat samples, isObject;
+	clusters(samples, isObject, 150, 1);
+	ShapeVerifier::TrainParams tp;
+	tp.trees = 30;
+	models.push_back(ShapeVerifier::train(samples, isObject, tp));
+	cv::RNG rng(7);
+	std::size_t checked = 0, between = 0;
+	for (const auto& m : models)
+		for (int i = 0; i < 2000; i++)
+		{
+			ObjectShape::Features f{};
+			for (auto& v : f)
+				v = rng.uniform(0, 4) == 0
+				        ? 0.f
+				        : float(rng.uniform(-0.5, 8.0) * rng.uniform(0.0, 1.0));
+			const double a = m.score(f), b = m.scoreByOpenCv(f);
+			EXPECT_EQ(a, b) << "sample " << i;
+			checked++;
+			between += a > 0 && a < 1;
+		}
+	EXPECT_EQ(checked, 8000u);
+	EXPECT_GT(between, 1000u) << "the samples split the trees' votes";
+}
+
 TEST(ShapeVerifier, BadModelsAndSamplesAreClearErrors)
 {
 	const auto dir = std::filesystem::temp_directory_path() /

@@ -30,6 +30,7 @@ ShapeVerifier ShapeVerifier::train(
 	    cv::TermCriteria(cv::TermCriteria::MAX_ITER, params.trees, 0));
 	v.m_forest->train(
 	    cv::ml::TrainData::create(samples, cv::ml::ROW_SAMPLE, isObject));
+	v.flatten();
 	return v;
 }
 
@@ -52,6 +53,7 @@ ShapeVerifier ShapeVerifier::load(const std::string& path)
 		throw IoError(
 		    path + ": not a shape model over " +
 		    std::to_string(ObjectShape::kFeatures) + " ObjectShape features");
+	v.flatten();
 	return v;
 }
 
@@ -87,7 +89,61 @@ void ShapeVerifier::save(const std::string& path) const
 	}
 }
 
+void ShapeVerifier::flatten()
+{
+	// Class labels by class index: row 0 of getVotes.
+	cv::Mat votes;
+	const ObjectShape::Features zero{};
+	m_forest->getVotes(
+	    cv::Mat(
+	        1, ObjectShape::kFeatures, CV_32F, const_cast<float*>(zero.data())),
+	    votes, 0);
+	const auto& nodes = m_forest->getNodes();
+	const auto& splits = m_forest->getSplits();
+	m_roots = m_forest->getRoots();
+	m_nodes.assign(nodes.size(), FlatNode());
+	for (std::size_t i = 0; i < nodes.size(); i++)
+	{
+		const auto& n = nodes[i];
+		FlatNode& out = m_nodes[i];
+		if (n.split >= 0)
+		{
+			// RTrees' prediction takes the first split, "<= c" to the left
+			// (ordered features only).
+			const auto& sp = splits.at(std::size_t(n.split));
+			if (sp.varIdx < 0 || sp.varIdx >= ObjectShape::kFeatures)
+				throw Error("ShapeVerifier: a split on no ObjectShape feature");
+			out.var = sp.varIdx;
+			out.threshold = sp.c;
+			out.left = n.left;
+			out.right = n.right;
+		}
+		else if (n.classIdx >= 0 && n.classIdx < votes.cols)
+			out.object = votes.at<int>(0, n.classIdx) == 1;
+	}
+}
+
 double ShapeVerifier::score(const ObjectShape::Features& f) const
+{
+	if (!m_forest) return 1;
+	// OpenCV's missing value takes another path: leave it to OpenCV.
+	for (float v : f)
+		if (v == cv::ml::TrainData::missingValue()) return scoreByOpenCv(f);
+	int object = 0;
+	for (int root : m_roots)
+	{
+		int i = root;
+		while (m_nodes[std::size_t(i)].var >= 0)
+		{
+			const FlatNode& n = m_nodes[std::size_t(i)];
+			i = f[std::size_t(n.var)] <= n.threshold ? n.left : n.right;
+		}
+		object += m_nodes[std::size_t(i)].object;
+	}
+	return m_roots.empty() ? 0 : double(object) / double(m_roots.size());
+}
+
+double ShapeVerifier::scoreByOpenCv(const ObjectShape::Features& f) const
 {
 	if (!m_forest) return 1;
 	const cv::Mat sample(

@@ -6,6 +6,7 @@
 #include <opencv2/core/mat.hpp>
 #include <opencv2/ml.hpp>
 #include <string>
+#include <vector>
 
 namespace semnav
 {
@@ -13,7 +14,8 @@ namespace semnav
  * forest (OpenCV's cv::ml::RTrees) over ObjectShape descriptors, trained on
  * the cascade's candidates in simulated sweeps (objects of the class
  * against furniture the cascade took for one). The score is the fraction of
- * trees that vote "object". */
+ * trees that vote "object", from the forest's trees copied into flat arrays
+ * (the same votes as cv::ml::RTrees::getVotes, without its allocations). */
 class ShapeVerifier
 {
 public:
@@ -43,9 +45,25 @@ public:
 	bool empty() const { return !m_forest; }
 	/** Fraction of trees voting "object", in [0, 1]. */
 	double score(const ObjectShape::Features& f) const;
+	/** The same through cv::ml::RTrees::getVotes (slower; for checks). */
+	double scoreByOpenCv(const ObjectShape::Features& f) const;
 
 private:
+	/** A tree node: a split (`var` >= 0: left if the feature is <=
+	 * `threshold`) or a leaf voting `object` (0 or 1). */
+	struct FlatNode
+	{
+		int var = -1;
+		float threshold = 0;
+		int left = -1, right = -1;
+		int object = 0;
+	};
+	/** Copies the forest's trees into m_roots / m_nodes. */
+	void flatten();
+
 	cv::Ptr<cv::ml::RTrees> m_forest;
+	std::vector<int> m_roots;
+	std::vector<FlatNode> m_nodes;
 };
 
 }  // namespace semnav
