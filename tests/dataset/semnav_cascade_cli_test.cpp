@@ -217,10 +217,10 @@ TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 	ASSERT_EQ(misses.code, 0) << misses.err;
 	std::istringstream lines(misses.err);
 	int missLines = 0, falseLines = 0;
+	// ...and which ground-truth objects its points lie on.
+	const std::regex on("on [0-9]+ % [a-z]+ #[0-9]+");
 	for (std::string line; std::getline(lines, line);)
 	{
-		// ...and which ground-truth objects its points lie on.
-		const std::regex on("on [0-9]+ % [a-z]+ #[0-9]+");
 		if (line.rfind("miss ", 0) == 0)
 		{
 			missLines++;

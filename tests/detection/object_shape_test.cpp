@@ -252,7 +252,7 @@ TEST(ShapeVerifier, FlatTreesVoteAsOpenCv)
 	tp.trees = 30;
 	models.push_back(ShapeVerifier::train(samples, isObject, tp));
 	cv::RNG rng(7);
-	std::size_t checked = 0, between = 0;
+	std::size_t between = 0;
 	for (const auto& m : models)
 		for (int i = 0; i < 2000; i++)
 		{
@@ -263,10 +263,8 @@ TEST(ShapeVerifier, FlatTreesVoteAsOpenCv)
 				        : float(rng.uniform(-0.5, 8.0) * rng.uniform(0.0, 1.0));
 			const double a = m.score(f), b = m.scoreByOpenCv(f);
 			EXPECT_EQ(a, b) << "sample " << i;
-			checked++;
 			between += a > 0 && a < 1;
 		}
-	EXPECT_EQ(checked, 8000u);
 	EXPECT_GT(between, 1000u) << "the samples split the trees' votes";
 }
 

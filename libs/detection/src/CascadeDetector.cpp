@@ -1142,7 +1142,7 @@ void CascadeDetector::runCascade(
 			// object of size s (the window's 1 / 1.15) at range
 			// s * 1.15 * upscale / (w * step).
 			rangeGatedDetect(
-			    m_impl->evaluators[slot(i, pi)], band, r, k.scaleFactor,
+			    m_impl->evaluators.at(slot(i, pi)), band, r, k.scaleFactor,
 			    k.minNeighbors, k.windowStep, minSize, maxSize,
 			    m_options.rangeGate(k, step, p.upscale), found, n,
 			    m_impl->gated.at(slot(i, pi)));
@@ -1768,47 +1768,45 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		        ranges[i], task.pass);
 		    task.ms = msSince(tc);
 	    });
-	parallelFor(
-	    results.size(), threads,
-	    [&](std::size_t i)
-	    {
-		    const TClassOptions& k = m_options.classes[i];
-		    // The passes' boxes in pass order.
-		    std::vector<cv::Rect> boxes;
-		    std::vector<int> neighbours;
-		    for (const CascadeTask& task : tasks)
-			    if (task.classIndex == i)
-			    {
-				    boxes.insert(
-				        boxes.end(), task.boxes.begin(), task.boxes.end());
-				    neighbours.insert(
-				        neighbours.end(), task.neighbours.begin(),
-				        task.neighbours.end());
-				    results[i].cascades += task.ms;
-			    }
-		    auto& cands = results[i].candidates;
-		    cands.resize(boxes.size());
-		    for (std::size_t j = 0; j < boxes.size(); j++)
-		    {
-			    cands[j].label = k.label;
-			    cands[j].box = boxes[j];
-			    cands[j].neighbours = neighbours[j];
-		    }
-		    if (k.segmentCandidates)
-			    for (const ObjectProposal& p : segments.at(i))
-			    {
-				    if (p.tallerPixels > m_options.segmentMaxTaller * p.pixels)
-					    continue;
-				    Candidate& c = cands.emplace_back();
-				    c.label = k.label;
-				    c.box = p.box;
-				    c.fromSegment = true;
-			    }
-		    for (auto& c : cands)
-			    for (std::size_t j = 0; j < boxes.size(); j++)
-				    if (ObjectScorer::iou(c.box, boxes[j]) >= 0.3)
-					    c.cascadeSupport += std::max(1, neighbours[j]);
-	    });
+	// Each class's candidates: its passes' boxes in pass order, then its
+	// segments (little work: one thread).
+	for (std::size_t i = 0; i < results.size(); i++)
+	{
+		const TClassOptions& k = m_options.classes[i];
+		std::vector<cv::Rect> boxes;
+		std::vector<int> neighbours;
+		for (const CascadeTask& task : tasks)
+			if (task.classIndex == i)
+			{
+				boxes.insert(boxes.end(), task.boxes.begin(), task.boxes.end());
+				neighbours.insert(
+				    neighbours.end(), task.neighbours.begin(),
+				    task.neighbours.end());
+				results[i].cascades += task.ms;
+			}
+		auto& cands = results[i].candidates;
+		cands.resize(boxes.size());
+		for (std::size_t j = 0; j < boxes.size(); j++)
+		{
+			cands[j].label = k.label;
+			cands[j].box = boxes[j];
+			cands[j].neighbours = neighbours[j];
+		}
+		if (k.segmentCandidates)
+			for (const ObjectProposal& p : segments.at(i))
+			{
+				if (p.tallerPixels > m_options.segmentMaxTaller * p.pixels)
+					continue;
+				Candidate& c = cands.emplace_back();
+				c.label = k.label;
+				c.box = p.box;
+				c.fromSegment = true;
+			}
+		for (auto& c : cands)
+			for (std::size_t j = 0; j < boxes.size(); j++)
+				if (ObjectScorer::iou(c.box, boxes[j]) >= 0.3)
+					c.cascadeSupport += std::max(1, neighbours[j]);
+	}
 	std::vector<std::pair<std::size_t, std::size_t>> all;
 	for (std::size_t i = 0; i < results.size(); i++)
 		for (std::size_t j = 0; j < results[i].candidates.size(); j++)
