@@ -90,6 +90,38 @@ TEST(CascadeDetector, MeasureSeparatesObjectFromFloorAndWall)
 	        .has_value());
 }
 
+TEST(CascadeDetector, ContinuingShareFindsTheLowerPartOfSomethingTaller)
+{
+	// A 20 x 20 pixel object 2 m ahead, 1.7 cm per row (z 0.34 at its top
+	// row 19), and the 10 rows above it: the same face going on up in
+	// columns < split (a pillar the rules call wall), a wall 1 m behind in
+	// the others.
+	const auto share = [](int split, Label above)
+	{
+		cv::Mat p(30, 20, CV_32FC3), labels(30, 20, CV_8U);
+		CascadeDetector::Measure m;
+		for (int r = 0; r < 30; r++)
+			for (int c = 0; c < 20; c++)
+			{
+				const float y = 0.02f * (10 - c), z = 0.017f * float(r);
+				const bool object = r < 20, pillar = c < split;
+				p.at<cv::Vec3f>(r, c) = {object || pillar ? 2.0f : 3.0f, y, z};
+				labels.at<uint8_t>(r, c) = static_cast<uint8_t>(
+				    object   ? Label::Obstacle
+				    : pillar ? above
+				             : Label::Wall);
+				if (object) m.pixels.emplace_back(c, r);
+			}
+		m.box = cv::Rect(0, 0, 20, 20);
+		return CascadeDetector::continuingShare(p, labels, m);
+	};
+	EXPECT_DOUBLE_EQ(share(0, Label::Wall), 0.0);
+	EXPECT_DOUBLE_EQ(share(20, Label::Wall), 1.0);
+	EXPECT_DOUBLE_EQ(share(5, Label::Wall), 0.25);
+	// Points above that are ceiling do not count.
+	EXPECT_DOUBLE_EQ(share(20, Label::Ceiling), 0.0);
+}
+
 TEST(CascadeDetector, PassesCoverNearAndFarObjects)
 {
 	CascadeDetector::TClassOptions k(Label::Wastebasket);
@@ -155,6 +187,9 @@ TEST(CascadeDetector, ShippedConfigLoads)
 	EXPECT_DOUBLE_EQ(o.classes[0].backWallLength, 0.8);
 	EXPECT_DOUBLE_EQ(o.classes[1].backWallLength, 0);
 	EXPECT_DOUBLE_EQ(o.classes[2].backWallLength, 0.8);
+	EXPECT_DOUBLE_EQ(o.classes[0].maxContinuingShare, 0.3);
+	EXPECT_DOUBLE_EQ(o.classes[1].maxContinuingShare, 1);
+	EXPECT_DOUBLE_EQ(o.classes[2].maxContinuingShare, 1);
 	// Stairs boxes are grouped (every raw window a candidate let the box
 	// with the most points win among duplicates); no wastebasket far pass.
 	EXPECT_EQ(o.classes[2].minNeighbors, 8);
@@ -222,6 +257,10 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	    load("[CascadeDetector]\nclasses = "
 	         "stairs\n[CascadeDetector.stairs]\nsegment_candidates = maybe\n"),
 	    ConfigError);
+	EXPECT_THROW(
+	    load("[CascadeDetector]\nclasses = "
+	         "stairs\n[CascadeDetector.stairs]\nmax_continuing_share = 1.5\n"),
+	    ConfigError);
 	// Round trip through save.
 	CascadeDetector::TOptions o;
 	o.threads = 2;
@@ -230,6 +269,7 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	o.segmentRangeGap = 0.25;
 	o.segmentMaxTaller = 0.5;
 	o.classes[1].cascadeSupport = true;
+	o.classes[0].maxContinuingShare = 0.25;
 	CascadeDetector::TOptions back = test::savedAndLoaded(o, "CascadeDetector");
 	EXPECT_EQ(back.threads, 2);
 	ASSERT_EQ(back.classes.size(), o.classes.size());
@@ -246,6 +286,8 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	EXPECT_DOUBLE_EQ(back.segmentMaxTaller, 0.5);
 	EXPECT_TRUE(back.classes[1].cascadeSupport);
 	EXPECT_FALSE(back.classes[2].cascadeSupport);
+	EXPECT_DOUBLE_EQ(back.classes[0].maxContinuingShare, 0.25);
+	EXPECT_DOUBLE_EQ(back.classes[1].maxContinuingShare, 1);
 	EXPECT_NEAR(
 	    back.classes[0].farMaxElevation, o.classes[0].farMaxElevation, 1e-12);
 }

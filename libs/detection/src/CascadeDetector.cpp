@@ -85,7 +85,8 @@ const std::vector<std::string>& CascadeDetector::TClassOptions::knownKeys()
 	    "max_stages",
 	    "segment_candidates",
 	    "cascade_support",
-	    "back_wall_length_m"};
+	    "back_wall_length_m",
+	    "max_continuing_share"};
 	return keys;
 }
 
@@ -140,6 +141,8 @@ void CascadeDetector::TClassOptions::loadFromConfigFile(
 	o.cascadeSupport = readCheckedBool(c, s, "cascade_support", cascadeSupport);
 	o.backWallLength =
 	    readChecked(c, s, "back_wall_length_m", backWallLength, 0, 100);
+	o.maxContinuingShare =
+	    readChecked(c, s, "max_continuing_share", maxContinuingShare, 0, 1);
 	if (c.keyExists(s, "channel"))
 	{
 		try
@@ -193,6 +196,7 @@ void CascadeDetector::TClassOptions::saveToConfigFile(
 	writeBool(c, s, "segment_candidates", segmentCandidates);
 	writeBool(c, s, "cascade_support", cascadeSupport);
 	c.write(s, "back_wall_length_m", num(backWallLength));
+	c.write(s, "max_continuing_share", num(maxContinuingShare));
 }
 
 std::vector<DetectionPass> CascadeDetector::TClassOptions::passes(
@@ -1199,6 +1203,15 @@ inline bool hypotAtMost(float x, float y, double t)
 }
 }  // namespace
 
+namespace
+{
+/** Neighbouring points of one object are at most this far apart (m). */
+double connectionGap(const cv::Vec3f& p)
+{
+	return 0.08 + 0.03 * std::sqrt(p.dot(p));
+}
+}  // namespace
+
 std::optional<CascadeDetector::Measure> CascadeDetector::measure(
     const cv::Mat& points, const cv::Mat& labels,
     const std::vector<cv::Point>& pixels, const std::vector<cv::Point>& centre,
@@ -1329,7 +1342,7 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 			const int a = queue[i];
 			const int ax = a % pw - 1 + x0, ay = a / pw - 1 + y0;
 			const cv::Vec3f pa = pointAt(ax, ay);
-			const double gap = 0.08 + 0.03 * std::sqrt(pa.dot(pa));
+			const double gap = connectionGap(pa);
 			for (int k = 0; k < 8; k++)
 			{
 				const int b = a + offsets[k];
@@ -1863,6 +1876,11 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 			    c.rejection = "too low";
 		    else if (c.measure->top > k.maxTop)
 			    c.rejection = "too high";
+		    else if (
+		        k.maxContinuingShare < 1 &&
+		        continuingShare(points, labels, *c.measure) >
+		            k.maxContinuingShare)
+			    c.rejection = "taller";
 		    else
 			    c.accepted = true;
 		    // Its shape and score here, a candidate a task (the shape check
@@ -1910,6 +1928,43 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	m_impl->keepScaled = false;
 	m_timings.total = msSince(t0);
 	return out;
+}
+
+double CascadeDetector::continuingShare(
+    const cv::Mat& points, const cv::Mat& labels, const Measure& m)
+{
+	// The highest object pixel of each column.
+	std::vector<int> top(std::size_t(std::max(0, m.box.width)), -1);
+	for (const auto& p : m.pixels)
+	{
+		int& t = top[std::size_t(p.x - m.box.x)];
+		t = std::max(t, p.y);
+	}
+	int columns = 0, continuing = 0;
+	for (std::size_t i = 0; i < top.size(); i++)
+	{
+		const int row = top[i];
+		if (row < 0) continue;
+		columns++;
+		const int col = m.box.x + int(i);
+		const cv::Vec3f a = points.at<cv::Vec3f>(row, col);
+		const double gap = connectionGap(a);
+		for (int r = row + 1; r <= std::min(points.rows - 1, row + 3); r++)
+		{
+			const cv::Vec3f b = points.at<cv::Vec3f>(r, col);
+			if (!std::isfinite(b[0]) || b[2] < a[2] + 0.02f) continue;
+			if (!labels.empty() && static_cast<Label>(labels.at<uint8_t>(
+			                           r, col)) == Label::Ceiling)
+				continue;
+			const cv::Vec3f d = b - a;
+			if (std::sqrt(double(d.dot(d))) <= gap)
+			{
+				continuing++;
+				break;
+			}
+		}
+	}
+	return columns ? double(continuing) / columns : 0;
 }
 
 void CascadeDetector::detect(const Sweep& sweep, LabeledSweep& ls)

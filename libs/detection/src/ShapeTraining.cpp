@@ -20,6 +20,9 @@ ShapeTraining::Samples ShapeTraining::collect(
 	const CascadeDetector::TClassOptions k = detector.classOptions(label);
 	detector.classes = {k};
 	detector.classes[0].shapeModel.clear();
+	// The forest learns every candidate the size check passes; the taller
+	// check is a rule of its own at detection.
+	detector.classes[0].maxContinuingShare = 1;
 	if (params.minNeighbors >= 0)
 		detector.classes[0].minNeighbors = params.minNeighbors;
 	if (params.maxStages >= 0) detector.classes[0].maxStages = params.maxStages;

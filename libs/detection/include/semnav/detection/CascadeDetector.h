@@ -133,6 +133,11 @@ public:
 		 * object's points (BackWall) is cut off before it is measured; 0:
 		 * none. */
 		double backWallLength = 0;
+		/** max_continuing_share: rejected ("taller") when more than this
+		 * share of the object's columns continue upwards in the sweep
+		 * (continuingShare(): the lower part of a cabinet or a pillar whose
+		 * upper part the rules call wall); 1: no check. */
+		double maxContinuingShare = 1;
 	};
 
 	/** INI section [CascadeDetector] plus one [CascadeDetector.<label>]
@@ -417,6 +422,14 @@ public:
 	    const std::vector<cv::Point>& centre, double groundZ,
 	    double floorTolerance, double maxDepth, int minPoints,
 	    bool connected = false, double backWallLength = 0);
+
+	/** The share of the measured object's columns (sweep pixels
+	 * `m.pixels`, row 0 lowest) whose highest point continues upwards: a
+	 * point at most 3 rows above it, at least 2 cm higher, closer in 3D
+	 * than measure()'s connection gap and not labelled ceiling in `labels`
+	 * (may be empty). 0 for an object with nothing on top of it. */
+	static double continuingShare(
+	    const cv::Mat& points, const cv::Mat& labels, const Measure& m);
 
 	/** The range-gated search evaluates windows with AVX2 where the CPU has
 	 * it (default) or, with false, with the portable loop: the same
