@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <opencv2/objdetect.hpp>
 #include <set>
 
@@ -54,6 +55,24 @@ const Simulated& scene()
 		return out;
 	}();
 	return s;
+}
+
+/** Every candidate of `d` on a perceived sweep. */
+std::vector<CascadeDetector::Candidate> candidatesOf(
+    CascadeDetector& d, const Sweep& sw, const LabeledSweep& ls)
+{
+	return d.detectCandidates(
+	    sw.phis(), sw.thetas(), ls.normals, ls.normalMask, ls.points,
+	    ls.groundZ, ls.labels, ls.areaIds);
+}
+
+/** A detector of `o` with `set` applied to each of its classes. */
+template <typename Set>
+std::unique_ptr<CascadeDetector> detectorWith(
+    CascadeDetector::TOptions o, Set&& set)
+{
+	for (auto& k : o.classes) set(k);
+	return std::make_unique<CascadeDetector>(o);
 }
 
 }  // namespace
@@ -179,9 +198,7 @@ TEST_F(CascadeDetection, ProposalsKeepMostOfTheWholeImageDetections)
 		scoreProposed.add(b.detections, s.groundTruth[i], labels);
 		// Every candidate of the proposal search lies in a search region
 		// around a proposal of its class.
-		const auto cands = proposed.detectCandidates(
-		    sw.phis(), sw.thetas(), b.normals, b.normalMask, b.points,
-		    b.groundZ, b.labels, b.areaIds);
+		const auto cands = candidatesOf(proposed, sw, b);
 		ASSERT_EQ(proposed.lastProposals().size(), opts.classes.size());
 		for (const auto& c : cands)
 		{
@@ -244,9 +261,7 @@ TEST_F(CascadeDetection, RangeScalesWithTheGateOpenAreDetectMultiScale)
 		const auto run = [&](CascadeDetector& d)
 		{
 			std::vector<std::pair<Label, cv::Rect>> out;
-			for (const auto& c : d.detectCandidates(
-			         sw.phis(), sw.thetas(), ls.normals, ls.normalMask,
-			         ls.points, ls.groundZ, ls.labels, ls.areaIds))
+			for (const auto& c : candidatesOf(d, sw, ls))
 				out.emplace_back(c.label, c.box);
 			std::sort(
 			    out.begin(), out.end(),
@@ -293,10 +308,7 @@ TEST_F(CascadeDetection, WindowStepTwoSearchesFewerWindows)
 		{
 			const Sweep& sw = s.sweeps[i];
 			const LabeledSweep ls = p.process(sw);
-			n += d.detectCandidates(
-			          sw.phis(), sw.thetas(), ls.normals, ls.normalMask,
-			          ls.points, ls.groundZ, ls.labels, ls.areaIds)
-			         .size();
+			n += candidatesOf(d, sw, ls).size();
 		}
 		return n;
 	};
@@ -353,10 +365,11 @@ TEST_F(CascadeDetection, ZeroBorderGivesWindowsAtTheImageEdge)
 {
 	const Simulated& s = scene();
 	PerceptionPipeline p;
-	for (auto& k : opts.classes) k.borderPx = 0;
-	CascadeDetector plain(opts);
-	for (auto& k : opts.classes) k.borderPx = 24;
-	CascadeDetector padded(opts);
+	const auto plainDetector =
+	    detectorWith(opts, [](auto& k) { k.borderPx = 0; });
+	const auto paddedDetector =
+	    detectorWith(opts, [](auto& k) { k.borderPx = 24; });
+	CascadeDetector &plain = *plainDetector, &padded = *paddedDetector;
 	std::size_t atEdgePlain = 0, atEdgePadded = 0;
 	for (std::size_t i = 0; i < s.sweeps.size(); i++)
 	{
@@ -366,9 +379,7 @@ TEST_F(CascadeDetection, ZeroBorderGivesWindowsAtTheImageEdge)
 		const auto count = [&](CascadeDetector& d)
 		{
 			std::size_t n = 0;
-			for (const auto& c : d.detectCandidates(
-			         sw.phis(), sw.thetas(), ls.normals, ls.normalMask,
-			         ls.points, ls.groundZ, ls.labels, ls.areaIds))
+			for (const auto& c : candidatesOf(d, sw, ls))
 			{
 				// Boxes come back clipped to the image.
 				EXPECT_EQ(c.box & image, c.box);
@@ -401,11 +412,7 @@ TEST_F(CascadeDetection, ClassesInParallelGiveTheSameCandidates)
 	{
 		const LabeledSweep ls = p.process(sw);
 		const auto run = [&](CascadeDetector& d)
-		{
-			return d.detectCandidates(
-			    sw.phis(), sw.thetas(), ls.normals, ls.normalMask, ls.points,
-			    ls.groundZ, ls.labels, ls.areaIds);
-		};
+		{ return candidatesOf(d, sw, ls); };
 		const auto a = run(one), b = run(all);
 		ASSERT_EQ(a.size(), b.size());
 		for (std::size_t j = 0; j < a.size(); j++)
@@ -447,9 +454,7 @@ TEST_F(CascadeDetection, SegmentCandidatesReachObjectsTheWindowsMiss)
 		const LabeledSweep ls = p.process(sw);
 		const auto reached = [&](CascadeDetector& d)
 		{
-			const auto cands = d.detectCandidates(
-			    sw.phis(), sw.thetas(), ls.normals, ls.normalMask, ls.points,
-			    ls.groundZ, ls.labels, ls.areaIds);
+			const auto cands = candidatesOf(d, sw, ls);
 			std::set<std::pair<Label, int>> out;
 			for (const auto& c : cands)
 			{
@@ -478,4 +483,47 @@ TEST_F(CascadeDetection, SegmentCandidatesReachObjectsTheWindowsMiss)
 	    reachedByWindows, reachedWithSegments, fromSegment);
 	EXPECT_GT(fromSegment, 0u);
 	EXPECT_GT(reachedWithSegments, reachedByWindows);
+}
+
+TEST_F(CascadeDetection, MinSeparationKeepsTheFirstRankedOfNearbyDetections)
+{
+	// With a separation wider than the room, each class keeps one accepted
+	// detection per sweep: the one with the most neighbours, then points,
+	// of those accepted without it.
+	const Simulated& s = scene();
+	PerceptionPipeline p;
+	const auto all = detectorWith(opts, [](auto& k) { k.minSeparation = 0; });
+	const auto one = detectorWith(opts, [](auto& k) { k.minSeparation = 100; });
+	std::size_t removed = 0;
+	for (std::size_t i = 0; i < s.sweeps.size(); i++)
+	{
+		const Sweep& sw = s.sweeps[i];
+		const LabeledSweep ls = p.process(sw);
+		const auto a = candidatesOf(*all, sw, ls),
+		           b = candidatesOf(*one, sw, ls);
+		ASSERT_EQ(a.size(), b.size());
+		for (const auto& k : opts.classes)
+		{
+			const CascadeDetector::Candidate* best = nullptr;
+			std::size_t accepted = 0;
+			for (std::size_t j = 0; j < a.size(); j++)
+			{
+				if (a[j].label != k.label) continue;
+				EXPECT_FALSE(b[j].accepted && !a[j].accepted) << "sweep " << i;
+				accepted += b[j].accepted;
+				if (!a[j].accepted) continue;
+				removed += !b[j].accepted;
+				if (!best || a[j].neighbours > best->neighbours ||
+				    (a[j].neighbours == best->neighbours &&
+				     a[j].measure->points > best->measure->points))
+					best = &a[j];
+			}
+			EXPECT_EQ(accepted, best ? 1u : 0u) << "sweep " << i;
+			if (best)
+				EXPECT_TRUE(b[std::size_t(best - a.data())].accepted)
+				    << "sweep " << i;
+		}
+	}
+	std::printf("%zu accepted detections merged into nearby ones\n", removed);
+	EXPECT_GT(removed, 0u);
 }

@@ -86,7 +86,8 @@ const std::vector<std::string>& CascadeDetector::TClassOptions::knownKeys()
 	    "segment_candidates",
 	    "cascade_support",
 	    "back_wall_length_m",
-	    "max_continuing_share"};
+	    "max_continuing_share",
+	    "min_separation_m"};
 	return keys;
 }
 
@@ -143,6 +144,8 @@ void CascadeDetector::TClassOptions::loadFromConfigFile(
 	    readChecked(c, s, "back_wall_length_m", backWallLength, 0, 100);
 	o.maxContinuingShare =
 	    readChecked(c, s, "max_continuing_share", maxContinuingShare, 0, 1);
+	o.minSeparation =
+	    readChecked(c, s, "min_separation_m", minSeparation, 0, 100);
 	if (c.keyExists(s, "channel"))
 	{
 		try
@@ -197,6 +200,7 @@ void CascadeDetector::TClassOptions::saveToConfigFile(
 	writeBool(c, s, "cascade_support", cascadeSupport);
 	c.write(s, "back_wall_length_m", num(backWallLength));
 	c.write(s, "max_continuing_share", num(maxContinuingShare));
+	c.write(s, "min_separation_m", num(minSeparation));
 }
 
 std::vector<DetectionPass> CascadeDetector::TClassOptions::passes(
@@ -1434,10 +1438,10 @@ ObjectShape::Features describeCandidate(
  * of accepted candidates sharing most object pixels, the one with the
  * most neighbours (then the most points) that `verify` (the shape check)
  * accepts stays. `verify` runs only on candidates no better one covers. */
-template <typename Verify>
-void suppressDuplicates(
-    std::vector<CascadeDetector::Candidate>& cands, cv::Size size,
-    Verify&& verify)
+/** The accepted candidates, the most neighbours first, then the most
+ * points. */
+std::vector<std::size_t> acceptedBestFirst(
+    const std::vector<CascadeDetector::Candidate>& cands)
 {
 	std::vector<std::size_t> order;
 	for (std::size_t i = 0; i < cands.size(); i++)
@@ -1450,6 +1454,15 @@ void suppressDuplicates(
 			    return cands[a].neighbours > cands[b].neighbours;
 		    return cands[a].measure->points > cands[b].measure->points;
 	    });
+	return order;
+}
+
+template <typename Verify>
+void suppressDuplicates(
+    std::vector<CascadeDetector::Candidate>& cands, cv::Size size,
+    Verify&& verify)
+{
+	const std::vector<std::size_t> order = acceptedBestFirst(cands);
 	cv::Mat taken(size, CV_8U, cv::Scalar(0));
 	for (std::size_t i : order)
 	{
@@ -1465,6 +1478,32 @@ void suppressDuplicates(
 		}
 		if (!verify(c)) continue;
 		for (const auto& p : c.measure->pixels) taken.at<uint8_t>(p) = 1;
+	}
+}
+
+/** One object, boxes on different parts of it: of accepted candidates
+ * whose centroids are closer than `separation` (horizontally), the one
+ * ranked first by acceptedBestFirst() stays. */
+void suppressNearby(
+    std::vector<CascadeDetector::Candidate>& cands, double separation)
+{
+	std::vector<mrpt::math::TPoint2D> kept;
+	for (std::size_t i : acceptedBestFirst(cands))
+	{
+		auto& c = cands[i];
+		const mrpt::math::TPoint2D at(
+		    c.measure->centroid.x, c.measure->centroid.y);
+		const bool near = std::any_of(
+		    kept.begin(), kept.end(),
+		    [&](const mrpt::math::TPoint2D& k)
+		    { return (k - at).norm() < separation; });
+		if (near)
+		{
+			c.accepted = false;
+			c.rejection = "duplicate";
+		}
+		else
+			kept.push_back(at);
 	}
 }
 }  // namespace
@@ -1914,6 +1953,7 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 			        c.rejection = "shape";
 			        return false;
 		        });
+		    if (k.minSeparation > 0) suppressNearby(out, k.minSeparation);
 		    results[i].sizeCheck += msSince(tm);
 	    });
 	std::vector<Candidate> out;

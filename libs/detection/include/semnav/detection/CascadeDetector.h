@@ -138,6 +138,11 @@ public:
 		 * (continuingShare(): the lower part of a cabinet or a pillar whose
 		 * upper part the rules call wall); 1: no check. */
 		double maxContinuingShare = 1;
+		/** min_separation_m: accepted detections of the class whose
+		 * centroids are closer than this (horizontally) are one object
+		 * (boxes on two parts of a flight of stairs): the one with the most
+		 * neighbours, then points, stays; 0: no check. */
+		double minSeparation = 0;
 	};
 
 	/** INI section [CascadeDetector] plus one [CascadeDetector.<label>]
