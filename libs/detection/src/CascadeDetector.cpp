@@ -1205,10 +1205,7 @@ inline bool hypotAtMost(float x, float y, double t)
 	if (s > t2 * (1 + 1e-6)) return false;
 	return std::hypot(double(x), double(y)) <= t;
 }
-}  // namespace
 
-namespace
-{
 /** Neighbouring points of one object are at most this far apart (m). */
 double connectionGap(const cv::Vec3f& p)
 {
@@ -1434,10 +1431,6 @@ ObjectShape::Features describeCandidate(
 	return f;
 }
 
-/** One object, several boxes (detectMultiScale groups similar boxes only):
- * of accepted candidates sharing most object pixels, the one with the
- * most neighbours (then the most points) that `verify` (the shape check)
- * accepts stays. `verify` runs only on candidates no better one covers. */
 /** The accepted candidates, the most neighbours first, then the most
  * points. */
 std::vector<std::size_t> acceptedBestFirst(
@@ -1457,6 +1450,10 @@ std::vector<std::size_t> acceptedBestFirst(
 	return order;
 }
 
+/** One object, several boxes (detectMultiScale groups similar boxes only):
+ * of accepted candidates sharing most object pixels, the one with the
+ * most neighbours (then the most points) that `verify` (the shape check)
+ * accepts stays. `verify` runs only on candidates no better one covers. */
 template <typename Verify>
 void suppressDuplicates(
     std::vector<CascadeDetector::Candidate>& cands, cv::Size size,
