@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 
+#include "../common/ThreeDtkData.h"
 #include "AppRunner.h"
 
 namespace fs = std::filesystem;
@@ -160,11 +161,8 @@ TEST_F(SemnavPerceiveCli, CorruptRawlogWritesTheGoodSweepsThenFails)
 
 TEST_F(SemnavPerceiveCli, ThreeDtkScan)
 {
-	const fs::path scan =
-	    fs::path(kSource) / ".." / "shared" / "data" / "3dtk" / "scan000.3d";
-	if (!fs::exists(scan))
-		GTEST_SKIP() << "3DTK data not found at " << scan.string()
-		             << " (real-scan checks skipped)";
+	SKIP_WITHOUT_3DTK("scan000.3d");
+	const fs::path scan = semnav::test::kThreeDtkDir / "scan000.3d";
 	const fs::path out = kTmp / "3dtk";
 	const AppRun r = runApp(
 	    "semnav-perceive",

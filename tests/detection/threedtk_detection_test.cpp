@@ -14,23 +14,23 @@
 #include <filesystem>
 #include <map>
 
+#include "../common/ThreeDtkData.h"
+
 using namespace semnav;
 namespace fs = std::filesystem;
 
 namespace
 {
 const fs::path kSource = SEMNAV_SOURCE_DIR;
-const fs::path kDataDir = kSource / ".." / "shared" / "data" / "3dtk";
 
 class ThreeDtkDetection : public ::testing::TestWithParam<const char*>
 {
 protected:
-	/** The detector's candidates on the scan (empty when it is absent). */
+	/** The detector's candidates on the scan. */
 	std::vector<CascadeDetector::Candidate> candidates()
 	{
-		const fs::path scan = kDataDir / GetParam();
-		if (!fs::exists(scan)) return {};
-		const Sweep sw = ThreeDtkReader().read(scan.string());
+		const Sweep sw =
+		    ThreeDtkReader().read((test::kThreeDtkDir / GetParam()).string());
 		PerceptionPipeline pipeline;
 		const LabeledSweep ls = pipeline.process(sw);
 		CascadeDetector detector(CascadeDetector::TOptions::fromIniFile(
@@ -40,17 +40,11 @@ protected:
 		    ls.groundZ, ls.labels, ls.areaIds);
 	}
 };
-
-#define SKIP_WITHOUT_3DTK()                          \
-	if (!fs::exists(kDataDir / GetParam()))          \
-	GTEST_SKIP() << "3DTK data not found at "        \
-	             << (kDataDir / GetParam()).string() \
-	             << " (real-scan checks skipped)"
 }  // namespace
 
 TEST_P(ThreeDtkDetection, EveryClassReachesTheShapeCheck)
 {
-	SKIP_WITHOUT_3DTK();
+	SKIP_WITHOUT_3DTK(GetParam());
 	std::map<Label, int> measured, scored;
 	for (const auto& c : candidates())
 	{
@@ -69,7 +63,7 @@ TEST_P(ThreeDtkDetection, EveryClassReachesTheShapeCheck)
 
 TEST_P(ThreeDtkDetection, NoWastebasketInTheArcade)
 {
-	SKIP_WITHOUT_3DTK();
+	SKIP_WITHOUT_3DTK(GetParam());
 	int scored = 0;
 	for (const auto& c : candidates())
 	{

@@ -6,19 +6,14 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "../common/ThreeDtkData.h"
+
 using namespace semnav;
 namespace fs = std::filesystem;
 
 namespace
 {
-// Real scans live outside the repo (see ../shared/data/3dtk/README.md).
-const fs::path kDataDir =
-    fs::path(SEMNAV_SOURCE_DIR) / ".." / "shared" / "data" / "3dtk";
-
-#define SKIP_WITHOUT_3DTK(file)                                             \
-	if (!fs::exists(kDataDir / file))                                       \
-	GTEST_SKIP() << "3DTK data not found at " << (kDataDir / file).string() \
-	             << " (real-scan checks skipped)"
+const fs::path& kDataDir = test::kThreeDtkDir;
 
 /** Fraction of valid pixels in rows [r0, r1) x cols [c0, c1) labelled l. */
 double fraction(
