@@ -100,6 +100,43 @@ std::string pointsOn(
 	return out.empty() ? "no points" : out;
 }
 
+/** How far the counted objects of a class get: a candidate of their label
+ * reaches them (measured box IoU >= 0.3), one of those passes the size
+ * check (then accepted, or rejected by the shape check or as a duplicate),
+ * one is accepted. */
+struct Funnel
+{
+	std::size_t counted = 0, reached = 0, sized = 0, accepted = 0;
+};
+
+void addToFunnels(
+    const cv::Mat& groundTruth, const std::vector<semnav::Label>& labels,
+    const std::vector<semnav::CascadeDetector::Candidate>& cands,
+    std::map<semnav::Label, Funnel>& funnels)
+{
+	for (const auto& g :
+	     semnav::GroundTruthObject::fromLabelImage(groundTruth, labels))
+	{
+		if (g.pixels < 150) continue;
+		bool reached = false, sized = false, accepted = false;
+		for (const auto& c : cands)
+		{
+			if (c.label != g.label || !c.measure ||
+			    semnav::ObjectScorer::iou(c.measure->box, g.box) < 0.3)
+				continue;
+			reached = true;
+			sized |= c.accepted || c.rejection == "shape" ||
+			         c.rejection == "duplicate";
+			accepted |= c.accepted;
+		}
+		Funnel& f = funnels[g.label];
+		f.counted++;
+		f.reached += reached;
+		f.sized += sized;
+		f.accepted += accepted;
+	}
+}
+
 /** One stderr line per counted object without a matching accepted
  * detection: its box, pixels, range and bearing, and the candidate of its
  * label that overlaps it most (IoU of the measured box, fate). */
@@ -241,6 +278,7 @@ int main(int argc, char** argv)
 		    semnav::ObjectScorer scorerRecognisable;
 		    std::map<semnav::Label, std::size_t> excluded;
 		    std::map<std::string, std::size_t> rejections;
+		    std::map<semnav::Label, Funnel> funnels;
 		    std::vector<double> ms, msCascades;
 		    if (!argOut.getValue().empty())
 			    semnav::createDirectories(argOut.getValue());
@@ -275,6 +313,7 @@ int main(int argc, char** argv)
 					    dets.push_back(d);
 				    }
 				    scorer.add(dets, sweeps[i].groundTruth, labels);
+				    addToFunnels(sweeps[i].groundTruth, labels, cands, funnels);
 				    const auto left = scorerRecognisable.unrecognisable(
 				        sweeps[i].groundTruth, ls.points, ls.groundZ, labels);
 				    for (const auto& k : left) excluded[k.first]++;
@@ -334,6 +373,12 @@ int main(int argc, char** argv)
 			        {"excluded", excluded[l]},
 			        {"precision", r.precision},
 			        {"recall", r.recall}};
+			    const Funnel& f = funnels[l];
+			    j["funnel"][semnav::labelName(l)] = {
+			        {"counted", f.counted},
+			        {"reached", f.reached},
+			        {"sized", f.sized},
+			        {"accepted", f.accepted}};
 		    }
 		    j["objects"] = objs;
 		    j["objects_recognisable"] = objsRecognisable;
@@ -366,6 +411,21 @@ int main(int argc, char** argv)
 				        "precision %.3f  recall %.3f\n",
 				        semnav::labelName(l).c_str(), s.tp, s.fp, s.fn,
 				        excluded[l], s.precision, s.recall);
+			    }
+			    std::printf(
+			        "counted objects a candidate reaches (IoU >= 0.3), of "
+			        "them past the size check, an accepted one reaches:\n");
+			    for (auto l : labels)
+			    {
+				    const Funnel& f = funnels[l];
+				    const auto share = [&](std::size_t k)
+				    { return f.counted ? double(k) / double(f.counted) : 0.0; };
+				    std::printf(
+				        "  %-12s %4zu counted  %4zu reached (%.3f)  %4zu sized "
+				        "(%.3f)  %4zu accepted (%.3f)\n",
+				        semnav::labelName(l).c_str(), f.counted, f.reached,
+				        share(f.reached), f.sized, share(f.sized), f.accepted,
+				        share(f.accepted));
 			    }
 			    std::printf(
 			        "%zu sweeps, detection %.2f ms per sweep (median; cascades "

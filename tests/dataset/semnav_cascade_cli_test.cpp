@@ -154,6 +154,18 @@ TEST_F(SemnavCascadeCli, TrainDetectAndPerceive)
 	for (const char* k : {"tp", "fp", "fn", "excluded", "recall"})
 		EXPECT_TRUE(dj.at("objects_recognisable").at("washbasin").contains(k))
 		    << k;
+	// Where the objects are lost: each step keeps at most the one before,
+	// and a true positive is an object an accepted candidate reaches.
+	const auto& funnel = dj.at("funnel").at("washbasin");
+	const auto& wb = dj.at("objects").at("washbasin");
+	EXPECT_EQ(
+	    funnel.at("counted").get<int>(),
+	    wb.at("tp").get<int>() + wb.at("fn").get<int>());
+	EXPECT_GE(funnel.at("counted"), funnel.at("reached"));
+	EXPECT_GE(funnel.at("reached"), funnel.at("sized"));
+	EXPECT_GE(funnel.at("sized"), funnel.at("accepted"));
+	EXPECT_GE(funnel.at("accepted"), wb.at("tp"));
+	EXPECT_GT(wb.at("tp").get<int>(), 0);
 
 	const std::string rawlog = (sim() / "test_a.rawlog").string();
 	const AppRun p = runApp(
