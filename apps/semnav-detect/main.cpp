@@ -26,6 +26,11 @@
 
 namespace
 {
+/** Issue 4's rule (ObjectScorer's): a ground-truth object counts from this
+ * many visible pixels; a box matches it from this IoU. */
+constexpr int kCountedPixels = 150;
+constexpr double kMatchIou = 0.3;
+
 double median(std::vector<double> v)
 {
 	if (v.empty()) return 0;
@@ -52,7 +57,8 @@ cv::Mat drawSweep(
 	for (const auto& g : gt)
 		cv::rectangle(
 		    bgr, box(g.box),
-		    g.pixels >= 150 ? cv::Scalar(255, 0, 0) : cv::Scalar(255, 180, 0),
+		    g.pixels >= kCountedPixels ? cv::Scalar(255, 0, 0)
+		                               : cv::Scalar(255, 180, 0),
 		    1);
 	for (const auto& c : cands)
 		cv::rectangle(
@@ -110,19 +116,18 @@ struct Funnel
 };
 
 void addToFunnels(
-    const cv::Mat& groundTruth, const std::vector<semnav::Label>& labels,
+    const std::vector<semnav::GroundTruthObject>& objects,
     const std::vector<semnav::CascadeDetector::Candidate>& cands,
     std::map<semnav::Label, Funnel>& funnels)
 {
-	for (const auto& g :
-	     semnav::GroundTruthObject::fromLabelImage(groundTruth, labels))
+	for (const auto& g : objects)
 	{
-		if (g.pixels < 150) continue;
+		if (g.pixels < kCountedPixels) continue;
 		bool reached = false, sized = false, accepted = false;
 		for (const auto& c : cands)
 		{
 			if (c.label != g.label || !c.measure ||
-			    semnav::ObjectScorer::iou(c.measure->box, g.box) < 0.3)
+			    semnav::ObjectScorer::iou(c.measure->box, g.box) < kMatchIou)
 				continue;
 			reached = true;
 			sized |= c.accepted || c.rejection == "shape" ||
@@ -143,18 +148,17 @@ void addToFunnels(
 void listMisses(
     const std::string& dir, std::size_t sweep, const cv::Mat& groundTruth,
     const cv::Mat& points, const cv::Mat& objectMask,
-    const std::vector<semnav::Label>& labels,
+    const std::vector<semnav::GroundTruthObject>& objects,
     const std::vector<semnav::CascadeDetector::Candidate>& cands)
 {
-	const auto objects =
-	    semnav::GroundTruthObject::fromLabelImage(groundTruth, labels);
 	for (const auto& c : cands)
 	{
 		if (!c.accepted) continue;
 		bool matches = false;
 		for (const auto& g : objects)
-			matches |= g.label == c.label &&
-			           semnav::ObjectScorer::iou(c.measure->box, g.box) >= 0.3;
+			matches |=
+			    g.label == c.label &&
+			    semnav::ObjectScorer::iou(c.measure->box, g.box) >= kMatchIou;
 		if (matches) continue;
 		const auto& m = *c.measure;
 		std::fprintf(
@@ -170,7 +174,7 @@ void listMisses(
 	}
 	for (const auto& g : objects)
 	{
-		if (g.pixels < 150) continue;
+		if (g.pixels < kCountedPixels) continue;
 		double bestAccepted = 0, best = 0;
 		const semnav::CascadeDetector::Candidate* nearest = nullptr;
 		for (const auto& c : cands)
@@ -184,7 +188,7 @@ void listMisses(
 				nearest = &c;
 			}
 		}
-		if (bestAccepted >= 0.3) continue;
+		if (bestAccepted >= kMatchIou) continue;
 		const auto fate = [&](const semnav::CascadeDetector::Candidate* c)
 		{
 			if (!c) return std::string("(no measured candidate)");
@@ -272,10 +276,10 @@ int main(int argc, char** argv)
 		    std::vector<semnav::Label> labels;
 		    for (const auto& k : opts.classes) labels.push_back(k.label);
 		    semnav::PerceptionPipeline pipeline;
-		    semnav::ObjectScorer scorer;
+		    semnav::ObjectScorer scorer(kCountedPixels, kMatchIou);
 		    // The same without the views no window detector can recognise
 		    // (an extra figure; issue 4's rule is scorer's).
-		    semnav::ObjectScorer scorerRecognisable;
+		    semnav::ObjectScorer scorerRecognisable(kCountedPixels, kMatchIou);
 		    std::map<semnav::Label, std::size_t> excluded;
 		    std::map<std::string, std::size_t> rejections;
 		    std::map<semnav::Label, Funnel> funnels;
@@ -313,7 +317,10 @@ int main(int argc, char** argv)
 					    dets.push_back(d);
 				    }
 				    scorer.add(dets, sweeps[i].groundTruth, labels);
-				    addToFunnels(sweeps[i].groundTruth, labels, cands, funnels);
+				    const auto objects =
+				        semnav::GroundTruthObject::fromLabelImage(
+				            sweeps[i].groundTruth, labels);
+				    addToFunnels(objects, cands, funnels);
 				    const auto left = scorerRecognisable.unrecognisable(
 				        sweeps[i].groundTruth, ls.points, ls.groundZ, labels);
 				    for (const auto& k : left) excluded[k.first]++;
@@ -328,7 +335,7 @@ int main(int argc, char** argv)
 					            opts.proposalParams(
 					                opts.proposalJoinPx,
 					                opts.proposalRangeGap)),
-					        labels, cands);
+					        objects, cands);
 				    }
 				    if (!argOut.getValue().empty())
 				    {
