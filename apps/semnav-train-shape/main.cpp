@@ -61,6 +61,11 @@ int main(int argc, char** argv)
 	    "", "max-depth", "Depth of the trees; default 10", false, 10, "N", cmd);
 	TCLAP::ValueArg<int> argSeed(
 	    "", "seed", "Random seed; default 1", false, 1, "N", cmd);
+	TCLAP::SwitchArg argWithoutGrids(
+	    "", "without-grids",
+	    "Train on the scalar shape features only, not the object-frame "
+	    "grids",
+	    cmd, false);
 	TCLAP::SwitchArg argJson(
 	    "", "json", "Print a JSON summary on stdout", cmd, false);
 	if (const auto code = cli.parse(argc, argv)) return *code;
@@ -83,6 +88,7 @@ int main(int argc, char** argv)
 		    params.maxStages = argStages.getValue();
 		    params.maxObjectsPerOther = argBalance.getValue();
 		    params.seed = static_cast<uint64_t>(argSeed.getValue());
+		    params.grids = !argWithoutGrids.getValue();
 		    params.maxSamples =
 		        static_cast<std::size_t>(std::max(0, argMaxSamples.getValue()));
 		    std::unique_ptr<semnav::ProgressBar> bar;
@@ -108,18 +114,20 @@ int main(int argc, char** argv)
 		        samples.features, samples.isObject, tp);
 		    forest.save(argOut.getValue());
 		    nlohmann::json j{
-		        {"label", argLabel.getValue()},   {"sweeps", samples.sweeps},
-		        {"objects", samples.objects},     {"others", samples.others},
-		        {"ambiguous", samples.ambiguous}, {"out", argOut.getValue()}};
+		        {"label", argLabel.getValue()},     {"sweeps", samples.sweeps},
+		        {"objects", samples.objects},       {"others", samples.others},
+		        {"ambiguous", samples.ambiguous},   {"out", argOut.getValue()},
+		        {"features", samples.features.cols}};
 		    if (argJson.getValue())
 			    std::cout << j.dump() << std::endl;
 		    else
 			    std::printf(
 			        "%s: %zu sweeps, %zu object and %zu other samples "
-			        "(%zu ambiguous candidates left out) -> %s\n",
+			        "(%zu ambiguous candidates left out), %d features -> "
+			        "%s\n",
 			        argLabel.getValue().c_str(), samples.sweeps,
 			        samples.objects, samples.others, samples.ambiguous,
-			        argOut.getValue().c_str());
+			        samples.features.cols, argOut.getValue().c_str());
 		    return 0;
 	    });
 }

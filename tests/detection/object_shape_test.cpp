@@ -183,6 +183,42 @@ TEST(ObjectShape, StepsFaceUpAtManyHeightsATableTopAtOne)
 			EXPECT_EQ(f[std::size_t(feature("up_levels"))], 1.f);
 			EXPECT_NEAR(f[std::size_t(feature("up_height_spread"))], 0, 1e-6);
 		}
+		// The height x depth grid: the steps' points climb with depth (the
+		// mean depth cell of each occupied height row grows), the table's
+		// lie in the top row; they face up wherever there are points.
+		constexpr int g = ObjectShape::kGridSide;
+		const auto cell = [&](const char* grid, int r, int c)
+		{
+			return f[std::size_t(
+			    feature((std::string(grid) + "_" + std::to_string(r) + "_" +
+			             std::to_string(c))
+			                .c_str()))];
+		};
+		double lastDepth = -1, all = 0, topRow = 0;
+		int rows = 0;
+		for (int r = 0; r < g; r++)
+		{
+			double share = 0, depth = 0;
+			for (int c = 0; c < g; c++)
+			{
+				share += cell("share_hd", r, c);
+				depth += c * cell("share_hd", r, c);
+				EXPECT_NEAR(
+				    cell("up_hd", r, c), cell("share_hd", r, c) > 0 ? 1 : -1,
+				    1e-6);
+			}
+			all += share;
+			if (r == g - 1) topRow = share;
+			if (share == 0) continue;
+			rows++;
+			EXPECT_GT(depth / share, lastDepth) << "row " << r;
+			lastDepth = depth / share;
+		}
+		EXPECT_NEAR(all, 1.0, 1e-5);
+		if (steps)
+			EXPECT_EQ(rows, 5);
+		else
+			EXPECT_NEAR(topRow, 1.0, 1e-5);
 	}
 }
 
@@ -234,6 +270,37 @@ TEST(ShapeVerifier, SeparatesAndRoundTrips)
 	    sb((std::istreambuf_iterator<char>(b)), {});
 	EXPECT_EQ(sa, sb);
 	std::filesystem::remove_all(dir);
+}
+
+TEST(ShapeVerifier, WithoutGridsOnlyTheScalarFeaturesCount)
+{
+	cv::Mat samples, isObject;
+	clusters(samples, isObject, 150, 1);
+	ShapeVerifier::TrainParams tp;
+	tp.trees = 20;
+	const auto v = ShapeVerifier::train(
+	    samples.colRange(0, ObjectShape::kBaseFeatures).clone(), isObject, tp);
+	EXPECT_EQ(v.featureCount(), ObjectShape::kBaseFeatures);
+	EXPECT_EQ(
+	    ShapeVerifier::train(samples, isObject, tp).featureCount(),
+	    ObjectShape::kFeatures);
+	const auto dir = std::filesystem::temp_directory_path() /
+	                 ("semnav_shape_base_" + std::to_string(::getpid()));
+	std::filesystem::create_directories(dir);
+	const auto path = (dir / "s.xml.gz").string();
+	v.save(path);
+	const auto back = ShapeVerifier::load(path);
+	EXPECT_EQ(back.featureCount(), ObjectShape::kBaseFeatures);
+	std::filesystem::remove_all(dir);
+	// The grids do not move its score.
+	for (int i = 0; i < samples.rows; i += 7)
+	{
+		auto f = row(samples, i);
+		const double s = back.score(f);
+		EXPECT_EQ(s, back.scoreByOpenCv(f));
+		std::fill(f.begin() + ObjectShape::kBaseFeatures, f.end(), 99.f);
+		EXPECT_EQ(back.score(f), s);
+	}
 }
 
 TEST(ShapeVerifier, FlatTreesVoteAsOpenCv)
@@ -299,6 +366,12 @@ TEST(ShapeVerifier, BadModelsAndSamplesAreClearErrors)
 	}
 	EXPECT_THROW(ShapeVerifier::load(path), IoError);
 	std::filesystem::remove_all(dir);
+	cv::Mat wrongWidth(
+	    4, ObjectShape::kBaseFeatures + 1, CV_32F, cv::Scalar(0));
+	EXPECT_THROW(
+	    ShapeVerifier::train(
+	        wrongWidth, cv::Mat(4, 1, CV_32S, cv::Scalar(0)), {}),
+	    Error);
 	cv::Mat samples, isObject;
 	clusters(samples, isObject, 10, 1);
 	isObject.setTo(1);

@@ -29,27 +29,73 @@ float spread(const std::vector<double>& v)
 	const auto [lo, hi] = ends(v);
 	return float(hi - lo);
 }
+/** The object-frame grids (ObjectShape::kGridFeatures) into `out`: cells
+ * split the height from the ground to the highest point and the depth and
+ * side extents (at least 5 cm each). */
+void describeGrids(
+    const std::vector<double>& lat, const std::vector<double>& dep,
+    const std::vector<double>& h, const std::vector<cv::Vec3d>& n, float* out)
+{
+	constexpr int g = ObjectShape::kGridSide;
+	float* shareDepth = out;
+	float* upDepth = out + g * g;
+	float* shareSide = out + 2 * g * g;
+	const auto [d0, d1] = std::minmax_element(dep.begin(), dep.end());
+	const auto [l0, l1] = std::minmax_element(lat.begin(), lat.end());
+	const double top = std::max(*std::max_element(h.begin(), h.end()), 0.05);
+	const double depthSpan = std::max(*d1 - *d0, 0.05);
+	const double sideSpan = std::max(*l1 - *l0, 0.05);
+	const auto cell = [](double v) { return std::clamp(int(v * g), 0, g - 1); };
+	std::array<int, g * g> inDepthCell{};
+	const float share = 1.0f / float(h.size());
+	for (std::size_t i = 0; i < h.size(); i++)
+	{
+		const int row = cell(h[i] / top) * g;
+		const int d = row + cell((dep[i] - *d0) / depthSpan);
+		shareDepth[d] += share;
+		shareSide[row + cell((lat[i] - *l0) / sideSpan)] += share;
+		upDepth[d] += float(std::abs(n[i][2]));
+		inDepthCell[std::size_t(d)]++;
+	}
+	for (int k = 0; k < g * g; k++)
+		upDepth[k] = inDepthCell[std::size_t(k)]
+		                 ? upDepth[k] / float(inDepthCell[std::size_t(k)])
+		                 : -1.0f;
+}
 }  // namespace
 
-const std::array<const char*, ObjectShape::kFeatures>& ObjectShape::names()
+const std::array<std::string, ObjectShape::kFeatures>& ObjectShape::names()
 {
-	static const std::array<const char*, kFeatures> n{
-	    "range",          "bearing",
-	    "log_points",     "width",
-	    "depth",          "top",
-	    "bottom",         "height_0_20",
-	    "height_20_40",   "height_40_60",
-	    "height_60_80",   "height_80_100",
-	    "width_lower",    "width_middle",
-	    "width_upper",    "facing_up",
-	    "facing_side",    "side_turn",
-	    "side_oblique",   "front_curvature",
-	    "pca_middle",     "pca_least",
-	    "wall_around",    "box_fill",
-	    "top_facing_up",  "top_depth",
-	    "up_levels",      "up_height_spread",
-	    "up_slope",       "side_two_faces",
-	    "cascade_support"};
+	static const std::array<std::string, kFeatures> n = []
+	{
+		const std::array<const char*, kBaseFeatures> base{
+		    "range",          "bearing",
+		    "log_points",     "width",
+		    "depth",          "top",
+		    "bottom",         "height_0_20",
+		    "height_20_40",   "height_40_60",
+		    "height_60_80",   "height_80_100",
+		    "width_lower",    "width_middle",
+		    "width_upper",    "facing_up",
+		    "facing_side",    "side_turn",
+		    "side_oblique",   "front_curvature",
+		    "pca_middle",     "pca_least",
+		    "wall_around",    "box_fill",
+		    "top_facing_up",  "top_depth",
+		    "up_levels",      "up_height_spread",
+		    "up_slope",       "side_two_faces",
+		    "cascade_support"};
+		std::array<std::string, kFeatures> all;
+		std::copy(base.begin(), base.end(), all.begin());
+		int i = kBaseFeatures;
+		for (const char* grid : {"share_hd", "up_hd", "share_hs"})
+			for (int r = 0; r < kGridSide; r++)
+				for (int c = 0; c < kGridSide; c++)
+					all[std::size_t(i++)] = std::string(grid) + "_" +
+					                        std::to_string(r) + "_" +
+					                        std::to_string(c);
+		return all;
+	}();
 	return n;
 }
 
@@ -248,6 +294,7 @@ ObjectShape::Features ObjectShape::describe(
 		{ return zz > 0 && yy > 0 ? std::abs(xy) / std::sqrt(zz * yy) : 0.0; };
 		f[28] = float(std::max(corr(zl, ll), corr(zd, dd)));
 	}
+	describeGrids(lat, dep, h, n, f.data() + kBaseFeatures);
 	return f;
 }
 

@@ -29,6 +29,8 @@ ShapeTraining::Samples ShapeTraining::collect(
 	CascadeDetector cascades(detector);
 	cascades.describeShapes(true);
 	PerceptionPipeline pipeline;
+	const int columns =
+	    params.grids ? ObjectShape::kFeatures : ObjectShape::kBaseFeatures;
 	Samples out;
 	std::vector<float> rows;
 	std::vector<int> isObject;
@@ -57,7 +59,8 @@ ShapeTraining::Samples ShapeTraining::collect(
 					continue;
 				}
 				(object ? out.objects : out.others)++;
-				rows.insert(rows.end(), c.shape->begin(), c.shape->end());
+				rows.insert(
+				    rows.end(), c.shape->begin(), c.shape->begin() + columns);
 				isObject.push_back(object ? 1 : 0);
 			}
 			out.sweeps++;
@@ -97,15 +100,14 @@ ShapeTraining::Samples ShapeTraining::collect(
 	{
 		if (!keep[i]) continue;
 		keptRows.insert(
-		    keptRows.end(), rows.begin() + long(i * ObjectShape::kFeatures),
-		    rows.begin() + long((i + 1) * ObjectShape::kFeatures));
+		    keptRows.end(), rows.begin() + long(i) * columns,
+		    rows.begin() + long(i + 1) * columns);
 		kept.push_back(isObject[i]);
 	}
 	rows.swap(keptRows);
 	isObject.swap(kept);
 	const int n = static_cast<int>(isObject.size());
-	out.features =
-	    cv::Mat(n, ObjectShape::kFeatures, CV_32F, rows.data()).clone();
+	out.features = cv::Mat(n, columns, CV_32F, rows.data()).clone();
 	out.isObject = cv::Mat(n, 1, CV_32S, isObject.data()).clone();
 	return out;
 }

@@ -7,13 +7,27 @@
 
 namespace semnav
 {
+namespace
+{
+bool knownFeatureCount(int n)
+{
+	return n == ObjectShape::kFeatures || n == ObjectShape::kBaseFeatures;
+}
+}  // namespace
+
+int ShapeVerifier::featureCount() const
+{
+	return m_forest ? m_forest->getVarCount() : 0;
+}
+
 ShapeVerifier ShapeVerifier::train(
     const cv::Mat& samples, const cv::Mat& isObject, const TrainParams& params)
 {
-	if (samples.type() != CV_32F || samples.cols != ObjectShape::kFeatures ||
+	if (samples.type() != CV_32F || !knownFeatureCount(samples.cols) ||
 	    isObject.type() != CV_32S || isObject.rows != samples.rows)
 		throw Error(
-		    "ShapeVerifier: samples must be N x ObjectShape::kFeatures");
+		    "ShapeVerifier: samples must be N x ObjectShape::kFeatures "
+		    "(or kBaseFeatures)");
 	const int objects = cv::countNonZero(isObject);
 	if (objects == 0 || objects == samples.rows)
 		throw Error(
@@ -49,10 +63,12 @@ ShapeVerifier ShapeVerifier::load(const std::string& path)
 	}
 	if (!v.m_forest || !v.m_forest->isTrained() ||
 	    !v.m_forest->isClassifier() ||
-	    v.m_forest->getVarCount() != ObjectShape::kFeatures)
+	    !knownFeatureCount(v.m_forest->getVarCount()))
 		throw IoError(
 		    path + ": not a shape model over " +
-		    std::to_string(ObjectShape::kFeatures) + " ObjectShape features");
+		    std::to_string(ObjectShape::kFeatures) + " (or " +
+		    std::to_string(ObjectShape::kBaseFeatures) +
+		    ") ObjectShape features");
 	v.flatten();
 	return v;
 }
@@ -95,8 +111,7 @@ void ShapeVerifier::flatten()
 	cv::Mat votes;
 	const ObjectShape::Features zero{};
 	m_forest->getVotes(
-	    cv::Mat(
-	        1, ObjectShape::kFeatures, CV_32F, const_cast<float*>(zero.data())),
+	    cv::Mat(1, featureCount(), CV_32F, const_cast<float*>(zero.data())),
 	    votes, 0);
 	const auto& nodes = m_forest->getNodes();
 	const auto& splits = m_forest->getSplits();
@@ -111,7 +126,7 @@ void ShapeVerifier::flatten()
 			// RTrees' prediction takes the first split, "<= c" to the left
 			// (ordered features only).
 			const auto& sp = splits.at(std::size_t(n.split));
-			if (sp.varIdx < 0 || sp.varIdx >= ObjectShape::kFeatures)
+			if (sp.varIdx < 0 || sp.varIdx >= featureCount())
 				throw Error("ShapeVerifier: a split on no ObjectShape feature");
 			out.var = sp.varIdx;
 			out.threshold = sp.c;
@@ -147,7 +162,7 @@ double ShapeVerifier::scoreByOpenCv(const ObjectShape::Features& f) const
 {
 	if (!m_forest) return 1;
 	const cv::Mat sample(
-	    1, ObjectShape::kFeatures, CV_32F, const_cast<float*>(f.data()));
+	    1, featureCount(), CV_32F, const_cast<float*>(f.data()));
 	cv::Mat votes;
 	m_forest->getVotes(sample, votes, 0);
 	// Row 0: the class responses; row 1: this sample's votes per class.

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <opencv2/core/mat.hpp>
+#include <string>
 #include <vector>
 
 namespace semnav
@@ -13,17 +14,29 @@ namespace semnav
  * the side normals turn across it: a cylinder's do, a box face's do not),
  * the curvature of its front, the spread of its points, the heights its
  * up-facing surfaces lie at (one for a table, one per step for stairs) and its
- * surroundings (walls beside it, how much of its box it fills). Used by
+ * surroundings (walls beside it, how much of its box it fills), and three
+ * coarse grids of its points in its own frame (height against depth along
+ * the line of sight and against the side, the extents split in
+ * kGridSide): where the points lie and how up-facing they are there (a
+ * flight of stairs climbs, a basin's top overhangs its pedestal). Used by
  * ShapeVerifier to tell washbasins from tables, wastebaskets from chairs
  * and boxes, and stairs from furniture where the window detector cannot. */
 class ObjectShape
 {
 public:
-	static constexpr int kFeatures = 31;
+	/** The scalar features (size, profile, surfaces, surroundings). */
+	static constexpr int kBaseFeatures = 31;
+	/** Cells per side of each object-frame grid. */
+	static constexpr int kGridSide = 8;
+	/** The grids, after the scalar features: the share of the points in
+	 * each height x depth cell, their mean |normal z| there (-1: none) and
+	 * the share in each height x side cell; rows from the ground up. */
+	static constexpr int kGridFeatures = 3 * kGridSide * kGridSide;
+	static constexpr int kFeatures = kBaseFeatures + kGridFeatures;
 	using Features = std::array<float, kFeatures>;
 
 	/** Short names of the features, in order. */
-	static const std::array<const char*, kFeatures>& names();
+	static const std::array<std::string, kFeatures>& names();
 
 	/** Index of the one feature describe() leaves 0: how many of its
 	 * class's cascade windows cover the candidate (CascadeDetector fills

@@ -21,7 +21,8 @@ class ShapeTraining
 public:
 	struct Samples
 	{
-		/** CV_32F, one ObjectShape::Features per row; CV_32S 1 / 0. */
+		/** CV_32F, one ObjectShape::Features per row (its first
+		 * kBaseFeatures without grids); CV_32S 1 / 0. */
 		cv::Mat features, isObject;
 		/** The object and other samples kept (after the subsets). */
 		std::size_t objects = 0, others = 0;
@@ -48,6 +49,9 @@ public:
 		 * each kind, in proportion; 0: all). */
 		std::size_t maxSamples = 0;
 		uint64_t seed = 1;
+		/** With ObjectShape's object-frame grids (all kFeatures); false:
+		 * the first kBaseFeatures only. */
+		bool grids = true;
 	};
 
 	/** Throws Error / IoError on unreadable datasets. `progress(done, all)`

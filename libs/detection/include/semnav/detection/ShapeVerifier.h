@@ -29,7 +29,8 @@ public:
 	};
 
 	ShapeVerifier() = default;
-	/** Trains on `samples` (CV_32F, one ObjectShape::Features per row) with
+	/** Trains on `samples` (CV_32F, one ObjectShape::Features per row, or
+	 * its first kBaseFeatures: a forest without the grids) with
 	 * `isObject` (CV_32S, 1 object / 0 not). Throws Error without samples
 	 * of both kinds. */
 	static ShapeVerifier train(
@@ -43,6 +44,9 @@ public:
 	void save(const std::string& path) const;
 
 	bool empty() const { return !m_forest; }
+	/** The ObjectShape features the forest was trained on (the first
+	 * kBaseFeatures or all kFeatures; 0 when empty). */
+	int featureCount() const;
 	/** Fraction of trees voting "object", in [0, 1]. */
 	double score(const ObjectShape::Features& f) const;
 	/** The same through cv::ml::RTrees::getVotes (slower; for checks). */
