@@ -22,6 +22,7 @@
 #include <memory>
 #include <opencv2/objdetect.hpp>
 #include <set>
+#include <tuple>
 
 using namespace semnav;
 
@@ -488,8 +489,8 @@ TEST_F(CascadeDetection, SegmentCandidatesReachObjectsTheWindowsMiss)
 TEST_F(CascadeDetection, MinSeparationKeepsTheFirstRankedOfNearbyDetections)
 {
 	// With a separation wider than the room, each class keeps one accepted
-	// detection per sweep: the one with the most neighbours, then points,
-	// of those accepted without it.
+	// detection per sweep: the one with the highest shape score, then the
+	// most neighbours, then points, of those accepted without it.
 	const Simulated& s = scene();
 	PerceptionPipeline p;
 	const auto all = detectorWith(opts, [](auto& k) { k.minSeparation = 0; });
@@ -513,10 +514,11 @@ TEST_F(CascadeDetection, MinSeparationKeepsTheFirstRankedOfNearbyDetections)
 				accepted += b[j].accepted;
 				if (!a[j].accepted) continue;
 				removed += !b[j].accepted;
-				if (!best || a[j].neighbours > best->neighbours ||
-				    (a[j].neighbours == best->neighbours &&
-				     a[j].measure->points > best->measure->points))
-					best = &a[j];
+				const auto rank = [](const CascadeDetector::Candidate& c) {
+					return std::make_tuple(
+					    c.shapeScore, c.neighbours, c.measure->points);
+				};
+				if (!best || rank(a[j]) > rank(*best)) best = &a[j];
 			}
 			EXPECT_EQ(accepted, best ? 1u : 0u) << "sweep " << i;
 			if (best)

@@ -1431,8 +1431,8 @@ ObjectShape::Features describeCandidate(
 	return f;
 }
 
-/** The accepted candidates, the most neighbours first, then the most
- * points. */
+/** The accepted candidates, the highest shape score first, then the most
+ * neighbours, then the most points. */
 std::vector<std::size_t> acceptedBestFirst(
     const std::vector<CascadeDetector::Candidate>& cands)
 {
@@ -1443,6 +1443,8 @@ std::vector<std::size_t> acceptedBestFirst(
 	    order.begin(), order.end(),
 	    [&](std::size_t a, std::size_t b)
 	    {
+		    if (cands[a].shapeScore != cands[b].shapeScore)
+			    return cands[a].shapeScore > cands[b].shapeScore;
 		    if (cands[a].neighbours != cands[b].neighbours)
 			    return cands[a].neighbours > cands[b].neighbours;
 		    return cands[a].measure->points > cands[b].measure->points;
@@ -1451,9 +1453,9 @@ std::vector<std::size_t> acceptedBestFirst(
 }
 
 /** One object, several boxes (detectMultiScale groups similar boxes only):
- * of accepted candidates sharing most object pixels, the one with the
- * most neighbours (then the most points) that `verify` (the shape check)
- * accepts stays. `verify` runs only on candidates no better one covers. */
+ * of accepted candidates sharing most object pixels, the first in
+ * acceptedBestFirst()'s order that `verify` (the shape check) accepts
+ * stays. `verify` runs only on candidates no better one covers. */
 template <typename Verify>
 void suppressDuplicates(
     std::vector<CascadeDetector::Candidate>& cands, cv::Size size,

@@ -140,8 +140,9 @@ public:
 		double maxContinuingShare = 1;
 		/** min_separation_m: accepted detections of the class whose
 		 * centroids are closer than this (horizontally) are one object
-		 * (boxes on two parts of a flight of stairs): the one with the most
-		 * neighbours, then points, stays; 0: no check. */
+		 * (boxes on two parts of a flight of stairs): the one with the
+		 * highest shape score, then the most neighbours, then points, stays
+		 * (as among duplicates); 0: no check. */
 		double minSeparation = 0;
 	};
 
