@@ -51,6 +51,11 @@ int main(int argc, char** argv)
 	    "At most this many object samples per other sample (0: all); "
 	    "default 2",
 	    false, 2, "R", cmd);
+	TCLAP::ValueArg<double> argPurity(
+	    "", "min-purity",
+	    "An object sample's measured points are at least this share of that "
+	    "object's (fewer: left out as ambiguous; 0: no check); default 0",
+	    false, 0, "P", cmd);
 	TCLAP::ValueArg<int> argMaxSamples(
 	    "", "max-samples",
 	    "At most this many samples (a random subset, 0: all); default 30000",
@@ -74,6 +79,8 @@ int main(int argc, char** argv)
 	for (auto* a : {&argLabel, &argConfig, &argOut})
 		if (a->getValue().empty())
 			return cli.usageError("missing --" + a->getName());
+	if (!(argPurity.getValue() >= 0 && argPurity.getValue() <= 1))
+		return cli.usageError("--min-purity must be in [0, 1]");
 
 	return cli.run(
 	    [&]
@@ -89,6 +96,7 @@ int main(int argc, char** argv)
 		    params.maxObjectsPerOther = argBalance.getValue();
 		    params.seed = static_cast<uint64_t>(argSeed.getValue());
 		    params.grids = !argWithoutGrids.getValue();
+		    params.minPurity = argPurity.getValue();
 		    params.maxSamples =
 		        static_cast<std::size_t>(std::max(0, argMaxSamples.getValue()));
 		    std::unique_ptr<semnav::ProgressBar> bar;
@@ -113,21 +121,25 @@ int main(int argc, char** argv)
 		    const auto forest = semnav::ShapeVerifier::train(
 		        samples.features, samples.isObject, tp);
 		    forest.save(argOut.getValue());
-		    nlohmann::json j{
-		        {"label", argLabel.getValue()},     {"sweeps", samples.sweeps},
-		        {"objects", samples.objects},       {"others", samples.others},
-		        {"ambiguous", samples.ambiguous},   {"out", argOut.getValue()},
-		        {"features", samples.features.cols}};
+		    nlohmann::json j{{"label", argLabel.getValue()},
+		                     {"sweeps", samples.sweeps},
+		                     {"objects", samples.objects},
+		                     {"others", samples.others},
+		                     {"ambiguous", samples.ambiguous},
+		                     {"impure", samples.impure},
+		                     {"out", argOut.getValue()},
+		                     {"features", samples.features.cols}};
 		    if (argJson.getValue())
 			    std::cout << j.dump() << std::endl;
 		    else
 			    std::printf(
 			        "%s: %zu sweeps, %zu object and %zu other samples "
-			        "(%zu ambiguous candidates left out), %d features -> "
-			        "%s\n",
+			        "(%zu ambiguous candidates left out, %zu of them on "
+			        "another object), %d features -> %s\n",
 			        argLabel.getValue().c_str(), samples.sweeps,
 			        samples.objects, samples.others, samples.ambiguous,
-			        samples.features.cols, argOut.getValue().c_str());
+			        samples.impure, samples.features.cols,
+			        argOut.getValue().c_str());
 		    return 0;
 	    });
 }

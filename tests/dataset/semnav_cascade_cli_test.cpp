@@ -199,9 +199,10 @@ TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 		     "min_neighbors = 1\n";
 	}
 	const std::string out = (kTmp / "washbasin-shape.xml.gz").string();
-	const std::string args = "--label washbasin --datasets " + sim().string() +
-	                         " --config " + ini.string() + " --out " + out +
-	                         " --trees 20 --max-samples 2000 --seed 3";
+	const std::string common = "--label washbasin --datasets " +
+	                           sim().string() + " --config " + ini.string() +
+	                           " --out " + out + " --trees 20 --seed 3";
+	const std::string args = common + " --max-samples 2000";
 	// The config names a shape model not written yet: training needs none.
 	const AppRun r = runApp("semnav-train-shape", args + " --json");
 	ASSERT_EQ(r.code, 0) << r.err;
@@ -214,6 +215,29 @@ TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 	const AppRun again = runApp("semnav-train-shape", args);
 	ASSERT_EQ(again.code, 0) << again.err;
 	EXPECT_EQ(readFile(out), first);
+	// --min-purity: object samples whose measured points are mostly another
+	// object are left out as ambiguous, nothing else changes.
+	const auto samplesWith = [&](const std::string& purity)
+	{
+		const AppRun p = runApp(
+		    "semnav-train-shape",
+		    common +
+		        " --max-samples 0 --max-objects-per-other 0 --min-purity " +
+		        purity + " --json");
+		EXPECT_EQ(p.code, 0) << p.err;
+		return nlohmann::json::parse(p.out);
+	};
+	const auto all = samplesWith("0"), pure = samplesWith("0.9");
+	EXPECT_EQ(all.at("impure"), 0);
+	EXPECT_GT(pure.at("impure").get<int>(), 0);
+	EXPECT_EQ(
+	    pure.at("objects").get<int>() + pure.at("impure").get<int>(),
+	    all.at("objects").get<int>());
+	EXPECT_EQ(
+	    pure.at("ambiguous").get<int>(),
+	    all.at("ambiguous").get<int>() + pure.at("impure").get<int>());
+	EXPECT_EQ(pure.at("others"), all.at("others"));
+	EXPECT_EQ(runApp("semnav-train-shape", args + " --min-purity 1.5").code, 2);
 	const AppRun det = runApp(
 	    "semnav-detect", "--datasets " + sim().string() + " --config " +
 	                         ini.string() + " --json");

@@ -10,6 +10,22 @@
 
 namespace semnav
 {
+namespace
+{
+/** The share of a candidate's measured pixels that are `object`'s. */
+double purity(
+    const cv::Mat& groundTruth, const GroundTruthObject& object,
+    const CascadeDetector::Measure& m)
+{
+	if (m.pixels.empty()) return 0;
+	const auto id = static_cast<uint16_t>(
+	    (object.instance << 8) | static_cast<int>(object.label));
+	std::size_t on = 0;
+	for (const auto& p : m.pixels) on += groundTruth.at<uint16_t>(p) == id;
+	return double(on) / double(m.pixels.size());
+}
+}  // namespace
+
 ShapeTraining::Samples ShapeTraining::collect(
     const std::vector<std::string>& datasets,
     CascadeDetector::TOptions detector, Label label, const Params& params,
@@ -49,13 +65,28 @@ ShapeTraining::Samples ShapeTraining::collect(
 			{
 				if (!c.shape) continue;
 				double best = 0;
+				const GroundTruthObject* bestObject = nullptr;
 				for (const auto& g : objects)
-					best = std::max(
-					    best, ObjectScorer::iou(c.measure->box, g.box));
+				{
+					const double v = ObjectScorer::iou(c.measure->box, g.box);
+					if (v > best)
+					{
+						best = v;
+						bestObject = &g;
+					}
+				}
 				const bool object = best >= params.objectIou;
 				if (!object && best >= params.otherIou)
 				{
 					out.ambiguous++;
+					continue;
+				}
+				if (object && params.minPurity > 0 &&
+				    purity(sweeps[i].groundTruth, *bestObject, *c.measure) <
+				        params.minPurity)
+				{
+					out.ambiguous++;
+					out.impure++;
 					continue;
 				}
 				(object ? out.objects : out.others)++;

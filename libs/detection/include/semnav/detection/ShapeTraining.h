@@ -28,6 +28,9 @@ public:
 		std::size_t objects = 0, others = 0;
 		/** Candidates neither clearly an object nor clearly not (left out). */
 		std::size_t ambiguous = 0;
+		/** Of them, boxes on an object whose measured points are mostly
+		 * something else (Params::minPurity). */
+		std::size_t impure = 0;
 		std::size_t sweeps = 0;
 	};
 
@@ -52,6 +55,9 @@ public:
 		/** With ObjectShape's object-frame grids (all kFeatures); false:
 		 * the first kBaseFeatures only. */
 		bool grids = true;
+		/** An object sample's measured pixels are at least this share of
+		 * that object's (ground truth); fewer: ambiguous (0: no check). */
+		double minPurity = 0;
 	};
 
 	/** Throws Error / IoError on unreadable datasets. `progress(done, all)`
