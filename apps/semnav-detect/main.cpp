@@ -175,8 +175,9 @@ void listMisses(
 	for (const auto& g : objects)
 	{
 		if (g.pixels < kCountedPixels) continue;
-		double bestAccepted = 0, best = 0;
-		const semnav::CascadeDetector::Candidate* nearest = nullptr;
+		double bestAccepted = 0, best = 0, bestOnIt = 0;
+		const semnav::CascadeDetector::Candidate *nearest = nullptr,
+		                                         *onIt = nullptr;
 		for (const auto& c : cands)
 		{
 			if (c.label != g.label || !c.measure) continue;
@@ -186,6 +187,11 @@ void listMisses(
 			{
 				best = v;
 				nearest = &c;
+			}
+			if (v > bestOnIt && g.shareOf(groundTruth, c.measure->pixels) > 0.5)
+			{
+				bestOnIt = v;
+				onIt = &c;
 			}
 		}
 		if (bestAccepted >= kMatchIou) continue;
@@ -224,12 +230,14 @@ void listMisses(
 		    stderr,
 		    "miss %s sweep %zu %s #%d box %dx%d+%d+%d %d px, range %.2f m, "
 		    "bearing %.0f deg, height %.2f m, %.0f %% in the proposal mask; "
-		    "nearest candidate IoU %.2f %s\n",
+		    "nearest candidate IoU %.2f %s; of those mostly on it, IoU %.2f "
+		    "%s\n",
 		    std::filesystem::path(dir).filename().c_str(), sweep,
 		    semnav::labelName(g.label).c_str(), g.instance, g.box.width,
 		    g.box.height, g.box.x, g.box.y, g.pixels, std::hypot(m[0], m[1]),
 		    std::atan2(m[1], m[0]) * 180 / M_PI, m[2],
-		    n ? 100.0 * inProposals / n : 0.0, best, fate(nearest).c_str());
+		    n ? 100.0 * inProposals / n : 0.0, best, fate(nearest).c_str(),
+		    bestOnIt, fate(onIt).c_str());
 	}
 }
 }  // namespace

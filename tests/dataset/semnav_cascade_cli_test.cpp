@@ -262,6 +262,10 @@ TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 			missLines++;
 			EXPECT_NE(line.find("nearest candidate IoU"), std::string::npos)
 			    << line;
+			// ...and the best of those whose points are mostly the object's.
+			EXPECT_NE(
+			    line.find("of those mostly on it, IoU"), std::string::npos)
+			    << line;
 			if (line.find("no measured candidate") == std::string::npos)
 				EXPECT_TRUE(std::regex_search(line, on)) << line;
 		}

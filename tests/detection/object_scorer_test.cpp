@@ -38,6 +38,12 @@ TEST(GroundTruthObject, InstancesWithBoxesAndPixels)
 	EXPECT_EQ(objs[0].pixels, 180);
 	EXPECT_EQ(cv::countNonZero(objs[0].mask(gt)), 180);
 	EXPECT_EQ(objs[1].label, Label::Wastebasket);
+	// The share of some pixels on the washbasin: 3 of 4 (one on the wall),
+	// none of the wastebasket's, and none of nothing.
+	const std::vector<cv::Point> px{{10, 10}, {21, 24}, {15, 12}, {0, 0}};
+	EXPECT_DOUBLE_EQ(objs[0].shareOf(gt, px), 0.75);
+	EXPECT_DOUBLE_EQ(objs[1].shareOf(gt, px), 0.0);
+	EXPECT_DOUBLE_EQ(objs[0].shareOf(gt, {}), 0.0);
 }
 
 TEST(ObjectScorer, IssueRules)

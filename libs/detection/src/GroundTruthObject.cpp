@@ -50,4 +50,15 @@ cv::Mat GroundTruthObject::mask(const cv::Mat& gt) const
 	return m;
 }
 
+double GroundTruthObject::shareOf(
+    const cv::Mat& gt, const std::vector<cv::Point>& pixels) const
+{
+	if (pixels.empty()) return 0;
+	const auto code =
+	    static_cast<uint16_t>(static_cast<int>(label) | (instance << 8));
+	std::size_t on = 0;
+	for (const auto& p : pixels) on += gt.at<uint16_t>(p) == code;
+	return double(on) / double(pixels.size());
+}
+
 }  // namespace semnav

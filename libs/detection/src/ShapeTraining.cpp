@@ -10,22 +10,6 @@
 
 namespace semnav
 {
-namespace
-{
-/** The share of a candidate's measured pixels that are `object`'s. */
-double purity(
-    const cv::Mat& groundTruth, const GroundTruthObject& object,
-    const CascadeDetector::Measure& m)
-{
-	if (m.pixels.empty()) return 0;
-	const auto id = static_cast<uint16_t>(
-	    (object.instance << 8) | static_cast<int>(object.label));
-	std::size_t on = 0;
-	for (const auto& p : m.pixels) on += groundTruth.at<uint16_t>(p) == id;
-	return double(on) / double(m.pixels.size());
-}
-}  // namespace
-
 ShapeTraining::Samples ShapeTraining::collect(
     const std::vector<std::string>& datasets,
     CascadeDetector::TOptions detector, Label label, const Params& params,
@@ -82,7 +66,8 @@ ShapeTraining::Samples ShapeTraining::collect(
 					continue;
 				}
 				if (object && params.minPurity > 0 &&
-				    purity(sweeps[i].groundTruth, *bestObject, *c.measure) <
+				    bestObject->shareOf(
+				        sweeps[i].groundTruth, c.measure->pixels) <
 				        params.minPurity)
 				{
 					out.ambiguous++;

@@ -4,6 +4,7 @@
 #include <semnav/common/Label.h>
 
 #include <opencv2/core/mat.hpp>
+#include <opencv2/core/types.hpp>
 #include <vector>
 
 namespace semnav
@@ -26,6 +27,10 @@ struct GroundTruthObject
 	    const cv::Mat& groundTruth, const std::vector<Label>& labels);
 	/** Mask (CV_8U 255/0) of this instance's pixels. */
 	cv::Mat mask(const cv::Mat& groundTruth) const;
+	/** The share of `pixels` (x = column, y = row) that are this
+	 * instance's (0 for none). */
+	double shareOf(
+	    const cv::Mat& groundTruth, const std::vector<cv::Point>& pixels) const;
 };
 
 }  // namespace semnav
