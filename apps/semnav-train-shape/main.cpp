@@ -71,6 +71,11 @@ int main(int argc, char** argv)
 	    "Train on the scalar shape features only, not the object-frame "
 	    "grids",
 	    cmd, false);
+	TCLAP::SwitchArg argWithoutWindow(
+	    "", "without-segment-window",
+	    "Measure segment candidates without segment_range_window, as the "
+	    "shipped forests learnt them",
+	    cmd, false);
 	TCLAP::SwitchArg argJson(
 	    "", "json", "Print a JSON summary on stdout", cmd, false);
 	if (const auto code = cli.parse(argc, argv)) return *code;
@@ -87,9 +92,10 @@ int main(int argc, char** argv)
 	    {
 		    const semnav::Label label =
 		        semnav::labelFromName(argLabel.getValue());
-		    const auto detector =
-		        semnav::CascadeDetector::TOptions::fromIniFile(
-		            argConfig.getValue());
+		    auto detector = semnav::CascadeDetector::TOptions::fromIniFile(
+		        argConfig.getValue());
+		    if (argWithoutWindow.getValue())
+			    detector.segmentRangeWindow = false;
 		    semnav::ShapeTraining::Params params;
 		    params.minNeighbors = argNeighbors.getValue();
 		    params.maxStages = argStages.getValue();

@@ -84,6 +84,18 @@ TEST(CascadeDetector, MeasureSeparatesObjectFromFloorAndWall)
 	ASSERT_TRUE(cut.has_value());
 	EXPECT_EQ(cut->points, 400u);
 	EXPECT_EQ(cut->box, cv::Rect(20, 20, 20, 20));
+	// A range window keeps the points at its ranges only: the object (2 m)
+	// or the wall (3 m) whatever the centre holds.
+	const auto near = CascadeDetector::measure(
+	    pts, cv::Mat(), all, centre, 0.0, 0.04, 2.0, 10, false, 0, 1.8, 2.2);
+	ASSERT_TRUE(near.has_value());
+	EXPECT_EQ(near->points, 400u);
+	EXPECT_EQ(near->box, cv::Rect(20, 20, 20, 20));
+	const auto far = CascadeDetector::measure(
+	    pts, cv::Mat(), all, centre, 0.0, 0.04, 2.0, 10, false, 0, 2.5, 3.5);
+	ASSERT_TRUE(far.has_value());
+	EXPECT_EQ(far->points, 35u * 40u - 400u);
+	EXPECT_NEAR(far->centroid.x, 3.0, 1e-6);
 	// Too few points.
 	EXPECT_FALSE(
 	    CascadeDetector::measure(pts, labels, all, centre, 0.0, 0.04, 0.5, 500)

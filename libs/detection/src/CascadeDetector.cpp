@@ -304,6 +304,7 @@ const std::vector<std::string>& CascadeDetector::TOptions::knownKeys()
 	    "range_objects_only",
 	    "segment_range_gap_m",
 	    "segment_max_taller",
+	    "segment_range_window",
 	    "threads"};
 	return keys;
 }
@@ -367,6 +368,8 @@ void CascadeDetector::TOptions::loadFromConfigFile(
 	    readChecked(c, s, "segment_range_gap_m", segmentRangeGap, 0, 100);
 	o.segmentMaxTaller =
 	    readChecked(c, s, "segment_max_taller", segmentMaxTaller, 0, 1e6);
+	o.segmentRangeWindow =
+	    readCheckedBool(c, s, "segment_range_window", segmentRangeWindow);
 	o.threads = readCheckedInt(c, s, "threads", threads, 0, 64);
 	std::string list;
 	for (const auto& k : classes) list += labelName(k.label) + " ";
@@ -429,6 +432,7 @@ void CascadeDetector::TOptions::saveToConfigFile(
 	writeBool(c, s, "range_objects_only", rangeObjectsOnly);
 	c.write(s, "segment_range_gap_m", num(segmentRangeGap));
 	c.write(s, "segment_max_taller", num(segmentMaxTaller));
+	writeBool(c, s, "segment_range_window", segmentRangeWindow);
 	c.write(s, "threads", std::to_string(threads));
 	for (const auto& k : classes)
 		k.saveToConfigFile(c, s + "." + labelName(k.label));
@@ -1217,7 +1221,7 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
     const cv::Mat& points, const cv::Mat& labels,
     const std::vector<cv::Point>& pixels, const std::vector<cv::Point>& centre,
     double groundZ, double floorTolerance, double maxDepth, int minPoints,
-    bool connected, double backWallLength)
+    bool connected, double backWallLength, double rangeLo, double rangeHi)
 {
 	if (pixels.empty()) return std::nullopt;
 	MeasureScratch& sc = tlMeasure;
@@ -1232,6 +1236,11 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 	{
 		const cv::Vec3f& p = pointAt(x, y);
 		if (!(std::isfinite(p[0]) && p[2] >= zFloor)) return false;
+		if (rangeHi > 0)
+		{
+			const double d = std::hypot(double(p[0]), double(p[1]));
+			if (d < rangeLo || d > rangeHi) return false;
+		}
 		if (!hasLabels) return true;
 		switch (static_cast<Label>(labels.ptr<uint8_t>(y)[x]))
 		{
@@ -1852,6 +1861,12 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 				c.label = k.label;
 				c.box = p.box;
 				c.fromSegment = true;
+				if (m_options.segmentRangeWindow)
+				{
+					const double g = m_options.segmentRangeGap;
+					c.rangeLo = p.nearRange - g - 0.05 * p.nearRange;
+					c.rangeHi = p.farRange + g + 0.05 * p.farRange;
+				}
 			}
 		for (auto& c : cands)
 			for (std::size_t j = 0; j < boxes.size(); j++)
@@ -1903,7 +1918,8 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		    c.measure = measure(
 		        points, labels, pixels, centre, groundZ,
 		        m_options.floorTolerance, k.maxDepth, k.minPoints,
-		        m_options.connectedObject, k.backWallLength);
+		        m_options.connectedObject, k.backWallLength, c.rangeLo,
+		        c.rangeHi);
 		    if (!c.measure)
 			    c.rejection = "too few points";
 		    else if (c.measure->width < k.minWidth)

@@ -286,6 +286,12 @@ public:
 		 * tallerPixels) is the lower part of something taller, not a
 		 * candidate. */
 		double segmentMaxTaller = 0.1;
+		/** segment_range_window: a segment candidate is measured over its
+		 * own horizontal range only (ObjectProposal::nearRange ..
+		 * farRange, widened by segment_range_gap_m + 5 % each way): a
+		 * chair before a flight or the wall behind a basin, at other
+		 * ranges, does not join it. */
+		bool segmentRangeWindow = true;
 		/** threads: classes (and a class's range-gated passes) searched,
 		 * and candidates measured, in parallel on up to this many threads
 		 * (0: all cores, 1: the calling thread only); the same candidates
@@ -315,6 +321,9 @@ public:
 		int neighbours = 0;
 		/** A 3D segment (segment_candidates), not a cascade box. */
 		bool fromSegment = false;
+		/** The horizontal ranges its object points may have (m;
+		 * rangeHi 0: any), segment_range_window. */
+		double rangeLo = 0, rangeHi = 0;
 		/** Raw cascade windows of its class on it: the neighbours (at
 		 * least 1 each) of the class's cascade boxes with IoU >= 0.3 with
 		 * its box (ObjectShape::kCascadeSupport). */
@@ -421,13 +430,15 @@ public:
 	 * percentile) of those among `centre` (the box's central half) and,
 	 * with `connected`, connected to those of the centre; without the
 	 * points on or behind a BackWall at least `backWallLength` long (0:
-	 * none); nothing when fewer than min_points. */
+	 * none), and with `rangeHi` > 0 only the points whose horizontal range
+	 * is within [rangeLo, rangeHi]; nothing when fewer than min_points. */
 	static std::optional<Measure> measure(
 	    const cv::Mat& points, const cv::Mat& labels,
 	    const std::vector<cv::Point>& pixels,
 	    const std::vector<cv::Point>& centre, double groundZ,
 	    double floorTolerance, double maxDepth, int minPoints,
-	    bool connected = false, double backWallLength = 0);
+	    bool connected = false, double backWallLength = 0, double rangeLo = 0,
+	    double rangeHi = 0);
 
 	/** The share of the measured object's columns (sweep pixels
 	 * `m.pixels`, row 0 lowest) whose highest point continues upwards: a
