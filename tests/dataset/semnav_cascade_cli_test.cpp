@@ -238,6 +238,16 @@ TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 	    all.at("ambiguous").get<int>() + pure.at("impure").get<int>());
 	EXPECT_EQ(pure.at("others"), all.at("others"));
 	EXPECT_EQ(runApp("semnav-train-shape", args + " --min-purity 1.5").code, 2);
+	// Segments measured as the shipped forests learnt them (without
+	// segment_range_window): the same sweeps, candidates of their own.
+	const AppRun unwindowed = runApp(
+	    "semnav-train-shape", common +
+	                              " --max-samples 0 --max-objects-per-other 0 "
+	                              "--without-segment-window --json");
+	ASSERT_EQ(unwindowed.code, 0) << unwindowed.err;
+	const auto uj = nlohmann::json::parse(unwindowed.out);
+	EXPECT_EQ(uj.at("sweeps"), 26);
+	EXPECT_GT(uj.at("objects").get<int>(), 0);
 	const AppRun det = runApp(
 	    "semnav-detect", "--datasets " + sim().string() + " --config " +
 	                         ini.string() + " --json");
