@@ -20,6 +20,25 @@ using namespace semnav;
 
 namespace
 {
+/** A fresh directory under the system's temporary one, removed at the end
+ * of the scope. */
+struct TempDir
+{
+	explicit TempDir(const std::string& tag)
+	    : path(
+	          std::filesystem::temp_directory_path() /
+	          ("semnav_" + tag + "_" + std::to_string(::getpid())))
+	{
+		std::filesystem::create_directories(path);
+	}
+	~TempDir() { std::filesystem::remove_all(path); }
+	std::string file(const std::string& name) const
+	{
+		return (path / name).string();
+	}
+	std::filesystem::path path;
+};
+
 /** Points and normals of a 30 x 30 pixel patch 3 m ahead of the sensor:
  * the front of an upright cylinder (r 0.15 m, 0.4 m high), or of a box with
  * a flat front 0.3 m wide. */
@@ -255,10 +274,8 @@ TEST(ShapeVerifier, SeparatesAndRoundTrips)
 		right +=
 		    (v.score(row(test, i)) >= 0.5) == (testIsObject.at<int>(i) == 1);
 	EXPECT_GE(right, 95);
-	const auto dir = std::filesystem::temp_directory_path() /
-	                 ("semnav_shape_" + std::to_string(::getpid()));
-	std::filesystem::create_directories(dir);
-	const auto path = (dir / "s.xml").string();
+	const TempDir dir("shape");
+	const auto path = dir.file("s.xml");
 	v.save(path);
 	const auto back = ShapeVerifier::load(path);
 	for (int i = 0; i < test.rows; i++)
@@ -269,7 +286,6 @@ TEST(ShapeVerifier, SeparatesAndRoundTrips)
 	const std::string sa((std::istreambuf_iterator<char>(a)), {}),
 	    sb((std::istreambuf_iterator<char>(b)), {});
 	EXPECT_EQ(sa, sb);
-	std::filesystem::remove_all(dir);
 }
 
 TEST(ShapeVerifier, WithoutGridsOnlyTheScalarFeaturesCount)
@@ -284,14 +300,10 @@ TEST(ShapeVerifier, WithoutGridsOnlyTheScalarFeaturesCount)
 	EXPECT_EQ(
 	    ShapeVerifier::train(samples, isObject, tp).featureCount(),
 	    ObjectShape::kFeatures);
-	const auto dir = std::filesystem::temp_directory_path() /
-	                 ("semnav_shape_base_" + std::to_string(::getpid()));
-	std::filesystem::create_directories(dir);
-	const auto path = (dir / "s.xml.gz").string();
-	v.save(path);
-	const auto back = ShapeVerifier::load(path);
+	const TempDir dir("shape_base");
+	v.save(dir.file("s.xml.gz"));
+	const auto back = ShapeVerifier::load(dir.file("s.xml.gz"));
 	EXPECT_EQ(back.featureCount(), ObjectShape::kBaseFeatures);
-	std::filesystem::remove_all(dir);
 	// The grids do not move its score.
 	for (int i = 0; i < samples.rows; i += 7)
 	{
@@ -337,12 +349,10 @@ TEST(ShapeVerifier, FlatTreesVoteAsOpenCv)
 
 TEST(ShapeVerifier, BadModelsAndSamplesAreClearErrors)
 {
-	const auto dir = std::filesystem::temp_directory_path() /
-	                 ("semnav_shape_bad_" + std::to_string(::getpid()));
-	std::filesystem::create_directories(dir);
-	const auto path = (dir / "bad.xml").string();
+	const TempDir dir("shape_bad");
+	const auto path = dir.file("bad.xml");
 	std::ofstream(path) << "<?xml version=\"1.0\"?>\n<opencv_storage><x>";
-	for (const auto& p : {path, (dir / "missing.xml").string()}) try
+	for (const auto& p : {path, dir.file("missing.xml")}) try
 		{
 			ShapeVerifier::load(p);
 			FAIL() << p;
@@ -365,7 +375,6 @@ TEST(ShapeVerifier, BadModelsAndSamplesAreClearErrors)
 		fs << "}";
 	}
 	EXPECT_THROW(ShapeVerifier::load(path), IoError);
-	std::filesystem::remove_all(dir);
 	cv::Mat wrongWidth(
 	    4, ObjectShape::kBaseFeatures + 1, CV_32F, cv::Scalar(0));
 	EXPECT_THROW(

@@ -1670,7 +1670,7 @@ std::vector<std::vector<ObjectProposal>> CascadeDetector::objectSegments(
 	return ObjectProposals::find(
 	    points, labels, areaIds, groundZ,
 	    m_options.panoramic ? &m_impl->projection : nullptr, limits,
-	    m_options.proposalParams(1, m_options.segmentRangeGap));
+	    m_options.segmentParams());
 }
 
 std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
@@ -1830,6 +1830,7 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	    });
 	// Each class's candidates: its passes' boxes in pass order, then its
 	// segments (little work: one thread).
+	const ObjectProposals::Params segmentParams = m_options.segmentParams();
 	for (std::size_t i = 0; i < results.size(); i++)
 	{
 		const TClassOptions& k = m_options.classes[i];
@@ -1863,9 +1864,8 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 				c.fromSegment = true;
 				if (m_options.segmentRangeWindow)
 				{
-					const double g = m_options.segmentRangeGap;
-					c.rangeLo = p.nearRange - g - 0.05 * p.nearRange;
-					c.rangeHi = p.farRange + g + 0.05 * p.farRange;
+					c.rangeLo = p.nearRange - segmentParams.gapAt(p.nearRange);
+					c.rangeHi = p.farRange + segmentParams.gapAt(p.farRange);
 				}
 			}
 		for (auto& c : cands)

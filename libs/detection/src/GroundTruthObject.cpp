@@ -8,6 +8,15 @@
 
 namespace semnav
 {
+namespace
+{
+/** The ground-truth pixel value of an instance (label | instance << 8). */
+uint16_t codeOf(const GroundTruthObject& o)
+{
+	return static_cast<uint16_t>(static_cast<int>(o.label) | (o.instance << 8));
+}
+}  // namespace
+
 std::vector<GroundTruthObject> GroundTruthObject::fromLabelImage(
     const cv::Mat& gt, const std::vector<Label>& labels)
 {
@@ -43,10 +52,8 @@ std::vector<GroundTruthObject> GroundTruthObject::fromLabelImage(
 
 cv::Mat GroundTruthObject::mask(const cv::Mat& gt) const
 {
-	const uint16_t code =
-	    static_cast<uint16_t>(static_cast<int>(label) | (instance << 8));
 	cv::Mat m;
-	cv::compare(gt, cv::Scalar(code), m, cv::CMP_EQ);
+	cv::compare(gt, cv::Scalar(codeOf(*this)), m, cv::CMP_EQ);
 	return m;
 }
 
@@ -54,8 +61,7 @@ double GroundTruthObject::shareOf(
     const cv::Mat& gt, const std::vector<cv::Point>& pixels) const
 {
 	if (pixels.empty()) return 0;
-	const auto code =
-	    static_cast<uint16_t>(static_cast<int>(label) | (instance << 8));
+	const uint16_t code = codeOf(*this);
 	std::size_t on = 0;
 	for (const auto& p : pixels) on += gt.at<uint16_t>(p) == code;
 	return double(on) / double(pixels.size());

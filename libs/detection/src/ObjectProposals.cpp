@@ -163,8 +163,7 @@ std::vector<ObjectProposal> ObjectProposals::regions(
 				x1 = std::max(x1, a.x);
 				y0 = std::min(y0, a.y);
 				y1 = std::max(y1, a.y);
-				const float gap = static_cast<float>(
-				    params.rangeGap + params.rangeGapPerM * ra);
+				const float gap = static_cast<float>(params.gapAt(ra));
 				for (int y = std::max(0, a.y - rad);
 				     y <= std::min(range.rows - 1, a.y + rad); y++)
 				{

@@ -178,6 +178,12 @@ public:
 		 * (proposal_join_px, proposal_range_gap_m) or the segments'. */
 		ObjectProposals::Params proposalParams(
 		    int joinRadius, double rangeGap) const;
+		/** The segments' (segment_candidates) ObjectProposals::Params:
+		 * join radius 1, segment_range_gap_m. */
+		ObjectProposals::Params segmentParams() const
+		{
+			return proposalParams(1, segmentRangeGap);
+		}
 		/** How high above the ground class `c`'s proposals and segments
 		 * reach (max_top_m + proposal_top_margin_m). */
 		double proposalTop(const TClassOptions& c) const

@@ -59,6 +59,11 @@ public:
 		 * object in front of another is its own region, with its own
 		 * range. */
 		double rangeGap = 0.2, rangeGapPerM = 0.05;
+		/** rangeGap + rangeGapPerM x `range` (m). */
+		double gapAt(double range) const
+		{
+			return rangeGap + rangeGapPerM * range;
+		}
 	};
 
 	/** CV_8U 0/1, sweep layout: points (CV_32FC3, robot frame, NaN where
