@@ -50,6 +50,11 @@ TEST_P(ThreeDtkDetection, EveryClassReachesTheShapeCheck)
 	{
 		measured[c.label] += c.measure.has_value();
 		scored[c.label] += c.shape.has_value();
+		if (c.accepted)
+			std::printf(
+			    "%s: %s accepted at %.2f, %.2f (shape score %.2f)\n",
+			    GetParam(), labelName(c.label).c_str(), c.measure->centroid.x,
+			    c.measure->centroid.y, c.shapeScore);
 	}
 	for (Label l : {Label::Washbasin, Label::Wastebasket, Label::Stairs})
 	{

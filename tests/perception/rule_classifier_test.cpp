@@ -159,18 +159,19 @@ TEST(RuleClassifier, SidewalkAndGrassByRoughness)
 
 TEST(RuleClassifier, GroundLevelIsEstimated)
 {
-	// Floor 40 cm below the robot frame's z = 0 (a sensor-frame scan such
-	// as 3DTK's): found automatically; with a fixed ground_z_m = 0 the
-	// floor is not recognised.
+	// A sensor-frame scan such as 3DTK's (tilt axis at the frame's origin,
+	// floor 45 cm below): the floor is found automatically; with a fixed
+	// ground_z_m = 0 it is not recognised.
 	SynthScene sc = boxRoom(-3, 5, -2, 2.5, 2.5);
-	sc.height = [](double, double) { return -0.4; };
+	sc.mount = {0, 0, 0};
+	sc.height = [](double, double) { return -0.45; };
 	sc.noise = 0.005;
 	cv::Mat truth;
 	const Sweep sw = renderSweep(sc, &truth);
 	PerceptionPipeline automatic;
 	const LabeledSweep a = automatic.process(sw);
 	EXPECT_TRUE(a.groundEstimated);
-	EXPECT_NEAR(a.groundZ, -0.4, 0.02);
+	EXPECT_NEAR(a.groundZ, -0.45, 0.02);
 	EXPECT_GE(pixelF1(a.labels, truth, sw, Label::Floor), 0.95);
 
 	PerceptionPipeline::TOptions o;
@@ -180,6 +181,48 @@ TEST(RuleClassifier, GroundLevelIsEstimated)
 	EXPECT_FALSE(f.groundEstimated);
 	EXPECT_DOUBLE_EQ(f.groundZ, 0.0);
 	EXPECT_LT(pixelF1(f.labels, truth, sw, Label::Floor), 0.5);
+}
+
+TEST(RuleClassifier, NearStairsThatHideTheFloorAreNotTheGround)
+{
+	// A robot (tilt axis 0.45 m above its frame on the floor) in a 1.6 m
+	// wide corridor, a flight of 0.17 m steps from 1.2 m ahead: the lowest
+	// tilt line reaches no floor, and the treads are the only up-facing
+	// surfaces.
+	SynthScene sc = boxRoom(-2, 6, -0.8, 0.8, 2.6);
+	sc.noise = 0.005;
+	for (int k = 0; k < 8; k++)
+		sc.boxes.push_back(
+		    {{1.2 + 0.3 * k, -0.8, 0},
+		     {6, 0.8, 0.17 * (k + 1)},
+		     Label::Stairs});
+	cv::Mat truth;
+	const Sweep sw = renderSweep(sc, &truth);
+	const auto treadsAsFloor = [&](const LabeledSweep& ls)
+	{
+		int stairs = 0, floor = 0;
+		for (int r = 0; r < truth.rows; r++)
+			for (int c = 0; c < truth.cols; c++)
+				if (truth.at<uint8_t>(r, c) == uint8_t(Label::Stairs))
+				{
+					stairs++;
+					floor +=
+					    ls.labels.at<uint8_t>(r, c) == uint8_t(Label::Floor);
+				}
+		return double(floor) / std::max(1, stairs);
+	};
+	PerceptionPipeline robot;
+	const LabeledSweep a = robot.process(sw);
+	EXPECT_NEAR(a.groundZ, 0.0, 0.02);
+	EXPECT_LT(treadsAsFloor(a), 0.05);
+
+	// Searched at any height, the first tread is taken for the ground.
+	PerceptionPipeline::TOptions o;
+	o.classifier.groundSearch = 100;
+	PerceptionPipeline anywhere(o);
+	const LabeledSweep b = anywhere.process(sw);
+	EXPECT_GT(b.groundZ, 0.1);
+	EXPECT_GT(treadsAsFloor(b), 0.1);
 }
 
 TEST(RuleClassifier, BadInputGivesAClearEmptyResult)

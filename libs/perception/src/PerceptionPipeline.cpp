@@ -6,6 +6,13 @@
 
 namespace semnav
 {
+namespace
+{
+/** A sensor this high above its sweep's frame origin (m) is mounted on a
+ * robot whose frame stands on the floor. */
+constexpr double kMinMountingHeight = 0.05;
+}  // namespace
+
 const std::vector<std::string>& PerceptionPipeline::sections()
 {
 	static const std::vector<std::string> s = {
@@ -71,8 +78,12 @@ void PerceptionPipeline::process(const Sweep& sweep, LabeledSweep& out)
 
 	t = clock::now();
 	m_classifier.setMinLoggingLevel(getMinLoggingLevel());
+	// A sensor mounted above the frame's origin: the robot's frame, on the
+	// floor (3DTK scans are in the sensor's own frame).
+	const bool floorReferenced =
+	    !sweep.empty() && sweep.sensorPose(0).z() > kMinMountingHeight;
 	m_classifier.classify(
-	    m_normals, m_segmentation.areaIds(), m_roughness, out);
+	    m_normals, m_segmentation.areaIds(), m_roughness, out, floorReferenced);
 	m_timings.classification = msSince(t);
 
 	// The result owns its images (the stages reuse their buffers).

@@ -222,6 +222,7 @@ void RuleClassifier::TOptions::loadFromConfigFile(
 	     "auto_ground_level",
 	     "ground_z_m",
 	     "ground_tolerance_m",
+	     "ground_search_m",
 	     "min_ground_px",
 	     "ceiling_min_height_m",
 	     "environment",
@@ -275,6 +276,7 @@ void RuleClassifier::TOptions::loadFromConfigFile(
 	groundZ = readChecked(c, s, "ground_z_m", groundZ, -100, 100);
 	groundTolerance =
 	    readChecked(c, s, "ground_tolerance_m", groundTolerance, 0, 10);
+	groundSearch = readChecked(c, s, "ground_search_m", groundSearch, 0, 100);
 	minGroundPixels =
 	    readCheckedInt(c, s, "min_ground_px", minGroundPixels, 1, 1000000);
 	ceilingMinHeight =
@@ -354,6 +356,7 @@ void RuleClassifier::TOptions::saveToConfigFile(
 	writeBool(c, s, "auto_ground_level", autoGroundLevel);
 	c.write(s, "ground_z_m", groundZ);
 	c.write(s, "ground_tolerance_m", groundTolerance);
+	c.write(s, "ground_search_m", groundSearch);
 	c.write(s, "min_ground_px", minGroundPixels);
 	c.write(s, "ceiling_min_height_m", ceilingMinHeight);
 	c.write(s, "environment", std::string(envName(environment)));
@@ -1208,7 +1211,8 @@ void RuleClassifier::splitPlanes()
 	for (int p : pix) RES[p] = WT[p] = 0;
 }
 
-double RuleClassifier::estimateGround(bool& estimated) const
+double RuleClassifier::estimateGround(
+    bool floorReferenced, bool& estimated) const
 {
 	estimated = false;
 	if (!m_options.autoGroundLevel) return m_options.groundZ;
@@ -1218,9 +1222,15 @@ double RuleClassifier::estimateGround(bool& estimated) const
 	std::vector<double> zsum(bins, 0.0);
 	const auto* P = m_points->ptr<cv::Vec3f>(0);
 	const int n = m_rows * m_cols;
+	const float zLo = floorReferenced
+	                      ? m_options.groundZ - m_options.groundSearch
+	                      : -HUGE_VALF,
+	            zHi = floorReferenced
+	                      ? m_options.groundZ + m_options.groundSearch
+	                      : HUGE_VALF;
 	int total = 0;
 	for (int p = 0; p < n; p++)
-		if (m_class[p] == kUp)
+		if (m_class[p] == kUp && P[p][2] >= zLo && P[p][2] <= zHi)
 		{
 			const int b = static_cast<int>((P[p][2] - zMin) / binSize);
 			if (b >= 0 && b < bins)
@@ -1388,7 +1398,7 @@ RuleClassifier::DoorCheck RuleClassifier::checkDoor(
 
 void RuleClassifier::classify(
     const NormalImage& normals, const cv::Mat& areaIds,
-    const Roughness& roughness, LabeledSweep& out)
+    const Roughness& roughness, LabeledSweep& out, bool floorReferenced)
 {
 	const TOptions& o = m_options;
 	m_rows = normals.points().rows;
@@ -1470,7 +1480,7 @@ void RuleClassifier::classify(
 	const auto t1 = std::chrono::steady_clock::now();
 	// 2. Ground level.
 	bool estimated = false;
-	const double zg = estimateGround(estimated);
+	const double zg = estimateGround(floorReferenced, estimated);
 	out.groundZ = zg;
 	out.groundEstimated = estimated;
 

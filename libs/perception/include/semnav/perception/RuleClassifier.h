@@ -19,7 +19,10 @@ namespace semnav
  * 1. Orientation per pixel from the normals averaged over 3 x 3 pixels:
  *    up, down, vertical, oblique, none.
  * 2. Ground level: the lowest well-supported height of up-facing pixels
- *    (or ground_z_m): "floor has z equal to the ground level".
+ *    (or ground_z_m): "floor has z equal to the ground level". On a sweep
+ *    whose frame stands on the floor (classify()'s floorReferenced), only
+ *    within ground_search_m of ground_z_m: where a near flight of stairs
+ *    hides the floor, its treads are not the ground.
  * 3. Surfaces. Floor, walls and ceiling flood into one area (the paper
  *    says so; in fact everything standing on the floor does), so areas
  *    are split into surfaces: 4-connected pixels of one area and
@@ -103,6 +106,7 @@ public:
 		bool autoGroundLevel = true;
 		double groundZ = 0.0;
 		double groundTolerance = 0.10;
+		double groundSearch = 0.10;
 		int minGroundPixels = 200;
 		double ceilingMinHeight = 1.8;
 		Environment environment = Environment::Auto;
@@ -137,10 +141,13 @@ public:
 	/** Labels the sweep. `areaIds` from RangeSegmentation; `roughness`
 	 * computed on the same normals and areas (its square width is w').
 	 * Fills out.labels, regionIds, regions, groundZ, ceilingZ, indoor;
-	 * the other images of `out` are left untouched. */
+	 * the other images of `out` are left untouched. `floorReferenced`: the
+	 * points' frame stands on the floor (the robot's; false for a frame at
+	 * the sensor, whose height is unknown). */
 	void classify(
 	    const NormalImage& normals, const cv::Mat& areaIds,
-	    const Roughness& roughness, LabeledSweep& out);
+	    const Roughness& roughness, LabeledSweep& out,
+	    bool floorReferenced = false);
 
 	const TOptions& options() const { return m_options; }
 
@@ -198,7 +205,7 @@ private:
 	void mergeCoplanar();
 	/** Sets m_side where a vertical group has two planes a step apart. */
 	void splitPlanes();
-	double estimateGround(bool& estimated) const;
+	double estimateGround(bool floorReferenced, bool& estimated) const;
 	DoorCheck checkDoor(
 	    int self, const std::vector<int>& wallCandidate,
 	    const std::vector<uint8_t>& isCeiling) const;
