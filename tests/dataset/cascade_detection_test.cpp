@@ -490,7 +490,8 @@ TEST_F(CascadeDetection, MinSeparationKeepsTheFirstRankedOfNearbyDetections)
 {
 	// With a separation wider than the room, each class keeps one accepted
 	// detection per sweep: the one with the highest shape score, then the
-	// most neighbours, then points, of those accepted without it.
+	// most neighbours, then points, of those accepted without it; its box
+	// and pixels take in theirs.
 	const Simulated& s = scene();
 	PerceptionPipeline p;
 	const auto all = detectorWith(opts, [](auto& k) { k.minSeparation = 0; });
@@ -521,9 +522,19 @@ TEST_F(CascadeDetection, MinSeparationKeepsTheFirstRankedOfNearbyDetections)
 				if (!best || rank(a[j]) > rank(*best)) best = &a[j];
 			}
 			EXPECT_EQ(accepted, best ? 1u : 0u) << "sweep " << i;
-			if (best)
-				EXPECT_TRUE(b[std::size_t(best - a.data())].accepted)
-				    << "sweep " << i;
+			if (!best) continue;
+			const auto& kept = b[std::size_t(best - a.data())];
+			EXPECT_TRUE(kept.accepted) << "sweep " << i;
+			std::size_t pixels = 0;
+			for (const auto& c : a)
+				if (c.label == k.label && c.accepted)
+				{
+					EXPECT_EQ(
+					    kept.measure->box & c.measure->box, c.measure->box)
+					    << "sweep " << i;
+					pixels += c.measure->pixels.size();
+				}
+			EXPECT_EQ(kept.measure->pixels.size(), pixels) << "sweep " << i;
 		}
 	}
 	std::printf("%zu accepted detections merged into nearby ones\n", removed);

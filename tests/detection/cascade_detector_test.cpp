@@ -203,7 +203,7 @@ TEST(CascadeDetector, ShippedConfigLoads)
 	EXPECT_DOUBLE_EQ(o.classes[1].maxContinuingShare, 1);
 	EXPECT_DOUBLE_EQ(o.classes[2].maxContinuingShare, 1);
 	EXPECT_DOUBLE_EQ(o.classes[0].minSeparation, 0);
-	EXPECT_DOUBLE_EQ(o.classes[2].minSeparation, 1.5);
+	EXPECT_DOUBLE_EQ(o.classes[2].minSeparation, 2.0);
 	// Stairs boxes are grouped (every raw window a candidate let the box
 	// with the most points win among duplicates); no wastebasket far pass.
 	EXPECT_EQ(o.classes[2].minNeighbors, 8);

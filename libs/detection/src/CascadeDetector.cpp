@@ -1491,27 +1491,35 @@ void suppressDuplicates(
 
 /** One object, boxes on different parts of it: of accepted candidates
  * whose centroids are closer than `separation` (horizontally), the one
- * ranked first by acceptedBestFirst() stays. */
+ * ranked first by acceptedBestFirst() stays and takes the others' boxes and
+ * pixels (an occluder before a flight splits it in parts). */
 void suppressNearby(
     std::vector<CascadeDetector::Candidate>& cands, double separation)
 {
-	std::vector<mrpt::math::TPoint2D> kept;
+	std::vector<std::size_t> kept;
+	const auto at = [&](std::size_t i)
+	{
+		return mrpt::math::TPoint2D(
+		    cands[i].measure->centroid.x, cands[i].measure->centroid.y);
+	};
 	for (std::size_t i : acceptedBestFirst(cands))
 	{
-		auto& c = cands[i];
-		const mrpt::math::TPoint2D at(
-		    c.measure->centroid.x, c.measure->centroid.y);
-		const bool near = std::any_of(
+		const auto near = std::find_if(
 		    kept.begin(), kept.end(),
-		    [&](const mrpt::math::TPoint2D& k)
-		    { return (k - at).norm() < separation; });
-		if (near)
+		    [&](std::size_t k) { return (at(k) - at(i)).norm() < separation; });
+		if (near == kept.end())
 		{
-			c.accepted = false;
-			c.rejection = "duplicate";
+			kept.push_back(i);
+			continue;
 		}
-		else
-			kept.push_back(at);
+		auto& c = cands[i];
+		c.accepted = false;
+		c.rejection = "duplicate";
+		// Its part of the object: the kept one's box and pixels cover it.
+		auto& m = *cands[*near].measure;
+		m.box |= c.measure->box;
+		m.pixels.insert(
+		    m.pixels.end(), c.measure->pixels.begin(), c.measure->pixels.end());
 	}
 }
 }  // namespace

@@ -142,7 +142,8 @@ public:
 		 * centroids are closer than this (horizontally) are one object
 		 * (boxes on two parts of a flight of stairs): the one with the
 		 * highest shape score, then the most neighbours, then points, stays
-		 * (as among duplicates); 0: no check. */
+		 * (as among duplicates) and its box and pixels take in the others'
+		 * (its centroid and extent stay its own); 0: no check. */
 		double minSeparation = 0;
 	};
 
