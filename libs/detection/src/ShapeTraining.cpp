@@ -23,6 +23,9 @@ ShapeTraining::Samples ShapeTraining::collect(
 	// The forest learns every candidate the size check passes; the taller
 	// check is a rule of its own at detection.
 	detector.classes[0].maxContinuingShare = 1;
+	// Each candidate is learnt by its own box: merging the parts of one
+	// object (min_separation_m) comes after the forest.
+	detector.classes[0].minSeparation = 0;
 	if (params.minNeighbors >= 0)
 		detector.classes[0].minNeighbors = params.minNeighbors;
 	if (params.maxStages >= 0) detector.classes[0].maxStages = params.maxStages;
