@@ -56,6 +56,12 @@ int main(int argc, char** argv)
 	    "An object sample's measured points are at least this share of that "
 	    "object's (fewer: left out as ambiguous; 0: no check); default 0",
 	    false, 0, "P", cmd);
+	TCLAP::ValueArg<double> argObjectIou(
+	    "", "object-iou",
+	    "A sample is an object when its measured box has at least this IoU "
+	    "with one (in (0.1, 1]; boxes between 0.1 and it are left out as "
+	    "ambiguous); default 0.3",
+	    false, 0.3, "IOU", cmd);
 	TCLAP::ValueArg<int> argMaxSamples(
 	    "", "max-samples",
 	    "At most this many samples (a random subset, 0: all); default 30000",
@@ -86,6 +92,8 @@ int main(int argc, char** argv)
 			return cli.usageError("missing --" + a->getName());
 	if (!(argPurity.getValue() >= 0 && argPurity.getValue() <= 1))
 		return cli.usageError("--min-purity must be in [0, 1]");
+	if (!(argObjectIou.getValue() > 0.1 && argObjectIou.getValue() <= 1))
+		return cli.usageError("--object-iou must be in (0.1, 1]");
 
 	return cli.run(
 	    [&]
@@ -103,6 +111,7 @@ int main(int argc, char** argv)
 		    params.seed = static_cast<uint64_t>(argSeed.getValue());
 		    params.grids = !argWithoutGrids.getValue();
 		    params.minPurity = argPurity.getValue();
+		    params.objectIou = argObjectIou.getValue();
 		    params.maxSamples =
 		        static_cast<std::size_t>(std::max(0, argMaxSamples.getValue()));
 		    std::unique_ptr<semnav::ProgressBar> bar;

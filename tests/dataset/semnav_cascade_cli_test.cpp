@@ -238,6 +238,21 @@ TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 	    all.at("ambiguous").get<int>() + pure.at("impure").get<int>());
 	EXPECT_EQ(pure.at("others"), all.at("others"));
 	EXPECT_EQ(runApp("semnav-train-shape", args + " --min-purity 1.5").code, 2);
+	// --object-iou: a lower bar makes some ambiguous boxes objects; the
+	// others stay.
+	const AppRun looser = runApp(
+	    "semnav-train-shape", common +
+	                              " --max-samples 0 --max-objects-per-other 0 "
+	                              "--object-iou 0.15 --json");
+	ASSERT_EQ(looser.code, 0) << looser.err;
+	const auto lj = nlohmann::json::parse(looser.out);
+	EXPECT_GT(lj.at("objects").get<int>(), all.at("objects").get<int>());
+	EXPECT_EQ(
+	    lj.at("objects").get<int>() + lj.at("ambiguous").get<int>(),
+	    all.at("objects").get<int>() + all.at("ambiguous").get<int>());
+	EXPECT_EQ(lj.at("others"), all.at("others"));
+	EXPECT_EQ(
+	    runApp("semnav-train-shape", args + " --object-iou 0.05").code, 2);
 	// Segments measured as the shipped forests learnt them (without
 	// segment_range_window): the same sweeps, candidates of their own.
 	const AppRun unwindowed = runApp(
