@@ -217,17 +217,18 @@ TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 	EXPECT_EQ(readFile(out), first);
 	// --min-purity: object samples whose measured points are mostly another
 	// object are left out as ambiguous, nothing else changes.
-	const auto samplesWith = [&](const std::string& purity)
+	// Every sample counted (no subset), with these options.
+	const auto samplesWith = [&](const std::string& options)
 	{
 		const AppRun p = runApp(
 		    "semnav-train-shape",
-		    common +
-		        " --max-samples 0 --max-objects-per-other 0 --min-purity " +
-		        purity + " --json");
+		    common + " --max-samples 0 --max-objects-per-other 0 " + options +
+		        " --json");
 		EXPECT_EQ(p.code, 0) << p.err;
 		return nlohmann::json::parse(p.out);
 	};
-	const auto all = samplesWith("0"), pure = samplesWith("0.9");
+	const auto all = samplesWith("--min-purity 0"),
+	           pure = samplesWith("--min-purity 0.9");
 	EXPECT_EQ(all.at("impure"), 0);
 	EXPECT_GT(pure.at("impure").get<int>(), 0);
 	EXPECT_EQ(
@@ -240,12 +241,7 @@ TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 	EXPECT_EQ(runApp("semnav-train-shape", args + " --min-purity 1.5").code, 2);
 	// --object-iou: a lower bar makes some ambiguous boxes objects; the
 	// others stay.
-	const AppRun looser = runApp(
-	    "semnav-train-shape", common +
-	                              " --max-samples 0 --max-objects-per-other 0 "
-	                              "--object-iou 0.15 --json");
-	ASSERT_EQ(looser.code, 0) << looser.err;
-	const auto lj = nlohmann::json::parse(looser.out);
+	const auto lj = samplesWith("--object-iou 0.15");
 	EXPECT_GT(lj.at("objects").get<int>(), all.at("objects").get<int>());
 	EXPECT_EQ(
 	    lj.at("objects").get<int>() + lj.at("ambiguous").get<int>(),
@@ -255,12 +251,7 @@ TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 	    runApp("semnav-train-shape", args + " --object-iou 0.05").code, 2);
 	// Segments measured as the shipped forests learnt them (without
 	// segment_range_window): the same sweeps, candidates of their own.
-	const AppRun unwindowed = runApp(
-	    "semnav-train-shape", common +
-	                              " --max-samples 0 --max-objects-per-other 0 "
-	                              "--without-segment-window --json");
-	ASSERT_EQ(unwindowed.code, 0) << unwindowed.err;
-	const auto uj = nlohmann::json::parse(unwindowed.out);
+	const auto uj = samplesWith("--without-segment-window");
 	EXPECT_EQ(uj.at("sweeps"), 26);
 	EXPECT_GT(uj.at("objects").get<int>(), 0);
 	const AppRun det = runApp(

@@ -1229,6 +1229,11 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 	const double zFloor = groundZ + floorTolerance;
 	const auto pointAt = [&](int x, int y) -> const cv::Vec3f&
 	{ return points.ptr<cv::Vec3f>(y)[x]; };
+	const auto horizontal = [&](int x, int y)
+	{
+		const cv::Vec3f& p = pointAt(x, y);
+		return std::hypot(double(p[0]), double(p[1]));
+	};
 	// Not floor (within floorTolerance of the ground) nor a surface. Ground
 	// labels (floor, sidewalk, grass) are left to the height test: the
 	// rules' ground areas can swallow the top of a low object.
@@ -1238,7 +1243,7 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 		if (!(std::isfinite(p[0]) && p[2] >= zFloor)) return false;
 		if (rangeHi > 0)
 		{
-			const double d = std::hypot(double(p[0]), double(p[1]));
+			const double d = horizontal(x, y);
 			if (d < rangeLo || d > rangeHi) return false;
 		}
 		if (!hasLabels) return true;
@@ -1251,11 +1256,6 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 			default:
 				return true;
 		}
-	};
-	const auto horizontal = [&](int x, int y)
-	{
-		const cv::Vec3f& p = pointAt(x, y);
-		return std::hypot(double(p[0]), double(p[1]));
 	};
 	int x0 = INT_MAX, y0 = INT_MAX, x1 = -1, y1 = -1;
 	for (const auto& px : pixels)
