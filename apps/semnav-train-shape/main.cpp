@@ -82,6 +82,11 @@ int main(int argc, char** argv)
 	    "Measure segment candidates without segment_range_window, as the "
 	    "shipped forests learnt them",
 	    cmd, false);
+	TCLAP::ValueArg<double> argSlack(
+	    "", "range-scale-slack",
+	    "The range gate's range_scale_slack while collecting (in [1, 10]; "
+	    "0: the config's); default 0",
+	    false, 0, "S", cmd);
 	TCLAP::SwitchArg argJson(
 	    "", "json", "Print a JSON summary on stdout", cmd, false);
 	if (const auto code = cli.parse(argc, argv)) return *code;
@@ -94,6 +99,9 @@ int main(int argc, char** argv)
 		return cli.usageError("--min-purity must be in [0, 1]");
 	if (!(argObjectIou.getValue() > 0.1 && argObjectIou.getValue() <= 1))
 		return cli.usageError("--object-iou must be in (0.1, 1]");
+	if (argSlack.getValue() != 0 &&
+	    !(argSlack.getValue() >= 1 && argSlack.getValue() <= 10))
+		return cli.usageError("--range-scale-slack must be 0 or in [1, 10]");
 
 	return cli.run(
 	    [&]
@@ -104,6 +112,8 @@ int main(int argc, char** argv)
 		        argConfig.getValue());
 		    if (argWithoutWindow.getValue())
 			    detector.segmentRangeWindow = false;
+		    if (argSlack.getValue() != 0)
+			    detector.rangeScaleSlack = argSlack.getValue();
 		    semnav::ShapeTraining::Params params;
 		    params.minNeighbors = argNeighbors.getValue();
 		    params.maxStages = argStages.getValue();

@@ -249,6 +249,20 @@ TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 	EXPECT_EQ(lj.at("others"), all.at("others"));
 	EXPECT_EQ(
 	    runApp("semnav-train-shape", args + " --object-iou 0.05").code, 2);
+	// --range-scale-slack: the config's value gives the same samples, a
+	// wider gate more windows, so more candidates.
+	const auto total = [](const nlohmann::json& x)
+	{
+		return x.at("objects").get<int>() + x.at("others").get<int>() +
+		       x.at("ambiguous").get<int>();
+	};
+	const auto same = samplesWith("--range-scale-slack 1.3"),
+	           wide = samplesWith("--range-scale-slack 3");
+	EXPECT_EQ(same, all);
+	EXPECT_GT(total(wide), total(all));
+	EXPECT_EQ(
+	    runApp("semnav-train-shape", args + " --range-scale-slack 0.5").code,
+	    2);
 	// Segments measured as the shipped forests learnt them (without
 	// segment_range_window): the same sweeps, candidates of their own.
 	const auto uj = samplesWith("--without-segment-window");
