@@ -14,6 +14,7 @@
 #include <semnav/perception/PerceptionPipeline.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -22,6 +23,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace
@@ -30,6 +32,8 @@ namespace
  * many visible pixels; a box matches it from this IoU. */
 constexpr int kCountedPixels = 150;
 constexpr double kMatchIou = 0.3;
+/** Cell side for counting the distinct points of a missed object (m). */
+constexpr double kCellM = 0.02;
 
 double median(std::vector<double> v)
 {
@@ -216,6 +220,9 @@ void listMisses(
 		const cv::Mat mask = g.mask(groundTruth);
 		cv::Vec3d sum(0, 0, 0);
 		int n = 0, inProposals = 0;
+		// Pixels beside the robot repeat a few points (the tilt axis points
+		// there): the distinct ones, as occupied 2 cm cells.
+		std::vector<std::tuple<int, int, int>> cells;
 		for (int r = 0; r < mask.rows; r++)
 			for (int c = 0; c < mask.cols; c++)
 			{
@@ -224,18 +231,26 @@ void listMisses(
 				sum += cv::Vec3d(p[0], p[1], p[2]);
 				n++;
 				inProposals += objectMask.at<uint8_t>(r, c) != 0;
+				cells.emplace_back(
+				    static_cast<int>(std::floor(p[0] / kCellM)),
+				    static_cast<int>(std::floor(p[1] / kCellM)),
+				    static_cast<int>(std::floor(p[2] / kCellM)));
 			}
+		std::sort(cells.begin(), cells.end());
+		const auto distinct =
+		    std::unique(cells.begin(), cells.end()) - cells.begin();
 		const cv::Vec3d m = n ? sum / n : sum;
 		std::fprintf(
 		    stderr,
-		    "miss %s sweep %zu %s #%d box %dx%d+%d+%d %d px, range %.2f m, "
-		    "bearing %.0f deg, height %.2f m, %.0f %% in the proposal mask; "
+		    "miss %s sweep %zu %s #%d box %dx%d+%d+%d %d px (%td distinct 2 cm "
+		    "cells), range %.2f m, bearing %.0f deg, height %.2f m, %.0f %% in "
+		    "the proposal mask; "
 		    "nearest candidate IoU %.2f %s; of those mostly on it, IoU %.2f "
 		    "%s\n",
 		    std::filesystem::path(dir).filename().c_str(), sweep,
 		    semnav::labelName(g.label).c_str(), g.instance, g.box.width,
-		    g.box.height, g.box.x, g.box.y, g.pixels, std::hypot(m[0], m[1]),
-		    std::atan2(m[1], m[0]) * 180 / M_PI, m[2],
+		    g.box.height, g.box.x, g.box.y, g.pixels, distinct,
+		    std::hypot(m[0], m[1]), std::atan2(m[1], m[0]) * 180 / M_PI, m[2],
 		    n ? 100.0 * inProposals / n : 0.0, best, fate(nearest).c_str(),
 		    bestOnIt, fate(onIt).c_str());
 	}

@@ -285,6 +285,8 @@ TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 	int missLines = 0, falseLines = 0;
 	// ...and which ground-truth objects its points lie on.
 	const std::regex on("on [0-9]+ % [a-z]+ #[0-9]+");
+	const std::regex distinctCells(
+	    "([0-9]+) px \\(([0-9]+) distinct 2 cm cells\\)");
 	for (std::string line; std::getline(lines, line);)
 	{
 		if (line.rfind("miss ", 0) == 0)
@@ -296,6 +298,11 @@ TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 			EXPECT_NE(
 			    line.find("of those mostly on it, IoU"), std::string::npos)
 			    << line;
+			// Its distinct points: 1 .. its pixels.
+			std::smatch cells;
+			ASSERT_TRUE(std::regex_search(line, cells, distinctCells)) << line;
+			EXPECT_GE(std::stoi(cells[2]), 1) << line;
+			EXPECT_LE(std::stoi(cells[2]), std::stoi(cells[1])) << line;
 			if (line.find("no measured candidate") == std::string::npos)
 				EXPECT_TRUE(std::regex_search(line, on)) << line;
 		}
