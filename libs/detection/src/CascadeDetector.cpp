@@ -1210,6 +1210,17 @@ inline bool hypotAtMost(float x, float y, double t)
 	return std::hypot(double(x), double(y)) <= t;
 }
 
+/** Whether std::hypot(x, y) >= t, decided as hypotAtMost() decides. */
+inline bool hypotAtLeast(float x, float y, double t)
+{
+	if (t <= 0) return true;
+	const double s = double(x) * double(x) + double(y) * double(y);
+	const double t2 = t * t;
+	if (s > t2 * (1 + 1e-6)) return true;
+	if (s < t2 * (1 - 1e-6)) return false;
+	return std::hypot(double(x), double(y)) >= t;
+}
+
 /** Neighbouring points of one object are at most this far apart (m). */
 double connectionGap(const cv::Vec3f& p)
 {
@@ -1241,11 +1252,9 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 	{
 		const cv::Vec3f& p = pointAt(x, y);
 		if (!(std::isfinite(p[0]) && p[2] >= zFloor)) return false;
-		if (rangeHi > 0)
-		{
-			const double d = horizontal(x, y);
-			if (d < rangeLo || d > rangeHi) return false;
-		}
+		if (rangeHi > 0 && !(hypotAtLeast(p[0], p[1], rangeLo) &&
+		                     hypotAtMost(p[0], p[1], rangeHi)))
+			return false;
 		if (!hasLabels) return true;
 		switch (static_cast<Label>(labels.ptr<uint8_t>(y)[x]))
 		{
