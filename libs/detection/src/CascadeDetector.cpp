@@ -1197,28 +1197,19 @@ struct MeasureScratch
 };
 thread_local MeasureScratch tlMeasure;
 
-/** Whether std::hypot(x, y) <= t, mostly without computing it: x^2 + y^2
- * in double (exact squares of floats, one rounding) decides unless it lies
- * within 1e-6 (relative) of t^2, far beyond the rounding of that sum and
- * hypot's 1 ulp; there hypot itself decides. */
-inline bool hypotAtMost(float x, float y, double t)
+/** std::hypot(x, y) against t > 0 (-1 below, 0 equal, 1 above), mostly
+ * without computing it: x^2 + y^2 in double (exact squares of floats, one
+ * rounding) decides unless it lies within 1e-6 (relative) of t^2, far
+ * beyond the rounding of that sum and hypot's 1 ulp; there hypot itself
+ * decides. */
+inline int compareHypot(float x, float y, double t)
 {
 	const double s = double(x) * double(x) + double(y) * double(y);
 	const double t2 = t * t;
-	if (s < t2 * (1 - 1e-6)) return true;
-	if (s > t2 * (1 + 1e-6)) return false;
-	return std::hypot(double(x), double(y)) <= t;
-}
-
-/** Whether std::hypot(x, y) >= t, decided as hypotAtMost() decides. */
-inline bool hypotAtLeast(float x, float y, double t)
-{
-	if (t <= 0) return true;
-	const double s = double(x) * double(x) + double(y) * double(y);
-	const double t2 = t * t;
-	if (s > t2 * (1 + 1e-6)) return true;
-	if (s < t2 * (1 - 1e-6)) return false;
-	return std::hypot(double(x), double(y)) >= t;
+	if (s < t2 * (1 - 1e-6)) return -1;
+	if (s > t2 * (1 + 1e-6)) return 1;
+	const double h = std::hypot(double(x), double(y));
+	return h < t ? -1 : h > t ? 1 : 0;
 }
 
 /** Neighbouring points of one object are at most this far apart (m). */
@@ -1252,8 +1243,9 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 	{
 		const cv::Vec3f& p = pointAt(x, y);
 		if (!(std::isfinite(p[0]) && p[2] >= zFloor)) return false;
-		if (rangeHi > 0 && !(hypotAtLeast(p[0], p[1], rangeLo) &&
-		                     hypotAtMost(p[0], p[1], rangeHi)))
+		if (rangeHi > 0 &&
+		    ((rangeLo > 0 && compareHypot(p[0], p[1], rangeLo) < 0) ||
+		     compareHypot(p[0], p[1], rangeHi) > 0))
 			return false;
 		if (!hasLabels) return true;
 		switch (static_cast<Label>(labels.ptr<uint8_t>(y)[x]))
@@ -1310,7 +1302,7 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 	{
 		uint8_t& f = state[padded(px.x, px.y)];
 		const cv::Vec3f& p = pointAt(px.x, px.y);
-		if ((f & kValid) && hypotAtMost(p[0], p[1], far))
+		if ((f & kValid) && compareHypot(p[0], p[1], far) <= 0)
 		{
 			f |= kCand;
 			candidates++;
