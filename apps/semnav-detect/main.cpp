@@ -220,9 +220,6 @@ void listMisses(
 		const cv::Mat mask = g.mask(groundTruth);
 		cv::Vec3d sum(0, 0, 0);
 		int n = 0, inProposals = 0;
-		// Pixels beside the robot repeat a few points (the tilt axis points
-		// there): the distinct ones, as occupied 2 cm cells.
-		std::vector<std::tuple<int, int, int>> cells;
 		for (int r = 0; r < mask.rows; r++)
 			for (int c = 0; c < mask.cols; c++)
 			{
@@ -231,18 +228,14 @@ void listMisses(
 				sum += cv::Vec3d(p[0], p[1], p[2]);
 				n++;
 				inProposals += objectMask.at<uint8_t>(r, c) != 0;
-				cells.emplace_back(
-				    static_cast<int>(std::floor(p[0] / kCellM)),
-				    static_cast<int>(std::floor(p[1] / kCellM)),
-				    static_cast<int>(std::floor(p[2] / kCellM)));
 			}
-		std::sort(cells.begin(), cells.end());
-		const auto distinct =
-		    std::unique(cells.begin(), cells.end()) - cells.begin();
+		// Beside the robot its pixels repeat a few points.
+		const std::size_t distinct =
+		    semnav::ObjectScorer::distinctCells(mask, points, kCellM);
 		const cv::Vec3d m = n ? sum / n : sum;
 		std::fprintf(
 		    stderr,
-		    "miss %s sweep %zu %s #%d box %dx%d+%d+%d %d px (%td distinct 2 cm "
+		    "miss %s sweep %zu %s #%d box %dx%d+%d+%d %d px (%zu distinct 2 cm "
 		    "cells), range %.2f m, bearing %.0f deg, height %.2f m, %.0f %% in "
 		    "the proposal mask; "
 		    "nearest candidate IoU %.2f %s; of those mostly on it, IoU %.2f "
@@ -303,7 +296,9 @@ int main(int argc, char** argv)
 		    // The same without the views no window detector can recognise
 		    // (an extra figure; issue 4's rule is scorer's).
 		    semnav::ObjectScorer scorerRecognisable(kCountedPixels, kMatchIou);
-		    std::map<semnav::Label, std::size_t> excluded;
+		    // ...and objects counted by their distinct points, not pixels.
+		    semnav::ObjectScorer scorerDistinct(kCountedPixels, kMatchIou);
+		    std::map<semnav::Label, std::size_t> excluded, fewPoints;
 		    std::map<std::string, std::size_t> rejections;
 		    std::map<semnav::Label, Funnel> funnels;
 		    std::vector<double> ms, msCascades;
@@ -349,6 +344,11 @@ int main(int argc, char** argv)
 				    for (const auto& k : left) excluded[k.first]++;
 				    scorerRecognisable.add(
 				        dets, sweeps[i].groundTruth, labels, left);
+				    const auto few = scorerDistinct.fewDistinctPoints(
+				        sweeps[i].groundTruth, ls.points, labels, kCellM);
+				    for (const auto& k : few) fewPoints[k.first]++;
+				    scorerDistinct.add(
+				        dets, sweeps[i].groundTruth, labels, few);
 				    if (argMisses.getValue())
 				    {
 					    listMisses(
@@ -384,7 +384,7 @@ int main(int argc, char** argv)
 				    bar.update(i + 1);
 			    }
 		    }
-		    nlohmann::json j, objs, objsRecognisable;
+		    nlohmann::json j, objs, objsRecognisable, objsDistinct;
 		    for (auto l : labels)
 		    {
 			    const auto s = scorer.score(l);
@@ -403,6 +403,14 @@ int main(int argc, char** argv)
 			        {"excluded", excluded[l]},
 			        {"precision", r.precision},
 			        {"recall", r.recall}};
+			    const auto d = scorerDistinct.score(l);
+			    objsDistinct[semnav::labelName(l)] = {
+			        {"tp", d.tp},
+			        {"fp", d.fp},
+			        {"fn", d.fn},
+			        {"excluded", fewPoints[l]},
+			        {"precision", d.precision},
+			        {"recall", d.recall}};
 			    const Funnel& f = funnels[l];
 			    j["funnel"][semnav::labelName(l)] = {
 			        {"counted", f.counted},
@@ -412,6 +420,7 @@ int main(int argc, char** argv)
 		    }
 		    j["objects"] = objs;
 		    j["objects_recognisable"] = objsRecognisable;
+		    j["objects_distinct_points"] = objsDistinct;
 		    j["sweeps"] = scorer.sweeps();
 		    j["ms_per_sweep_median"] = median(ms);
 		    j["ms_cascades_median"] = median(msCascades);
@@ -441,6 +450,19 @@ int main(int argc, char** argv)
 				        "precision %.3f  recall %.3f\n",
 				        semnav::labelName(l).c_str(), s.tp, s.fp, s.fn,
 				        excluded[l], s.precision, s.recall);
+			    }
+			    std::printf(
+			        "counted by distinct points (>= %d occupied 2 cm cells), "
+			        "not pixels:\n",
+			        kCountedPixels);
+			    for (auto l : labels)
+			    {
+				    const auto s = scorerDistinct.score(l);
+				    std::printf(
+				        "  %-12s tp %4zu  fp %4zu  fn %4zu  (excluded %zu)  "
+				        "precision %.3f  recall %.3f\n",
+				        semnav::labelName(l).c_str(), s.tp, s.fp, s.fn,
+				        fewPoints[l], s.precision, s.recall);
 			    }
 			    std::printf(
 			        "counted objects a candidate reaches (IoU >= 0.3), of "

@@ -154,6 +154,15 @@ TEST_F(SemnavCascadeCli, TrainDetectAndPerceive)
 	for (const char* k : {"tp", "fp", "fn", "excluded", "recall"})
 		EXPECT_TRUE(dj.at("objects_recognisable").at("washbasin").contains(k))
 		    << k;
+	// Counted by distinct points: the excluded objects were counted by
+	// pixels, the same detections are scored.
+	const auto& dp = dj.at("objects_distinct_points").at("washbasin");
+	const auto& px = dj.at("objects").at("washbasin");
+	EXPECT_EQ(
+	    dp.at("tp").get<int>() + dp.at("fn").get<int>() +
+	        dp.at("excluded").get<int>(),
+	    px.at("tp").get<int>() + px.at("fn").get<int>());
+	EXPECT_EQ(dp.at("fp"), px.at("fp"));
 	// Where the objects are lost: each step keeps at most the one before,
 	// and a true positive is an object an accepted candidate reaches.
 	const auto& funnel = dj.at("funnel").at("washbasin");

@@ -102,3 +102,38 @@ TEST(ObjectScorer, ExcludedObjectsAreNotScored)
 	EXPECT_EQ(w.fn, 0u);  // washbasin 3 is excluded, not missed
 	EXPECT_EQ(w.ignored, 1u);
 }
+
+TEST(ObjectScorer, ObjectsOfFewDistinctPointsAreFound)
+{
+	// Two 20 x 10 washbasins: one over 200 points 5 cm apart, one whose
+	// pixels repeat four points (as beside the robot).
+	cv::Mat gt(100, 100, CV_16U, cv::Scalar(0));
+	cv::Mat points(100, 100, CV_32FC3, cv::Scalar::all(NAN));
+	const cv::Rect spread(10, 10, 20, 10), repeated(50, 50, 20, 10);
+	gt(spread).setTo(code(Label::Washbasin, 1));
+	gt(repeated).setTo(code(Label::Washbasin, 2));
+	for (int r = 0; r < 10; r++)
+		for (int c = 0; c < 20; c++)
+		{
+			points.at<cv::Vec3f>(spread.y + r, spread.x + c) =
+			    cv::Vec3f(2.0f, 0.05f * float(c), 0.05f * float(r));
+			points.at<cv::Vec3f>(repeated.y + r, repeated.x + c) =
+			    cv::Vec3f(3.0f, 0.05f * float(c % 2), 0.05f * float(r % 2));
+		}
+	EXPECT_EQ(
+	    ObjectScorer::distinctCells(
+	        gt == code(Label::Washbasin, 1), points, 0.02),
+	    200u);
+	EXPECT_EQ(
+	    ObjectScorer::distinctCells(
+	        gt == code(Label::Washbasin, 2), points, 0.02),
+	    4u);
+	// At 10 cm cells the spread one fills 50 cells.
+	EXPECT_EQ(
+	    ObjectScorer::distinctCells(
+	        gt == code(Label::Washbasin, 1), points, 0.1),
+	    50u);
+	const ObjectScorer s;
+	const auto few = s.fewDistinctPoints(gt, points, {Label::Washbasin});
+	EXPECT_EQ(few, (ObjectScorer::ObjectKeys{{Label::Washbasin, 2}}));
+}

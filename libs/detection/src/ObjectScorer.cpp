@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
+#include <vector>
 
 namespace semnav
 {
@@ -49,6 +51,37 @@ ObjectScorer::ObjectKeys ObjectScorer::unrecognisable(
 		if (bearing >= 80 || zMax - zMin < 0.5 * (zMax - groundZ))
 			out.insert({g.label, g.instance});
 	}
+	return out;
+}
+
+std::size_t ObjectScorer::distinctCells(
+    const cv::Mat& mask, const cv::Mat& points, double cellM)
+{
+	std::vector<std::tuple<int, int, int>> cells;
+	const auto cell = [&](float v)
+	{ return static_cast<int>(std::floor(v / cellM)); };
+	for (int r = 0; r < mask.rows; r++)
+		for (int c = 0; c < mask.cols; c++)
+		{
+			const auto& p = points.at<cv::Vec3f>(r, c);
+			if (mask.at<uint8_t>(r, c) && !std::isnan(p[0]))
+				cells.emplace_back(cell(p[0]), cell(p[1]), cell(p[2]));
+		}
+	std::sort(cells.begin(), cells.end());
+	return static_cast<std::size_t>(
+	    std::unique(cells.begin(), cells.end()) - cells.begin());
+}
+
+ObjectScorer::ObjectKeys ObjectScorer::fewDistinctPoints(
+    const cv::Mat& groundTruth, const cv::Mat& points,
+    const std::vector<Label>& labels, double cellM) const
+{
+	ObjectKeys out;
+	for (const auto& g : GroundTruthObject::fromLabelImage(groundTruth, labels))
+		if (g.pixels >= m_minPixels &&
+		    distinctCells(g.mask(groundTruth), points, cellM) <
+		        static_cast<std::size_t>(m_minPixels))
+			out.insert({g.label, g.instance});
 	return out;
 }
 

@@ -58,6 +58,18 @@ public:
 	    const cv::Mat& groundTruth, const cv::Mat& points, double groundZ,
 	    const std::vector<Label>& labels) const;
 
+	/** The counted objects of a sweep (for `excluded`) whose points fill
+	 * fewer than minPixels cells of side `cellM` (m): beside the robot the
+	 * tilt axis points at an object, and its pixels repeat a few points. */
+	ObjectKeys fewDistinctPoints(
+	    const cv::Mat& groundTruth, const cv::Mat& points,
+	    const std::vector<Label>& labels, double cellM = 0.02) const;
+
+	/** Cells of side `cellM` (m) that the valid points of the CV_8U
+	 * `mask`'s pixels occupy. */
+	static std::size_t distinctCells(
+	    const cv::Mat& mask, const cv::Mat& points, double cellM);
+
 	Score score(Label l) const;
 	std::size_t sweeps() const { return m_sweeps; }
 
