@@ -24,6 +24,7 @@
 #include <opencv2/imgproc.hpp>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace
@@ -248,6 +249,49 @@ void listMisses(
 		    bestOnIt, fate(onIt).c_str());
 	}
 }
+/** A figure beside issue 4's: the same detections, some counted objects
+ * left out (as too small to count). */
+struct OtherCount
+{
+	explicit OtherCount(std::string t) : title(std::move(t)) {}
+
+	std::string title;
+	semnav::ObjectScorer scorer{kCountedPixels, kMatchIou};
+	std::map<semnav::Label, std::size_t> excluded;
+
+	void add(
+	    const std::vector<semnav::Detection>& dets, const cv::Mat& groundTruth,
+	    const std::vector<semnav::Label>& labels,
+	    const semnav::ObjectScorer::ObjectKeys& left)
+	{
+		for (const auto& k : left) excluded[k.first]++;
+		scorer.add(dets, groundTruth, labels, left);
+	}
+	nlohmann::json json(semnav::Label l)
+	{
+		const auto s = scorer.score(l);
+		return {
+		    {"tp", s.tp},
+		    {"fp", s.fp},
+		    {"fn", s.fn},
+		    {"excluded", excluded[l]},
+		    {"precision", s.precision},
+		    {"recall", s.recall}};
+	}
+	void print(const std::vector<semnav::Label>& labels)
+	{
+		std::printf("%s:\n", title.c_str());
+		for (auto l : labels)
+		{
+			const auto s = scorer.score(l);
+			std::printf(
+			    "  %-12s tp %4zu  fp %4zu  fn %4zu  (excluded %zu)  "
+			    "precision %.3f  recall %.3f\n",
+			    semnav::labelName(l).c_str(), s.tp, s.fp, s.fn, excluded[l],
+			    s.precision, s.recall);
+		}
+	}
+};
 }  // namespace
 
 int main(int argc, char** argv)
@@ -295,10 +339,14 @@ int main(int argc, char** argv)
 		    semnav::ObjectScorer scorer(kCountedPixels, kMatchIou);
 		    // The same without the views no window detector can recognise
 		    // (an extra figure; issue 4's rule is scorer's).
-		    semnav::ObjectScorer scorerRecognisable(kCountedPixels, kMatchIou);
+		    OtherCount recognisable{
+		        "without views beside the robot (|bearing| >= 80 deg) or seen "
+		        "over less than half their height"};
 		    // ...and objects counted by their distinct points, not pixels.
-		    semnav::ObjectScorer scorerDistinct(kCountedPixels, kMatchIou);
-		    std::map<semnav::Label, std::size_t> excluded, fewPoints;
+		    OtherCount distinct{
+		        "counted by distinct points (>= " +
+		        std::to_string(kCountedPixels) +
+		        " occupied 2 cm cells), not pixels"};
 		    std::map<std::string, std::size_t> rejections;
 		    std::map<semnav::Label, Funnel> funnels;
 		    std::vector<double> ms, msCascades;
@@ -339,16 +387,15 @@ int main(int argc, char** argv)
 				        semnav::GroundTruthObject::fromLabelImage(
 				            sweeps[i].groundTruth, labels);
 				    addToFunnels(objects, cands, funnels);
-				    const auto left = scorerRecognisable.unrecognisable(
-				        sweeps[i].groundTruth, ls.points, ls.groundZ, labels);
-				    for (const auto& k : left) excluded[k.first]++;
-				    scorerRecognisable.add(
-				        dets, sweeps[i].groundTruth, labels, left);
-				    const auto few = scorerDistinct.fewDistinctPoints(
-				        sweeps[i].groundTruth, ls.points, labels, kCellM);
-				    for (const auto& k : few) fewPoints[k.first]++;
-				    scorerDistinct.add(
-				        dets, sweeps[i].groundTruth, labels, few);
+				    recognisable.add(
+				        dets, sweeps[i].groundTruth, labels,
+				        recognisable.scorer.unrecognisable(
+				            sweeps[i].groundTruth, ls.points, ls.groundZ,
+				            labels));
+				    distinct.add(
+				        dets, sweeps[i].groundTruth, labels,
+				        distinct.scorer.fewDistinctPoints(
+				            sweeps[i].groundTruth, ls.points, labels, kCellM));
 				    if (argMisses.getValue())
 				    {
 					    listMisses(
@@ -395,22 +442,8 @@ int main(int argc, char** argv)
 			        {"ignored", s.ignored},
 			        {"precision", s.precision},
 			        {"recall", s.recall}};
-			    const auto r = scorerRecognisable.score(l);
-			    objsRecognisable[semnav::labelName(l)] = {
-			        {"tp", r.tp},
-			        {"fp", r.fp},
-			        {"fn", r.fn},
-			        {"excluded", excluded[l]},
-			        {"precision", r.precision},
-			        {"recall", r.recall}};
-			    const auto d = scorerDistinct.score(l);
-			    objsDistinct[semnav::labelName(l)] = {
-			        {"tp", d.tp},
-			        {"fp", d.fp},
-			        {"fn", d.fn},
-			        {"excluded", fewPoints[l]},
-			        {"precision", d.precision},
-			        {"recall", d.recall}};
+			    objsRecognisable[semnav::labelName(l)] = recognisable.json(l);
+			    objsDistinct[semnav::labelName(l)] = distinct.json(l);
 			    const Funnel& f = funnels[l];
 			    j["funnel"][semnav::labelName(l)] = {
 			        {"counted", f.counted},
@@ -439,31 +472,8 @@ int main(int argc, char** argv)
 				        semnav::labelName(l).c_str(), s.tp, s.fp, s.fn,
 				        s.ignored, s.precision, s.recall);
 			    }
-			    std::printf(
-			        "without views beside the robot (|bearing| >= 80 deg) or "
-			        "seen over less than half their height:\n");
-			    for (auto l : labels)
-			    {
-				    const auto s = scorerRecognisable.score(l);
-				    std::printf(
-				        "  %-12s tp %4zu  fp %4zu  fn %4zu  (excluded %zu)  "
-				        "precision %.3f  recall %.3f\n",
-				        semnav::labelName(l).c_str(), s.tp, s.fp, s.fn,
-				        excluded[l], s.precision, s.recall);
-			    }
-			    std::printf(
-			        "counted by distinct points (>= %d occupied 2 cm cells), "
-			        "not pixels:\n",
-			        kCountedPixels);
-			    for (auto l : labels)
-			    {
-				    const auto s = scorerDistinct.score(l);
-				    std::printf(
-				        "  %-12s tp %4zu  fp %4zu  fn %4zu  (excluded %zu)  "
-				        "precision %.3f  recall %.3f\n",
-				        semnav::labelName(l).c_str(), s.tp, s.fp, s.fn,
-				        fewPoints[l], s.precision, s.recall);
-			    }
+			    recognisable.print(labels);
+			    distinct.print(labels);
 			    std::printf(
 			        "counted objects a candidate reaches (IoU >= 0.3), of "
 			        "them past the size check, an accepted one reaches:\n");
