@@ -115,26 +115,44 @@ void ShapeVerifier::flatten()
 	    votes, 0);
 	const auto& nodes = m_forest->getNodes();
 	const auto& splits = m_forest->getSplits();
-	m_roots = m_forest->getRoots();
-	m_nodes.assign(nodes.size(), FlatNode());
-	for (std::size_t i = 0; i < nodes.size(); i++)
+	m_roots.clear();
+	m_nodes.clear();
+	if (nodes.size() > kIndexMask || featureCount() >= int(kLeaf)) return;
+	m_nodes.reserve(nodes.size());
+	// Each tree depth first, left before right; (OpenCV's node, the split
+	// whose right child it is, or -1).
+	std::vector<std::pair<int, int>> stack;
+	for (int root : m_forest->getRoots())
 	{
-		const auto& n = nodes[i];
-		FlatNode& out = m_nodes[i];
-		if (n.split >= 0)
+		m_roots.push_back(uint32_t(m_nodes.size()));
+		stack.emplace_back(root, -1);
+		while (!stack.empty())
 		{
-			// RTrees' prediction takes the first split, "<= c" to the left
-			// (ordered features only).
-			const auto& sp = splits.at(std::size_t(n.split));
-			if (sp.varIdx < 0 || sp.varIdx >= featureCount())
-				throw Error("ShapeVerifier: a split on no ObjectShape feature");
-			out.var = sp.varIdx;
-			out.threshold = sp.c;
-			out.left = n.left;
-			out.right = n.right;
+			const auto [i, parent] = stack.back();
+			stack.pop_back();
+			const uint32_t at = uint32_t(m_nodes.size());
+			if (parent >= 0) m_nodes[std::size_t(parent)].link |= at;
+			const auto& n = nodes.at(std::size_t(i));
+			FlatNode& out = m_nodes.emplace_back();
+			if (n.split >= 0)
+			{
+				// RTrees' prediction takes the first split, "<= c" to the
+				// left (ordered features only).
+				const auto& sp = splits.at(std::size_t(n.split));
+				if (sp.varIdx < 0 || sp.varIdx >= featureCount())
+					throw Error(
+					    "ShapeVerifier: a split on no ObjectShape feature");
+				out.threshold = sp.c;
+				out.link = uint32_t(sp.varIdx) << 24;
+				stack.emplace_back(n.right, int(at));
+				stack.emplace_back(n.left, -1);
+			}
+			else
+				out.link = kLeaf << 24 |
+				           uint32_t(
+				               n.classIdx >= 0 && n.classIdx < votes.cols &&
+				               votes.at<int>(0, n.classIdx) == 1);
 		}
-		else if (n.classIdx >= 0 && n.classIdx < votes.cols)
-			out.object = votes.at<int>(0, n.classIdx) == 1;
 	}
 }
 
@@ -142,20 +160,36 @@ double ShapeVerifier::score(const ObjectShape::Features& f) const
 {
 	if (!m_forest) return 1;
 	// OpenCV's missing value takes another path: leave it to OpenCV.
+	if (m_nodes.empty()) return scoreByOpenCv(f);
 	for (float v : f)
 		if (v == cv::ml::TrainData::missingValue()) return scoreByOpenCv(f);
+	const FlatNode* nodes = m_nodes.data();
+	// Eight trees at a time, a level of each in turn: their nodes' loads
+	// overlap instead of waiting one for the other.
+	constexpr std::size_t kLanes = 8;
 	int object = 0;
-	for (int root : m_roots)
+	const std::size_t nTrees = m_roots.size();
+	for (std::size_t t = 0; t < nTrees; t += kLanes)
 	{
-		int i = root;
-		while (m_nodes[std::size_t(i)].var >= 0)
+		const std::size_t lanes = std::min(kLanes, nTrees - t);
+		uint32_t at[kLanes];
+		for (std::size_t l = 0; l < lanes; l++) at[l] = m_roots[t + l];
+		for (bool moved = true; moved;)
 		{
-			const FlatNode& n = m_nodes[std::size_t(i)];
-			i = f[std::size_t(n.var)] <= n.threshold ? n.left : n.right;
+			moved = false;
+			for (std::size_t l = 0; l < lanes; l++)
+			{
+				const FlatNode n = nodes[at[l]];
+				const uint32_t var = n.link >> 24;
+				if (var == kLeaf) continue;
+				moved = true;
+				at[l] = f[var] <= n.threshold ? at[l] + 1 : n.link & kIndexMask;
+			}
 		}
-		object += m_nodes[std::size_t(i)].object;
+		for (std::size_t l = 0; l < lanes; l++)
+			object += int(nodes[at[l]].link & 1);
 	}
-	return m_roots.empty() ? 0 : double(object) / double(m_roots.size());
+	return nTrees == 0 ? 0 : double(object) / double(nTrees);
 }
 
 double ShapeVerifier::scoreByOpenCv(const ObjectShape::Features& f) const

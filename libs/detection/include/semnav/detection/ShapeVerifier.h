@@ -3,6 +3,7 @@
 
 #include <semnav/detection/ObjectShape.h>
 
+#include <cstdint>
 #include <opencv2/core/mat.hpp>
 #include <opencv2/ml.hpp>
 #include <string>
@@ -53,20 +54,23 @@ public:
 	double scoreByOpenCv(const ObjectShape::Features& f) const;
 
 private:
-	/** A tree node: a split (`var` >= 0: left if the feature is <=
-	 * `threshold`) or a leaf voting `object` (0 or 1). */
+	/** A tree node, the trees in preorder (a split's left child follows
+	 * it): a split goes left if feature `link >> 24` is <= `threshold`,
+	 * else to node `link & kIndexMask`; a leaf (`link >> 24` = kLeaf)
+	 * votes `link & 1` for "object". 8 bytes: the trees of a forest stay
+	 * in cache as far as they can. */
 	struct FlatNode
 	{
-		int var = -1;
 		float threshold = 0;
-		int left = -1, right = -1;
-		int object = 0;
+		uint32_t link = 0;
 	};
-	/** Copies the forest's trees into m_roots / m_nodes. */
+	static constexpr uint32_t kLeaf = 0xff, kIndexMask = 0xffffff;
+	/** Copies the forest's trees into m_roots / m_nodes (left empty when
+	 * they do not fit FlatNode: score() then asks OpenCV). */
 	void flatten();
 
 	cv::Ptr<cv::ml::RTrees> m_forest;
-	std::vector<int> m_roots;
+	std::vector<uint32_t> m_roots;
 	std::vector<FlatNode> m_nodes;
 };
 
