@@ -1774,9 +1774,11 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	}
 	m_timings.proposals = msSince(tp) + rangesMs + segmentsMs;
 	// Three steps, each in parallel (threads), with the same candidates in
-	// the order of the classes: the cascades (a class or pass a task),
-	// measuring, describing and scoring (a candidate a task) and the shape
-	// check (a class a task: its order matters among duplicates).
+	// the order of the classes: the cascades (a class or pass a task) and
+	// the segment candidates (a candidate a task: measured and described
+	// while the cascades run); the cascade boxes measured and described,
+	// and every candidate scored (a candidate a task); the shape check (a
+	// class a task: its order matters among duplicates).
 	struct ClassResult
 	{
 		std::vector<Candidate> candidates;
@@ -1823,10 +1825,103 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	    largestFirst.begin(), largestFirst.end(),
 	    [&](std::size_t a, std::size_t b)
 	    { return tasks[a].work > tasks[b].work; });
+	// Each class's segment candidates.
+	const ObjectProposals::Params segmentParams = m_options.segmentParams();
+	std::vector<std::vector<Candidate>> segmentCands(m_options.classes.size());
+	std::vector<std::pair<std::size_t, std::size_t>> segmentTasks;
+	for (std::size_t i = 0; i < m_options.classes.size(); i++)
+	{
+		const TClassOptions& k = m_options.classes[i];
+		if (!k.segmentCandidates) continue;
+		for (const ObjectProposal& p : segments.at(i))
+		{
+			if (p.tallerPixels > m_options.segmentMaxTaller * p.pixels)
+				continue;
+			Candidate& c = segmentCands[i].emplace_back();
+			c.label = k.label;
+			c.box = p.box;
+			c.fromSegment = true;
+			if (m_options.segmentRangeWindow)
+			{
+				c.rangeLo = p.nearRange - segmentParams.gapAt(p.nearRange);
+				c.rangeHi = p.farRange + segmentParams.gapAt(p.farRange);
+			}
+			segmentTasks.emplace_back(i, segmentCands[i].size() - 1);
+		}
+	}
+	// Measures a candidate of class i, checks its size and describes it
+	// (with its cascade support as it is then); returns the time taken.
+	const auto measureCandidate = [&](std::size_t i, Candidate& c)
+	{
+		const auto tm = Clock::now();
+		const TClassOptions& k = m_options.classes[i];
+		// The centre's pixels in a buffer per thread (the box's are kept
+		// for the shape check).
+		thread_local std::vector<cv::Point> centre;
+		centre.clear();
+		std::vector<cv::Point> pixels;
+		// The object is measured in the box grown by measure_margin on
+		// every side (grouped boxes may cut an object); how far it is, in
+		// the box's central half.
+		const cv::Rect2d inner(
+		    c.box.x + c.box.width / 4.0, c.box.y + c.box.height / 4.0,
+		    c.box.width / 2.0, c.box.height / 2.0);
+		const double mg = m_options.measureMargin;
+		const cv::Rect2d b(
+		    c.box.x - mg * c.box.width, c.box.y - mg * c.box.height,
+		    c.box.width * (1 + 2 * mg), c.box.height * (1 + 2 * mg));
+		if (m_options.panoramic)
+			m_impl->projection.sweepPixelsIn(b, inner, pixels, centre);
+		else
+		{
+			const cv::Rect bi =
+			    cv::Rect(b) & cv::Rect(0, 0, points.cols, points.rows);
+			for (int r = bi.y; r < bi.y + bi.height; r++)
+				for (int col = bi.x; col < bi.x + bi.width; col++)
+				{
+					pixels.emplace_back(col, r);
+					if (inner.contains(cv::Point2d(col + 0.5, r + 0.5)))
+						centre.emplace_back(col, r);
+				}
+		}
+		c.measure = measure(
+		    points, labels, pixels, centre, groundZ, m_options.floorTolerance,
+		    k.maxDepth, k.minPoints, m_options.connectedObject,
+		    k.backWallLength, c.rangeLo, c.rangeHi);
+		if (!c.measure)
+			c.rejection = "too few points";
+		else if (c.measure->width < k.minWidth)
+			c.rejection = "too narrow";
+		else if (c.measure->width > k.maxWidth)
+			c.rejection = "too wide";
+		else if (c.measure->top < k.minTop)
+			c.rejection = "too low";
+		else if (c.measure->top > k.maxTop)
+			c.rejection = "too high";
+		else if (
+		    k.maxContinuingShare < 1 &&
+		    continuingShare(points, labels, *c.measure) > k.maxContinuingShare)
+			c.rejection = "taller";
+		else
+			c.accepted = true;
+		if (c.accepted &&
+		    (m_impl->describeShapes || !m_impl->verifiers[i].empty()))
+			c.shape = describeCandidate(
+			    points, normals, normalMask, labels, k, c, pixels, groundZ);
+		return msSince(tm);
+	};
+	std::vector<double> segmentMs(segmentTasks.size());
 	parallelFor(
-	    tasks.size(), threads,
+	    tasks.size() + segmentTasks.size(), threads,
 	    [&](std::size_t t)
 	    {
+		    if (t >= tasks.size())
+		    {
+			    const auto [i, j] = segmentTasks[t - tasks.size()];
+			    segmentMs[t - tasks.size()] =
+			        measureCandidate(i, segmentCands[i][j]);
+			    return;
+		    }
 		    CascadeTask& task = tasks[largestFirst[t]];
 		    const std::size_t i = task.classIndex;
 		    const auto tc = Clock::now();
@@ -1837,9 +1932,10 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		        ranges[i], task.pass);
 		    task.ms = msSince(tc);
 	    });
+	for (std::size_t s = 0; s < segmentTasks.size(); s++)
+		results[segmentTasks[s].first].sizeCheck += segmentMs[s];
 	// Each class's candidates: its passes' boxes in pass order, then its
 	// segments (little work: one thread).
-	const ObjectProposals::Params segmentParams = m_options.segmentParams();
 	for (std::size_t i = 0; i < results.size(); i++)
 	{
 		const TClassOptions& k = m_options.classes[i];
@@ -1862,26 +1958,17 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 			cands[j].box = boxes[j];
 			cands[j].neighbours = neighbours[j];
 		}
-		if (k.segmentCandidates)
-			for (const ObjectProposal& p : segments.at(i))
-			{
-				if (p.tallerPixels > m_options.segmentMaxTaller * p.pixels)
-					continue;
-				Candidate& c = cands.emplace_back();
-				c.label = k.label;
-				c.box = p.box;
-				c.fromSegment = true;
-				if (m_options.segmentRangeWindow)
-				{
-					c.rangeLo = p.nearRange - segmentParams.gapAt(p.nearRange);
-					c.rangeHi = p.farRange + segmentParams.gapAt(p.farRange);
-				}
-			}
+		std::move(
+		    segmentCands[i].begin(), segmentCands[i].end(),
+		    std::back_inserter(cands));
 		for (auto& c : cands)
 			for (std::size_t j = 0; j < boxes.size(); j++)
 				if (ObjectScorer::iou(c.box, boxes[j]) >= 0.3)
 					c.cascadeSupport += std::max(1, neighbours[j]);
 	}
+	// The cascade boxes measured and described; every candidate that
+	// passed the size check scored (the shape check below compares the
+	// scores of the ones duplicates leave).
 	std::vector<std::pair<std::size_t, std::size_t>> all;
 	for (std::size_t i = 0; i < results.size(); i++)
 		for (std::size_t j = 0; j < results[i].candidates.size(); j++)
@@ -1891,67 +1978,15 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	    all.size(), threads,
 	    [&](std::size_t a)
 	    {
-		    const auto tm = Clock::now();
 		    const auto [i, j] = all[a];
-		    const TClassOptions& k = m_options.classes[i];
 		    Candidate& c = results[i].candidates[j];
-		    // The centre's pixels in a buffer per thread (the box's are kept
-		    // for the shape check).
-		    thread_local std::vector<cv::Point> centre;
-		    centre.clear();
-		    std::vector<cv::Point> pixels;
-		    // The object is measured in the box grown by measure_margin on
-		    // every side (grouped boxes may cut an object); how far it is,
-		    // in the box's central half.
-		    const cv::Rect2d inner(
-		        c.box.x + c.box.width / 4.0, c.box.y + c.box.height / 4.0,
-		        c.box.width / 2.0, c.box.height / 2.0);
-		    const double mg = m_options.measureMargin;
-		    const cv::Rect2d b(
-		        c.box.x - mg * c.box.width, c.box.y - mg * c.box.height,
-		        c.box.width * (1 + 2 * mg), c.box.height * (1 + 2 * mg));
-		    if (m_options.panoramic)
-			    m_impl->projection.sweepPixelsIn(b, inner, pixels, centre);
-		    else
-		    {
-			    const cv::Rect bi =
-			        cv::Rect(b) & cv::Rect(0, 0, points.cols, points.rows);
-			    for (int r = bi.y; r < bi.y + bi.height; r++)
-				    for (int col = bi.x; col < bi.x + bi.width; col++)
-				    {
-					    pixels.emplace_back(col, r);
-					    if (inner.contains(cv::Point2d(col + 0.5, r + 0.5)))
-						    centre.emplace_back(col, r);
-				    }
-		    }
-		    c.measure = measure(
-		        points, labels, pixels, centre, groundZ,
-		        m_options.floorTolerance, k.maxDepth, k.minPoints,
-		        m_options.connectedObject, k.backWallLength, c.rangeLo,
-		        c.rangeHi);
-		    if (!c.measure)
-			    c.rejection = "too few points";
-		    else if (c.measure->width < k.minWidth)
-			    c.rejection = "too narrow";
-		    else if (c.measure->width > k.maxWidth)
-			    c.rejection = "too wide";
-		    else if (c.measure->top < k.minTop)
-			    c.rejection = "too low";
-		    else if (c.measure->top > k.maxTop)
-			    c.rejection = "too high";
-		    else if (
-		        k.maxContinuingShare < 1 &&
-		        continuingShare(points, labels, *c.measure) >
-		            k.maxContinuingShare)
-			    c.rejection = "taller";
-		    else
-			    c.accepted = true;
-		    // Its shape and score here, a candidate a task (the shape check
-		    // below compares the scores of the ones duplicates leave).
+		    const auto tm = Clock::now();
+		    if (!c.fromSegment)
+			    measureCandidate(i, c);
+		    else if (c.shape && m_options.classes[i].cascadeSupport)
+			    (*c.shape)[ObjectShape::kCascadeSupport] =
+			        float(c.cascadeSupport);
 		    const ShapeVerifier& verifier = m_impl->verifiers[i];
-		    if (c.accepted && (m_impl->describeShapes || !verifier.empty()))
-			    c.shape = describeCandidate(
-			        points, normals, normalMask, labels, k, c, pixels, groundZ);
 		    if (c.accepted && !verifier.empty())
 			    c.shapeScore = verifier.score(*c.shape);
 		    measureMs[a] = msSince(tm);
