@@ -408,7 +408,7 @@ TEST_F(CascadeDetection, ClassesInParallelGiveTheSameCandidates)
 	CascadeDetector one(opts);
 	opts.threads = 0;
 	CascadeDetector all(opts);
-	std::size_t accepted = 0;
+	std::size_t accepted = 0, supported = 0;
 	for (const Sweep& sw : s.sweeps)
 	{
 		const LabeledSweep ls = p.process(sw);
@@ -426,9 +426,20 @@ TEST_F(CascadeDetection, ClassesInParallelGiveTheSameCandidates)
 			EXPECT_EQ(a[j].rejection, b[j].rejection);
 			EXPECT_DOUBLE_EQ(a[j].shapeScore, b[j].shapeScore);
 			accepted += a[j].accepted;
+			// A segment is described while the cascades run; its shape
+			// still carries the support the cascades gave it.
+			for (const auto* c : {&a[j], &b[j]})
+				if (c->shape && opts.classOptions(c->label).cascadeSupport)
+				{
+					EXPECT_EQ(
+					    (*c->shape)[ObjectShape::kCascadeSupport],
+					    float(c->cascadeSupport));
+					supported += c->fromSegment && c->cascadeSupport > 0;
+				}
 		}
 	}
 	EXPECT_GT(accepted, 10u) << "the scene's objects are found";
+	EXPECT_GT(supported, 0u) << "segments with cascade support were described";
 }
 
 TEST_F(CascadeDetection, SegmentCandidatesReachObjectsTheWindowsMiss)
