@@ -159,6 +159,25 @@ TEST(DetectorProposals, RegionsSplitByRangeAndHeightLimit)
 	EXPECT_GT(at(low, {58, 5})->tallerPixels, 0);
 	EXPECT_EQ(at(low, {15, 10})->tallerPixels, 0);
 	EXPECT_EQ(at(all, {45, 5})->tallerPixels, 0);
+	// Over a mask computed before: the same regions; a pixel the mask
+	// leaves out is in none.
+	cv::Mat mask =
+	    ObjectProposals::objectMask(p.points, p.labels, p.areas, 0.0, params());
+	const auto again = ObjectProposals::findInMask(
+	    p.points, mask, 0.0, nullptr, {2.0}, params());
+	ASSERT_EQ(again.size(), 1u);
+	ASSERT_EQ(again[0].size(), all.size());
+	for (std::size_t i = 0; i < all.size(); i++)
+		EXPECT_EQ(again[0][i].box, all[i].box);
+	mask(cv::Rect(10, 0, 10, 20)).setTo(0);
+	const auto without = ObjectProposals::findInMask(
+	    p.points, mask, 0.0, nullptr, {2.0}, params());
+	EXPECT_EQ(at(without[0], {15, 10}), nullptr);
+	EXPECT_NE(at(without[0], {23, 10}), nullptr);
+	EXPECT_THROW(
+	    ObjectProposals::findInMask(
+	        p.points, cv::Mat(3, 3, CV_8U), 0.0, nullptr, {2.0}, params()),
+	    Error);
 	// Small regions are dropped.
 	auto big = params();
 	big.minPixels = 500;

@@ -1595,15 +1595,8 @@ cv::Mat CascadeDetector::gridImage(
 }
 
 std::vector<cv::Mat> CascadeDetector::gateRanges(
-    const cv::Mat& points, const cv::Mat& labels, const cv::Mat& areaIds,
-    double groundZ) const
+    const cv::Mat& points, const cv::Mat& mask, double groundZ) const
 {
-	cv::Mat mask;
-	if (m_options.rangeObjectsOnly)
-		mask = ObjectProposals::objectMask(
-		    points, labels, areaIds, groundZ,
-		    m_options.proposalParams(
-		        m_options.proposalJoinPx, m_options.proposalRangeGap));
 	const std::size_t nc = m_options.classes.size();
 	std::vector<cv::Mat> ranges(nc);
 	std::vector<double> tops(nc);
@@ -1668,16 +1661,15 @@ std::vector<cv::Mat> CascadeDetector::gateRanges(
 }
 
 std::vector<std::vector<ObjectProposal>> CascadeDetector::objectSegments(
-    const cv::Mat& points, const cv::Mat& labels, const cv::Mat& areaIds,
-    double groundZ) const
+    const cv::Mat& points, const cv::Mat& objects, double groundZ) const
 {
 	// One height limit per class (a class without segment candidates gets
 	// none: its limit is below the ground).
 	std::vector<double> limits;
 	for (const auto& k : m_options.classes)
 		limits.push_back(k.segmentCandidates ? m_options.proposalTop(k) : -1.0);
-	return ObjectProposals::find(
-	    points, labels, areaIds, groundZ,
+	return ObjectProposals::findInMask(
+	    points, objects, groundZ,
 	    m_options.panoramic ? &m_impl->projection : nullptr, limits,
 	    m_options.segmentParams());
 }
@@ -1712,15 +1704,15 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	    m_options.classes.begin(), m_options.classes.end(),
 	    [](const TClassOptions& k) { return k.segmentCandidates; });
 	const double prepareMs = msSince(t0);
+	// The object points (ObjectProposals::objectMask) the gate ranges and
+	// the segments both take, then those: one task beside the images.
 	enum class Task
 	{
 		Images,
-		Segments,
-		Ranges
+		Objects
 	};
 	std::vector<Task> prepare{Task::Images};
-	if (segmented) prepare.push_back(Task::Segments);
-	if (gated) prepare.push_back(Task::Ranges);
+	if (segmented || gated) prepare.push_back(Task::Objects);
 	parallelFor(
 	    prepare.size(), m_options.threads,
 	    [&](std::size_t t)
@@ -1738,14 +1730,25 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 				    imageMs = msSince(tt);
 				    break;
 			    }
-			    case Task::Segments:
-				    segments = objectSegments(points, labels, areaIds, groundZ);
-				    segmentsMs = msSince(tt);
-				    break;
-			    case Task::Ranges:
-				    ranges = gateRanges(points, labels, areaIds, groundZ);
+			    case Task::Objects:
+			    {
+				    cv::Mat objects;
+				    if (segmented || m_options.rangeObjectsOnly)
+					    objects = ObjectProposals::objectMask(
+					        points, labels, areaIds, groundZ,
+					        m_options.segmentParams());
+				    if (gated)
+					    ranges = gateRanges(
+					        points,
+					        m_options.rangeObjectsOnly ? objects : cv::Mat(),
+					        groundZ);
 				    rangesMs = msSince(tt);
+				    const auto ts = Clock::now();
+				    if (segmented)
+					    segments = objectSegments(points, objects, groundZ);
+				    segmentsMs = msSince(ts);
 				    break;
+			    }
 		    }
 	    });
 	std::map<DetectionChannel, cv::Mat> images;

@@ -93,8 +93,20 @@ std::vector<std::vector<ObjectProposal>> ObjectProposals::find(
     double groundZ, const PanoramicProjection* projection,
     const std::vector<double>& topLimits, const Params& params)
 {
-	const cv::Mat sweepMask =
-	    objectMask(points, labels, areaIds, groundZ, params);
+	return findInMask(
+	    points, objectMask(points, labels, areaIds, groundZ, params), groundZ,
+	    projection, topLimits, params);
+}
+
+std::vector<std::vector<ObjectProposal>> ObjectProposals::findInMask(
+    const cv::Mat& points, const cv::Mat& sweepMask, double groundZ,
+    const PanoramicProjection* projection, const std::vector<double>& topLimits,
+    const Params& params)
+{
+	if (sweepMask.type() != CV_8UC1 || sweepMask.size() != points.size())
+		throw Error(
+		    "ObjectProposals: the object mask must be CV_8U of the points' "
+		    "size");
 	// Horizontal range and height above the ground of the object points
 	// (range 0 elsewhere).
 	cv::Mat range(points.size(), CV_32F, cv::Scalar(0));

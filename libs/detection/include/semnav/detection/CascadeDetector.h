@@ -479,16 +479,16 @@ private:
 	    const cv::Mat& smoothed, const cv::Mat& normalMask,
 	    DetectionChannel channel) const;
 	/** range_scales: per class, the horizontal range of the pixels whose
-	 * windows are searched (0 elsewhere), in detection-image layout. */
+	 * windows are searched (0 elsewhere), in detection-image layout;
+	 * `objects` the sweep's ObjectProposals::objectMask (range_objects_only)
+	 * or empty. */
 	std::vector<cv::Mat> gateRanges(
-	    const cv::Mat& points, const cv::Mat& labels, const cv::Mat& areaIds,
-	    double groundZ) const;
+	    const cv::Mat& points, const cv::Mat& objects, double groundZ) const;
 	/** segment_candidates: per class, the 3D segments of its object points
-	 * (none for classes without segment candidates), in detection-image
-	 * layout. */
+	 * (`objects`, the sweep's ObjectProposals::objectMask; none for classes
+	 * without segment candidates), in detection-image layout. */
 	std::vector<std::vector<ObjectProposal>> objectSegments(
-	    const cv::Mat& points, const cv::Mat& labels, const cv::Mat& areaIds,
-	    double groundZ) const;
+	    const cv::Mat& points, const cv::Mat& objects, double groundZ) const;
 
 	struct Impl;
 	TOptions m_options;

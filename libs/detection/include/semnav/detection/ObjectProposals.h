@@ -91,6 +91,13 @@ public:
 	    double groundZ, const PanoramicProjection* projection,
 	    const std::vector<double>& topLimits, const Params& params);
 
+	/** find() over an objectMask() computed before (CV_8U 0/1, sweep
+	 * layout): the same proposals. */
+	static std::vector<std::vector<ObjectProposal>> findInMask(
+	    const cv::Mat& points, const cv::Mat& mask, double groundZ,
+	    const PanoramicProjection* projection,
+	    const std::vector<double>& topLimits, const Params& params);
+
 	/** The regions of one height limit: `range` (CV_32F, horizontal range,
 	 * 0 where no object point) and `height` (CV_32F, above the ground) in
 	 * detection-image layout. */
