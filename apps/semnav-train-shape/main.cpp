@@ -77,6 +77,11 @@ int main(int argc, char** argv)
 	    "Train on the scalar shape features only, not the object-frame "
 	    "grids",
 	    cmd, false);
+	TCLAP::SwitchArg argWithSteps(
+	    "", "with-steps",
+	    "Train on the steps along the sweep's columns too (a flight's "
+	    "risers)",
+	    cmd, false);
 	TCLAP::SwitchArg argWithoutWindow(
 	    "", "without-segment-window",
 	    "Measure segment candidates without segment_range_window, as the "
@@ -120,6 +125,7 @@ int main(int argc, char** argv)
 		    params.maxObjectsPerOther = argBalance.getValue();
 		    params.seed = static_cast<uint64_t>(argSeed.getValue());
 		    params.grids = !argWithoutGrids.getValue();
+		    params.steps = argWithSteps.getValue();
 		    params.minPurity = argPurity.getValue();
 		    params.objectIou = argObjectIou.getValue();
 		    params.maxSamples =

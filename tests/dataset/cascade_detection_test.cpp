@@ -505,8 +505,20 @@ TEST_F(CascadeDetection, MinSeparationKeepsTheFirstRankedOfNearbyDetections)
 	// and pixels take in theirs.
 	const Simulated& s = scene();
 	PerceptionPipeline p;
-	const auto all = detectorWith(opts, [](auto& k) { k.minSeparation = 0; });
-	const auto one = detectorWith(opts, [](auto& k) { k.minSeparation = 100; });
+	const auto all = detectorWith(
+	    opts,
+	    [](auto& k)
+	    {
+		    k.minSeparation = 0;
+		    k.grow = 0;
+	    });
+	const auto one = detectorWith(
+	    opts,
+	    [](auto& k)
+	    {
+		    k.minSeparation = 100;
+		    k.grow = 0;
+	    });
 	std::size_t removed = 0;
 	for (std::size_t i = 0; i < s.sweeps.size(); i++)
 	{
@@ -550,4 +562,59 @@ TEST_F(CascadeDetection, MinSeparationKeepsTheFirstRankedOfNearbyDetections)
 	}
 	std::printf("%zu accepted detections merged into nearby ones\n", removed);
 	EXPECT_GT(removed, 0u);
+}
+
+TEST_F(CascadeDetection, GrowTakesInTheRestOfAnAcceptedFlight)
+{
+	// grow_m changes no decision, score or centroid; it only moves the
+	// boxes (and pixels) of accepted stairs over the flight around them,
+	// and no flight a box matched is lost.
+	const Simulated& s = scene();
+	PerceptionPipeline p;
+	const auto none = detectorWith(opts, [](auto& k) { k.grow = 0; });
+	const auto grown = detectorWith(
+	    opts, [](auto& k) { k.grow = k.label == Label::Stairs ? 0.3 : 0; });
+	double iouBefore = 0, iouAfter = 0;
+	std::size_t changed = 0, accepted = 0, matchedBefore = 0, matchedAfter = 0;
+	for (std::size_t i = 0; i < s.sweeps.size(); i++)
+	{
+		const Sweep& sw = s.sweeps[i];
+		const LabeledSweep ls = p.process(sw);
+		const auto a = candidatesOf(*none, sw, ls),
+		           b = candidatesOf(*grown, sw, ls);
+		ASSERT_EQ(a.size(), b.size());
+		const auto flights = GroundTruthObject::fromLabelImage(
+		    s.groundTruth[i], {Label::Stairs});
+		for (std::size_t j = 0; j < a.size(); j++)
+		{
+			ASSERT_EQ(a[j].accepted, b[j].accepted) << "sweep " << i;
+			EXPECT_EQ(a[j].shapeScore, b[j].shapeScore) << "sweep " << i;
+			if (!a[j].accepted) continue;
+			EXPECT_EQ(a[j].measure->centroid, b[j].measure->centroid);
+			if (a[j].label != Label::Stairs)
+			{
+				EXPECT_EQ(a[j].measure->box, b[j].measure->box);
+				continue;
+			}
+			accepted++;
+			changed += a[j].measure->box != b[j].measure->box;
+			for (const auto& g : flights)
+			{
+				const double before =
+				                 ObjectScorer::iou(a[j].measure->box, g.box),
+				             after =
+				                 ObjectScorer::iou(b[j].measure->box, g.box);
+				iouBefore += before;
+				iouAfter += after;
+				matchedBefore += before >= 0.3;
+				matchedAfter += after >= 0.3;
+			}
+		}
+	}
+	std::printf(
+	    "%zu of %zu accepted flights grown; summed IoU with the true "
+	    "flights %.2f -> %.2f, IoU >= 0.3 %zu -> %zu\n",
+	    changed, accepted, iouBefore, iouAfter, matchedBefore, matchedAfter);
+	EXPECT_GT(changed, 0u);
+	EXPECT_GE(matchedAfter, matchedBefore);
 }

@@ -204,6 +204,8 @@ TEST(CascadeDetector, ShippedConfigLoads)
 	EXPECT_DOUBLE_EQ(o.classes[2].maxContinuingShare, 1);
 	EXPECT_DOUBLE_EQ(o.classes[0].minSeparation, 0);
 	EXPECT_DOUBLE_EQ(o.classes[2].minSeparation, 2.0);
+	EXPECT_DOUBLE_EQ(o.classes[0].grow, 0);
+	EXPECT_DOUBLE_EQ(o.classes[2].grow, 0.3);
 	// Stairs boxes are grouped (every raw window a candidate let the box
 	// with the most points win among duplicates); no wastebasket far pass.
 	EXPECT_EQ(o.classes[2].minNeighbors, 8);
@@ -279,6 +281,10 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	    load("[CascadeDetector]\nclasses = "
 	         "stairs\n[CascadeDetector.stairs]\nmin_separation_m = -1\n"),
 	    ConfigError);
+	EXPECT_THROW(
+	    load("[CascadeDetector]\nclasses = "
+	         "stairs\n[CascadeDetector.stairs]\ngrow_m = 11\n"),
+	    ConfigError);
 	// Round trip through save.
 	CascadeDetector::TOptions o;
 	o.threads = 2;
@@ -289,6 +295,7 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	o.classes[1].cascadeSupport = true;
 	o.classes[0].maxContinuingShare = 0.25;
 	o.classes[2].minSeparation = 1.25;
+	o.classes[2].grow = 0.75;
 	CascadeDetector::TOptions back = test::savedAndLoaded(o, "CascadeDetector");
 	EXPECT_EQ(back.threads, 2);
 	ASSERT_EQ(back.classes.size(), o.classes.size());
@@ -308,6 +315,7 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	EXPECT_DOUBLE_EQ(back.classes[0].maxContinuingShare, 0.25);
 	EXPECT_DOUBLE_EQ(back.classes[1].maxContinuingShare, 1);
 	EXPECT_DOUBLE_EQ(back.classes[2].minSeparation, 1.25);
+	EXPECT_DOUBLE_EQ(back.classes[2].grow, 0.75);
 	EXPECT_NEAR(
 	    back.classes[0].farMaxElevation, o.classes[0].farMaxElevation, 1e-12);
 }

@@ -315,6 +315,82 @@ TEST(ShapeVerifier, WithoutGridsOnlyTheScalarFeaturesCount)
 	}
 }
 
+TEST(ObjectShape, RisersClimbAlongTheColumnsABoxFrontDoesNot)
+{
+	// Each column from the sensor: five risers 0.17 m high, each 0.3 m
+	// farther than the one below (treads not seen, as far away), or a box's
+	// flat front.
+	Patch flight;
+	for (int row = 0; row < 30; row++)
+		for (int col = 0; col < 30; col++)
+		{
+			const int step = row / 6;
+			flight.points.at<cv::Vec3f>(row, col) = cv::Vec3f(
+			    6.0f + 0.3f * float(step), 0.04f * float(col - 15),
+			    0.17f * float(step) + 0.17f * float(row % 6) / 6.0f);
+			flight.normals.at<cv::Vec3f>(row, col) = cv::Vec3f(-1, 0, 0);
+			flight.mask.at<uint8_t>(row, col) = 1;
+			flight.object.emplace_back(col, row);
+			flight.box.emplace_back(col, row);
+		}
+	const auto f = describe(flight);
+	EXPECT_NEAR(f[std::size_t(feature("steps_per_column"))], 4, 1e-6);
+	EXPECT_NEAR(f[std::size_t(feature("climbing_columns"))], 1, 1e-6);
+	EXPECT_NEAR(f[std::size_t(feature("step_run"))], 0.3, 2e-3);
+	EXPECT_NEAR(f[std::size_t(feature("step_rise"))], 0.17, 2e-3);
+	const auto box = describe(front(false));
+	for (const char* name :
+	     {"steps_per_column", "climbing_columns", "step_run", "step_rise"})
+		EXPECT_EQ(box[std::size_t(feature(name))], 0.f) << name;
+}
+
+TEST(ShapeVerifier, ForestWithStepsReadsThemWhereTheyAre)
+{
+	// Objects and others differ only in the steps: a forest over the
+	// scalar features and the steps (after the grids in the descriptor)
+	// tells them apart, and the grids do not move its score.
+	cv::RNG rng(3);
+	const std::vector<int> columns =
+	    ObjectShape::columnsOf(ObjectShape::featureCount(false, true));
+	ASSERT_EQ(columns.size(), std::size_t(ObjectShape::kBaseFeatures + 4));
+	EXPECT_EQ(columns.back(), ObjectShape::kFeatures - 1);
+	EXPECT_TRUE(ObjectShape::columnsOf(ObjectShape::kBaseFeatures + 1).empty());
+	constexpr int n = 200;
+	std::vector<ObjectShape::Features> all(2 * n);
+	cv::Mat samples(2 * n, int(columns.size()), CV_32F);
+	cv::Mat isObject(2 * n, 1, CV_32S);
+	for (int i = 0; i < 2 * n; i++)
+	{
+		const bool object = i < n;
+		for (auto& v : all[std::size_t(i)]) v = float(rng.gaussian(1.0));
+		for (int k = ObjectShape::kStepsAt; k < ObjectShape::kFeatures; k++)
+			all[std::size_t(i)][std::size_t(k)] += object ? 2.f : -2.f;
+		isObject.at<int>(i) = object;
+		for (std::size_t c = 0; c < columns.size(); c++)
+			samples.at<float>(i, int(c)) =
+			    all[std::size_t(i)][std::size_t(columns[c])];
+	}
+	ShapeVerifier::TrainParams tp;
+	tp.trees = 20;
+	const TempDir dir("shape_steps");
+	ShapeVerifier::train(samples, isObject, tp).save(dir.file("s.xml.gz"));
+	const auto v = ShapeVerifier::load(dir.file("s.xml.gz"));
+	EXPECT_EQ(v.featureCount(), int(columns.size()));
+	int right = 0;
+	for (int i = 0; i < 2 * n; i++)
+	{
+		auto f = all[std::size_t(i)];
+		const double s = v.score(f);
+		EXPECT_EQ(s, v.scoreByOpenCv(f));
+		right += (s > 0.5) == (i < n);
+		std::fill(
+		    f.begin() + ObjectShape::kBaseFeatures,
+		    f.begin() + ObjectShape::kStepsAt, 99.f);
+		EXPECT_EQ(v.score(f), s);
+	}
+	EXPECT_GT(right, 2 * n * 95 / 100);
+}
+
 TEST(ShapeVerifier, FlatTreesVoteAsOpenCv)
 {
 	// The shipped forests and a small trained one, on features drawn around

@@ -87,7 +87,8 @@ const std::vector<std::string>& CascadeDetector::TClassOptions::knownKeys()
 	    "cascade_support",
 	    "back_wall_length_m",
 	    "max_continuing_share",
-	    "min_separation_m"};
+	    "min_separation_m",
+	    "grow_m"};
 	return keys;
 }
 
@@ -146,6 +147,7 @@ void CascadeDetector::TClassOptions::loadFromConfigFile(
 	    readChecked(c, s, "max_continuing_share", maxContinuingShare, 0, 1);
 	o.minSeparation =
 	    readChecked(c, s, "min_separation_m", minSeparation, 0, 100);
+	o.grow = readChecked(c, s, "grow_m", grow, 0, 10);
 	if (c.keyExists(s, "channel"))
 	{
 		try
@@ -201,6 +203,7 @@ void CascadeDetector::TClassOptions::saveToConfigFile(
 	c.write(s, "back_wall_length_m", num(backWallLength));
 	c.write(s, "max_continuing_share", num(maxContinuingShare));
 	c.write(s, "min_separation_m", num(minSeparation));
+	c.write(s, "grow_m", num(grow));
 }
 
 std::vector<DetectionPass> CascadeDetector::TClassOptions::passes(
@@ -1525,6 +1528,43 @@ void suppressNearby(
 }
 }  // namespace
 
+void CascadeDetector::growObject(
+    Candidate& c, const TClassOptions& k, const cv::Mat& points,
+    const cv::Mat& labels, double groundZ, double step) const
+{
+	if (step <= 0) return;
+	const Measure& m = *c.measure;
+	const double range = std::hypot(m.centroid.x, m.centroid.y);
+	const int g = int(std::ceil(k.grow / (std::max(range, 0.5) * step)));
+	const cv::Rect grown = cv::Rect(
+	                           m.box.x - g, m.box.y - g, m.box.width + 2 * g,
+	                           m.box.height + 2 * g) &
+	                       cv::Rect(0, 0, points.cols, points.rows);
+	std::vector<cv::Point> pixels;
+	pixels.reserve(std::size_t(grown.area()));
+	for (int r = grown.y; r < grown.y + grown.height; r++)
+		for (int col = grown.x; col < grown.x + grown.width; col++)
+			pixels.emplace_back(col, r);
+	std::vector<double> ranges;
+	for (const auto& px : m.pixels)
+	{
+		const cv::Vec3f& p = points.at<cv::Vec3f>(px);
+		ranges.push_back(std::hypot(double(p[0]), double(p[1])));
+	}
+	// Its points' horizontal ranges, widened: not what lies before it (an
+	// occluder) or far behind.
+	const auto [nearR, farR] = percentiles(ranges, 0.1, 0.9);
+	auto whole = measure(
+	    points, labels, pixels, m.pixels, groundZ, m_options.floorTolerance,
+	    k.maxDepth, k.minPoints, false, k.backWallLength, nearR - 0.3,
+	    farR + 0.5);
+	if (!whole || whole->width > k.maxWidth || whole->top > k.maxTop) return;
+	// Its box and pixels become the flight's; its centroid and extent stay
+	// those its shape was scored on.
+	c.measure->box = whole->box;
+	c.measure->pixels = std::move(whole->pixels);
+}
+
 const std::vector<std::vector<ObjectProposal>>& CascadeDetector::lastProposals()
     const
 {
@@ -1712,6 +1752,7 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		Objects
 	};
 	std::vector<Task> prepare{Task::Images};
+	cv::Mat objects;
 	if (segmented || gated) prepare.push_back(Task::Objects);
 	parallelFor(
 	    prepare.size(), m_options.threads,
@@ -1732,7 +1773,6 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 			    }
 			    case Task::Objects:
 			    {
-				    cv::Mat objects;
 				    if (segmented || m_options.rangeObjectsOnly)
 					    objects = ObjectProposals::objectMask(
 					        points, labels, areaIds, groundZ,
@@ -1759,11 +1799,13 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	const auto tp = Clock::now();
 	m_impl->proposals.clear();
 	// Both layouts keep the sweep's angular steps.
-	double step = 0;
-	if ((m_options.proposals || gated) && phis.size() > 1 && thetas.size() > 1)
-		step = 0.5 *
-		       ((phis.back() - phis.front()) / double(phis.size() - 1) +
-		        (thetas.back() - thetas.front()) / double(thetas.size() - 1));
+	const double pixelAngle =
+	    phis.size() > 1 && thetas.size() > 1
+	        ? 0.5 *
+	              ((phis.back() - phis.front()) / double(phis.size() - 1) +
+	               (thetas.back() - thetas.front()) / double(thetas.size() - 1))
+	        : 0;
+	const double step = m_options.proposals || gated ? pixelAngle : 0;
 	if (m_options.proposals)
 	{
 		std::vector<double> limits;
@@ -2016,6 +2058,10 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 			        return false;
 		        });
 		    if (k.minSeparation > 0) suppressNearby(out, k.minSeparation);
+		    if (k.grow > 0)
+			    for (auto& c : out)
+				    if (c.accepted)
+					    growObject(c, k, points, labels, groundZ, pixelAngle);
 		    results[i].sizeCheck += msSince(tm);
 	    });
 	std::vector<Candidate> out;

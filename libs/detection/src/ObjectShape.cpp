@@ -62,6 +62,101 @@ void describeGrids(
 		                 ? upDepth[k] / float(inDepthCell[std::size_t(k)])
 		                 : -1.0f;
 }
+/** Steps along the sweep's columns into out[0..3]: in a column (one beam
+ * angle, the tilt climbing) a flight's risers are runs of points at one
+ * horizontal range, each a tread's run farther and a rise higher than the
+ * one below. Mean steps per column (of those with 3 points), the share
+ * of columns with two, and the median run and rise of the steps. */
+void describeSteps(
+    const cv::Mat& points, const std::vector<cv::Point>& object, double groundZ,
+    float* out)
+{
+	thread_local std::vector<std::pair<int, cv::Vec2f>> byColumn;
+	thread_local std::vector<double> runs, rises;
+	byColumn.clear();
+	runs.clear();
+	rises.clear();
+	for (const auto& px : object)
+	{
+		const auto& q = points.at<cv::Vec3f>(px);
+		if (!std::isfinite(q[0])) continue;
+		byColumn.emplace_back(
+		    px.x, cv::Vec2f(q[2] - float(groundZ), std::hypot(q[0], q[1])));
+	}
+	std::sort(
+	    byColumn.begin(), byColumn.end(),
+	    [](const auto& a, const auto& b) {
+		    return a.first != b.first ? a.first < b.first
+		                              : a.second[0] < b.second[0];
+	    });
+	constexpr float kFaceGap = 0.05f;
+	int columns = 0, climbing = 0, steps = 0;
+	for (std::size_t i = 0; i < byColumn.size();)
+	{
+		std::size_t j = i;
+		while (j < byColumn.size() && byColumn[j].first == byColumn[i].first)
+			j++;
+		if (j - i >= 3)
+		{
+			columns++;
+			// Faces: points whose ranges follow each other within kFaceGap.
+			int inColumn = 0;
+			float faceBottom = byColumn[i].second[0], faceTop = faceBottom;
+			float faceRange = byColumn[i].second[1];
+			int facePoints = 1;
+			bool havePrevious = false;
+			float prevBottom = 0, prevRange = 0;
+			const auto close = [&]
+			{
+				if (facePoints >= 2 && faceTop - faceBottom >= 0.03f)
+				{
+					if (havePrevious)
+					{
+						const float run = faceRange - prevRange;
+						const float rise = faceBottom - prevBottom;
+						if (run >= 0.12f && run <= 0.65f && rise >= 0.06f &&
+						    rise <= 0.35f)
+						{
+							inColumn++;
+							runs.push_back(run);
+							rises.push_back(rise);
+						}
+					}
+					havePrevious = true;
+					prevBottom = faceBottom;
+					prevRange = faceRange;
+				}
+			};
+			for (std::size_t k = i + 1; k < j; k++)
+			{
+				const cv::Vec2f& v = byColumn[k].second;
+				if (std::abs(v[1] - byColumn[k - 1].second[1]) <= kFaceGap)
+				{
+					faceTop = v[0];
+					faceRange = v[1];
+					facePoints++;
+					continue;
+				}
+				close();
+				faceBottom = faceTop = v[0];
+				faceRange = v[1];
+				facePoints = 1;
+			}
+			close();
+			steps += inColumn;
+			climbing += inColumn >= 2;
+		}
+		i = j;
+	}
+	if (columns == 0) return;
+	out[0] = float(steps) / float(columns);
+	out[1] = float(climbing) / float(columns);
+	if (!runs.empty())
+	{
+		out[2] = float(percentile(runs, 0.5));
+		out[3] = float(percentile(rises, 0.5));
+	}
+}
 }  // namespace
 
 const std::array<std::string, ObjectShape::kFeatures>& ObjectShape::names()
@@ -94,9 +189,31 @@ const std::array<std::string, ObjectShape::kFeatures>& ObjectShape::names()
 					all[std::size_t(i++)] = std::string(grid) + "_" +
 					                        std::to_string(r) + "_" +
 					                        std::to_string(c);
+		for (const char* step :
+		     {"steps_per_column", "climbing_columns", "step_run", "step_rise"})
+			all[std::size_t(i++)] = step;
 		return all;
 	}();
 	return n;
+}
+
+std::vector<int> ObjectShape::columnsOf(int count)
+{
+	for (const bool grids : {false, true})
+		for (const bool steps : {false, true})
+		{
+			if (count != featureCount(grids, steps)) continue;
+			std::vector<int> columns;
+			for (int i = 0; i < kBaseFeatures; i++) columns.push_back(i);
+			if (grids)
+				for (int i = 0; i < kGridFeatures; i++)
+					columns.push_back(kBaseFeatures + i);
+			if (steps)
+				for (int i = 0; i < kStepFeatures; i++)
+					columns.push_back(kStepsAt + i);
+			return columns;
+		}
+	return {};
 }
 
 ObjectShape::Features ObjectShape::describe(
@@ -295,6 +412,7 @@ ObjectShape::Features ObjectShape::describe(
 		f[28] = float(std::max(corr(zl, ll), corr(zd, dd)));
 	}
 	describeGrids(lat, dep, h, n, f.data() + kBaseFeatures);
+	describeSteps(points, object, groundZ, f.data() + kStepsAt);
 	return f;
 }
 

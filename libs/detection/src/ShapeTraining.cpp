@@ -32,8 +32,9 @@ ShapeTraining::Samples ShapeTraining::collect(
 	CascadeDetector cascades(detector);
 	cascades.describeShapes(true);
 	PerceptionPipeline pipeline;
-	const int columns =
-	    params.grids ? ObjectShape::kFeatures : ObjectShape::kBaseFeatures;
+	const std::vector<int> featureColumns = ObjectShape::columnsOf(
+	    ObjectShape::featureCount(params.grids, params.steps));
+	const int columns = int(featureColumns.size());
 	Samples out;
 	std::vector<float> rows;
 	std::vector<int> isObject;
@@ -78,8 +79,8 @@ ShapeTraining::Samples ShapeTraining::collect(
 					continue;
 				}
 				(object ? out.objects : out.others)++;
-				rows.insert(
-				    rows.end(), c.shape->begin(), c.shape->begin() + columns);
+				for (int k : featureColumns)
+					rows.push_back((*c.shape)[std::size_t(k)]);
 				isObject.push_back(object ? 1 : 0);
 			}
 			out.sweeps++;

@@ -11,8 +11,14 @@ namespace
 {
 bool knownFeatureCount(int n)
 {
-	return n == ObjectShape::kFeatures || n == ObjectShape::kBaseFeatures;
+	return !ObjectShape::columnsOf(n).empty();
 }
+
+const std::string kFeatureCounts =
+    std::to_string(ObjectShape::featureCount(false, false)) + ", " +
+    std::to_string(ObjectShape::featureCount(false, true)) + ", " +
+    std::to_string(ObjectShape::featureCount(true, false)) + " or " +
+    std::to_string(ObjectShape::featureCount(true, true));
 }  // namespace
 
 int ShapeVerifier::featureCount() const
@@ -26,8 +32,8 @@ ShapeVerifier ShapeVerifier::train(
 	if (samples.type() != CV_32F || !knownFeatureCount(samples.cols) ||
 	    isObject.type() != CV_32S || isObject.rows != samples.rows)
 		throw Error(
-		    "ShapeVerifier: samples must be N x ObjectShape::kFeatures "
-		    "(or kBaseFeatures)");
+		    "ShapeVerifier: samples must be N x " + kFeatureCounts +
+		    " ObjectShape features");
 	const int objects = cv::countNonZero(isObject);
 	if (objects == 0 || objects == samples.rows)
 		throw Error(
@@ -65,10 +71,8 @@ ShapeVerifier ShapeVerifier::load(const std::string& path)
 	    !v.m_forest->isClassifier() ||
 	    !knownFeatureCount(v.m_forest->getVarCount()))
 		throw IoError(
-		    path + ": not a shape model over " +
-		    std::to_string(ObjectShape::kFeatures) + " (or " +
-		    std::to_string(ObjectShape::kBaseFeatures) +
-		    ") ObjectShape features");
+		    path + ": not a shape model over " + kFeatureCounts +
+		    " ObjectShape features");
 	v.flatten();
 	return v;
 }
@@ -113,11 +117,13 @@ void ShapeVerifier::flatten()
 	m_forest->getVotes(
 	    cv::Mat(1, featureCount(), CV_32F, const_cast<float*>(zero.data())),
 	    votes, 0);
+	m_columns = ObjectShape::columnsOf(featureCount());
 	const auto& nodes = m_forest->getNodes();
 	const auto& splits = m_forest->getSplits();
 	m_roots.clear();
 	m_nodes.clear();
-	if (nodes.size() > kIndexMask || featureCount() >= int(kLeaf)) return;
+	if (nodes.size() > kIndexMask || ObjectShape::kFeatures >= int(kLeaf))
+		return;
 	m_nodes.reserve(nodes.size());
 	// Each tree depth first, left before right; (OpenCV's node, the split
 	// whose right child it is, or -1).
@@ -143,7 +149,7 @@ void ShapeVerifier::flatten()
 					throw Error(
 					    "ShapeVerifier: a split on no ObjectShape feature");
 				out.threshold = sp.c;
-				out.link = uint32_t(sp.varIdx) << 24;
+				out.link = uint32_t(m_columns[std::size_t(sp.varIdx)]) << 24;
 				stack.emplace_back(n.right, int(at));
 				stack.emplace_back(n.left, -1);
 			}
@@ -195,8 +201,9 @@ double ShapeVerifier::score(const ObjectShape::Features& f) const
 double ShapeVerifier::scoreByOpenCv(const ObjectShape::Features& f) const
 {
 	if (!m_forest) return 1;
-	const cv::Mat sample(
-	    1, featureCount(), CV_32F, const_cast<float*>(f.data()));
+	cv::Mat sample(1, featureCount(), CV_32F);
+	for (int i = 0; i < featureCount(); i++)
+		sample.at<float>(0, i) = f[std::size_t(m_columns[std::size_t(i)])];
 	cv::Mat votes;
 	m_forest->getVotes(sample, votes, 0);
 	// Row 0: the class responses; row 1: this sample's votes per class.

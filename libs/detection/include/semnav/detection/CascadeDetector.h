@@ -145,6 +145,14 @@ public:
 		 * (as among duplicates) and its box and pixels take in the others'
 		 * (its centroid and extent stay its own); 0: no check. */
 		double minSeparation = 0;
+		/** grow_m: an accepted detection's object is measured again in
+		 * its box grown by this (m, at its range) on every side, from its
+		 * points (connected to them): a flight whose candidate held a part
+		 * of it, beside an occluder or cut by a range jump, gets the whole
+		 * flight's box and pixels (its centroid and extent stay its own),
+		 * unless the grown object is too wide or too high for the class;
+		 * 0: not grown. */
+		double grow = 0;
 	};
 
 	/** INI section [CascadeDetector] plus one [CascadeDetector.<label>]
@@ -489,6 +497,12 @@ private:
 	 * without segment candidates), in detection-image layout. */
 	std::vector<std::vector<ObjectProposal>> objectSegments(
 	    const cv::Mat& points, const cv::Mat& objects, double groundZ) const;
+	/** grow_m: `c` (accepted, class `k`) measured again in its sweep box
+	 * grown by k.grow at its range (`step` rad per pixel); its box and
+	 * pixels become what that finds unless it is too wide or high. */
+	void growObject(
+	    Candidate& c, const TClassOptions& k, const cv::Mat& points,
+	    const cv::Mat& labels, double groundZ, double step) const;
 
 	struct Impl;
 	TOptions m_options;

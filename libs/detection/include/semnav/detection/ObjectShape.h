@@ -18,7 +18,8 @@ namespace semnav
  * coarse grids of its points in its own frame (height against depth along
  * the line of sight and against the side, the extents split in
  * kGridSide): where the points lie and how up-facing they are there (a
- * flight of stairs climbs, a basin's top overhangs its pedestal). Used by
+ * flight of stairs climbs, a basin's top overhangs its pedestal), and the
+ * steps along its sweep columns. Used by
  * ShapeVerifier to tell washbasins from tables, wastebaskets from chairs
  * and boxes, and stairs from furniture where the window detector cannot. */
 class ObjectShape
@@ -32,8 +33,27 @@ public:
 	 * each height x depth cell, their mean |normal z| there (-1: none) and
 	 * the share in each height x side cell; rows from the ground up. */
 	static constexpr int kGridFeatures = 3 * kGridSide * kGridSide;
-	static constexpr int kFeatures = kBaseFeatures + kGridFeatures;
+	/** After the grids: steps along the sweep's columns (a flight's
+	 * risers, each a run farther and a rise higher than the one below):
+	 * steps per column, the share of columns with two, the median run and
+	 * rise (m). */
+	static constexpr int kStepFeatures = 4;
+	static constexpr int kStepsAt = kBaseFeatures + kGridFeatures;
+	static constexpr int kFeatures = kStepsAt + kStepFeatures;
 	using Features = std::array<float, kFeatures>;
+
+	/** The descriptor's columns a forest over `count` features reads,
+	 * in order: the scalar features, then the grids and / or the steps
+	 * (kBaseFeatures, + kGridFeatures, + kStepFeatures, or all); empty
+	 * for any other count. */
+	static std::vector<int> columnsOf(int count);
+	/** The feature count of the scalar features with the grids and / or
+	 * the steps. */
+	static constexpr int featureCount(bool grids, bool steps)
+	{
+		return kBaseFeatures + (grids ? kGridFeatures : 0) +
+		       (steps ? kStepFeatures : 0);
+	}
 
 	/** Short names of the features, in order. */
 	static const std::array<std::string, kFeatures>& names();

@@ -21,8 +21,9 @@ class ShapeTraining
 public:
 	struct Samples
 	{
-		/** CV_32F, one ObjectShape::Features per row (its first
-		 * kBaseFeatures without grids); CV_32S 1 / 0. */
+		/** CV_32F, one ObjectShape::Features per row (the columns
+		 * ObjectShape::columnsOf gives without grids or steps); CV_32S
+		 * 1 / 0. */
 		cv::Mat features, isObject;
 		/** The object and other samples kept (after the subsets). */
 		std::size_t objects = 0, others = 0;
@@ -52,9 +53,10 @@ public:
 		 * each kind, in proportion; 0: all). */
 		std::size_t maxSamples = 0;
 		uint64_t seed = 1;
-		/** With ObjectShape's object-frame grids (all kFeatures); false:
-		 * the first kBaseFeatures only. */
+		/** With ObjectShape's object-frame grids, and with its steps
+		 * along the sweep's columns. */
 		bool grids = true;
+		bool steps = false;
 		/** An object sample's measured pixels are at least this share of
 		 * that object's (ground truth); fewer: ambiguous (0: no check). */
 		double minPurity = 0;

@@ -31,7 +31,8 @@ public:
 
 	ShapeVerifier() = default;
 	/** Trains on `samples` (CV_32F, one ObjectShape::Features per row, or
-	 * its first kBaseFeatures: a forest without the grids) with
+	 * the columns ObjectShape::columnsOf gives: without the grids or the
+	 * steps) with
 	 * `isObject` (CV_32S, 1 object / 0 not). Throws Error without samples
 	 * of both kinds. */
 	static ShapeVerifier train(
@@ -45,8 +46,8 @@ public:
 	void save(const std::string& path) const;
 
 	bool empty() const { return !m_forest; }
-	/** The ObjectShape features the forest was trained on (the first
-	 * kBaseFeatures or all kFeatures; 0 when empty). */
+	/** How many ObjectShape features the forest was trained on
+	 * (ObjectShape::columnsOf tells which; 0 when empty). */
 	int featureCount() const;
 	/** Fraction of trees voting "object", in [0, 1]. */
 	double score(const ObjectShape::Features& f) const;
@@ -72,6 +73,8 @@ private:
 	cv::Ptr<cv::ml::RTrees> m_forest;
 	std::vector<uint32_t> m_roots;
 	std::vector<FlatNode> m_nodes;
+	/** The descriptor column of each of the forest's features. */
+	std::vector<int> m_columns;
 };
 
 }  // namespace semnav
