@@ -338,6 +338,11 @@ TEST(ObjectShape, RisersClimbAlongTheColumnsABoxFrontDoesNot)
 	EXPECT_NEAR(f[std::size_t(feature("climbing_columns"))], 1, 1e-6);
 	EXPECT_NEAR(f[std::size_t(feature("step_run"))], 0.3, 2e-3);
 	EXPECT_NEAR(f[std::size_t(feature("step_rise"))], 0.17, 2e-3);
+	// Not described for a forest that does not read them.
+	const auto without = ObjectShape::describe(
+	    flight.points, flight.normals, flight.mask, flight.labels,
+	    flight.object, flight.box, 0.0, false);
+	EXPECT_EQ(without[std::size_t(feature("steps_per_column"))], 0.f);
 	const auto box = describe(front(false));
 	for (const char* name :
 	     {"steps_per_column", "climbing_columns", "step_run", "step_rise"})
@@ -376,6 +381,11 @@ TEST(ShapeVerifier, ForestWithStepsReadsThemWhereTheyAre)
 	ShapeVerifier::train(samples, isObject, tp).save(dir.file("s.xml.gz"));
 	const auto v = ShapeVerifier::load(dir.file("s.xml.gz"));
 	EXPECT_EQ(v.featureCount(), int(columns.size()));
+	EXPECT_TRUE(v.readsSteps());
+	EXPECT_FALSE(ShapeVerifier::train(
+	                 samples.colRange(0, ObjectShape::kBaseFeatures).clone(),
+	                 isObject, tp)
+	                 .readsSteps());
 	int right = 0;
 	for (int i = 0; i < 2 * n; i++)
 	{

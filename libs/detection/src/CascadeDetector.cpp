@@ -1429,16 +1429,16 @@ std::optional<CascadeDetector::Measure> CascadeDetector::measure(
 namespace
 {
 /** A measured candidate's ObjectShape, with its cascade support if its
- * class uses it (cascade_support). */
+ * class uses it (cascade_support), and its steps if `steps`. */
 ObjectShape::Features describeCandidate(
     const cv::Mat& points, const cv::Mat& normals, const cv::Mat& normalMask,
     const cv::Mat& labels, const CascadeDetector::TClassOptions& k,
     const CascadeDetector::Candidate& c,
-    const std::vector<cv::Point>& surroundings, double groundZ)
+    const std::vector<cv::Point>& surroundings, double groundZ, bool steps)
 {
 	auto f = ObjectShape::describe(
 	    points, normals, normalMask, labels, c.measure->pixels, surroundings,
-	    groundZ);
+	    groundZ, steps);
 	if (k.cascadeSupport)
 		f[ObjectShape::kCascadeSupport] = float(c.cascadeSupport);
 	return f;
@@ -1952,7 +1952,8 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		if (c.accepted &&
 		    (m_impl->describeShapes || !m_impl->verifiers[i].empty()))
 			c.shape = describeCandidate(
-			    points, normals, normalMask, labels, k, c, pixels, groundZ);
+			    points, normals, normalMask, labels, k, c, pixels, groundZ,
+			    m_impl->describeShapes || m_impl->verifiers[i].readsSteps());
 		return msSince(tm);
 	};
 	std::vector<double> segmentMs(segmentTasks.size());

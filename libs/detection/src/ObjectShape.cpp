@@ -4,6 +4,7 @@
 #include <semnav/detection/ObjectShape.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <functional>
 #include <opencv2/core.hpp>
@@ -71,38 +72,50 @@ void describeSteps(
     const cv::Mat& points, const std::vector<cv::Point>& object, double groundZ,
     float* out)
 {
-	thread_local std::vector<std::pair<int, cv::Vec2f>> byColumn;
+	// (height, horizontal range) of the points, bucketed by column, each
+	// column from the ground up.
+	thread_local std::vector<cv::Vec2f> byColumn;
+	thread_local std::vector<int> columnStart;
 	thread_local std::vector<double> runs, rises;
-	byColumn.clear();
 	runs.clear();
 	rises.clear();
+	int c0 = INT_MAX, c1 = -1;
+	for (const auto& px : object)
+	{
+		c0 = std::min(c0, px.x);
+		c1 = std::max(c1, px.x);
+	}
+	if (c1 < 0) return;
+	columnStart.assign(std::size_t(c1 - c0 + 2), 0);
+	for (const auto& px : object)
+		if (std::isfinite(points.at<cv::Vec3f>(px)[0]))
+			columnStart[std::size_t(px.x - c0 + 1)]++;
+	for (std::size_t k = 1; k < columnStart.size(); k++)
+		columnStart[k] += columnStart[k - 1];
+	byColumn.resize(std::size_t(columnStart.back()));
 	for (const auto& px : object)
 	{
 		const auto& q = points.at<cv::Vec3f>(px);
 		if (!std::isfinite(q[0])) continue;
-		byColumn.emplace_back(
-		    px.x, cv::Vec2f(q[2] - float(groundZ), std::hypot(q[0], q[1])));
+		byColumn[std::size_t(columnStart[std::size_t(px.x - c0)]++)] =
+		    cv::Vec2f(q[2] - float(groundZ), std::hypot(q[0], q[1]));
 	}
-	std::sort(
-	    byColumn.begin(), byColumn.end(),
-	    [](const auto& a, const auto& b) {
-		    return a.first != b.first ? a.first < b.first
-		                              : a.second[0] < b.second[0];
-	    });
+	// columnStart[k] is now the end of column k (the start of k + 1).
 	constexpr float kFaceGap = 0.05f;
 	int columns = 0, climbing = 0, steps = 0;
-	for (std::size_t i = 0; i < byColumn.size();)
+	for (std::size_t col = 0, i = 0; col + 1 < columnStart.size(); col++)
 	{
-		std::size_t j = i;
-		while (j < byColumn.size() && byColumn[j].first == byColumn[i].first)
-			j++;
+		const std::size_t j = std::size_t(columnStart[col]);
+		std::sort(
+		    byColumn.begin() + long(i), byColumn.begin() + long(j),
+		    [](const cv::Vec2f& a, const cv::Vec2f& b) { return a[0] < b[0]; });
 		if (j - i >= 3)
 		{
 			columns++;
 			// Faces: points whose ranges follow each other within kFaceGap.
 			int inColumn = 0;
-			float faceBottom = byColumn[i].second[0], faceTop = faceBottom;
-			float faceRange = byColumn[i].second[1];
+			float faceBottom = byColumn[i][0], faceTop = faceBottom;
+			float faceRange = byColumn[i][1];
 			int facePoints = 1;
 			bool havePrevious = false;
 			float prevBottom = 0, prevRange = 0;
@@ -129,8 +142,8 @@ void describeSteps(
 			};
 			for (std::size_t k = i + 1; k < j; k++)
 			{
-				const cv::Vec2f& v = byColumn[k].second;
-				if (std::abs(v[1] - byColumn[k - 1].second[1]) <= kFaceGap)
+				const cv::Vec2f& v = byColumn[k];
+				if (std::abs(v[1] - byColumn[k - 1][1]) <= kFaceGap)
 				{
 					faceTop = v[0];
 					faceRange = v[1];
@@ -219,7 +232,7 @@ std::vector<int> ObjectShape::columnsOf(int count)
 ObjectShape::Features ObjectShape::describe(
     const cv::Mat& points, const cv::Mat& normals, const cv::Mat& normalMask,
     const cv::Mat& labels, const std::vector<cv::Point>& object,
-    const std::vector<cv::Point>& surroundings, double groundZ)
+    const std::vector<cv::Point>& surroundings, double groundZ, bool steps)
 {
 	Features f{};
 	std::vector<cv::Vec3d> p;
@@ -412,7 +425,7 @@ ObjectShape::Features ObjectShape::describe(
 		f[28] = float(std::max(corr(zl, ll), corr(zd, dd)));
 	}
 	describeGrids(lat, dep, h, n, f.data() + kBaseFeatures);
-	describeSteps(points, object, groundZ, f.data() + kStepsAt);
+	if (steps) describeSteps(points, object, groundZ, f.data() + kStepsAt);
 	return f;
 }
 

@@ -26,6 +26,11 @@ int ShapeVerifier::featureCount() const
 	return m_forest ? m_forest->getVarCount() : 0;
 }
 
+bool ShapeVerifier::readsSteps() const
+{
+	return !m_columns.empty() && m_columns.back() >= ObjectShape::kStepsAt;
+}
+
 ShapeVerifier ShapeVerifier::train(
     const cv::Mat& samples, const cv::Mat& isObject, const TrainParams& params)
 {

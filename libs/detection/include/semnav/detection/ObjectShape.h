@@ -69,12 +69,14 @@ public:
 	 * `normalMask` CV_8U, `labels` CV_8U rule labels (may be empty),
 	 * `surroundings` the sweep pixels of the box the object was measured in
 	 * (a superset of `object`), `groundZ` the ground height. All zero when
-	 * `object` has no valid point. */
+	 * `object` has no valid point. `steps` false leaves the steps 0 (a
+	 * forest that does not read them). */
 	static Features describe(
 	    const cv::Mat& points, const cv::Mat& normals,
 	    const cv::Mat& normalMask, const cv::Mat& labels,
 	    const std::vector<cv::Point>& object,
-	    const std::vector<cv::Point>& surroundings, double groundZ);
+	    const std::vector<cv::Point>& surroundings, double groundZ,
+	    bool steps = true);
 };
 
 }  // namespace semnav

@@ -49,6 +49,8 @@ public:
 	/** How many ObjectShape features the forest was trained on
 	 * (ObjectShape::columnsOf tells which; 0 when empty). */
 	int featureCount() const;
+	/** Whether the forest reads ObjectShape's steps. */
+	bool readsSteps() const;
 	/** Fraction of trees voting "object", in [0, 1]. */
 	double score(const ObjectShape::Features& f) const;
 	/** The same through cv::ml::RTrees::getVotes (slower; for checks). */
