@@ -10,6 +10,7 @@
 #include <semnav/detection/CascadeDetector.h>
 #include <semnav/detection/GroundTruthObject.h>
 #include <semnav/detection/ObjectScorer.h>
+#include <semnav/detection/ShapeTraining.h>
 #include <semnav/perception/PerceptionPipeline.h>
 #include <semnav/sim/RayCaster.h>
 #include <semnav/sim/SceneLoader.h>
@@ -617,4 +618,31 @@ TEST_F(CascadeDetection, GrowTakesInTheRestOfAnAcceptedFlight)
 	    changed, accepted, iouBefore, iouAfter, matchedBefore, matchedAfter);
 	EXPECT_GT(changed, 0u);
 	EXPECT_GE(matchedAfter, matchedBefore);
+}
+
+TEST_F(CascadeDetection, ShapeTrainingLearnsEachCandidateByItsOwnBox)
+{
+	// The forest learns the candidates before any growth: the shipped
+	// grow_m (or any other) gives the same samples, so that
+	// scripts/train-cascades reproduces the shipped forests.
+	const auto dir = std::filesystem::temp_directory_path() /
+	                 ("semnav_shape_training_" + std::to_string(::getpid()));
+	const Scene sc =
+	    SceneLoader::loadFile(kSource + "/datasets/cascade-scenes/test_c.yaml");
+	SimulationRunner(sc, SimulationRunner::TOptions(), 1).run(dir.string());
+	ShapeTraining::Params params;
+	params.grids = false;
+	params.steps = true;
+	const auto samplesWith = [&](double grow)
+	{
+		CascadeDetector::TOptions o = opts;
+		for (auto& k : o.classes) k.grow = grow;
+		return ShapeTraining::collect({dir.string()}, o, Label::Stairs, params);
+	};
+	const auto shipped = samplesWith(2.0), none = samplesWith(0);
+	std::filesystem::remove_all(dir);
+	ASSERT_GT(shipped.objects, 0u);
+	ASSERT_EQ(shipped.features.size(), none.features.size());
+	EXPECT_EQ(cv::norm(shipped.features, none.features, cv::NORM_INF), 0);
+	EXPECT_EQ(cv::countNonZero(shipped.isObject != none.isObject), 0);
 }

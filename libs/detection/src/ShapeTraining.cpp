@@ -24,8 +24,10 @@ ShapeTraining::Samples ShapeTraining::collect(
 	// check is a rule of its own at detection.
 	detector.classes[0].maxContinuingShare = 1;
 	// Each candidate is learnt by its own box: merging the parts of one
-	// object (min_separation_m) comes after the forest.
+	// object (min_separation_m) and growing it (grow_m) come after the
+	// forest.
 	detector.classes[0].minSeparation = 0;
+	detector.classes[0].grow = 0;
 	if (params.minNeighbors >= 0)
 		detector.classes[0].minNeighbors = params.minNeighbors;
 	if (params.maxStages >= 0) detector.classes[0].maxStages = params.maxStages;
