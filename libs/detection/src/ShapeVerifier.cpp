@@ -127,8 +127,10 @@ void ShapeVerifier::flatten()
 	const auto& splits = m_forest->getSplits();
 	m_roots.clear();
 	m_nodes.clear();
-	if (nodes.size() > kIndexMask || ObjectShape::kFeatures >= int(kLeaf))
-		return;
+	static_assert(
+	    ObjectShape::kFeatures < int(kLeaf),
+	    "a FlatNode's feature index must not be kLeaf");
+	if (nodes.size() > kIndexMask) return;
 	m_nodes.reserve(nodes.size());
 	// Each tree depth first, left before right; (OpenCV's node, the split
 	// whose right child it is, or -1).

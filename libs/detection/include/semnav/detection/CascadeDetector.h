@@ -146,12 +146,12 @@ public:
 		 * (its centroid and extent stay its own); 0: no check. */
 		double minSeparation = 0;
 		/** grow_m: an accepted detection's object is measured again in
-		 * its box grown by this (m, at its range) on every side, from its
-		 * points (connected to them): a flight whose candidate held a part
-		 * of it, beside an occluder or cut by a range jump, gets the whole
-		 * flight's box and pixels (its centroid and extent stay its own),
-		 * unless the grown object is too wide or too high for the class;
-		 * 0: not grown. */
+		 * its box grown by this (m, at its range) on every side, over the
+		 * points within its own horizontal ranges (not connected to it in
+		 * 3D): a flight whose candidate held a part of it, beside an
+		 * occluder or cut by a range jump, gets the whole flight's box and
+		 * pixels (its centroid and extent stay its own), unless the grown
+		 * object is too wide or too high for the class; 0: not grown. */
 		double grow = 0;
 	};
 
@@ -488,10 +488,10 @@ private:
 	    DetectionChannel channel) const;
 	/** range_scales: per class, the horizontal range of the pixels whose
 	 * windows are searched (0 elsewhere), in detection-image layout;
-	 * `objects` the sweep's ObjectProposals::objectMask (range_objects_only)
+	 * `mask` the sweep's ObjectProposals::objectMask (range_objects_only)
 	 * or empty. */
 	std::vector<cv::Mat> gateRanges(
-	    const cv::Mat& points, const cv::Mat& objects, double groundZ) const;
+	    const cv::Mat& points, const cv::Mat& mask, double groundZ) const;
 	/** segment_candidates: per class, the 3D segments of its object points
 	 * (`objects`, the sweep's ObjectProposals::objectMask; none for classes
 	 * without segment candidates), in detection-image layout. */
