@@ -372,6 +372,35 @@ TEST(SemanticMap, StairsCentreIgnoresAnOutlyingSighting)
 	EXPECT_NEAR(st[0].centroid.y, 0.0, 0.06);
 }
 
+TEST(SemanticMap, AWashbasinBesideAFlightIsNoPartOfIt)
+{
+	// The flight above, beside a washbasin (x 3.3..3.8) that four sweeps
+	// label washbasin; in two more a false stairs detection labels it
+	// stairs too (test_f: a flight's centre moved 0.38 m).
+	const auto basin = [](Label l)
+	{
+		auto pts = flight();
+		for (double x = 3.3; x <= 3.8; x += 0.03)
+			for (double y = -0.3; y <= 0.3; y += 0.03)
+				pts.push_back({x, y, 0.8, l});
+		return pts;
+	};
+	SemanticMap m;
+	for (int k = 0; k < 6; k++)
+	{
+		const auto f = detectionSweep(
+		    Label::Stairs, {k < 4 ? 2.6 : 3.0, 0.0, 0.4}, {1.2, 1.2, 0.8},
+		    basin(k < 4 ? Label::Washbasin : Label::Stairs));
+		m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
+	}
+	const auto st = m.instances(Label::Stairs);
+	ASSERT_EQ(st.size(), 1u);
+	// With the basin's cells the flight's would reach the footprint's edge
+	// (x 3.6): centre 2.8.
+	EXPECT_NEAR(st[0].centroid.x, 2.6, 0.06);
+	EXPECT_NEAR(st[0].centroid.y, 0.0, 0.06);
+}
+
 TEST(SemanticMap, ABoxHoldingTwoObjectsDoesNotJoinThem)
 {
 	// Two wastebaskets 1.1 m apart; the first detection's box held both

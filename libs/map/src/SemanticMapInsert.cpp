@@ -367,7 +367,11 @@ void SemanticMap::centreOnCells(ObjectInstance& o) const
 	{
 		const LabelSet ls(
 		    static_cast<LabelSet::mask_t>(labels[g.index(cy, cx)]));
-		return ls.contains(Label::Stairs) && !ls.contains(Label::Wall);
+		// A wall, or an object beside the flight that a false stairs
+		// detection took in, is no part of it.
+		return ls.contains(Label::Stairs) && !ls.contains(Label::Wall) &&
+		       !ls.contains(Label::Washbasin) &&
+		       !ls.contains(Label::Wastebasket);
 	};
 	// Cells labelled in too few sweeps, against the footprint's most
 	// labelled one, are no part of the flight (a map saved without the

@@ -122,9 +122,10 @@ public:
 		 * one does not (m). */
 		double stairsMaxBottom = 0.1;
 		/** A staircase's centroid (x, y) is the centre of the cells
-		 * labelled stairs (and not wall) connected to its sightings within
-		 * its footprint: one detection box often holds part of the flight
-		 * only, the labelled cells of all sweeps hold all of it. */
+		 * labelled stairs (and not wall, washbasin or wastebasket in any
+		 * sweep) connected to its sightings within its footprint: one
+		 * detection box often holds part of the flight only, the labelled
+		 * cells of all sweeps hold all of it. */
 		bool stairsCentroidFromCells = true;
 		/** Of those cells, only the ones labelled stairs in at least this
 		 * share of the sweeps that labelled its most labelled cell (layer
