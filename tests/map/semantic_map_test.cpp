@@ -230,14 +230,15 @@ std::vector<FakePoint> flight()
 	return pts;
 }
 
-/** The flight and a table top (x x0..x1, y -0.3..0.3, 0.7 m high) that a
- * false detection labelled stairs too. */
-std::vector<FakePoint> flightAndTable(double x0, double x1)
+/** The flight and a table top (x x0..x1, y -0.3..0.3, 0.7 m high)
+ * labelled `label` (stairs: a false detection took it for stairs too). */
+std::vector<FakePoint> flightAndTable(
+    double x0, double x1, Label label = Label::Stairs)
 {
 	auto pts = flight();
 	for (double x = x0; x <= x1; x += 0.03)
 		for (double y = -0.3; y <= 0.3; y += 0.03)
-			pts.push_back({x, y, 0.7, Label::Stairs});
+			pts.push_back({x, y, 0.7, label});
 	return pts;
 }
 }  // namespace
@@ -377,20 +378,12 @@ TEST(SemanticMap, AWashbasinBesideAFlightIsNoPartOfIt)
 	// The flight above, beside a washbasin (x 3.3..3.8) that four sweeps
 	// label washbasin; in two more a false stairs detection labels it
 	// stairs too (test_f: a flight's centre moved 0.38 m).
-	const auto basin = [](Label l)
-	{
-		auto pts = flight();
-		for (double x = 3.3; x <= 3.8; x += 0.03)
-			for (double y = -0.3; y <= 0.3; y += 0.03)
-				pts.push_back({x, y, 0.8, l});
-		return pts;
-	};
 	SemanticMap m;
 	for (int k = 0; k < 6; k++)
 	{
 		const auto f = detectionSweep(
 		    Label::Stairs, {k < 4 ? 2.6 : 3.0, 0.0, 0.4}, {1.2, 1.2, 0.8},
-		    basin(k < 4 ? Label::Washbasin : Label::Stairs));
+		    flightAndTable(3.3, 3.8, k < 4 ? Label::Washbasin : Label::Stairs));
 		m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
 	}
 	const auto st = m.instances(Label::Stairs);
