@@ -9,8 +9,10 @@
 // the class can have there) and over the whole image (the paper's search, as
 // before the proposals), against baselines in the same run: the whole-image
 // search without the far (upscaled) passes and OpenCV's own frontal-face Haar
-// cascade on the same image. Perception (normals, labels) runs once, outside
-// the timing. The shipped configuration searches the three classes in
+// cascade on the same image. BM_CascadeSearch times the three cascades'
+// search alone (detection and range images made outside the timing, no 3D
+// check) beside that face cascade. Perception (normals, labels) runs once,
+// outside the timing. The shipped configuration searches the three classes in
 // parallel (threads = 0: both cores here); BM_ThreeCascadesOneThread is the
 // same on one thread. The counters split the detector's time (ms, cascades
 // and checks summed over the classes' threads): detection image,
@@ -200,9 +202,52 @@ void BM_ThreeCascadesWholeImageNoUpscaling(benchmark::State& s)
 	runDetector(s, o);
 }
 
+/** The three cascades' search alone (CascadeDetector::searchCascades: the
+ * shipped range-gated passes on `threads`), on detection and range images
+ * made once outside the timing: the boxes before any 3D check. */
+void runCascadeSearch(benchmark::State& state, int threads)
+{
+	const Input& in = input();
+	auto opts = shipped();
+	opts.threads = threads;
+	for (const auto& k : opts.classes)
+		if (!std::filesystem::exists(opts.cascadePath(k)))
+		{
+			state.SkipWithError("cascades missing: run scripts/train-cascades");
+			return;
+		}
+	CascadeDetector det(opts);
+	const auto search = det.prepareSearch(
+	    in.sweep.phis(), in.sweep.thetas(), in.labeled.normals,
+	    in.labeled.normalMask, in.labeled.points, in.labeled.groundZ,
+	    in.labeled.labels, in.labeled.areaIds, false);
+	std::size_t boxes = 0;
+	for (auto _ : state)
+	{
+		const auto found = det.searchCascades(search);
+		boxes = 0;
+		for (const auto& c : found) boxes += c.boxes.size();
+		benchmark::DoNotOptimize(boxes);
+	}
+	state.counters["boxes"] = double(boxes);
+}
+
+/** The cascades' search alone, as shipped (both cores here). */
+void BM_CascadeSearch(benchmark::State& s)
+{
+	runCascadeSearch(s, 0);
+}
+
+/** The same on one thread. */
+void BM_CascadeSearchOneThread(benchmark::State& s)
+{
+	runCascadeSearch(s, 1);
+}
+
 /** Reference: OpenCV's frontal-face Haar cascade (opencv-data) on the same
- * detection image, detectMultiScale(1.1, 3). */
-void BM_OpenCvFaceCascade(benchmark::State& state)
+ * detection image, detectMultiScale(1.1, 3), on OpenCV's threads (all
+ * cores), or on one. */
+void runOpenCvFaceCascade(benchmark::State& state, int threads)
 {
 	const std::string face =
 	    "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";
@@ -220,11 +265,24 @@ void BM_OpenCvFaceCascade(benchmark::State& state)
 	    in.sweep.phis(), in.sweep.thetas(), in.labeled.normals,
 	    in.labeled.normalMask);
 	std::vector<cv::Rect> found;
+	const int before = cv::getNumThreads();
+	cv::setNumThreads(threads);
 	for (auto _ : state)
 	{
 		cc.detectMultiScale(img, found, 1.1, 3);
 		benchmark::DoNotOptimize(found.data());
 	}
+	cv::setNumThreads(before);
+}
+
+void BM_OpenCvFaceCascade(benchmark::State& s)
+{
+	runOpenCvFaceCascade(s, -1);
+}
+
+void BM_OpenCvFaceCascadeOneThread(benchmark::State& s)
+{
+	runOpenCvFaceCascade(s, 1);
 }
 
 /** The detection image alone (normal smoothing, grey, panoramic). */
@@ -263,7 +321,14 @@ BENCHMARK(BM_ThreeCascadesRangeScalesAnywhere)
 BENCHMARK(BM_ThreeCascadesWholeImageNoUpscaling)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+BENCHMARK(BM_CascadeSearch)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_CascadeSearchOneThread)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_OpenCvFaceCascade)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OpenCvFaceCascadeOneThread)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_DetectionImage)->Unit(benchmark::kMillisecond)->UseRealTime();
 namespace
 {
@@ -301,6 +366,21 @@ int main(int argc, char** argv)
 	benchmark::RunSpecifiedBenchmarks(&rep);
 	benchmark::Shutdown();
 	const auto has = [&](const char* n) { return rep.ms.count(n) > 0; };
+	for (const char* face :
+	     {"BM_OpenCvFaceCascade", "BM_OpenCvFaceCascadeOneThread"})
+	{
+		const std::string ours =
+		    std::string("BM_CascadeSearch") +
+		    (std::string(face).find("OneThread") != std::string::npos
+		         ? "OneThread"
+		         : "");
+		if (has(face) && has(ours.c_str()))
+			std::printf(
+			    "%s: the three cascades' search %.2f ms, %.2f times "
+			    "OpenCV's face cascade on the same image (%.2f ms)\n",
+			    ours.c_str(), rep.ms.at(ours),
+			    rep.ms.at(ours) / rep.ms.at(face), rep.ms.at(face));
+	}
 	const char* base = "BM_ThreeCascadesWholeImage";
 	if (!has(base)) return 0;
 	std::printf("\nmedian real time, ms (ratio to the whole-image search):\n");

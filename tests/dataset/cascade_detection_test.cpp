@@ -443,6 +443,45 @@ TEST_F(CascadeDetection, ClassesInParallelGiveTheSameCandidates)
 	EXPECT_GT(supported, 0u) << "segments with cascade support were described";
 }
 
+TEST_F(CascadeDetection, SearchAloneGivesTheCascadeBoxesOfTheCandidates)
+{
+	// searchCascades (the bench's search alone) on prepareSearch's images:
+	// per class, the boxes and neighbour counts of detectCandidates' cascade
+	// candidates, in their order, on every sweep and on both cores.
+	const Simulated& s = scene();
+	PerceptionPipeline p;
+	CascadeDetector d(opts);
+	std::size_t boxes = 0;
+	for (const Sweep& sw : s.sweeps)
+	{
+		const LabeledSweep ls = p.process(sw);
+		const auto cands = candidatesOf(d, sw, ls);
+		const auto in = d.prepareSearch(
+		    sw.phis(), sw.thetas(), ls.normals, ls.normalMask, ls.points,
+		    ls.groundZ, ls.labels, ls.areaIds, false);
+		EXPECT_TRUE(in.segments.empty());
+		const auto found = d.searchCascades(in);
+		ASSERT_EQ(found.size(), opts.classes.size());
+		for (std::size_t i = 0; i < found.size(); i++)
+		{
+			std::vector<const CascadeDetector::Candidate*> ofClass;
+			for (const auto& c : cands)
+				if (c.label == opts.classes[i].label && !c.fromSegment)
+					ofClass.push_back(&c);
+			ASSERT_EQ(ofClass.size(), found[i].boxes.size());
+			ASSERT_EQ(found[i].neighbours.size(), found[i].boxes.size());
+			for (std::size_t j = 0; j < ofClass.size(); j++)
+			{
+				EXPECT_EQ(ofClass[j]->box, found[i].boxes[j]);
+				EXPECT_EQ(ofClass[j]->neighbours, found[i].neighbours[j]);
+			}
+			boxes += found[i].boxes.size();
+		}
+		EXPECT_GT(d.lastTimings().cascades, 0.0);
+	}
+	EXPECT_GT(boxes, 20u) << "the cascades fire on the scene";
+}
+
 TEST_F(CascadeDetection, SegmentCandidatesReachObjectsTheWindowsMiss)
 {
 	// Without the shape check, the ground-truth objects some candidate of

@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -1714,13 +1715,15 @@ std::vector<std::vector<ObjectProposal>> CascadeDetector::objectSegments(
 	    m_options.segmentParams());
 }
 
-std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
+CascadeDetector::SearchInput CascadeDetector::prepareSearch(
     const std::vector<double>& phis, const std::vector<double>& thetas,
     const cv::Mat& normals, const cv::Mat& normalMask, const cv::Mat& points,
-    double groundZ, const cv::Mat& labels, const cv::Mat& areaIds)
+    double groundZ, const cv::Mat& labels, const cv::Mat& areaIds,
+    bool withSegments)
 {
 	const auto t0 = Clock::now();
 	m_timings = Timings();
+	SearchInput in;
 	// One detection image per channel in use, from one smoothing, the
 	// range_scales gate's range images and the segments: one parallel step
 	// (threads), the longest task first.
@@ -1736,13 +1739,14 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	        0);
 	const bool gated = m_options.rangeScales && !m_options.proposals;
 	std::vector<cv::Mat> channelImages(channels.size());
-	std::vector<cv::Mat> ranges(m_options.classes.size());
+	in.ranges.resize(m_options.classes.size());
 	// Task times (the tasks may run in parallel).
 	double imageMs = 0, rangesMs = 0, segmentsMs = 0;
-	std::vector<std::vector<ObjectProposal>> segments;
-	const bool segmented = std::any_of(
-	    m_options.classes.begin(), m_options.classes.end(),
-	    [](const TClassOptions& k) { return k.segmentCandidates; });
+	const bool segmented =
+	    withSegments &&
+	    std::any_of(
+	        m_options.classes.begin(), m_options.classes.end(),
+	        [](const TClassOptions& k) { return k.segmentCandidates; });
 	const double prepareMs = msSince(t0);
 	// The object points (ObjectProposals::objectMask) the gate ranges and
 	// the segments both take, then those: one task beside the images.
@@ -1778,34 +1782,32 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 					        points, labels, areaIds, groundZ,
 					        m_options.segmentParams());
 				    if (gated)
-					    ranges = gateRanges(
+					    in.ranges = gateRanges(
 					        points,
 					        m_options.rangeObjectsOnly ? objects : cv::Mat(),
 					        groundZ);
 				    rangesMs = msSince(tt);
 				    const auto ts = Clock::now();
 				    if (segmented)
-					    segments = objectSegments(points, objects, groundZ);
+					    in.segments = objectSegments(points, objects, groundZ);
 				    segmentsMs = msSince(ts);
 				    break;
 			    }
 		    }
 	    });
-	std::map<DetectionChannel, cv::Mat> images;
 	for (std::size_t c = 0; c < channels.size(); c++)
-		images[channels[c]] = channelImages[c];
-	m_impl->keepScaled = true;
+		in.images[channels[c]] = channelImages[c];
 	m_timings.image = prepareMs + imageMs;
 	const auto tp = Clock::now();
 	m_impl->proposals.clear();
 	// Both layouts keep the sweep's angular steps.
-	const double pixelAngle =
+	in.pixelAngle =
 	    phis.size() > 1 && thetas.size() > 1
 	        ? 0.5 *
 	              ((phis.back() - phis.front()) / double(phis.size() - 1) +
 	               (thetas.back() - thetas.front()) / double(thetas.size() - 1))
 	        : 0;
-	const double step = m_options.proposals || gated ? pixelAngle : 0;
+	in.step = m_options.proposals || gated ? in.pixelAngle : 0;
 	if (m_options.proposals)
 	{
 		std::vector<double> limits;
@@ -1818,21 +1820,27 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		        m_options.proposalJoinPx, m_options.proposalRangeGap));
 	}
 	m_timings.proposals = msSince(tp) + rangesMs + segmentsMs;
-	// Three steps, each in parallel (threads), with the same candidates in
-	// the order of the classes: the cascades (a class or pass a task) and
-	// the segment candidates (a candidate a task: measured and described
-	// while the cascades run); the cascade boxes measured and described,
-	// and every candidate scored (a candidate a task); the shape check (a
-	// class a task: its order matters among duplicates).
-	struct ClassResult
-	{
-		std::vector<Candidate> candidates;
-		double cascades = 0, sizeCheck = 0;
-	};
-	std::vector<ClassResult> results(m_options.classes.size());
-	const int threads = m_options.threads;
-	// The cascades: a task per class, or per pass where the passes are
-	// range-gated (each pass has its own scratch), the larger bands first.
+	return in;
+}
+
+std::vector<CascadeDetector::CascadeBoxes> CascadeDetector::searchCascades(
+    const SearchInput& in)
+{
+	const auto t0 = Clock::now();
+	auto out = runSearch(in, 0, [](std::size_t) {});
+	m_timings.cascades = 0;
+	for (const auto& c : out) m_timings.cascades += c.ms;
+	m_timings.total = m_timings.image + m_timings.proposals + msSince(t0);
+	return out;
+}
+
+std::vector<CascadeDetector::CascadeBoxes> CascadeDetector::runSearch(
+    const SearchInput& in, std::size_t extraTasks,
+    const std::function<void(std::size_t)>& extra)
+{
+	const bool gated = m_options.rangeScales && !m_options.proposals;
+	// A task per class, or per pass where the passes are range-gated (each
+	// pass has its own scratch), the larger bands first.
 	struct CascadeTask
 	{
 		std::size_t classIndex = 0;
@@ -1846,8 +1854,8 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	for (std::size_t i = 0; i < m_options.classes.size(); i++)
 	{
 		const TClassOptions& k = m_options.classes[i];
-		const cv::Mat& image = images.at(m_options.channelOf(k));
-		if (!gated || ranges[i].empty() || step <= 0)
+		const cv::Mat& image = in.images.at(m_options.channelOf(k));
+		if (!gated || in.ranges.at(i).empty() || in.step <= 0)
 		{
 			tasks.push_back({i, -1, HUGE_VAL, {}, {}, 0});
 			continue;
@@ -1870,6 +1878,62 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	    largestFirst.begin(), largestFirst.end(),
 	    [&](std::size_t a, std::size_t b)
 	    { return tasks[a].work > tasks[b].work; });
+	m_impl->keepScaled = true;
+	parallelFor(
+	    tasks.size() + extraTasks, m_options.threads,
+	    [&](std::size_t t)
+	    {
+		    if (t >= tasks.size())
+		    {
+			    extra(t - tasks.size());
+			    return;
+		    }
+		    CascadeTask& task = tasks[largestFirst[t]];
+		    const std::size_t i = task.classIndex;
+		    const auto tc = Clock::now();
+		    runCascade(
+		        i, in.images.at(m_options.channelOf(m_options.classes[i])),
+		        task.boxes, task.neighbours,
+		        m_options.proposals ? &m_impl->proposals.at(i) : nullptr,
+		        in.step, in.ranges.at(i), task.pass);
+		    task.ms = msSince(tc);
+	    });
+	for (auto& s : m_impl->scaled) s.clear();
+	m_impl->keepScaled = false;
+	// Each class's boxes in pass order.
+	std::vector<CascadeBoxes> out(m_options.classes.size());
+	for (const CascadeTask& task : tasks)
+	{
+		CascadeBoxes& o = out[task.classIndex];
+		o.boxes.insert(o.boxes.end(), task.boxes.begin(), task.boxes.end());
+		o.neighbours.insert(
+		    o.neighbours.end(), task.neighbours.begin(), task.neighbours.end());
+		o.ms += task.ms;
+	}
+	return out;
+}
+
+std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
+    const std::vector<double>& phis, const std::vector<double>& thetas,
+    const cv::Mat& normals, const cv::Mat& normalMask, const cv::Mat& points,
+    double groundZ, const cv::Mat& labels, const cv::Mat& areaIds)
+{
+	const auto t0 = Clock::now();
+	const SearchInput in = prepareSearch(
+	    phis, thetas, normals, normalMask, points, groundZ, labels, areaIds);
+	// Three steps, each in parallel (threads), with the same candidates in
+	// the order of the classes: the cascades (a class or pass a task) and
+	// the segment candidates (a candidate a task: measured and described
+	// while the cascades run); the cascade boxes measured and described,
+	// and every candidate scored (a candidate a task); the shape check (a
+	// class a task: its order matters among duplicates).
+	struct ClassResult
+	{
+		std::vector<Candidate> candidates;
+		double cascades = 0, sizeCheck = 0;
+	};
+	std::vector<ClassResult> results(m_options.classes.size());
+	const int threads = m_options.threads;
 	// Each class's segment candidates.
 	const ObjectProposals::Params segmentParams = m_options.segmentParams();
 	std::vector<std::vector<Candidate>> segmentCands(m_options.classes.size());
@@ -1878,7 +1942,7 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 	{
 		const TClassOptions& k = m_options.classes[i];
 		if (!k.segmentCandidates) continue;
-		for (const ObjectProposal& p : segments.at(i))
+		for (const ObjectProposal& p : in.segments.at(i))
 		{
 			if (p.tallerPixels > m_options.segmentMaxTaller * p.pixels)
 				continue;
@@ -1957,45 +2021,23 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		return msSince(tm);
 	};
 	std::vector<double> segmentMs(segmentTasks.size());
-	parallelFor(
-	    tasks.size() + segmentTasks.size(), threads,
+	const std::vector<CascadeBoxes> found = runSearch(
+	    in, segmentTasks.size(),
 	    [&](std::size_t t)
 	    {
-		    if (t >= tasks.size())
-		    {
-			    const auto [i, j] = segmentTasks[t - tasks.size()];
-			    segmentMs[t - tasks.size()] =
-			        measureCandidate(i, segmentCands[i][j]);
-			    return;
-		    }
-		    CascadeTask& task = tasks[largestFirst[t]];
-		    const std::size_t i = task.classIndex;
-		    const auto tc = Clock::now();
-		    runCascade(
-		        i, images.at(m_options.channelOf(m_options.classes[i])),
-		        task.boxes, task.neighbours,
-		        m_options.proposals ? &m_impl->proposals.at(i) : nullptr, step,
-		        ranges[i], task.pass);
-		    task.ms = msSince(tc);
+		    const auto [i, j] = segmentTasks[t];
+		    segmentMs[t] = measureCandidate(i, segmentCands[i][j]);
 	    });
 	for (std::size_t s = 0; s < segmentTasks.size(); s++)
 		results[segmentTasks[s].first].sizeCheck += segmentMs[s];
-	// Each class's candidates: its passes' boxes in pass order, then its
-	// segments (little work: one thread).
+	// Each class's candidates: its cascade boxes, then its segments (little
+	// work: one thread).
 	for (std::size_t i = 0; i < results.size(); i++)
 	{
 		const TClassOptions& k = m_options.classes[i];
-		std::vector<cv::Rect> boxes;
-		std::vector<int> neighbours;
-		for (const CascadeTask& task : tasks)
-			if (task.classIndex == i)
-			{
-				boxes.insert(boxes.end(), task.boxes.begin(), task.boxes.end());
-				neighbours.insert(
-				    neighbours.end(), task.neighbours.begin(),
-				    task.neighbours.end());
-				results[i].cascades += task.ms;
-			}
+		const std::vector<cv::Rect>& boxes = found[i].boxes;
+		const std::vector<int>& neighbours = found[i].neighbours;
+		results[i].cascades += found[i].ms;
 		auto& cands = results[i].candidates;
 		cands.resize(boxes.size());
 		for (std::size_t j = 0; j < boxes.size(); j++)
@@ -2062,7 +2104,8 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		    if (k.grow > 0)
 			    for (auto& c : out)
 				    if (c.accepted)
-					    growObject(c, k, points, labels, groundZ, pixelAngle);
+					    growObject(
+					        c, k, points, labels, groundZ, in.pixelAngle);
 		    results[i].sizeCheck += msSince(tm);
 	    });
 	std::vector<Candidate> out;
@@ -2073,8 +2116,6 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::detectCandidates(
 		std::move(
 		    r.candidates.begin(), r.candidates.end(), std::back_inserter(out));
 	}
-	for (auto& s : m_impl->scaled) s.clear();
-	m_impl->keepScaled = false;
 	m_timings.total = msSince(t0);
 	return out;
 }

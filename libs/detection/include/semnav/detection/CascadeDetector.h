@@ -13,6 +13,8 @@
 #include <semnav/perception/LabeledSweep.h>
 #include <semnav/scan/Sweep.h>
 
+#include <functional>
+#include <map>
 #include <memory>
 #include <opencv2/core/mat.hpp>
 #include <optional>
@@ -386,6 +388,44 @@ public:
 	    const cv::Mat& normals, const cv::Mat& normalMask,
 	    const cv::Mat& points, double groundZ,
 	    const cv::Mat& labels = cv::Mat(), const cv::Mat& areaIds = cv::Mat());
+	/** What the cascades (and the segment candidates) search in one
+	 * sweep: prepareSearch(). */
+	struct SearchInput
+	{
+		/** The detection image of each channel in use. */
+		std::map<DetectionChannel, cv::Mat> images;
+		/** range_scales: per class, the gate's range image (gateRanges();
+		 * empty: the class searches every window). */
+		std::vector<cv::Mat> ranges;
+		/** segment_candidates: per class, its object segments. */
+		std::vector<std::vector<ObjectProposal>> segments;
+		/** Rad per detection-image pixel: the grid's mean step, and the
+		 * one the search uses (0 without range_scales or proposals). */
+		double pixelAngle = 0, step = 0;
+	};
+	/** One class's cascade boxes (detection-image pixels, grouped as
+	 * detectMultiScale) with their neighbour counts, in pass order, and
+	 * the time its passes took (ms, summed). */
+	struct CascadeBoxes
+	{
+		std::vector<cv::Rect> boxes;
+		std::vector<int> neighbours;
+		double ms = 0;
+	};
+	/** The first step of detectCandidates() (same inputs): the detection
+	 * images, the range gate's range images, the object proposals and,
+	 * `withSegments`, the segments; sets lastTimings().image and
+	 * .proposals. */
+	SearchInput prepareSearch(
+	    const std::vector<double>& phis, const std::vector<double>& thetas,
+	    const cv::Mat& normals, const cv::Mat& normalMask,
+	    const cv::Mat& points, double groundZ, const cv::Mat& labels,
+	    const cv::Mat& areaIds, bool withSegments = true);
+	/** The cascades' search alone, as detectCandidates() runs it (range
+	 * gate, passes, threads), on a prepareSearch() of this detector: each
+	 * class's boxes, before any 3D check. Sets lastTimings().cascades. */
+	std::vector<CascadeBoxes> searchCascades(const SearchInput& in);
+
 	/** The image the cascades see (8-bit, panoramic or sweep layout), in
 	 * the [CascadeDetector] channel or in `channel`. */
 	cv::Mat detectionImage(
@@ -477,6 +517,11 @@ public:
 	const Timings& lastTimings() const { return m_timings; }
 
 private:
+	/** The cascades' search on `in` in one parallel step (threads) with
+	 * `extraTasks` more tasks, extra(0 .. extraTasks - 1), beside it. */
+	std::vector<CascadeBoxes> runSearch(
+	    const SearchInput& in, std::size_t extraTasks,
+	    const std::function<void(std::size_t)>& extra);
 	/** Keeps the grid's elevations, view rotation (when `view`) and
 	 * projection for the images of this grid. */
 	void prepareGrid(
