@@ -268,6 +268,31 @@ void CascadeEvaluator::scanWindows(
 	{
 		const detail::FlatStump* st = m_flat.data() + m_stageBegin[s];
 		const std::size_t n = m_stageBegin[s + 1] - m_stageBegin[s];
+		// Windows no block takes, four side by side (independent sums: a
+		// window alone waits on each of its additions).
+		int32_t pendBase[4];
+		float pendNf[4];
+		int pendGrid[4];
+		int pending = 0;
+		const auto flush = [&]()
+		{
+			if (pending >= 2)
+			{
+				for (int i = pending; i < 4; i++)
+				{
+					pendBase[i] = pendBase[0];
+					pendNf[i] = pendNf[0];
+				}
+				double out[4];
+				detail::stageSumsAt4(st, n, sum0, tilt0, pendBase, pendNf, out);
+				for (int i = 0; i < pending; i++) sums[pendGrid[i]] = out[i];
+			}
+			else
+				for (int i = 0; i < pending; i++)
+					sums[pendGrid[i]] = detail::stageSum(
+					    st, n, sum0, tilt0, pendBase[i], pendNf[i]);
+			pending = 0;
+		};
 		for (std::size_t k = 0; k < nLive;)
 		{
 			const Segment& sg = segs[live[k].segment];
@@ -298,10 +323,13 @@ void CascadeEvaluator::scanWindows(
 					continue;
 				}
 			}
-			sums[live[k].grid] = detail::stageSum(
-			    st, n, sum0, tilt0, base + step * j, nfs[live[k].grid]);
+			pendBase[pending] = base + step * j;
+			pendNf[pending] = nfs[live[k].grid];
+			pendGrid[pending] = live[k].grid;
+			if (++pending == 4) flush();
 			k++;
 		}
+		flush();
 	};
 	if (nStages == 0)
 	{

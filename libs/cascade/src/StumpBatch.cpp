@@ -111,6 +111,40 @@ double stageSum(
 	return tmp;
 }
 
+void stageSumsAt4(
+    const FlatStump* stumps, std::size_t n, const int32_t* sum,
+    const int32_t* tilted, const int32_t* bases, const float* nf, double* sums)
+{
+	double t0 = 0, t1 = 0, t2 = 0, t3 = 0;
+	const int32_t b0 = bases[0], b1 = bases[1], b2 = bases[2], b3 = bases[3];
+	const float n0 = nf[0], n1 = nf[1], n2 = nf[2], n3 = nf[3];
+	for (std::size_t s = 0; s < n; s++)
+	{
+		const FlatStump& st = stumps[s];
+		const int32_t* p = st.tilted ? tilted : sum;
+		const auto value = [&](int32_t b, float f)
+		{
+			const int32_t* q = p + b;
+			float ret =
+			    st.weight[0] * static_cast<float>(rectAt(q, st.ofs)) +
+			    st.weight[1] * static_cast<float>(rectAt(q, st.ofs + 4));
+			if (st.rects == 3)
+				ret += st.weight[2] * static_cast<float>(rectAt(q, st.ofs + 8));
+			return ret * f;
+		};
+		const float v0 = value(b0, n0), v1 = value(b1, n1), v2 = value(b2, n2),
+		            v3 = value(b3, n3);
+		t0 += st.leaf[!(v0 < st.threshold)];
+		t1 += st.leaf[!(v1 < st.threshold)];
+		t2 += st.leaf[!(v2 < st.threshold)];
+		t3 += st.leaf[!(v3 < st.threshold)];
+	}
+	sums[0] = t0;
+	sums[1] = t1;
+	sums[2] = t2;
+	sums[3] = t3;
+}
+
 bool cpuHasAvx2()
 {
 #ifdef SEMNAV_HAVE_AVX2_KERNEL

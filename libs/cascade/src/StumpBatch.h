@@ -48,6 +48,12 @@ void stageSums8(
     const int32_t* tilted, int32_t base, int step, const float* nf,
     double* sums);
 
+/** stageSum() of four windows anywhere (top-left entries bases[i],
+ * factors nf[i]) side by side: the same arithmetic per window. */
+void stageSumsAt4(
+    const FlatStump* stumps, std::size_t stumpCount, const int32_t* sum,
+    const int32_t* tilted, const int32_t* bases, const float* nf, double* sums);
+
 /** Whether stageSums8() can run on this CPU. */
 bool cpuHasAvx2();
 
