@@ -37,6 +37,7 @@
 #include <opencv2/core/utility.hpp>
 #include <opencv2/objdetect.hpp>
 #include <string>
+#include <utility>
 
 using namespace semnav;
 
@@ -90,16 +91,25 @@ CascadeDetector::TOptions shipped()
 	    kSource + "/config/cascade.ini");
 }
 
-void runDetector(
-    benchmark::State& state, CascadeDetector::TOptions opts, bool simd = true)
+/** Whether every class's cascade file exists (else the benchmark is
+ * skipped with an error). */
+bool cascadesPresent(
+    benchmark::State& state, const CascadeDetector::TOptions& opts)
 {
-	const Input& in = input();
 	for (const auto& k : opts.classes)
 		if (!std::filesystem::exists(opts.cascadePath(k)))
 		{
 			state.SkipWithError("cascades missing: run scripts/train-cascades");
-			return;
+			return false;
 		}
+	return true;
+}
+
+void runDetector(
+    benchmark::State& state, CascadeDetector::TOptions opts, bool simd = true)
+{
+	const Input& in = input();
+	if (!cascadesPresent(state, opts)) return;
 	CascadeDetector det(opts);
 	det.setSimd(simd);
 	std::size_t found = 0;
@@ -210,12 +220,7 @@ void runCascadeSearch(benchmark::State& state, int threads)
 	const Input& in = input();
 	auto opts = shipped();
 	opts.threads = threads;
-	for (const auto& k : opts.classes)
-		if (!std::filesystem::exists(opts.cascadePath(k)))
-		{
-			state.SkipWithError("cascades missing: run scripts/train-cascades");
-			return;
-		}
+	if (!cascadesPresent(state, opts)) return;
 	CascadeDetector det(opts);
 	const auto search = det.prepareSearch(
 	    in.sweep.phis(), in.sweep.thetas(), in.labeled.normals,
@@ -366,21 +371,16 @@ int main(int argc, char** argv)
 	benchmark::RunSpecifiedBenchmarks(&rep);
 	benchmark::Shutdown();
 	const auto has = [&](const char* n) { return rep.ms.count(n) > 0; };
-	for (const char* face :
-	     {"BM_OpenCvFaceCascade", "BM_OpenCvFaceCascadeOneThread"})
-	{
-		const std::string ours =
-		    std::string("BM_CascadeSearch") +
-		    (std::string(face).find("OneThread") != std::string::npos
-		         ? "OneThread"
-		         : "");
-		if (has(face) && has(ours.c_str()))
+	for (const auto& [ours, face] :
+	     {std::pair{"BM_CascadeSearch", "BM_OpenCvFaceCascade"},
+	      std::pair{
+	          "BM_CascadeSearchOneThread", "BM_OpenCvFaceCascadeOneThread"}})
+		if (has(face) && has(ours))
 			std::printf(
 			    "%s: the three cascades' search %.2f ms, %.2f times "
 			    "OpenCV's face cascade on the same image (%.2f ms)\n",
-			    ours.c_str(), rep.ms.at(ours),
-			    rep.ms.at(ours) / rep.ms.at(face), rep.ms.at(face));
-	}
+			    ours, rep.ms.at(ours), rep.ms.at(ours) / rep.ms.at(face),
+			    rep.ms.at(face));
 	const char* base = "BM_ThreeCascadesWholeImage";
 	if (!has(base)) return 0;
 	std::printf("\nmedian real time, ms (ratio to the whole-image search):\n");

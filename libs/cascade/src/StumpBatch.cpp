@@ -15,6 +15,21 @@ inline int32_t rectAt(const int32_t* p, const int32_t* o)
 	return p[o[0]] - p[o[1]] - p[o[2]] + p[o[3]];
 }
 
+/** The leaf a stump gives the window at `base` with variance factor `nf`
+ * (CompiledFeature::calc's arithmetic, in float). */
+inline float stumpLeaf(
+    const FlatStump& st, const int32_t* sum, const int32_t* tilted,
+    int32_t base, float nf)
+{
+	const int32_t* p = (st.tilted ? tilted : sum) + base;
+	float ret = st.weight[0] * static_cast<float>(rectAt(p, st.ofs)) +
+	            st.weight[1] * static_cast<float>(rectAt(p, st.ofs + 4));
+	if (st.rects == 3)
+		ret += st.weight[2] * static_cast<float>(rectAt(p, st.ofs + 8));
+	const float value = ret * nf;
+	return st.leaf[!(value < st.threshold)];
+}
+
 #ifdef SEMNAV_HAVE_AVX2_KERNEL
 #define SEMNAV_AVX2 __attribute__((target("avx2")))
 
@@ -98,16 +113,7 @@ double stageSum(
 {
 	double tmp = 0;
 	for (std::size_t s = 0; s < n; s++)
-	{
-		const FlatStump& st = stumps[s];
-		const int32_t* p = (st.tilted ? tilted : sum) + base;
-		float ret = st.weight[0] * static_cast<float>(rectAt(p, st.ofs)) +
-		            st.weight[1] * static_cast<float>(rectAt(p, st.ofs + 4));
-		if (st.rects == 3)
-			ret += st.weight[2] * static_cast<float>(rectAt(p, st.ofs + 8));
-		const float value = ret * nf;
-		tmp += st.leaf[!(value < st.threshold)];
-	}
+		tmp += stumpLeaf(stumps[s], sum, tilted, base, nf);
 	return tmp;
 }
 
@@ -121,23 +127,10 @@ void stageSumsAt4(
 	for (std::size_t s = 0; s < n; s++)
 	{
 		const FlatStump& st = stumps[s];
-		const int32_t* p = st.tilted ? tilted : sum;
-		const auto value = [&](int32_t b, float f)
-		{
-			const int32_t* q = p + b;
-			float ret =
-			    st.weight[0] * static_cast<float>(rectAt(q, st.ofs)) +
-			    st.weight[1] * static_cast<float>(rectAt(q, st.ofs + 4));
-			if (st.rects == 3)
-				ret += st.weight[2] * static_cast<float>(rectAt(q, st.ofs + 8));
-			return ret * f;
-		};
-		const float v0 = value(b0, n0), v1 = value(b1, n1), v2 = value(b2, n2),
-		            v3 = value(b3, n3);
-		t0 += st.leaf[!(v0 < st.threshold)];
-		t1 += st.leaf[!(v1 < st.threshold)];
-		t2 += st.leaf[!(v2 < st.threshold)];
-		t3 += st.leaf[!(v3 < st.threshold)];
+		t0 += stumpLeaf(st, sum, tilted, b0, n0);
+		t1 += stumpLeaf(st, sum, tilted, b1, n1);
+		t2 += stumpLeaf(st, sum, tilted, b2, n2);
+		t3 += stumpLeaf(st, sum, tilted, b3, n3);
 	}
 	sums[0] = t0;
 	sums[1] = t1;

@@ -1829,6 +1829,7 @@ std::vector<CascadeDetector::CascadeBoxes> CascadeDetector::searchCascades(
 	const auto t0 = Clock::now();
 	auto out = runSearch(in, 0, [](std::size_t) {});
 	m_timings.cascades = 0;
+	m_timings.sizeCheck = 0;
 	for (const auto& c : out) m_timings.cascades += c.ms;
 	m_timings.total = m_timings.image + m_timings.proposals + msSince(t0);
 	return out;

@@ -423,7 +423,8 @@ public:
 	    const cv::Mat& areaIds, bool withSegments = true);
 	/** The cascades' search alone, as detectCandidates() runs it (range
 	 * gate, passes, threads), on a prepareSearch() of this detector: each
-	 * class's boxes, before any 3D check. Sets lastTimings().cascades. */
+	 * class's boxes, before any 3D check. Sets lastTimings(): cascades,
+	 * sizeCheck 0, total the preparation's times plus the search's. */
 	std::vector<CascadeBoxes> searchCascades(const SearchInput& in);
 
 	/** The image the cascades see (8-bit, panoramic or sweep layout), in
