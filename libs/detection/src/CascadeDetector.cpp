@@ -37,16 +37,8 @@ namespace semnav
 {
 namespace
 {
-std::string num(double v)
-{
-	char buf[64];
-	std::snprintf(buf, sizeof(buf), "%.12g", v);
-	return buf;
-}
-
 using Clock = std::chrono::steady_clock;
 }  // namespace
-
 
 // ------------------------------------------------------------ detector
 namespace

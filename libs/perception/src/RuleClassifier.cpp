@@ -188,7 +188,6 @@ private:
 
 }  // namespace
 
-
 RuleClassifier::RuleClassifier() : RuleClassifier(TOptions()) {}
 
 RuleClassifier::RuleClassifier(const TOptions& options)

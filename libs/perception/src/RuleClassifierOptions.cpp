@@ -9,6 +9,9 @@
 
 namespace semnav
 {
+using mrpt::DEG2RAD;
+using mrpt::RAD2DEG;
+
 namespace
 {
 const char* envName(RuleClassifier::TOptions::Environment e)
