@@ -1,5 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-// semnav-map: rawlog -> semantic map directory (DESIGN.md, "Apps").
+// semnav-map: rawlog -> semantic map directory (docs/design.md, "Apps").
 #include <mrpt/config/CConfigFile.h>
 #include <semnav/common/CommandLine.h>
 #include <semnav/common/ConfigChecks.h>

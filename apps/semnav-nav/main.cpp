@@ -1,7 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // semnav-nav: headless simulated run of a semantic command ("go to the
 // nearest wastebasket") through MRPT's reactive navigator on a semantic map
-// (DESIGN.md, "Apps").
+// (docs/design.md, "Apps").
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/math/wrap2pi.h>
 #include <semnav/common/AtomicFile.h>

@@ -1,7 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // semnav-perceive: normal image, segmentation and rule-based labels of
 // every sweep of a rawlog or a 3DTK scan, optionally scored against
-// semnav-sim's ground truth (DESIGN.md, "Apps").
+// semnav-sim's ground truth (docs/design.md, "Apps").
 #include <mrpt/config/CConfigFile.h>
 #include <semnav/common/AtomicFile.h>
 #include <semnav/common/CommandLine.h>

@@ -1,6 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // semnav-plan: CNN path from a point to the nearest object of a label (or
-// an object, or a point) on a semantic map (DESIGN.md, "Apps").
+// an object, or a point) on a semantic map (docs/design.md, "Apps").
 #include <mrpt/config/CConfigFile.h>
 #include <semnav/common/AtomicFile.h>
 #include <semnav/common/CommandLine.h>

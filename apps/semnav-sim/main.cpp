@@ -1,6 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // semnav-sim: simulates a tilting LMS200 in a scene and writes a rawlog
-// with ground truth (DESIGN.md, "Apps").
+// with ground truth (docs/design.md, "Apps").
 #include <mrpt/config/CConfigFile.h>
 #include <semnav/common/CommandLine.h>
 #include <semnav/common/ConfigChecks.h>

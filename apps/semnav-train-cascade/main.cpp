@@ -1,6 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // semnav-train-cascade: trains one class's Haar cascade from simulated
-// datasets and writes it in OpenCV's XML format (DESIGN.md, "Apps").
+// datasets and writes it in OpenCV's XML format (docs/design.md, "Apps").
 #include <semnav/cascade/CascadeEvaluator.h>
 #include <semnav/cascade/CascadeXml.h>
 #include <semnav/common/AtomicFile.h>

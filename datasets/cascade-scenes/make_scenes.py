@@ -7,7 +7,7 @@ as distractors (cabinets, tables, chairs, boxes as large as a wastebasket,
 pillars) and stop-and-scan poses that see the objects from about 0.8 m to
 5 m at many bearings. Scenes differ by seed; train_* are for training,
 val_* for choosing detector settings, test_* are held out. Deterministic: python3 make_scenes.py rewrites the
-same files. Lengths m, angles deg (DESIGN.md scene format).
+same files. Lengths m, angles deg (docs/design.md scene format).
 """
 import math
 import random

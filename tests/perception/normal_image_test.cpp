@@ -49,7 +49,7 @@ cv::Vec3b medianColour(
 TEST(NormalImage, PaperColoursInABoxRoom)
 {
 	// Robot in a 8 m x 4.5 m room: the paper's colour description (sec. 2.1,
-	// DESIGN.md): floor blueish, ceiling yellowish, left wall pink, right
+	// docs/design.md): floor blueish, ceiling yellowish, left wall pink, right
 	// wall cyan, the wall ahead purple.
 	SynthScene sc = boxRoom(-3, 5, -2, 2.5, 2.5);
 	sc.noise = 0.005;

@@ -161,7 +161,7 @@ cv::Vec3b NormalImage::rgbOf(const cv::Vec3f& n)
 		return static_cast<uint8_t>(std::clamp(
 		    static_cast<int>(std::lround(128.0f + 127.0f * v)), 0, 255));
 	};
-	// Paper's frame: x right, y forward, z up (DESIGN.md).
+	// Paper's frame: x right, y forward, z up (docs/design.md).
 	return cv::Vec3b(ch(-n[1]), ch(n[0]), ch(n[2]));
 }
 

@@ -13,7 +13,7 @@ namespace semnav
 {
 /** Command-line handling shared by the semnav apps, over MRPT's TCLAP.
  *
- * Implements the CLI contract of DESIGN.md: `--help` exits 0, bad usage
+ * Implements the CLI contract of docs/design.md: `--help` exits 0, bad usage
  * prints one line `<app>: <what>; see --help` and exits 2, and any error
  * thrown by the app's body prints one line `<app>: <what>` and exits 1. */
 class CommandLine

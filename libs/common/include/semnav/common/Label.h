@@ -9,7 +9,7 @@ namespace semnav
 {
 /** Semantic labels. The numeric value is the label id stored in label
  * images (low byte) and the bit index in a LabelSet. Order is part of the
- * file-format contract (DESIGN.md): never reorder, only append. */
+ * file-format contract (docs/design.md): never reorder, only append. */
 enum class Label : uint8_t
 {
 	Unknown = 0,

@@ -10,7 +10,7 @@ namespace semnav
 /** Which 8-bit image of the normal image the cascades see. The paper uses
  * the grey-scale version of the RGB normal image (sec. 2.2.2); the single
  * channels are R = 128 + 127 n_right, G = 128 + 127 n_forward, B = 128 +
- * 127 n_up (DESIGN.md). View is the grey image of the normals turned by
+ * 127 n_up (docs/design.md). View is the grey image of the normals turned by
  * each pixel's azimuth, so that "forward" is the line of sight: an object
  * then looks the same at every bearing (in the robot frame a wastebasket to
  * the left and one ahead have different colours). Pixels without a normal

@@ -12,7 +12,7 @@
 
 namespace semnav
 {
-/** Everything DESIGN.md's data flow does to one sweep before the map: the
+/** Everything docs/design.md's data flow does to one sweep before the map: the
  * rule-based PerceptionPipeline (normals, segmentation, roughness, rules)
  * and, when cascades are configured, the CascadeDetector (washbasin,
  * wastebasket, stairs with the 3D size check). Used by semnav-perceive and

@@ -7,7 +7,7 @@
 
 namespace semnav
 {
-/** Reads and writes the map directory of DESIGN.md.
+/** Reads and writes the map directory of docs/design.md.
  *
  * `map.yaml` has the ROS map_server keys (image, resolution, origin,
  * occupied_thresh, free_thresh, negate) plus a `semnav:` section with the

@@ -17,10 +17,10 @@ namespace semnav
  * unless eps0 <= |p - p_n| <= eps1 (0.5 cm, 30 cm). The normal is the sum
  * over pairs of accepted neighbours of the cross products of the edge
  * vectors (p_a - p) x (p_b - p), normalised and oriented toward the sensor
- * (DESIGN.md). Pixels without a normal (invalid range, fewer than two usable
- * neighbours) have normalMask() == 0 and a zero normal.
+ * (docs/design.md). Pixels without a normal (invalid range, fewer than two
+ * usable neighbours) have normalMask() == 0 and a zero normal.
  *
- * Colours follow the paper's figures (DESIGN.md): R = 128 + 127 n_right,
+ * Colours follow the paper's figures (docs/design.md): R = 128 + 127 n_right,
  * G = 128 + 127 n_forward, B = 128 + 127 n_up with n_right = -n_y,
  * n_forward = n_x, n_up = n_z in the robot frame: floor (128,128,255),
  * ceiling (128,128,1), wall on the left (255,128,128), on the right

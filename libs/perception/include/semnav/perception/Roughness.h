@@ -13,8 +13,8 @@ namespace semnav
 /** The paper's roughness (sec. 2.2.1).
  *
  * R(i,j) = mean over the pixels (k,l) != (i,j) of the (2w+1)^2 window that
- * have a normal of n(i,j) . n(k,l) (DESIGN.md: the mean dot product, flat =
- * 1; the paper's (w^2-1)^-1 factor is a typo). Then each area A is divided
+ * have a normal of n(i,j) . n(k,l) (docs/design.md: the mean dot product, flat
+ * = 1; the paper's (w^2-1)^-1 factor is a typo). Then each area A is divided
  * into squares A' of w' x w' pixels (a fixed grid over the image, cut by
  * the area's border) and R-bar(A') = mean R over the pixels of A in A'.
  *

@@ -19,7 +19,7 @@ enum class CostProfile
 {
 	/** f_s(r1) = L if r1 < r, 0 otherwise; r = 5 cm. */
 	Shortest,
-	/** Eq. (13) as corrected in DESIGN.md: f_s(r1) = L if r1 < r/2, 1 if
+	/** Eq. (13) as corrected in docs/design.md: f_s(r1) = L if r1 < r/2, 1 if
 	 * r/2 <= r1 < r, 0 if r1 >= r; r = 30 cm. */
 	Safe
 };

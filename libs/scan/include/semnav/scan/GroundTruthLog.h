@@ -8,7 +8,7 @@
 
 namespace semnav
 {
-/** The ground truth semnav-sim writes next to `<name>.rawlog` (DESIGN.md):
+/** The ground truth semnav-sim writes next to `<name>.rawlog` (docs/design.md):
  * `<name>.gt.txt` (per sweep: `index timestamp x y yaw_rad`, '#' comments)
  * and `<name>.labels/sweep_NNNN.png`. */
 class GroundTruthLog

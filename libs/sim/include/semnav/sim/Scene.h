@@ -13,7 +13,7 @@
 
 namespace semnav
 {
-/** Scene model read from the scene YAML of DESIGN.md. World frame: x, y on
+/** Scene model read from the scene YAML of docs/design.md. World frame: x, y on
  * the floor (z = 0), z up. Lengths in metres, angles in radians (the YAML
  * has degrees; the loader converts). */
 

@@ -7,7 +7,7 @@
 
 namespace semnav
 {
-/** Reads scene files (DESIGN.md "Scene" format).
+/** Reads scene files (docs/design.md "Scene" format).
  *
  * Every error throws SceneError with a one-line message naming the file,
  * the line (when the YAML parser knows it) and the key path, e.g.

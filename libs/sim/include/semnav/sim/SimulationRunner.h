@@ -23,7 +23,7 @@ struct SimulationResult
 };
 
 /** Simulates a whole scene, stop-and-scan, and writes the rawlog and the
- * ground truth of DESIGN.md.
+ * ground truth of docs/design.md.
  *
  * For each trajectory pose i: a CObservationOdometry (sensorLabel
  * "ODOMETRY", noisy odometry from OdometrySimulator) then the lineCount scan
