@@ -11,13 +11,14 @@
 // search without the far (upscaled) passes and OpenCV's own frontal-face Haar
 // cascade on the same image. BM_CascadeSearch times the three cascades'
 // search alone (detection and range images made outside the timing, no 3D
-// check) beside that face cascade. Perception (normals, labels) runs once,
-// outside the timing. The shipped configuration searches the three classes in
-// parallel (threads = 0: both cores here); BM_ThreeCascadesOneThread is the
-// same on one thread. The counters split the detector's time (ms, cascades
-// and checks summed over the classes' threads): detection image,
-// proposals, cascades, 3D size check. At the end the medians (or means without
-// repetitions) are compared. Run
+// check) beside OpenCV's detectMultiScale with the same three XMLs
+// (BM_OpenCvSameCascades) and beside that face cascade. Perception (normals,
+// labels) runs once, outside the timing. The shipped configuration searches the
+// three classes in parallel (threads = 0: both cores here);
+// BM_ThreeCascadesOneThread is the same on one thread. The counters split the
+// detector's time (ms, cascades and checks summed over the classes' threads):
+// detection image, proposals, cascades, 3D size check. At the end the medians
+// (or means without repetitions) are compared. Run
 //   bench_detection --benchmark_repetitions=5
 //   --benchmark_report_aggregates_only=true
 // (OPENCV_FOR_THREADS_NUM=1 for one thread: detectMultiScale is parallel).
@@ -33,11 +34,11 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <opencv2/core/utility.hpp>
 #include <opencv2/objdetect.hpp>
 #include <string>
-#include <utility>
 
 using namespace semnav;
 
@@ -212,20 +213,27 @@ void BM_ThreeCascadesWholeImageNoUpscaling(benchmark::State& s)
 	runDetector(s, o);
 }
 
+/** The detection and range images of input() for `det`'s search (no
+ * segments), made once outside the timing. */
+CascadeDetector::SearchInput prepareSearch(CascadeDetector& det)
+{
+	const Input& in = input();
+	return det.prepareSearch(
+	    in.sweep.phis(), in.sweep.thetas(), in.labeled.normals,
+	    in.labeled.normalMask, in.labeled.points, in.labeled.groundZ,
+	    in.labeled.labels, in.labeled.areaIds, false);
+}
+
 /** The three cascades' search alone (CascadeDetector::searchCascades: the
  * shipped range-gated passes on `threads`), on detection and range images
  * made once outside the timing: the boxes before any 3D check. */
 void runCascadeSearch(benchmark::State& state, int threads)
 {
-	const Input& in = input();
 	auto opts = shipped();
 	opts.threads = threads;
 	if (!cascadesPresent(state, opts)) return;
 	CascadeDetector det(opts);
-	const auto search = det.prepareSearch(
-	    in.sweep.phis(), in.sweep.thetas(), in.labeled.normals,
-	    in.labeled.normalMask, in.labeled.points, in.labeled.groundZ,
-	    in.labeled.labels, in.labeled.areaIds, false);
+	const auto search = prepareSearch(det);
 	std::size_t boxes = 0;
 	for (auto _ : state)
 	{
@@ -247,6 +255,52 @@ void BM_CascadeSearch(benchmark::State& s)
 void BM_CascadeSearchOneThread(benchmark::State& s)
 {
 	runCascadeSearch(s, 1);
+}
+
+/** Reference: OpenCV's cv::CascadeClassifier::detectMultiScale with the
+ * shipped XMLs (the same first max_stages stages, read by OpenCV), on the
+ * same detection images, bands, zero borders, scale factor, min neighbours
+ * and window size limits as the search (CascadeDetector::runCascade
+ * without range_scales): every window at every scale, OpenCV's window
+ * steps (stairs' window_step 2 is not OpenCV's), the classes one after
+ * another, each detectMultiScale on OpenCV's threads (`threads` -1) or on
+ * one. */
+void runOpenCvSameCascades(benchmark::State& state, int threads)
+{
+	auto opts = shipped();
+	opts.rangeScales = false;
+	if (!cascadesPresent(state, opts)) return;
+	CascadeDetector det(opts);
+	const auto search = prepareSearch(det);
+	std::vector<cv::Rect> boxes;
+	std::vector<int> neighbours;
+	std::size_t found = 0;
+	const int before = cv::getNumThreads();
+	cv::setNumThreads(threads);
+	for (auto _ : state)
+	{
+		found = 0;
+		for (std::size_t i = 0; i < opts.classes.size(); i++)
+		{
+			det.runCascade(
+			    i, search.images.at(opts.channelOf(opts.classes[i])), boxes,
+			    neighbours);
+			found += boxes.size();
+		}
+		benchmark::DoNotOptimize(found);
+	}
+	cv::setNumThreads(before);
+	state.counters["boxes"] = double(found);
+}
+
+void BM_OpenCvSameCascades(benchmark::State& s)
+{
+	runOpenCvSameCascades(s, -1);
+}
+
+void BM_OpenCvSameCascadesOneThread(benchmark::State& s)
+{
+	runOpenCvSameCascades(s, 1);
 }
 
 /** Reference: OpenCV's frontal-face Haar cascade (opencv-data) on the same
@@ -330,6 +384,10 @@ BENCHMARK(BM_CascadeSearch)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CascadeSearchOneThread)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+BENCHMARK(BM_OpenCvSameCascades)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OpenCvSameCascadesOneThread)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_OpenCvFaceCascade)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OpenCvFaceCascadeOneThread)
     ->Unit(benchmark::kMillisecond)
@@ -371,16 +429,26 @@ int main(int argc, char** argv)
 	benchmark::RunSpecifiedBenchmarks(&rep);
 	benchmark::Shutdown();
 	const auto has = [&](const char* n) { return rep.ms.count(n) > 0; };
-	for (const auto& [ours, face] :
-	     {std::pair{"BM_CascadeSearch", "BM_OpenCvFaceCascade"},
-	      std::pair{
-	          "BM_CascadeSearchOneThread", "BM_OpenCvFaceCascadeOneThread"}})
-		if (has(face) && has(ours))
+	struct Comparison
+	{
+		const char *ours, *theirs, *what;
+	};
+	for (const auto& c : std::initializer_list<Comparison>{
+	         {"BM_CascadeSearch", "BM_OpenCvSameCascades",
+	          "OpenCV's detectMultiScale with the same three XMLs"},
+	         {"BM_CascadeSearchOneThread", "BM_OpenCvSameCascadesOneThread",
+	          "OpenCV's detectMultiScale with the same three XMLs"},
+	         {"BM_CascadeSearch", "BM_OpenCvFaceCascade",
+	          "OpenCV's face cascade on the same image"},
+	         {"BM_CascadeSearchOneThread", "BM_OpenCvFaceCascadeOneThread",
+	          "OpenCV's face cascade on the same image"}})
+		if (has(c.ours) && has(c.theirs))
 			std::printf(
-			    "%s: the three cascades' search %.2f ms, %.2f times "
-			    "OpenCV's face cascade on the same image (%.2f ms)\n",
-			    ours, rep.ms.at(ours), rep.ms.at(ours) / rep.ms.at(face),
-			    rep.ms.at(face));
+			    "%s: the three cascades' search %.2f ms, %.2f times %s "
+			    "(%.2f ms)\n",
+			    c.ours, rep.ms.at(c.ours),
+			    rep.ms.at(c.ours) / rep.ms.at(c.theirs), c.what,
+			    rep.ms.at(c.theirs));
 	const char* base = "BM_ThreeCascadesWholeImage";
 	if (!has(base)) return 0;
 	std::printf("\nmedian real time, ms (ratio to the whole-image search):\n");
