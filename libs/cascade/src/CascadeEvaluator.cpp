@@ -173,18 +173,64 @@ void CascadeEvaluator::scanWindows(
 {
 	results.assign(windows.size(), Result());
 	if (windows.empty()) return;
-	const IntegralImages& ii = *m_ii;
+	const int grid = placeOnGrid(windows, step);
+	markVarianceWindows(windows, grid);
+	// The positions still in, in grid order, with their segments.
+	Live* live = m_live.data();
+	const int32_t* windowOf = m_gridWindow.data();
+	std::size_t nLive = 0;
+	for (std::size_t si = 0; si < m_segments.size(); si++)
+		for (int j = 0; j < m_segments[si].count; j++)
+			if (m_alive[m_segments[si].grid + j])
+				live[nLive++] = {m_segments[si].grid + j, static_cast<int>(si)};
+	const std::size_t nStages = m_cascade.stages.size();
+	if (nStages == 0)
+	{
+		for (std::size_t k = 0; k < nLive; k++)
+			results[windowOf[live[k].grid]].stage = 0;
+		return;
+	}
+	// Stage 0 on every window, then OpenCV's skip in visiting order: the
+	// window after a stage-0 rejection is not visited (its stage-0 sum is
+	// dropped).
+	runStage(0, step, nLive);
+	nLive = applyFirstStage(windows, step, results, nLive);
+	const double* sums = m_gridSums.data();
+	Result* res = results.data();
+	for (std::size_t s = 1; s < nStages && nLive > 0; s++)
+	{
+		runStage(s, step, nLive);
+		const float thr =
+		    m_cascade.stages[s].threshold - detail::kStageThresholdEps;
+		// Without branches (a stage passes 60-70 % of the windows: the
+		// branch is unpredictable): every window gets this stage's result,
+		// which the stage that rejects it or the end overwrites.
+		std::size_t kept = 0;
+		for (std::size_t k = 0; k < nLive; k++)
+		{
+			const Live l = live[k];
+			const double sum = sums[l.grid];
+			Result& r = res[windowOf[l.grid]];
+			r.sum = sum;
+			r.stage = static_cast<int>(s);
+			live[kept] = l;
+			kept += !(sum < thr);
+		}
+		nLive = kept;
+	}
+	for (std::size_t k = 0; k < nLive; k++)
+	{
+		Result& r = res[windowOf[live[k].grid]];
+		r.sum = sums[live[k].grid];
+		r.stage = static_cast<int>(nStages);
+	}
+}
+
+int CascadeEvaluator::placeOnGrid(
+    const std::vector<cv::Point>& windows, int step)
+{
 	const cv::Size win = m_cascade.windowSize;
-	const cv::Size img = ii.imageSize();
-	const int stride = static_cast<int>(ii.sum().step1());
-	const int sqStride = static_cast<int>(ii.sqsum().step1());
-	const int32_t* sum0 = ii.sum().ptr<int32_t>(0);
-	const double* sq0 = ii.sqsum().ptr<double>(0);
-	const int32_t* tilt0 =
-	    ii.hasTilted() ? ii.tilted().ptr<int32_t>(0) : nullptr;
-	// The last entry of the integral images a read may reach.
-	const int64_t lastEntry =
-	    int64_t(ii.sum().rows - 1) * stride + ii.sum().cols - 1;
+	const cv::Size img = m_ii->imageSize();
 	// Windows on a grid: runs of one row, `step` apart (the windows of a
 	// detectMultiScale level), each a segment of grid positions; positions
 	// between the windows of a run are not windows (never alive).
@@ -226,6 +272,18 @@ void CascadeEvaluator::scanWindows(
 		segs.push_back({o.x, o.y, grid, 1});
 		m_gridOf[i] = grid++;
 	}
+	return grid;
+}
+
+void CascadeEvaluator::markVarianceWindows(
+    const std::vector<cv::Point>& windows, int grid)
+{
+	const IntegralImages& ii = *m_ii;
+	const cv::Size win = m_cascade.windowSize;
+	const int stride = static_cast<int>(ii.sum().step1());
+	const int sqStride = static_cast<int>(ii.sqsum().step1());
+	const int32_t* sum0 = ii.sum().ptr<int32_t>(0);
+	const double* sq0 = ii.sqsum().ptr<double>(0);
 	m_alive.assign(grid + 8, 0);
 	m_gridNf.assign(grid + 8, 0.f);
 	m_gridSums.assign(grid + 8, 0.0);
@@ -244,159 +302,127 @@ void CascadeEvaluator::scanWindows(
 		m_gridNf[g] = nf;
 		m_alive[g] = 1;
 	}
+	m_live.resize(static_cast<std::size_t>(grid));
+}
+
+void CascadeEvaluator::runStage(std::size_t s, int step, std::size_t nLive)
+{
+	const IntegralImages& ii = *m_ii;
+	const int stride = static_cast<int>(ii.sum().step1());
+	const int32_t* sum0 = ii.sum().ptr<int32_t>(0);
+	const int32_t* tilt0 =
+	    ii.hasTilted() ? ii.tilted().ptr<int32_t>(0) : nullptr;
+	// The last entry of the integral images a read may reach.
+	const int64_t lastEntry =
+	    int64_t(ii.sum().rows - 1) * stride + ii.sum().cols - 1;
 	// Dense eight-window blocks (AVX2) cover eight neighbouring positions
 	// of a segment of at least eight (every position lies between two
 	// windows of the run, so inside the image), or a shorter segment and
 	// the positions after it (dropped).
 	const bool simd = simdActive() && (step == 1 || step == 2);
-	const std::size_t nStages = m_cascade.stages.size();
-	// The positions still in, in grid order, with their segments (raw
-	// pointers below: the compiler cannot keep vector data pointers in
-	// registers across the stores).
-	m_live.resize(static_cast<std::size_t>(grid));
-	Live* live = m_live.data();
-	std::size_t nLive = 0;
-	uint8_t* alive = m_alive.data();
-	float* nfs = m_gridNf.data();
+	// (Raw pointers: the compiler cannot keep vector data pointers in
+	// registers across the stores.)
+	const std::vector<Segment>& segs = m_segments;
+	const Live* live = m_live.data();
+	const float* nfs = m_gridNf.data();
 	double* sums = m_gridSums.data();
-	const int32_t* windowOf = m_gridWindow.data();
-	for (std::size_t si = 0; si < segs.size(); si++)
-		for (int j = 0; j < segs[si].count; j++)
-			if (alive[segs[si].grid + j])
-				live[nLive++] = {segs[si].grid + j, static_cast<int>(si)};
-	const auto runStage = [&](std::size_t s)
+	const detail::FlatStump* st = m_flat.data() + m_stageBegin[s];
+	const std::size_t n = m_stageBegin[s + 1] - m_stageBegin[s];
+	// Windows no block takes, four side by side (independent sums: a
+	// window alone waits on each of its additions).
+	int32_t pendBase[4];
+	float pendNf[4];
+	int pendGrid[4];
+	int pending = 0;
+	const auto flush = [&]()
 	{
-		const detail::FlatStump* st = m_flat.data() + m_stageBegin[s];
-		const std::size_t n = m_stageBegin[s + 1] - m_stageBegin[s];
-		// Windows no block takes, four side by side (independent sums: a
-		// window alone waits on each of its additions).
-		int32_t pendBase[4];
-		float pendNf[4];
-		int pendGrid[4];
-		int pending = 0;
-		const auto flush = [&]()
+		if (pending >= 2)
 		{
-			if (pending >= 2)
+			for (int i = pending; i < 4; i++)
 			{
-				for (int i = pending; i < 4; i++)
-				{
-					pendBase[i] = pendBase[0];
-					pendNf[i] = pendNf[0];
-				}
-				double out[4];
-				detail::stageSumsAt4(st, n, sum0, tilt0, pendBase, pendNf, out);
-				for (int i = 0; i < pending; i++) sums[pendGrid[i]] = out[i];
+				pendBase[i] = pendBase[0];
+				pendNf[i] = pendNf[0];
 			}
-			else
-				for (int i = 0; i < pending; i++)
-					sums[pendGrid[i]] = detail::stageSum(
-					    st, n, sum0, tilt0, pendBase[i], pendNf[i]);
-			pending = 0;
-		};
-		for (std::size_t k = 0; k < nLive;)
-		{
-			const Segment& sg = segs[live[k].segment];
-			const int32_t base = sg.y * stride + sg.x0;
-			const int j = live[k].grid - sg.grid;
-			if (simd)
-			{
-				// The block of j; with two or more positions in, all eight
-				// at once. A segment shorter than eight is one block whose
-				// lanes past its end are computed and dropped (their reads
-				// stay within the integral images: checked below).
-				const int jb =
-				    sg.count >= 8 ? std::min(j / 8 * 8, sg.count - 8) : 0;
-				const int g = sg.grid + jb;
-				const int gEnd = std::min(g + 8, sg.grid + sg.count);
-				std::size_t e = k + 1;
-				while (e < nLive && live[e].grid < gEnd) e++;
-				const int32_t b = base + step * jb;
-				// The block's loads end (step 2: one entry) past the last
-				// window's corners.
-				if (e - k >= 2 && b + 8 * step - 1 + m_maxOffset <= lastEntry)
-				{
-					double block[8];
-					detail::stageSums8(
-					    st, n, sum0, tilt0, b, step, nfs + g, block);
-					for (; k < e; k++)
-						sums[live[k].grid] = block[live[k].grid - g];
-					continue;
-				}
-			}
-			pendBase[pending] = base + step * j;
-			pendNf[pending] = nfs[live[k].grid];
-			pendGrid[pending] = live[k].grid;
-			if (++pending == 4) flush();
-			k++;
+			double out[4];
+			detail::stageSumsAt4(st, n, sum0, tilt0, pendBase, pendNf, out);
+			for (int i = 0; i < pending; i++) sums[pendGrid[i]] = out[i];
 		}
-		flush();
+		else
+			for (int i = 0; i < pending; i++)
+				sums[pendGrid[i]] = detail::stageSum(
+				    st, n, sum0, tilt0, pendBase[i], pendNf[i]);
+		pending = 0;
 	};
-	if (nStages == 0)
+	for (std::size_t k = 0; k < nLive;)
 	{
-		for (std::size_t k = 0; k < nLive; k++)
-			results[windowOf[live[k].grid]].stage = 0;
-		return;
-	}
-	// Stage 0 on every window, then OpenCV's skip in visiting order: the
-	// window after a stage-0 rejection is not visited (its stage-0 sum is
-	// dropped).
-	runStage(0);
-	{
-		const float thr0 =
-		    m_cascade.stages[0].threshold - detail::kStageThresholdEps;
-		cv::Point skip(-1, -1);
-		const int* gridOf = m_gridOf.data();
-		for (std::size_t i = 0; i < windows.size(); i++)
+		const Segment& sg = segs[live[k].segment];
+		const int32_t base = sg.y * stride + sg.x0;
+		const int j = live[k].grid - sg.grid;
+		if (simd)
 		{
-			const int g = gridOf[i];
-			if (windows[i] == skip)
+			// The block of j; with two or more positions in, all eight
+			// at once. A segment shorter than eight is one block whose
+			// lanes past its end are computed and dropped (their reads
+			// stay within the integral images: checked below).
+			const int jb =
+			    sg.count >= 8 ? std::min(j / 8 * 8, sg.count - 8) : 0;
+			const int g = sg.grid + jb;
+			const int gEnd = std::min(g + 8, sg.grid + sg.count);
+			std::size_t e = k + 1;
+			while (e < nLive && live[e].grid < gEnd) e++;
+			const int32_t b = base + step * jb;
+			// The block's loads end (step 2: one entry) past the last
+			// window's corners.
+			if (e - k >= 2 && b + 8 * step - 1 + m_maxOffset <= lastEntry)
 			{
-				results[i].stage = kNotVisited;
-				if (g >= 0) alive[g] = 0;
+				double block[8];
+				detail::stageSums8(st, n, sum0, tilt0, b, step, nfs + g, block);
+				for (; k < e; k++) sums[live[k].grid] = block[live[k].grid - g];
 				continue;
 			}
-			if (g < 0 || !alive[g]) continue;  // outside, variance: -1
-			results[i].sum = sums[g];
-			if (sums[g] < thr0)
-			{
-				results[i].stage = 0;
-				alive[g] = 0;
-				skip = cv::Point(windows[i].x + step, windows[i].y);
-			}
 		}
-		std::size_t kept = 0;
-		for (std::size_t k = 0; k < nLive; k++)
-			if (alive[live[k].grid]) live[kept++] = live[k];
-		nLive = kept;
+		pendBase[pending] = base + step * j;
+		pendNf[pending] = nfs[live[k].grid];
+		pendGrid[pending] = live[k].grid;
+		if (++pending == 4) flush();
+		k++;
 	}
-	Result* res = results.data();
-	for (std::size_t s = 1; s < nStages && nLive > 0; s++)
+	flush();
+}
+
+std::size_t CascadeEvaluator::applyFirstStage(
+    const std::vector<cv::Point>& windows, int step,
+    std::vector<Result>& results, std::size_t nLive)
+{
+	uint8_t* alive = m_alive.data();
+	const double* sums = m_gridSums.data();
+	Live* live = m_live.data();
+	const float thr0 =
+	    m_cascade.stages[0].threshold - detail::kStageThresholdEps;
+	cv::Point skip(-1, -1);
+	const int* gridOf = m_gridOf.data();
+	for (std::size_t i = 0; i < windows.size(); i++)
 	{
-		runStage(s);
-		const float thr =
-		    m_cascade.stages[s].threshold - detail::kStageThresholdEps;
-		// Without branches (a stage passes 60-70 % of the windows: the
-		// branch is unpredictable): every window gets this stage's result,
-		// which the stage that rejects it or the end overwrites.
-		std::size_t kept = 0;
-		for (std::size_t k = 0; k < nLive; k++)
+		const int g = gridOf[i];
+		if (windows[i] == skip)
 		{
-			const Live l = live[k];
-			const double sum = sums[l.grid];
-			Result& r = res[windowOf[l.grid]];
-			r.sum = sum;
-			r.stage = static_cast<int>(s);
-			live[kept] = l;
-			kept += !(sum < thr);
+			results[i].stage = kNotVisited;
+			if (g >= 0) alive[g] = 0;
+			continue;
 		}
-		nLive = kept;
+		if (g < 0 || !alive[g]) continue;  // outside, variance: -1
+		results[i].sum = sums[g];
+		if (sums[g] < thr0)
+		{
+			results[i].stage = 0;
+			alive[g] = 0;
+			skip = cv::Point(windows[i].x + step, windows[i].y);
+		}
 	}
+	std::size_t kept = 0;
 	for (std::size_t k = 0; k < nLive; k++)
-	{
-		Result& r = res[windowOf[live[k].grid]];
-		r.sum = sums[live[k].grid];
-		r.stage = static_cast<int>(nStages);
-	}
+		if (alive[live[k].grid]) live[kept++] = live[k];
+	return kept;
 }
 
 }  // namespace semnav

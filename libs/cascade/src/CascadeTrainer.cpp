@@ -18,6 +18,7 @@
 
 #include "CompiledFeature.h"
 #include "Random.h"
+#include "StageTrainer.h"
 
 namespace semnav
 {
@@ -129,92 +130,8 @@ double secondsSince(Clock::time_point t0)
 {
 	return std::chrono::duration<double>(Clock::now() - t0).count();
 }
-
-/** Training windows with their integral images (window size + 1 square)
- * and variance normalisation factors. After finish(), the integral images
- * are stored transposed (entry-major: one row of all samples per integral
- * image entry), so that a feature's values over all samples stream through
- * a dozen contiguous rows. */
-class SampleSet
-{
-public:
-	explicit SampleSet(cv::Size win)
-	    : m_win(win),
-	      m_stride(win.width + 1),
-	      m_area((win.width + 1) * (win.height + 1))
-	{
-	}
-	/** Adds a window; false (not added) when OpenCV would skip it. */
-	bool add(const cv::Mat& window, int label)
-	{
-		m_ii.compute(window, true);
-		float nf = 1;
-		if (!detail::varianceNormFactor(
-		        m_ii.sum().ptr<int32_t>(), m_ii.sqsum().ptr<double>(), m_stride,
-		        m_stride, m_win, nf))
-			return false;
-		m_sum.insert(
-		    m_sum.end(), m_ii.sum().ptr<int32_t>(),
-		    m_ii.sum().ptr<int32_t>() + m_area);
-		m_tilt.insert(
-		    m_tilt.end(), m_ii.tilted().ptr<int32_t>(),
-		    m_ii.tilted().ptr<int32_t>() + m_area);
-		m_nf.push_back(nf);
-		m_label.push_back(static_cast<int8_t>(label));
-		return true;
-	}
-	/** Transposes the integral images; call once after the last add(). */
-	void finish()
-	{
-		const std::size_t N = size();
-		m_sumT.resize(std::size_t(m_area) * N);
-		m_tiltT.resize(std::size_t(m_area) * N);
-		for (std::size_t i = 0; i < N; i++)
-			for (int p = 0; p < m_area; p++)
-			{
-				m_sumT[std::size_t(p) * N + i] = m_sum[i * m_area + p];
-				m_tiltT[std::size_t(p) * N + i] = m_tilt[i * m_area + p];
-			}
-		m_sum.clear();
-		m_sum.shrink_to_fit();
-		m_tilt.clear();
-		m_tilt.shrink_to_fit();
-	}
-	std::size_t size() const { return m_nf.size(); }
-	int stride() const { return m_stride; }
-	int label(std::size_t i) const { return m_label[i]; }
-	/** Normalised values of a feature (compiled with stride()) for all
-	 * samples, computed as the detector computes them: float(w0 * s0) +
-	 * float(w1 * s1) [+ w2 * s2], times the normalisation factor. */
-	void values(const detail::CompiledFeature& f, float* out) const
-	{
-		const std::size_t N = size();
-		const std::vector<int32_t>& T = f.tilted ? m_tiltT : m_sumT;
-		const auto row = [&](int ofs) { return &T[std::size_t(ofs) * N]; };
-		for (int j = 0; j < 3; j++)
-		{
-			if (j == 2 && f.weight[2] == 0.0f) break;
-			const int32_t *a = row(f.ofs[j][0]), *b = row(f.ofs[j][1]),
-			              *c = row(f.ofs[j][2]), *d = row(f.ofs[j][3]);
-			const float w = f.weight[j];
-			if (j == 0)
-				for (std::size_t i = 0; i < N; i++)
-					out[i] = w * static_cast<float>(a[i] - b[i] - c[i] + d[i]);
-			else
-				for (std::size_t i = 0; i < N; i++)
-					out[i] += w * static_cast<float>(a[i] - b[i] - c[i] + d[i]);
-		}
-		for (std::size_t i = 0; i < N; i++) out[i] *= m_nf[i];
-	}
-
-private:
-	cv::Size m_win;
-	int m_stride, m_area;
-	IntegralImages m_ii;
-	std::vector<int32_t> m_sum, m_tilt, m_sumT, m_tiltT;
-	std::vector<float> m_nf;
-	std::vector<int8_t> m_label;
-};
+using detail::SampleSet;
+using detail::StageTrainer;
 
 /** One pyramid level of a negative image. */
 struct Level
@@ -369,317 +286,15 @@ MiningResult mineNegatives(
 	return res;
 }
 
-/** Gentle AdaBoost on regression stumps for one stage. */
-struct StageTrainer
+/** The positives' integral images (posII), the low-contrast ones dropped
+ * (the detector never evaluates such windows), and their indices into
+ * `positives` (posIndex). */
+void usablePositives(
+    const std::vector<cv::Mat>& positives, cv::Size win,
+    CascadeTrainer::Report& report, std::vector<IntegralImages>& posII,
+    std::vector<int>& posIndex)
 {
-	const SampleSet& samples;
-	const std::vector<HaarFeature>& pool;
-	std::vector<int> candidates;  // pool indices usable in this stage
-	const CascadeTrainer::TOptions& opt;
-	int threads;
-
-	std::vector<uint8_t> codes;  // candidates x samples
-	std::vector<detail::CompiledFeature> compiled;
-
-	void binFeatures()
-	{
-		const std::size_t N = samples.size(), F = candidates.size();
-		codes.assign(F * N, 0);
-		compiled.resize(F);
-		const int bins = opt.featureBins;
-		// Equal-frequency bins from a fine uniform histogram of the values:
-		// the code is a monotone (non-decreasing) function of the value, so
-		// every sample with code <= k has a smaller value than every sample
-		// with a larger code, and equal values share a code. The split
-		// threshold is then the smallest value above (thresholdOf()).
-		constexpr int kFine = 4096;
-#pragma omp parallel num_threads(threads)
-		{
-			std::vector<float> v(N);
-			std::vector<int> fine(N);
-			std::vector<uint32_t> hist(kFine);
-			std::vector<uint8_t> map(kFine);
-#pragma omp for schedule(dynamic, 256)
-			for (std::size_t f = 0; f < F; f++)
-			{
-				compiled[f] = detail::CompiledFeature(
-				    pool[candidates[f]], samples.stride());
-				samples.values(compiled[f], v.data());
-				float mn = v[0], mx = v[0];
-				for (std::size_t i = 1; i < N; i++)
-				{
-					mn = std::min(mn, v[i]);
-					mx = std::max(mx, v[i]);
-				}
-				uint8_t* c = &codes[f * N];
-				if (!(mx > mn)) continue;  // constant: one bin
-				const float inv = float(kFine) / (mx - mn);
-				std::fill(hist.begin(), hist.end(), 0u);
-				for (std::size_t i = 0; i < N; i++)
-				{
-					const int b = std::min(
-					    kFine - 1, static_cast<int>((v[i] - mn) * inv));
-					fine[i] = b;
-					hist[std::size_t(b)]++;
-				}
-				std::size_t before = 0;
-				for (int b = 0; b < kFine; b++)
-				{
-					map[std::size_t(b)] =
-					    static_cast<uint8_t>(std::min<std::size_t>(
-					        std::size_t(bins) - 1,
-					        before * std::size_t(bins) / N));
-					before += hist[std::size_t(b)];
-				}
-				for (std::size_t i = 0; i < N; i++)
-					c[i] = map[std::size_t(fine[i])];
-			}
-		}
-	}
-
-	/** Threshold of split "code <= k": the smallest value with a larger
-	 * code. */
-	float thresholdOf(std::size_t f, int k) const
-	{
-		const std::size_t N = samples.size();
-		std::vector<float> v(N);
-		samples.values(compiled[f], v.data());
-		float t = std::numeric_limits<float>::infinity();
-		for (std::size_t i = 0; i < N; i++)
-			if (codes[f * N + i] > k) t = std::min(t, v[i]);
-		return t;
-	}
-
-	HaarCascade::Stage train(
-	    CascadeTrainer::StageReport& rep, std::vector<int>& usedPoolIdx,
-	    detail::Random& rng)
-	{
-		const std::size_t N = samples.size(), F = candidates.size();
-		std::vector<double> w(N, 1.0 / double(N)), sums(N, 0.0);
-		std::vector<int> y(N);
-		// Calibration positives (label 2) have no weight: the stumps do not
-		// fit them, they only set the stage threshold.
-		std::vector<char> calib(N, 0);
-		std::size_t P = 0, C = 0;
-		for (std::size_t i = 0; i < N; i++)
-		{
-			y[i] = samples.label(i) > 0 ? 1 : -1;
-			calib[i] = samples.label(i) == 2;
-			if (calib[i])
-				C++;
-			else if (y[i] > 0)
-				P++;
-		}
-		if (C > 0)
-		{
-			const double wb = 1.0 / double(N - C);
-			for (std::size_t i = 0; i < N; i++) w[i] = calib[i] ? 0.0 : wb;
-		}
-		const std::size_t Nn = N - P - C;
-		HaarCascade::Stage stage;
-		std::vector<double> bestScore(F);
-		std::vector<int> bestSplit(F);
-		std::vector<uint32_t> active;
-		std::vector<double> posSums;
-		for (int t = 0; t < opt.maxWeakCount; t++)
-		{
-			// Weight trimming: drop the lightest samples holding
-			// (1 - rate) of the mass.
-			active.clear();
-			{
-				std::vector<double> sorted(w);
-				std::sort(sorted.begin(), sorted.end());
-				const double total =
-				    std::accumulate(sorted.begin(), sorted.end(), 0.0);
-				double acc = 0, thr = 0;
-				for (double s : sorted)
-				{
-					acc += s;
-					if (acc > (1.0 - opt.weightTrimRate) * total)
-					{
-						thr = s;
-						break;
-					}
-				}
-				for (std::size_t i = 0; i < N; i++)
-					if (w[i] >= thr && !calib[i]) active.push_back(uint32_t(i));
-			}
-			std::vector<double> wy(N);
-			for (std::size_t i = 0; i < N; i++) wy[i] = w[i] * y[i];
-
-			// Features tried for this stump (seeded draw).
-			std::fill(bestSplit.begin(), bestSplit.end(), -1);
-			std::vector<uint32_t> tryF;
-			tryF.reserve(F);
-			for (std::size_t f = 0; f < F; f++)
-				if (opt.roundFeatureFraction >= 1.0 ||
-				    rng.uniform() < opt.roundFeatureFraction)
-					tryF.push_back(uint32_t(f));
-			const std::size_t T = tryF.size();
-#pragma omp parallel num_threads(threads)
-			{
-				std::vector<double> hw(256), hs(256);
-#pragma omp for schedule(dynamic, 256)
-				for (std::size_t t2 = 0; t2 < T; t2++)
-				{
-					const std::size_t f = tryF[t2];
-					std::fill(hw.begin(), hw.end(), 0.0);
-					std::fill(hs.begin(), hs.end(), 0.0);
-					const uint8_t* c = &codes[f * N];
-					int maxCode = 0;
-					for (uint32_t i : active)
-					{
-						const int b = c[i];
-						hw[b] += w[i];
-						hs[b] += wy[i];
-						maxCode = std::max(maxCode, b);
-					}
-					double W = 0, S = 0;
-					for (int b = 0; b <= maxCode; b++)
-					{
-						W += hw[b];
-						S += hs[b];
-					}
-					double wl = 0, sl = 0, best = -1;
-					int split = -1;
-					for (int k = 0; k < maxCode; k++)
-					{
-						wl += hw[k];
-						sl += hs[k];
-						const double wr = W - wl, sr = S - sl;
-						if (wl <= 0 || wr <= 0) continue;
-						const double score = sl * sl / wl + sr * sr / wr;
-						if (score > best)
-						{
-							best = score;
-							split = k;
-						}
-					}
-					bestScore[f] = best;
-					bestSplit[f] = split;
-				}
-			}
-			std::size_t fb = F;
-			for (std::size_t f = 0; f < F; f++)
-				if (bestSplit[f] >= 0 &&
-				    (fb == F || bestScore[f] > bestScore[fb]))
-					fb = f;
-			if (fb == F) break;  // nothing separates the samples
-			const int k = bestSplit[fb];
-			const uint8_t* c = &codes[fb * N];
-			double wl = 0, sl = 0, wr = 0, sr = 0;
-			for (uint32_t i : active)
-			{
-				if (c[i] <= k)
-				{
-					wl += w[i];
-					sl += wy[i];
-				}
-				else
-				{
-					wr += w[i];
-					sr += wy[i];
-				}
-			}
-			HaarCascade::Stump st;
-			st.featureIdx = candidates[fb];  // pool index for now
-			st.threshold = thresholdOf(fb, k);
-			st.left = static_cast<float>(wl > 0 ? sl / wl : 0.0);
-			st.right = static_cast<float>(wr > 0 ? sr / wr : 0.0);
-			stage.stumps.push_back(st);
-			usedPoolIdx.push_back(candidates[fb]);
-
-			// Update sums (as the detector: double += float leaf) and
-			// weights: w *= exp(-y f(x)).
-			double total = 0;
-			for (std::size_t i = 0; i < N; i++)
-			{
-				const float leaf = c[i] <= k ? st.left : st.right;
-				sums[i] += leaf;
-				w[i] *= std::exp(-double(y[i]) * double(leaf));
-				total += w[i];
-			}
-			for (auto& wi : w) wi /= total;
-
-			// Stage threshold keeping minHitRate of the positives
-			// (opencv_traincascade's CvCascadeBoost::isErrDesired).
-			const auto passes = [&](double s, float th)
-			{ return !(s < th - detail::kStageThresholdEps); };
-			// The threshold keeping minHitRate of the positives (boosted
-			// or calibration ones), as a float that keeps them all.
-			const auto keeping = [&](bool ofCalib, std::size_t count)
-			{
-				posSums.clear();
-				for (std::size_t i = 0; i < N; i++)
-					if (y[i] > 0 && bool(calib[i]) == ofCalib)
-						posSums.push_back(sums[i]);
-				std::sort(posSums.begin(), posSums.end());
-				const std::size_t idx = std::min(
-				    count - 1,
-				    std::size_t((1.0 - opt.minHitRate) * double(count)));
-				float th = static_cast<float>(posSums[idx]);
-				const auto hits = [&](float t)
-				{
-					std::size_t h = 0;
-					for (double v : posSums) h += passes(v, t);
-					return h;
-				};
-				// Rounding to float must not lose positives the rank
-				// promised.
-				while (hits(th) < count - idx)
-					th = std::nextafter(
-					    th, -std::numeric_limits<float>::infinity());
-				return th;
-			};
-			float thr = C > 0 ? std::min(keeping(false, P), keeping(true, C))
-			                  : keeping(false, P);
-			const auto hits = [&](float th)
-			{
-				std::size_t h = 0;
-				for (std::size_t i = 0; i < N; i++)
-					h += y[i] > 0 && !calib[i] && passes(sums[i], th);
-				return h;
-			};
-			std::size_t fa = 0;
-			for (std::size_t i = 0; i < N; i++)
-				if (y[i] < 0 && passes(sums[i], thr)) fa++;
-			if (C > 0)
-			{
-				std::size_t hc = 0;
-				for (std::size_t i = 0; i < N; i++)
-					hc += calib[i] && passes(sums[i], thr);
-				rep.calibrationHitRate = double(hc) / double(C);
-			}
-			stage.threshold = thr;
-			rep.hitRate = double(hits(thr)) / double(P);
-			rep.falseAlarm = Nn ? double(fa) / double(Nn) : 0.0;
-			rep.weakCount = stage.stumps.size();
-			rep.threshold = thr;
-			if (rep.falseAlarm <= opt.maxFalseAlarm) break;
-		}
-		return stage;
-	}
-};
-
-}  // namespace
-
-// ------------------------------------------------------------------ train
-HaarCascade CascadeTrainer::train(
-    const std::vector<cv::Mat>& positives,
-    const std::vector<NegativeImage>& negatives, uint64_t seed,
-    const Progress& progress)
-{
-	const auto t0 = Clock::now();
-	const TOptions& opt = m_options;
-	m_report = Report();
-	const int threads = opt.threads > 0 ? opt.threads : omp_get_num_procs();
-	const cv::Size win(opt.windowWidth, opt.windowHeight);
-
-	// Positives: all must be window-sized 8-bit; low-contrast ones are
-	// dropped (the detector never evaluates such windows).
-	std::vector<IntegralImages> posII;
-	std::vector<int> posIndex;
-	m_report.positivesGiven = positives.size();
+	report.positivesGiven = positives.size();
 	for (std::size_t i = 0; i < positives.size(); i++)
 	{
 		const cv::Mat& p = positives[i];
@@ -694,26 +309,20 @@ HaarCascade CascadeTrainer::train(
 		        ii.sum().ptr<int32_t>(), ii.sqsum().ptr<double>(),
 		        ii.sum().cols, ii.sqsum().cols, win, nf))
 		{
-			m_report.positivesLowContrast++;
+			report.positivesLowContrast++;
 			continue;
 		}
 		posII.push_back(std::move(ii));
 		posIndex.push_back(static_cast<int>(i));
 	}
-	// Calibration positives: a seeded draw of its own (the other draws are
-	// those of a training without them).
-	std::vector<char> isCalib(posII.size(), 0);
-	if (opt.calibrationFraction > 0)
-	{
-		detail::Random calRng(seed ^ 0x5ca1ab1e0ddba11ULL);
-		for (auto& c : isCalib) c = calRng.uniform() < opt.calibrationFraction;
-	}
-	if (posII.empty())
-		throw CascadeError(
-		    "no usable positive sample (" + std::to_string(positives.size()) +
-		    " given, all with grey-level standard deviation <= 10)");
+}
 
-	// Negative pyramids, as detectMultiScale scales an image.
+/** Negative pyramids, as detectMultiScale scales an image (with a range
+ * gate: the levels with a window it lets through). */
+std::vector<Level> negativePyramids(
+    const std::vector<NegativeImage>& negatives, cv::Size win,
+    double scaleFactor)
+{
 	std::vector<Level> levels;
 	for (std::size_t i = 0; i < negatives.size(); i++)
 	{
@@ -723,7 +332,7 @@ HaarCascade CascadeTrainer::train(
 			throw CascadeError(
 			    "negative image " + std::to_string(i) + " is not 8-bit grey");
 		const NegativeImage& neg = negatives[i];
-		for (double s = 1;; s *= opt.negativeScaleFactor)
+		for (double s = 1;; s *= scaleFactor)
 		{
 			const cv::Size sz(cvRound(img.cols / s), cvRound(img.rows / s));
 			if (sz.width < win.width || sz.height < win.height) break;
@@ -765,7 +374,125 @@ HaarCascade CascadeTrainer::train(
 		    "no negative image is at least as large as the " +
 		    std::to_string(win.width) + "x" + std::to_string(win.height) +
 		    " window with a window its range gate lets through");
+	return levels;
+}
 
+/** The positives the cascade so far still accepts, into `samples`
+ * (calibration ones labelled 2). */
+void addAcceptedPositives(
+    const HaarCascade& cascade, const std::vector<cv::Mat>& positives,
+    const std::vector<IntegralImages>& posII, const std::vector<int>& posIndex,
+    const std::vector<char>& isCalib, int threads, SampleSet& samples,
+    CascadeTrainer::StageReport& rep)
+{
+	std::vector<char> keep(posII.size(), 0);
+#pragma omp parallel num_threads(threads)
+	{
+		CascadeEvaluator ev(cascade);
+#pragma omp for schedule(static)
+		for (std::size_t i = 0; i < posII.size(); i++)
+		{
+			ev.setIntegralImages(posII[i]);
+			keep[i] = ev.accepted(ev.evaluate({0, 0}));
+		}
+	}
+	for (std::size_t i = 0; i < posII.size(); i++)
+		if (keep[i] && isCalib[i])
+		{
+			samples.add(positives[posIndex[i]], +2);
+			rep.calibrationPositives++;
+		}
+		else if (keep[i])
+		{
+			samples.add(positives[posIndex[i]], +1);
+			rep.positiveIndices.push_back(posIndex[i]);
+		}
+	rep.positives = rep.positiveIndices.size();
+}
+
+/** One stage boosted on `samples` (features drawn from the pool with
+ * feature_fraction). */
+HaarCascade::Stage boostStage(
+    const SampleSet& samples, const std::vector<HaarFeature>& pool,
+    const CascadeTrainer::TOptions& opt, int threads, detail::Random& rng,
+    CascadeTrainer::StageReport& rep)
+{
+	StageTrainer st{samples, pool, {}, opt, threads, {}, {}};
+	st.candidates.resize(pool.size());
+	std::iota(st.candidates.begin(), st.candidates.end(), 0);
+	if (opt.featureFraction < 1.0)
+	{
+		std::vector<int> sub;
+		for (int f : st.candidates)
+			if (rng.uniform() < opt.featureFraction) sub.push_back(f);
+		if (!sub.empty()) st.candidates = std::move(sub);
+	}
+	const auto tb = Clock::now();
+	st.binFeatures();
+	rep.secondsBinning = secondsSince(tb);
+	const auto tt = Clock::now();
+	std::vector<int> used;
+	HaarCascade::Stage stage = st.train(rep, used, rng);
+	rep.secondsBoosting = secondsSince(tt);
+	return stage;
+}
+
+/** Appends `stage` to `cascade`, its stumps' pool indices turned into
+ * cascade feature indices (the pool features it did not hold added). */
+void appendStage(
+    HaarCascade& cascade, HaarCascade::Stage stage,
+    const std::vector<HaarFeature>& pool, std::map<int, int>& poolToCascade)
+{
+	// Pool indices -> cascade feature indices.
+	for (auto& stump : stage.stumps)
+	{
+		auto it = poolToCascade.find(stump.featureIdx);
+		if (it == poolToCascade.end())
+		{
+			it = poolToCascade
+			         .emplace(
+			             stump.featureIdx,
+			             static_cast<int>(cascade.features.size()))
+			         .first;
+			cascade.features.push_back(pool[stump.featureIdx]);
+		}
+		stump.featureIdx = it->second;
+	}
+	cascade.stages.push_back(std::move(stage));
+}
+}  // namespace
+
+HaarCascade CascadeTrainer::train(
+    const std::vector<cv::Mat>& positives,
+    const std::vector<NegativeImage>& negatives, uint64_t seed,
+    const Progress& progress)
+{
+	const auto t0 = Clock::now();
+	const TOptions& opt = m_options;
+	m_report = Report();
+	const int threads = opt.threads > 0 ? opt.threads : omp_get_num_procs();
+	const cv::Size win(opt.windowWidth, opt.windowHeight);
+
+	// Positives: all must be window-sized 8-bit; low-contrast ones are
+	// dropped.
+	std::vector<IntegralImages> posII;
+	std::vector<int> posIndex;
+	usablePositives(positives, win, m_report, posII, posIndex);
+	// Calibration positives: a seeded draw of its own (the other draws are
+	// those of a training without them).
+	std::vector<char> isCalib(posII.size(), 0);
+	if (opt.calibrationFraction > 0)
+	{
+		detail::Random calRng(seed ^ 0x5ca1ab1e0ddba11ULL);
+		for (auto& c : isCalib) c = calRng.uniform() < opt.calibrationFraction;
+	}
+	if (posII.empty())
+		throw CascadeError(
+		    "no usable positive sample (" + std::to_string(positives.size()) +
+		    " given, all with grey-level standard deviation <= 10)");
+
+	const std::vector<Level> levels =
+	    negativePyramids(negatives, win, opt.negativeScaleFactor);
 	const std::vector<HaarFeature> pool = generateHaarFeatures(win, opt.mode);
 	m_report.featurePool = pool.size();
 	detail::Random rng(seed);
@@ -791,31 +518,10 @@ HaarCascade CascadeTrainer::train(
 			    std::size_t(s), std::size_t(opt.numStages),
 			    "stage " + std::to_string(s + 1) + ": drawing samples");
 		StageReport rep;
-		// Positives the cascade so far still accepts.
-		std::vector<char> keep(posII.size(), 0);
-#pragma omp parallel num_threads(threads)
-		{
-			CascadeEvaluator ev(cascade);
-#pragma omp for schedule(static)
-			for (std::size_t i = 0; i < posII.size(); i++)
-			{
-				ev.setIntegralImages(posII[i]);
-				keep[i] = ev.accepted(ev.evaluate({0, 0}));
-			}
-		}
 		SampleSet samples(win);
-		for (std::size_t i = 0; i < posII.size(); i++)
-			if (keep[i] && isCalib[i])
-			{
-				samples.add(positives[posIndex[i]], +2);
-				rep.calibrationPositives++;
-			}
-			else if (keep[i])
-			{
-				samples.add(positives[posIndex[i]], +1);
-				rep.positiveIndices.push_back(posIndex[i]);
-			}
-		rep.positives = rep.positiveIndices.size();
+		addAcceptedPositives(
+		    cascade, positives, posII, posIndex, isCalib, threads, samples,
+		    rep);
 		if (rep.positives == 0)
 		{
 			m_report.stopReason = "no positive left";
@@ -857,39 +563,9 @@ HaarCascade CascadeTrainer::train(
 			progress(
 			    std::size_t(s), std::size_t(opt.numStages),
 			    "stage " + std::to_string(s + 1) + ": boosting");
-		StageTrainer st{samples, pool, {}, opt, threads, {}, {}};
-		st.candidates.resize(pool.size());
-		std::iota(st.candidates.begin(), st.candidates.end(), 0);
-		if (opt.featureFraction < 1.0)
-		{
-			std::vector<int> sub;
-			for (int f : st.candidates)
-				if (rng.uniform() < opt.featureFraction) sub.push_back(f);
-			if (!sub.empty()) st.candidates = std::move(sub);
-		}
-		const auto tb = Clock::now();
-		st.binFeatures();
-		rep.secondsBinning = secondsSince(tb);
-		const auto tt = Clock::now();
-		std::vector<int> used;
-		HaarCascade::Stage stage = st.train(rep, used, rng);
-		rep.secondsBoosting = secondsSince(tt);
-		// Pool indices -> cascade feature indices.
-		for (auto& stump : stage.stumps)
-		{
-			auto it = poolToCascade.find(stump.featureIdx);
-			if (it == poolToCascade.end())
-			{
-				it = poolToCascade
-				         .emplace(
-				             stump.featureIdx,
-				             static_cast<int>(cascade.features.size()))
-				         .first;
-				cascade.features.push_back(pool[stump.featureIdx]);
-			}
-			stump.featureIdx = it->second;
-		}
-		cascade.stages.push_back(std::move(stage));
+		HaarCascade::Stage stage =
+		    boostStage(samples, pool, opt, threads, rng, rep);
+		appendStage(cascade, std::move(stage), pool, poolToCascade);
 		rep.seconds = secondsSince(ts);
 		MRPT_LOG_INFO_FMT(
 		    "stage %d: %zu stumps, hit rate %.4f, false alarm %.4f, %.1f s",

@@ -178,9 +178,9 @@ private:
 	std::string m_source;
 };
 
-HaarCascade parse(const cv::FileNode& root, const Reader& rd)
+/** The window size and the stage and feature types (BOOST, HAAR). */
+void parseHeader(const cv::FileNode& root, const Reader& rd, HaarCascade& c)
 {
-	HaarCascade c;
 	if (root.empty() || !root.isMap())
 		rd.fail("", "no cascade map at the top level");
 	const std::string stageType = rd.text(root[kStageType], kStageType);
@@ -194,7 +194,11 @@ HaarCascade parse(const cv::FileNode& root, const Reader& rd)
 	if (c.windowSize.width < 3 || c.windowSize.height < 3 ||
 	    c.windowSize.width > 1000 || c.windowSize.height > 1000)
 		rd.fail("width/height", "window size out of range [3, 1000]");
+}
 
+/** stageParams (optional) and featureParams. */
+void parseParams(const cv::FileNode& root, const Reader& rd, HaarCascade& c)
+{
 	const cv::FileNode sp = root[kStageParams];
 	if (!sp.empty() && sp.isMap())
 	{
@@ -231,7 +235,39 @@ HaarCascade parse(const cv::FileNode& root, const Reader& rd)
 			rd.fail("featureParams.mode", e.what());
 		}
 	}
+}
 
+/** Weak classifier `wn` (a stump), `w` naming it in errors. */
+HaarCascade::Stump parseStump(
+    const cv::FileNode& wn, const std::string& w, const Reader& rd)
+{
+	const auto nodes = rd.numbers(wn[kInternalNodes], w + ": internalNodes");
+	const auto leaves = rd.numbers(wn[kLeafValues], w + ": leafValues");
+	if (nodes.size() != 4 || leaves.size() != 2)
+		rd.fail(
+		    w,
+		    "only stumps (internalNodes of 4 numbers, 2 leafValues) "
+		    "are supported, got " +
+		        std::to_string(nodes.size()) + " and " +
+		        std::to_string(leaves.size()));
+	if (nodes[0] > 0 || nodes[1] > 0)
+		rd.fail(w, "internal node children must be leaves (<= 0)");
+	HaarCascade::Stump s;
+	s.featureIdx = static_cast<int>(nodes[2]);
+	if (static_cast<double>(s.featureIdx) != nodes[2])
+		rd.fail(w, "feature index must be an integer");
+	s.threshold = static_cast<float>(nodes[3]);
+	// OpenCV maps node children to leaves in order: leaf 0 is taken
+	// for value < threshold, leaf 1 otherwise (Data::read builds
+	// Stump(featureIdx, threshold, leaves[0], leaves[1])).
+	s.left = static_cast<float>(leaves[0]);
+	s.right = static_cast<float>(leaves[1]);
+	return s;
+}
+
+/** The stages, checked against stageNum. */
+void parseStages(const cv::FileNode& root, const Reader& rd, HaarCascade& c)
+{
 	const cv::FileNode stages = rd.need(root[kStages], kStages);
 	if (!stages.isSeq()) rd.fail(kStages, "expected a list of stages");
 	int si = 0;
@@ -251,29 +287,7 @@ HaarCascade parse(const cv::FileNode& root, const Reader& rd)
 		{
 			const std::string w =
 			    where + ", weak classifier " + std::to_string(wi);
-			const auto nodes =
-			    rd.numbers(wn[kInternalNodes], w + ": internalNodes");
-			const auto leaves = rd.numbers(wn[kLeafValues], w + ": leafValues");
-			if (nodes.size() != 4 || leaves.size() != 2)
-				rd.fail(
-				    w,
-				    "only stumps (internalNodes of 4 numbers, 2 leafValues) "
-				    "are supported, got " +
-				        std::to_string(nodes.size()) + " and " +
-				        std::to_string(leaves.size()));
-			if (nodes[0] > 0 || nodes[1] > 0)
-				rd.fail(w, "internal node children must be leaves (<= 0)");
-			HaarCascade::Stump s;
-			s.featureIdx = static_cast<int>(nodes[2]);
-			if (static_cast<double>(s.featureIdx) != nodes[2])
-				rd.fail(w, "feature index must be an integer");
-			s.threshold = static_cast<float>(nodes[3]);
-			// OpenCV maps node children to leaves in order: leaf 0 is taken
-			// for value < threshold, leaf 1 otherwise (Data::read builds
-			// Stump(featureIdx, threshold, leaves[0], leaves[1])).
-			s.left = static_cast<float>(leaves[0]);
-			s.right = static_cast<float>(leaves[1]);
-			stage.stumps.push_back(s);
+			stage.stumps.push_back(parseStump(wn, w, rd));
 			wi++;
 		}
 		c.stages.push_back(std::move(stage));
@@ -287,7 +301,11 @@ HaarCascade parse(const cv::FileNode& root, const Reader& rd)
 		    kStageNum, "says " + std::to_string(static_cast<int>(sn)) +
 		                   " but there are " + std::to_string(c.stages.size()) +
 		                   " stages");
+}
 
+/** The features, each inside the window. */
+void parseFeatures(const cv::FileNode& root, const Reader& rd, HaarCascade& c)
+{
 	const cv::FileNode features = rd.need(root[kFeatures], kFeatures);
 	if (!features.isSeq()) rd.fail(kFeatures, "expected a list");
 	int fi = 0;
@@ -316,6 +334,15 @@ HaarCascade parse(const cv::FileNode& root, const Reader& rd)
 		c.features.push_back(f);
 		fi++;
 	}
+}
+
+HaarCascade parse(const cv::FileNode& root, const Reader& rd)
+{
+	HaarCascade c;
+	parseHeader(root, rd, c);
+	parseParams(root, rd, c);
+	parseStages(root, rd, c);
+	parseFeatures(root, rd, c);
 	if (root[kNote].isString()) c.note = static_cast<std::string>(root[kNote]);
 	try
 	{

@@ -40,6 +40,42 @@ public:
 private:
 	std::mt19937_64 m_g;
 };
+/** A sweep's detection passes (one over the whole image if it has none). */
+std::vector<DetectionPass> passesOf(const TrainingSweep& s, cv::Size window)
+{
+	if (!s.passes.empty()) return s.passes;
+	DetectionPass whole;
+	whole.rowEnd = s.image.rows;
+	whole.minSide = std::max(window.width, window.height);
+	return std::vector<DetectionPass>{whole};
+}
+
+/** A random square window of a random sweep of about `side` pixels, clear
+ * of the class's boxes (`exclude`, per sweep; the 50th try is taken
+ * anyway). */
+cv::Mat randomBackground(
+    const std::vector<TrainingSweep>& sweeps,
+    const std::vector<std::vector<cv::Rect>>& exclude, double side, Rng& rng)
+{
+	cv::Mat background;
+	for (int attempt = 0; attempt < 50 && background.empty(); attempt++)
+	{
+		const std::size_t b = rng.below(sweeps.size());
+		const cv::Mat& img = sweeps[b].image;
+		const int bs = std::clamp(
+		    static_cast<int>(std::lround(side)), 3,
+		    std::min(img.cols, img.rows));
+		const cv::Rect r(
+		    static_cast<int>(rng.below(std::size_t(img.cols - bs + 1))),
+		    static_cast<int>(rng.below(std::size_t(img.rows - bs + 1))), bs,
+		    bs);
+		bool clear = true;
+		for (const auto& e : exclude[b])
+			if ((r & e).area() > 0) clear = false;
+		if (clear || attempt == 49) background = img(r);
+	}
+	return background;
+}
 }  // namespace
 
 const std::vector<std::string>& SampleGenerator::TOptions::knownKeys()
@@ -221,14 +257,6 @@ SampleGenerator::Result SampleGenerator::generate(
     const std::vector<TrainingSweep>& sweeps, Label label, cv::Size window,
     uint64_t seed) const
 {
-	const auto passesOf = [&](const TrainingSweep& s)
-	{
-		if (!s.passes.empty()) return s.passes;
-		DetectionPass whole;
-		whole.rowEnd = s.image.rows;
-		whole.minSide = std::max(window.width, window.height);
-		return std::vector<DetectionPass>{whole};
-	};
 	struct View
 	{
 		std::size_t sweep;
@@ -282,43 +310,36 @@ SampleGenerator::Result SampleGenerator::generate(
 		const bool own = rng.uniform() < m_options.ownBackgroundFraction;
 		cv::Mat background;
 		if (!own)
-		{
-			// A random window of a random sweep, clear of the class.
-			const double side =
+			background = randomBackground(
+			    sweeps, exclude,
 			    std::max(v.object.box.width, v.object.box.height) * 2.0 *
-			    (1.0 + m_options.margin) * std::exp(rng.uniform(-logBs, logBs));
-			for (int attempt = 0; attempt < 50 && background.empty(); attempt++)
-			{
-				const std::size_t b = rng.below(sweeps.size());
-				const cv::Mat& img = sweeps[b].image;
-				const int bs = std::clamp(
-				    static_cast<int>(std::lround(side)), 3,
-				    std::min(img.cols, img.rows));
-				const cv::Rect r(
-				    static_cast<int>(rng.below(std::size_t(img.cols - bs + 1))),
-				    static_cast<int>(rng.below(std::size_t(img.rows - bs + 1))),
-				    bs, bs);
-				bool clear = true;
-				for (const auto& e : exclude[b])
-					if ((r & e).area() > 0) clear = false;
-				if (clear || attempt == 49) background = img(r);
-			}
-		}
+			        (1.0 + m_options.margin) *
+			        std::exp(rng.uniform(-logBs, logBs)),
+			    rng);
 		// Scaled by the pass that searches objects of this size.
 		const double side = std::max(v.object.box.width, v.object.box.height) *
 		                    (1.0 + m_options.margin) * sizeFactor;
 		const double upscale =
-		    DetectionPass::forSide(passesOf(s), side).upscale;
+		    DetectionPass::forSide(passesOf(s, window), side).upscale;
 		res.positives.push_back(makePositive(
 		    s.image, v.object.mask(s.groundTruth), v.object.box, angles,
 		    intensity, background, window, upscale, shiftX, shiftY,
 		    sizeFactor));
 	}
 
+	res.negatives = negativeImages(sweeps, exclude, window);
+	return res;
+}
+
+std::vector<NegativeImage> SampleGenerator::negativeImages(
+    const std::vector<TrainingSweep>& sweeps,
+    const std::vector<std::vector<cv::Rect>>& exclude, cv::Size window) const
+{
+	std::vector<NegativeImage> out;
 	// Negatives: the sweeps' passes as the detector sees them.
 	const double win = std::max(window.width, window.height);
 	for (std::size_t i = 0; i < sweeps.size(); i++)
-		for (const DetectionPass& p : passesOf(sweeps[i]))
+		for (const DetectionPass& p : passesOf(sweeps[i], window))
 		{
 			if (p.rowEnd <= p.rowBegin) continue;
 			NegativeImage n;
@@ -336,9 +357,9 @@ SampleGenerator::Result SampleGenerator::generate(
 				n.gate = sweeps[i].gate;
 				n.gate.perSide *= p.upscale;
 			}
-			res.negatives.push_back(std::move(n));
+			out.push_back(std::move(n));
 		}
-	return res;
+	return out;
 }
 
 }  // namespace semnav

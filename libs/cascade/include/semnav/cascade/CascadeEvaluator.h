@@ -105,6 +105,20 @@ public:
 
 private:
 	void compile();
+	// scanWindows()'s steps.
+	/** Places the windows inside the image on segments of a grid
+	 * (m_segments, m_gridOf); returns the number of grid positions. */
+	int placeOnGrid(const std::vector<cv::Point>& windows, int step);
+	/** Per grid position: its window, variance factor, and alive where the
+	 * window has variance. */
+	void markVarianceWindows(const std::vector<cv::Point>& windows, int grid);
+	/** Stage s's sums of the first nLive live positions (m_gridSums). */
+	void runStage(std::size_t s, int step, std::size_t nLive);
+	/** Stage 0's results with OpenCV's skip after a rejection; returns how
+	 * many positions stay live. */
+	std::size_t applyFirstStage(
+	    const std::vector<cv::Point>& windows, int step,
+	    std::vector<Result>& results, std::size_t nLive);
 	HaarCascade m_cascade;
 	std::vector<detail::CompiledFeature> m_compiled;
 	/** Every stage's stumps with their features compiled, in order;

@@ -550,6 +550,48 @@ private:
 	    Candidate& c, const TClassOptions& k, const cv::Mat& points,
 	    const cv::Mat& labels, double groundZ, double step) const;
 
+	/** runCascade() on one pass: around `proposals`, or over the pass's
+	 * band (range-gated with range_scales and a `range` image). */
+	void searchProposals(
+	    std::size_t classIndex, const DetectionPass& pass, const cv::Mat& image,
+	    const std::vector<ObjectProposal>& proposals, double step,
+	    std::vector<cv::Rect>& boxes, std::vector<int>& neighbours);
+	void searchBand(
+	    std::size_t classIndex, std::size_t passIndex,
+	    const DetectionPass& pass, const cv::Mat& image, const cv::Mat& range,
+	    double step, std::vector<cv::Rect>& boxes,
+	    std::vector<int>& neighbours);
+
+	/** The sweep detectCandidates() works on. */
+	struct SweepImages
+	{
+		const cv::Mat& normals;
+		const cv::Mat& normalMask;
+		const cv::Mat& points;
+		const cv::Mat& labels;
+		double groundZ = 0;
+	};
+	/** segment_candidates: per class, its segments that may be objects,
+	 * and (class, index) of each. */
+	void segmentCandidates(
+	    const SearchInput& in, std::vector<std::vector<Candidate>>& cands,
+	    std::vector<std::pair<std::size_t, std::size_t>>& tasks) const;
+	/** Measures candidate `c` of class `classIndex` in the box grown by
+	 * measure_margin, checks its size and describes it (with its cascade
+	 * support as it is then); returns the time taken (ms). */
+	double measureCandidate(
+	    std::size_t classIndex, Candidate& c, const SweepImages& sweep) const;
+	/** A class's candidates: its cascade boxes, then its `segments` (moved
+	 * from), each with the cascade support of the boxes overlapping it. */
+	std::vector<Candidate> classCandidates(
+	    std::size_t classIndex, const CascadeBoxes& found,
+	    std::vector<Candidate>& segments) const;
+	/** The shape check and the suppression of duplicates on a class's
+	 * measured candidates, then grow_m. */
+	void finishCandidates(
+	    std::size_t classIndex, std::vector<Candidate>& cands,
+	    const SweepImages& sweep, double pixelAngle) const;
+
 	struct Impl;
 	TOptions m_options;
 	std::unique_ptr<Impl> m_impl;

@@ -127,6 +127,12 @@ public:
 	const TOptions& options() const { return m_options; }
 
 private:
+	/** Negatives: the sweeps' passes as the detector sees them, the
+	 * class's boxes (`exclude`, per sweep) excluded. */
+	std::vector<NegativeImage> negativeImages(
+	    const std::vector<TrainingSweep>& sweeps,
+	    const std::vector<std::vector<cv::Rect>>& exclude,
+	    cv::Size window) const;
 	TOptions m_options;
 };
 

@@ -67,6 +67,14 @@ public:
 	void swapOutputs(cv::Mat& areaIds) { cv::swap(m_ids, areaIds); }
 
 private:
+	/** m_range (0 where invalid) and m_mask (1 where invalid and on its
+	 * frame); m_ids -1 on valid pixels, 0 elsewhere. */
+	void prepareImages(const Sweep& sweep);
+	/** The area of (r, c) when it is too small to be numbered (found by a
+	 * bounded search): its pixels set to id 0; false when it is larger. */
+	bool setAsideSmallArea(int r, int c);
+	/** Fills and numbers the area of (r, c) (id 0 when too small). */
+	void fillArea(int r, int c);
 	TOptions m_options;
 	cv::Mat m_range, m_mask, m_ids;
 	std::vector<int> m_sizes;

@@ -193,24 +193,81 @@ private:
 		double maxOffset = 0;  ///< largest |offset| to an adjacent wall
 	};
 
-	/** Pass 1 (`byGroup` false): 4-connected pixels of one area and one
-	 * orientation, vertical/oblique ones with close normals. Pass 2: pixels
-	 * of one coplanar group (m_group) and one side of its plane step. */
-	void buildSurfaces(bool byGroup);
+	/** Adjacency of mergeable surfaces (CSR: neighbours of s are
+	 * adj[start[s]] .. adj[start[s + 1] - 1]) and those with neighbours,
+	 * largest first. */
+	struct SurfaceGraph
+	{
+		std::vector<int> start, adj, order;
+	};
+
+	// classify()'s stages, in order (one file each: RuleClassifier*.cpp).
+	/** Resets `out`, checks the input, points the working state at it;
+	 * false for an empty sweep. */
+	bool beginSweep(
+	    const NormalImage& normals, const cv::Mat& areaIds, LabeledSweep& out);
+	/** Step 1: m_class from the smoothed normals (m_ns). */
+	void classifyOrientation(const NormalImage& normals);
+	/** Step 2. */
+	double estimateGround(bool floorReferenced, bool& estimated) const;
+	/** Step 3, pass 1: 4-connected pixels of one area and one orientation,
+	 * vertical/oblique ones with close normals. */
+	void buildPieces();
+	void computeJoinMask();
+	/** Numbers the vertical or oblique piece grown from `seed` as `id`. */
+	void fillPiece(int seed, int id, float cosSpread2);
+	/** Unites adjacent coplanar vertical surfaces (across areas) into
+	 * m_parent (one plane) and m_loose (one wall). */
+	void mergeCoplanar();
+	void collectVerticalPairs(const std::vector<uint8_t>& canMerge);
+	SurfaceGraph surfaceGraph(const std::vector<uint8_t>& canMerge) const;
+	void groupCoplanar(
+	    const SurfaceGraph& graph, double tol, double angle,
+	    std::vector<int>& parent) const;
+	/** Sets m_side where a vertical group has two planes a step apart. */
+	void splitPlanes();
+	/** Groups worth examining (their slots; per slot the least-squares
+	 * plane); returns the slot per group root, -1 for none. */
+	std::vector<int> selectSplitCandidates(
+	    std::vector<cv::Vec3d>& normal, std::vector<double>& offset);
+	void gatherSlotPixels(const std::vector<int>& slot, int nSlots);
+	void splitByResiduals(
+	    const std::vector<cv::Vec3d>& normal,
+	    const std::vector<double>& offset);
+	/** Step 3, pass 2: pixels of one coplanar group (m_parent) and one side
+	 * of its plane step. */
+	void buildGroupSurfaces();
 	void computeSurfaceStats(int count, int firstAccumulated);
 	void finishSurface(Surface& s) const;
 	static void fitVerticalPlane(Surface& s);
-	/** Unites adjacent coplanar vertical surfaces (across areas) into
-	 * m_group. */
-	void mergeCoplanar();
-	/** Sets m_side where a vertical group has two planes a step apart. */
-	void splitPlanes();
-	double estimateGround(bool floorReferenced, bool& estimated) const;
+	/** Step 4: labels surfaces; returns the ceiling's pixel count. */
+	std::size_t applyRules(double zg, LabeledSweep& out);
+	std::size_t labelGroundAndCeiling(
+	    double zg, std::vector<uint8_t>& isCeiling, LabeledSweep& out);
+	/** Per surface: 1 where the wall size rules hold. */
+	std::vector<int> findWalls(const LabeledSweep& out) const;
+	void labelDoorsAndWalls(
+	    double zg, const std::vector<int>& wallCandidate,
+	    const std::vector<uint8_t>& isCeiling);
 	DoorCheck checkDoor(
 	    int self, const std::vector<int>& wallCandidate,
 	    const std::vector<uint8_t>& isCeiling) const;
+	/** Obstacle pieces lying on an adjacent wall's plane lose their label. */
+	void unlabelPlaneFragments();
+	/** Step 5: m_label from the surfaces, then the leftover pixels. */
+	void labelPixels(double zg);
+	void labelSurfacePixels();
+	void seedLeftovers();
+	void growLeftovers(double zg);
+	/** Step 6: indoor or outdoor; out.labels; ground types outdoors. */
+	void finishLabels(
+	    std::size_t ceilPixels, const Roughness& roughness, LabeledSweep& out);
 	void labelGroundTypes(const Roughness& roughness, LabeledSweep& out);
+	void typeSquaresByHeight(
+	    const int* groundMask, int w, int minSquarePixels,
+	    std::vector<int8_t>& squareTypes) const;
 	void buildRegions(LabeledSweep& out, const cv::Mat& rBar);
+	void fillRegion(int seed, int id, const uint8_t* labels, int* regionIds);
 
 	TOptions m_options;
 	// Per-call working state (buffers reused between sweeps).

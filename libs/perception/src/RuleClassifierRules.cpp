@@ -1,0 +1,343 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+/* RuleClassifier, step 4: the rules on each surface (ground, ceiling, wall,
+ * door, obstacle). */
+#include <semnav/perception/RuleClassifier.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "RuleClassifierDetail.h"
+
+namespace semnav
+{
+using namespace detail::rules;
+
+std::size_t RuleClassifier::applyRules(double zg, LabeledSweep& out)
+{
+	std::vector<uint8_t> isCeiling;
+	const std::size_t ceilPixels = labelGroundAndCeiling(zg, isCeiling, out);
+	const std::vector<int> wallCandidate = findWalls(out);
+	labelDoorsAndWalls(zg, wallCandidate, isCeiling);
+	const TOptions& o = m_options;
+	for (Surface& s : m_surfaces)
+		if (s.label == kNoLabel && s.count >= o.minSurfacePixels &&
+		    s.maxP[2] > zg + o.groundTolerance)
+			s.label = lab(Label::Obstacle);
+	unlabelPlaneFragments();
+	return ceilPixels;
+}
+
+std::size_t RuleClassifier::labelGroundAndCeiling(
+    double zg, std::vector<uint8_t>& isCeiling, LabeledSweep& out)
+{
+	const TOptions& o = m_options;
+	const std::size_t ns = m_surfaces.size();
+	isCeiling.assign(ns, 0);
+	double ceilSum = 0;
+	std::size_t ceilPixels = 0;
+	for (std::size_t i = 0; i < ns; i++)
+	{
+		Surface& s = m_surfaces[i];
+		if (s.count < o.minSurfacePixels) continue;
+		if (s.orient == kUp &&
+		    std::abs(s.centroid[2] - zg) <= o.groundTolerance)
+			s.label = lab(Label::Floor);  // ground; typed in step 6
+		else if (s.orient == kDown && s.centroid[2] >= zg + o.ceilingMinHeight)
+		{
+			s.label = lab(Label::Ceiling);
+			isCeiling[i] = 1;
+			ceilSum += s.centroid[2] * s.count;
+			ceilPixels += s.count;
+		}
+	}
+	if (ceilPixels > 0) out.ceilingZ = ceilSum / ceilPixels;
+	return ceilPixels;
+}
+
+std::vector<int> RuleClassifier::findWalls(const LabeledSweep& out) const
+{
+	const TOptions& o = m_options;
+	const std::size_t ns = m_surfaces.size();
+	// Wall size rules on each vertical surface and on its loose group (the
+	// pieces of one wall that noise or a plane step cut apart).
+	auto wallSized = [&](const Surface& s)
+	{
+		if (s.width < o.wallMinWidth) return false;
+		const bool tall = s.height >= o.wallMinHeight;
+		const bool toCeiling =
+		    out.ceilingZ && s.maxP[2] >= *out.ceilingZ - o.wallCeilingGap;
+		const bool longWall = s.width >= o.wallMinLength;
+		return tall || toCeiling || longWall;
+	};
+	// (Indexed through looseIdx: few of the loose groups are used.)
+	std::vector<int> looseIdx(m_loose.size(), -1);
+	std::vector<Surface> loose;
+	for (std::size_t i = 0; i < ns; i++)
+	{
+		const Surface& s = m_surfaces[i];
+		if (s.orient != kVertical || s.count < o.minSurfacePixels) continue;
+		int& li = looseIdx[m_surfLoose[i]];
+		if (li < 0)
+		{
+			li = static_cast<int>(loose.size());
+			loose.emplace_back();
+		}
+		Surface& g = loose[li];
+		if (g.count == 0)
+		{
+			g = s;
+			continue;
+		}
+		g.count += s.count;
+		g.sumP += s.sumP;
+		g.sumN += s.sumN;
+		for (int k = 0; k < 3; k++)
+		{
+			g.minP[k] = std::min(g.minP[k], s.minP[k]);
+			g.maxP[k] = std::max(g.maxP[k], s.maxP[k]);
+		}
+	}
+	std::vector<uint8_t> looseWall(loose.size(), 0);
+	for (std::size_t k = 0; k < loose.size(); k++)
+		if (loose[k].count > 0)
+		{
+			finishSurface(loose[k]);
+			looseWall[k] = wallSized(loose[k]);
+		}
+	std::vector<int> wallCandidate(ns, 0);
+	for (std::size_t i = 0; i < ns; i++)
+	{
+		const Surface& s = m_surfaces[i];
+		if (s.orient != kVertical || s.count < o.minSurfacePixels) continue;
+		wallCandidate[i] = wallSized(s) || looseWall[looseIdx[m_surfLoose[i]]];
+	}
+	return wallCandidate;
+}
+
+void RuleClassifier::labelDoorsAndWalls(
+    double zg, const std::vector<int>& wallCandidate,
+    const std::vector<uint8_t>& isCeiling)
+{
+	const TOptions& o = m_options;
+	const std::size_t ns = m_surfaces.size();
+	const double f = o.doorMinSideFraction;
+	for (std::size_t i = 0; i < ns; i++)
+	{
+		Surface& s = m_surfaces[i];
+		if (s.orient != kVertical || s.count < o.minSurfacePixels) continue;
+		bool door = false;
+		if (s.width <= o.doorMaxWidth && s.height <= o.doorMaxHeight)
+		{
+			// Where the field of view cuts the surface (image border) its
+			// extent and neighbours there are unknown: accepted when
+			// door_allow_truncation, but at least one side must be a wall.
+			const DoorCheck dc =
+			    checkDoor(static_cast<int>(i), wallCandidate, isCeiling);
+			const bool t = o.doorAllowTruncation;
+			const bool sides = (dc.left >= f || (t && dc.leftFov)) &&
+			                   (dc.right >= f || (t && dc.rightFov)) &&
+			                   (dc.top >= f || (t && dc.topFov)) &&
+			                   (dc.left >= f || dc.right >= f);
+			const bool height = s.height >= o.doorMinHeight ||
+			                    (t && (dc.topFov || dc.bottomFov));
+			const bool width =
+			    s.width >= o.doorMinWidth || (t && (dc.leftFov || dc.rightFov));
+			const bool bottom =
+			    s.minP[2] <= zg + o.doorBottomTolerance || (t && dc.bottomFov);
+			door = sides && height && width && bottom &&
+			       dc.maxOffset >= o.doorMinOffset;
+			MRPT_LOG_DEBUG_FMT(
+			    "door candidate %zu: %d px, rows %d-%d cols %d-%d, width %.2f "
+			    "height %.2f z %.2f..%.2f; walls left %.2f right %.2f top "
+			    "%.2f, fov %d%d%d%d, offset %.3f -> %s",
+			    i, s.count, s.minR, s.maxR, s.minC, s.maxC, s.width, s.height,
+			    s.minP[2], s.maxP[2], dc.left, dc.right, dc.top, dc.leftFov,
+			    dc.rightFov, dc.topFov, dc.bottomFov, dc.maxOffset,
+			    door ? "door" : "no");
+		}
+		if (door)
+			s.label = lab(Label::Door);
+		else if (wallCandidate[i])
+			s.label = lab(Label::Wall);
+	}
+}
+
+void RuleClassifier::unlabelPlaneFragments()
+{
+	const TOptions& o = m_options;
+	const int* RO = m_rowOf.data();
+	const int* CO = m_colOf.data();
+	const int rows = m_rows, cols = m_cols, n = rows * cols;
+	const std::size_t ns = m_surfaces.size();
+	// A piece next to a wall or ceiling that lies on its plane (its box
+	// within leftover_plane_tolerance_m of it) is a fragment of that
+	// surface cut off by noisy normals, not an obstacle: its pixels are
+	// left to step 5, which joins them to the plane they lie on.
+	std::vector<uint8_t> tested(ns, 0);
+	auto onPlane = [&](const Surface& a, const Surface& w)
+	{
+		if (a.normal.dot(w.normal) < std::cos(o.doorMaxAngle * 2)) return false;
+		const double d = w.planeD();
+		for (int k = 0; k < 8; k++)
+		{
+			const cv::Vec3d c(
+			    (k & 1) ? a.maxP[0] : a.minP[0],
+			    (k & 2) ? a.maxP[1] : a.minP[1],
+			    (k & 4) ? a.maxP[2] : a.minP[2]);
+			if (std::abs(w.normal.dot(c) - d) > o.leftoverPlaneTolerance)
+				return false;
+		}
+		return true;
+	};
+	auto planar = [&](int t) { return tested[t] == 3; };
+	// 1: an obstacle piece not yet demoted; 3: a wall.
+	for (std::size_t i = 0; i < ns; i++)
+		tested[i] = m_surfaces[i].label == lab(Label::Obstacle) ? 1
+		            : m_surfaces[i].label == lab(Label::Wall)   ? 3
+		                                                        : 0;
+	for (int p = 0; p < n; p++)
+	{
+		const int s = m_surf[p];
+		if (s < 0 || tested[s] != 1) continue;
+		const int r = RO[p], c = CO[p];
+		const int nb[4] = {
+		    c > 0 ? p - 1 : -1, c + 1 < cols ? p + 1 : -1,
+		    r > 0 ? p - cols : -1, r + 1 < rows ? p + cols : -1};
+		for (int q : nb)
+		{
+			const int t = q >= 0 ? m_surf[q] : -1;
+			if (t < 0 || t == s || !planar(t)) continue;
+			if (onPlane(m_surfaces[s], m_surfaces[t]))
+			{
+				tested[s] = 2;
+				m_surfaces[s].label = kNoLabel;
+				break;
+			}
+		}
+	}
+}
+
+RuleClassifier::DoorCheck RuleClassifier::checkDoor(
+    int self, const std::vector<int>& wallCandidate,
+    const std::vector<uint8_t>& isCeiling) const
+{
+	const Surface& door = m_surfaces[self];
+	DoorCheck res;
+	const int cols = m_cols, rows = m_rows;
+	const double cosMax = std::cos(m_options.doorMaxAngle);
+	const double dDoor = door.planeD();
+	std::vector<int8_t> compat(m_surfaces.size(), -1);
+	auto wallOk = [&](int s)
+	{
+		if (s < 0 || !wallCandidate[s]) return false;
+		if (compat[s] < 0)
+		{
+			const Surface& w = m_surfaces[s];
+			const double off = std::abs(door.normal.dot(w.centroid) - dDoor);
+			compat[s] = w.normal.dot(door.normal) >= cosMax &&
+			                    off <= m_options.doorMaxOffset
+			                ? 1
+			                : 0;
+			if (compat[s]) res.maxOffset = std::max(res.maxOffset, off);
+		}
+		return compat[s] == 1;
+	};
+	const int nr = door.maxR - door.minR + 1, nc = door.maxC - door.minC + 1;
+	std::vector<int> rowMin(nr, cols), rowMax(nr, -1), colMax(nc, -1),
+	    colMin(nc, rows);
+	const auto* P = m_points->ptr<cv::Vec3f>(0);
+	float zLo = std::numeric_limits<float>::max(), zHi = -zLo;
+	int pLo = -1, pHi = -1;
+	for (int r = door.minR; r <= door.maxR; r++)
+		for (int c = door.minC; c <= door.maxC; c++)
+		{
+			if (m_surf[r * cols + c] != self) continue;
+			const float z = P[r * cols + c][2];
+			if (z < zLo)
+			{
+				zLo = z;
+				pLo = r * cols + c;
+			}
+			if (z > zHi)
+			{
+				zHi = z;
+				pHi = r * cols + c;
+			}
+			rowMin[r - door.minR] = std::min(rowMin[r - door.minR], c);
+			rowMax[r - door.minR] = std::max(rowMax[r - door.minR], c);
+			colMax[c - door.minC] = std::max(colMax[c - door.minC], r);
+			colMin[c - door.minC] = std::min(colMin[c - door.minC], r);
+		}
+	const int K = m_options.doorSearchPixels;
+	// Probes up to K pixels away; `border` when the probe runs out of the
+	// image (the field of view cuts the surface there).
+	auto probe = [&](int r, int c, int dr, int dc, bool ceilingOk, bool& border)
+	{
+		for (int k = 1; k <= K; k++)
+		{
+			const int rr = r + k * dr, cc = c + k * dc;
+			if (rr < 0 || rr >= rows || cc < 0 || cc >= cols)
+			{
+				border = true;
+				return false;
+			}
+			const int s = m_surf[rr * cols + cc];
+			if (s == self) return false;
+			if (wallOk(s) || (ceilingOk && s >= 0 && isCeiling[s])) return true;
+		}
+		return false;
+	};
+	int left = 0, right = 0, top = 0, nRows = 0, nCols = 0;
+	int leftB = 0, rightB = 0, topB = 0;
+	for (int i = 0; i < nr; i++)
+	{
+		if (rowMax[i] < 0) continue;
+		nRows++;
+		const int r = door.minR + i;
+		bool border = false;
+		// Lower columns are on the robot's right.
+		if (probe(r, rowMin[i], 0, -1, false, border))
+			right++;
+		else if (border)
+			rightB++;
+		border = false;
+		if (probe(r, rowMax[i], 0, 1, false, border))
+			left++;
+		else if (border)
+			leftB++;
+	}
+	for (int j = 0; j < nc; j++)
+	{
+		if (colMax[j] < 0) continue;
+		nCols++;
+		bool border = false;
+		if (probe(colMax[j], door.minC + j, 1, 0, true, border))
+			top++;
+		else if (border)
+			topB++;
+	}
+	if (nRows == 0 || nCols == 0) return res;
+	res.left = double(left) / nRows;
+	res.right = double(right) / nRows;
+	res.top = double(top) / nCols;
+	// Cut by the field of view: the surface reaches the image border (the
+	// outermost columns, phi near +-90 deg, have degenerate neighbours and
+	// rarely carry normals, hence the wider margin there).
+	res.leftFov = leftB > 0 || door.maxC >= cols - 1 - 2 * K;
+	res.rightFov = rightB > 0 || door.minC <= 2 * K;
+	// Also when its lowest (highest) point lies at the image border: at
+	// bearings near +-90 deg the field of view cuts surfaces at a slant.
+	auto atBorder = [&](int p)
+	{
+		if (p < 0) return false;
+		const int r = p / cols, c = p % cols;
+		return r <= K || r >= rows - 1 - K || c <= 2 * K ||
+		       c >= cols - 1 - 2 * K;
+	};
+	res.topFov = topB > 0 || door.maxR >= rows - 1 - K || atBorder(pHi);
+	res.bottomFov = door.minR <= K || atBorder(pLo);
+	return res;
+}
+
+}  // namespace semnav
