@@ -44,24 +44,30 @@ protected:
 	}
 	void TearDown() override { ClassRegistry::instance().resetToBuiltIns(); }
 
-	/** A floor fan with a chair 2 m ahead of the robot, detected. */
-	static FakeSweep chairSweep(Label chair, std::size_t& firstChairPixel)
+	static SemanticMap::TOptions mapOptions()
+	{
+		SemanticMap::TOptions o;
+		o.octomap = false;
+		return o;
+	}
+
+	/** Inserts a floor fan with a chair 2 m ahead of the robot, detected. */
+	void insertChairSweep(SemanticMap& m) const
 	{
 		auto pts = floorFan(3.0);
-		firstChairPixel = pts.size();
+		const auto first = static_cast<int>(pts.size());
 		for (double x = 1.85; x <= 2.15; x += 0.03)
 			for (double y = -0.15; y <= 0.15; y += 0.03)
 				pts.push_back({x, y, 0.4, chair});
 		auto f = makeFakeSweep(pts);
 		Detection d;
 		d.label = chair;
-		d.imageBox = cv::Rect(
-		    static_cast<int>(firstChairPixel), 0,
-		    static_cast<int>(pts.size() - firstChairPixel), 1);
+		d.imageBox =
+		    cv::Rect(first, 0, static_cast<int>(pts.size()) - first, 1);
 		d.centroid = {2.0, 0.0, 0.4};
 		d.extent = {0.4, 0.4, 0.8};
 		f.labeled.detections = {d};
-		return f;
+		m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
 	}
 
 	Label chair = Label::Unknown;
@@ -89,12 +95,8 @@ TEST_F(RegisteredClass, TakesTheNextIdAndItsName)
 
 TEST_F(RegisteredClass, IsCarriedThroughMapRenderAndPlan)
 {
-	SemanticMap::TOptions o;
-	o.octomap = false;
-	SemanticMap m(o);
-	std::size_t firstChairPixel = 0;
-	const auto f = chairSweep(chair, firstChairPixel);
-	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
+	SemanticMap m(mapOptions());
+	insertChairSweep(m);
 
 	// Map: its cells carry the label and are occupied; it has an instance.
 	int cx, cy;
@@ -145,16 +147,12 @@ TEST_F(RegisteredClass, IsCarriedThroughMapRenderAndPlan)
 
 TEST_F(RegisteredClass, SavedMapsKeepItsInstances)
 {
-	SemanticMap::TOptions o;
-	o.octomap = false;
-	SemanticMap m(o);
-	std::size_t firstChairPixel = 0;
-	const auto f = chairSweep(chair, firstChairPixel);
-	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
+	SemanticMap m(mapOptions());
+	insertChairSweep(m);
 	const auto dir = std::filesystem::temp_directory_path() /
 	                 ("semnav_chair_" + std::to_string(::getpid()));
 	MapIO::save(m, dir.string());
-	SemanticMap loaded(o);
+	SemanticMap loaded(mapOptions());
 	MapIO::load(dir.string(), loaded);
 	std::filesystem::remove_all(dir);
 	ASSERT_EQ(loaded.instances(chair).size(), 1u);

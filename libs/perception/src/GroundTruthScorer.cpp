@@ -88,13 +88,14 @@ cv::Mat GroundTruthScorer::readLabelImage(const std::string& path)
 		throw IoError(
 		    "label image " + path + " is not a 1-channel 8- or 16-bit PNG");
 	cv::Mat out(img.rows, img.cols, CV_8U);
+	const std::size_t count = allLabels().size();
 	for (int r = 0; r < img.rows; r++)
 		for (int c = 0; c < img.cols; c++)
 		{
 			const unsigned v = img.depth() == CV_16U
 			                       ? (img.at<uint16_t>(r, c) & 0xFFu)
 			                       : img.at<uint8_t>(r, c);
-			if (v >= allLabels().size())
+			if (v >= count)
 				throw IoError(
 				    "label image " + path + " holds label id " +
 				    std::to_string(v) + ", not a semnav label");
