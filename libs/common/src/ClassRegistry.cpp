@@ -80,14 +80,18 @@ std::vector<ClassInfo> builtInClasses()
 	ClassInfo ceiling = row("ceiling", {255, 220, 0});
 	ceiling.mapColour = {255, 230, 200};
 	ceiling.overhead = true;
+	ceiling.structure = true;
 	t.push_back(ceiling);
-	t.push_back(drawn(blocking(row("wall", {220, 30, 30})), black, {}));
+	ClassInfo wall = drawn(blocking(row("wall", {220, 30, 30})), black, {});
+	wall.structure = true;
+	t.push_back(wall);
 	ClassInfo door = object(
 	    drawn(
 	        surface(row("door", {140, 70, 10}), 0, 0), {255, 140, 0},
 	        MapStyle::Instance),
 	    Source::Regions, Merge::ByFootprint);
 	door.plausibility.minHeight = 1.2;
+	door.structure = true;
 	t.push_back(door);
 	ClassInfo sidewalk = drawn(
 	    surface(row("sidewalk", {200, 200, 200}), 0.2, 0), {190, 190, 190},

@@ -106,6 +106,9 @@ struct ClassInfo
 	bool ground = false;
 	/** Above the robot (ceiling): never an obstacle hit. */
 	bool overhead = false;
+	/** Part of the building (ceiling, wall, door): never part of an object
+	 * proposal of the detector. */
+	bool structure = false;
 
 	Passage passage = Passage::Ignored;
 	/** Default travel cost of a Surface in the map's cost layer
