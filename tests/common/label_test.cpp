@@ -12,7 +12,7 @@ TEST(Label, NamesRoundTripInDesignOrder)
 	                          "door",      "sidewalk",    "grass",   "stairs",
 	                          "washbasin", "wastebasket", "obstacle"};
 	ASSERT_EQ(allLabels().size(), std::size(expected));
-	for (std::size_t i = 0; i < kLabelCount; i++)
+	for (std::size_t i = 0; i < kBuiltInLabelCount; i++)
 	{
 		EXPECT_EQ(labelName(static_cast<Label>(i)), expected[i]);
 		EXPECT_EQ(static_cast<std::size_t>(labelFromName(expected[i])), i);

@@ -1,5 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <gtest/gtest.h>
+#include <semnav/common/ClassRegistry.h>
 #include <semnav/common/Error.h>
 #include <semnav/sim/SceneLoader.h>
 
@@ -416,6 +417,22 @@ TEST(SceneLoaderErrors, UnknownLabel)
 	        4,
 	        "  - {label: unknown, box: {center: [1, 1, 1], size: [1, 1, 2]}}"),
 	    4, "objects[0].label", "'unknown' is not allowed");
+}
+
+TEST(SceneLoader, ARegisteredClassIsALabel)
+{
+	ClassInfo c;
+	c.name = "chair";
+	const Label chair = ClassRegistry::instance().add(c);
+	const Scene s = SceneLoader::parse(
+	    edited(
+	        4,
+	        "  - {label: chair, box: {center: [1, 1, 0.4], size: [0.5, 0.5, "
+	        "0.8]}}"),
+	    "t.yaml");
+	ClassRegistry::instance().resetToBuiltIns();
+	ASSERT_FALSE(s.objects.empty());
+	EXPECT_EQ(s.objects[0].label, chair);
 }
 
 TEST(SceneLoaderErrors, PolygonWithTwoVertices)

@@ -1,4 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/ClassRegistry.h>
 #include <semnav/common/Error.h>
 #include <semnav/common/Label.h>
 #include <semnav/common/Percentile.h>
@@ -26,6 +27,8 @@ cv::Mat ObjectProposals::objectMask(
 	// "wall" that stays low: the rules call the broad side of a near object
 	// a wall, but real walls reach far higher than maxHeight.
 	cv::Mat surface(points.size(), CV_8U, cv::Scalar(0));
+	const LabelSet structure = ClassRegistry::instance().select(
+	    [](const ClassInfo& c) { return c.structure; });
 	if (!labels.empty())
 		for (int r = 0; r < points.rows; r++)
 		{
@@ -33,9 +36,7 @@ cv::Mat ObjectProposals::objectMask(
 			auto* s = surface.ptr<uint8_t>(r);
 			for (int c = 0; c < points.cols; c++)
 			{
-				const auto lab = static_cast<Label>(l[c]);
-				s[c] = lab == Label::Ceiling || lab == Label::Wall ||
-				       lab == Label::Door;
+				s[c] = structure.contains(static_cast<Label>(l[c]));
 			}
 		}
 	// Surfaces: the segmentation's areas if given, else 8-connected

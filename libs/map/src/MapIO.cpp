@@ -180,7 +180,10 @@ void MapIO::save(const SemanticMap& map, const std::string& dir)
 	    (fs::path(dir) / "labels.png").string(),
 	    toImage<uint16_t>(
 	        g, CV_16UC1, map.get("labels"),
-	        [](float f) { return static_cast<uint16_t>(f); }));
+	        [](float f) {
+		        return static_cast<uint16_t>(
+		            static_cast<uint32_t>(f) & 0xFFFFu);
+	        }));
 	writeImage(
 	    (fs::path(dir) / "objects.png").string(),
 	    toImage<uint16_t>(

@@ -1,34 +1,54 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/ClassRegistry.h>
 #include <semnav/map/MapRenderer.h>
 
 #include <opencv2/imgproc.hpp>
 
 namespace semnav
 {
+namespace
+{
+cv::Scalar bgr(const ClassInfo::Rgb& c)
+{
+	return {double(c.b), double(c.g), double(c.r)};
+}
+
+/** The colour of the area class drawn on a cell (the lowest id wins), if
+ * any. */
+bool areaColour(const LabelSet& ls, cv::Scalar& col)
+{
+	for (Label l : allLabels())
+	{
+		const ClassInfo& c = classInfo(l);
+		if (c.mapStyle != ClassInfo::MapStyle::Area || !ls.contains(l))
+			continue;
+		col = bgr(c.mapColour);
+		return true;
+	}
+	return false;
+}
+
+/** Legend rows: the fixed ones, then instance classes and area classes in
+ * id order. */
+std::vector<std::pair<std::string, cv::Scalar>> legendItems()
+{
+	std::vector<std::pair<std::string, cv::Scalar>> items = {
+	    {"free floor", {255, 255, 255}},
+	    {"unknown", {225, 225, 225}},
+	    {"wall / obstacle", {0, 0, 0}}};
+	for (const auto style :
+	     {ClassInfo::MapStyle::Instance, ClassInfo::MapStyle::Area})
+		for (Label l : allLabels())
+			if (classInfo(l).mapStyle == style)
+				items.emplace_back(labelName(l), MapRenderer::labelColor(l));
+	return items;
+}
+}  // namespace
+
 cv::Scalar MapRenderer::labelColor(Label l)
 {
-	switch (l)
-	{
-		case Label::Door:
-			return {0, 140, 255};  // orange
-		case Label::Stairs:
-			return {200, 0, 200};  // magenta
-		case Label::Washbasin:
-			return {255, 128, 0};  // blue
-		case Label::Wastebasket:
-			return {0, 180, 0};  // green
-		case Label::Sidewalk:
-			return {190, 190, 190};
-		case Label::Grass:
-			return {120, 220, 120};
-		case Label::Ceiling:
-			return {200, 230, 255};
-		case Label::Wall:
-		case Label::Obstacle:
-			return {0, 0, 0};
-		default:
-			return {255, 255, 255};
-	}
+	if (!ClassRegistry::instance().contains(l)) return {255, 255, 255};
+	return bgr(classInfo(l).mapColour);
 }
 
 cv::Mat MapRenderer::render(const SemanticMap& map, int k)
@@ -47,8 +67,7 @@ cv::Mat MapRenderer::render(const SemanticMap& map, int k)
 			        ? cv::Scalar(225, 225, 225)
 			        : cv::Scalar(255, 255, 255);
 			const LabelSet ls = map.labels(cx, cy);
-			if (ls.contains(Label::Grass)) col = labelColor(Label::Grass);
-			if (ls.contains(Label::Sidewalk)) col = labelColor(Label::Sidewalk);
+			areaColour(ls, col);
 			if (map.cellState(cx, cy) == SemanticMap::CellState::Occupied)
 				col = {0, 0, 0};
 			const int id = map.objectId(cx, cy);
@@ -63,17 +82,7 @@ cv::Mat MapRenderer::render(const SemanticMap& map, int k)
 	cv::putText(
 	    img, "semnav map", {x0, y}, cv::FONT_HERSHEY_SIMPLEX, 0.45, {0, 0, 0},
 	    1, cv::LINE_AA);
-	const std::pair<const char*, cv::Scalar> items[] = {
-	    {"free floor", {255, 255, 255}},
-	    {"unknown", {225, 225, 225}},
-	    {"wall / obstacle", {0, 0, 0}},
-	    {"door", labelColor(Label::Door)},
-	    {"stairs", labelColor(Label::Stairs)},
-	    {"washbasin", labelColor(Label::Washbasin)},
-	    {"wastebasket", labelColor(Label::Wastebasket)},
-	    {"sidewalk", labelColor(Label::Sidewalk)},
-	    {"grass", labelColor(Label::Grass)}};
-	for (const auto& [name, col] : items)
+	for (const auto& [name, col] : legendItems())
 	{
 		y += 18;
 		cv::rectangle(img, cv::Rect(x0, y - 10, 12, 12), col, cv::FILLED);

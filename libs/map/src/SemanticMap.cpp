@@ -292,6 +292,10 @@ void SemanticMap::updateCosts()
 	const auto& rough = get(kRoughness);
 	const bool walking =
 	    m_costModel.options().robotType == TravelCostModel::RobotType::Walking;
+	// Walking-only classes (stairs) are solid to the laser; a walking robot
+	// climbs them.
+	const LabelSet climbable = ClassRegistry::instance().select(
+	    [](const ClassInfo& c) { return c.walkingOnly; });
 	for (int cy = 0; cy < m_geometry.rows; cy++)
 		for (int cx = 0; cx < m_geometry.cols; cx++)
 		{
@@ -301,8 +305,7 @@ void SemanticMap::updateCosts()
 			switch (cellState(cx, cy))
 			{
 				case CellState::Occupied:
-					// Stairs are solid to the laser; a walking robot climbs.
-					occ = walking && ls.contains(Label::Stairs)
+					occ = walking && (ls.mask() & climbable.mask()) != 0
 					          ? TravelCostModel::Occupancy::Free
 					          : TravelCostModel::Occupancy::Occupied;
 					break;
@@ -316,32 +319,50 @@ void SemanticMap::updateCosts()
 		}
 }
 
+ClassInfo::Plausibility SemanticMap::plausibility(Label l) const
+{
+	ClassInfo::Plausibility p = classInfo(l).plausibility;
+	switch (l)
+	{
+		case Label::Door:
+			p.minHeight = m_options.doorMinHeight;
+			break;
+		case Label::Stairs:
+			p.maxBottom = m_options.stairsMaxBottom;
+			break;
+		case Label::Washbasin:
+			p.minInstanceTop = m_options.washbasinMinTop;
+			p.maxWallDistance = m_options.washbasinMaxWallDistance;
+			break;
+		default:
+			break;
+	}
+	return p;
+}
+
 bool SemanticMap::reported(const ObjectInstance& o) const
 {
-	const bool door = o.label == Label::Door;
+	// Region classes (doors) are no detections: no shape score, no views.
+	const bool region =
+	    classInfo(o.label).instances == ClassInfo::InstanceSource::Regions;
 	const bool sure = o.bestShapeScore >= m_options.sureShapeScore;
 	int minObs =
-	    door ? m_options.doorMinObservations : m_options.minObservations;
-	if (!door && !sure)
+	    region ? m_options.doorMinObservations : m_options.minObservations;
+	if (!region && !sure)
 		minObs = std::max(minObs, m_options.unsureMinObservations);
 	if (static_cast<int>(o.observations) < minObs) return false;
 	double ratio = o.label == Label::Stairs ? m_options.stairsMinDetectionRatio
 	                                        : m_options.minDetectionRatio;
 	if (sure) ratio = std::min(ratio, m_options.sureMinDetectionRatio);
-	if (o.label != Label::Door && static_cast<double>(o.observations) <
-	                                  ratio * static_cast<double>(o.views))
+	if (!region && static_cast<double>(o.observations) <
+	                   ratio * static_cast<double>(o.views))
 		return false;
-	if (o.label == Label::Door && o.extent().z < m_options.doorMinHeight)
+	const ClassInfo::Plausibility p = plausibility(o.label);
+	if (o.extent().z < p.minHeight || o.minCorner.z > p.maxBottom ||
+	    o.maxCorner.z < p.minInstanceTop)
 		return false;
-	if (o.label == Label::Stairs && o.minCorner.z > m_options.stairsMaxBottom)
-		return false;
-	if (o.label == Label::Washbasin &&
-	    (o.maxCorner.z < m_options.washbasinMinTop ||
-	     (m_options.washbasinMaxWallDistance > 0 &&
-	      !wallWithin(
-	          o.centroid.x, o.centroid.y, m_options.washbasinMaxWallDistance))))
-		return false;
-	return true;
+	return p.maxWallDistance <= 0 ||
+	       wallWithin(o.centroid.x, o.centroid.y, p.maxWallDistance);
 }
 
 bool SemanticMap::wallWithin(double x, double y, double radius) const

@@ -3,23 +3,20 @@
 // the occupancy grid, the object instances and the OctoMap.
 #include <mrpt/poses/CPose3D.h>
 #include <octomap/OcTree.h>
+#include <semnav/common/ClassRegistry.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/perception/LabeledSweep.h>
 #include <semnav/scan/Sweep.h>
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 namespace semnav
 {
 namespace
 {
-bool isGround(Label l)
-{
-	return l == Label::Floor || l == Label::Sidewalk || l == Label::Grass;
-}
-
 /** Calls f(cx, cy) for the cells of the segment (x0,y0)-(x1,y1) (Bresenham,
  * both ends included). */
 template <typename F>
@@ -46,13 +43,54 @@ void traceLine(int x0, int y0, int x1, int y1, F&& f)
 	}
 }
 
-struct WorldPoint
+/** World-frame bounding box of the robot-frame box [a, b]. */
+void toWorldBox(
+    const mrpt::poses::CPose3D& robot, const mrpt::math::TPoint3D& a,
+    const mrpt::math::TPoint3D& b, mrpt::math::TPoint3D& lo,
+    mrpt::math::TPoint3D& hi)
+{
+	lo = {1e18, 1e18, 1e18};
+	hi = {-1e18, -1e18, -1e18};
+	for (int k = 0; k < 8; k++)
+	{
+		double x, y, z;
+		robot.composePoint(
+		    (k & 1) ? b.x : a.x, (k & 2) ? b.y : a.y, (k & 4) ? b.z : a.z, x, y,
+		    z);
+		lo = {std::min(lo.x, x), std::min(lo.y, y), std::min(lo.z, z)};
+		hi = {std::max(hi.x, x), std::max(hi.y, y), std::max(hi.z, z)};
+	}
+}
+}  // namespace
+
+struct SemanticMap::WorldPoint
 {
 	float x, y, z;
 	float height;  // above the floor
 	int r, c;
 };
-}  // namespace
+
+/** What one sweep says of each cell, and where its pixels fell. */
+struct SemanticMap::SweepEvidence
+{
+	SweepEvidence(std::size_t cells, int rows_, int cols_)
+	    : hit(cells, 0),
+	      freeEnd(cells, 0),
+	      seenFree(cells, 0),
+	      roughSum(cells, 0.0f),
+	      roughN(cells, 0),
+	      rows(rows_),
+	      cols(cols_),
+	      cellOfPixel(static_cast<std::size_t>(rows_) * cols_, -1)
+	{
+	}
+	std::vector<uint8_t> hit, freeEnd, seenFree;
+	std::vector<float> roughSum;
+	std::vector<uint16_t> roughN;
+	int rows, cols;
+	/** Cell index of each pixel (-1: none). */
+	std::vector<int> cellOfPixel;
+};
 
 void SemanticMap::insert(
     const Sweep& sweep, const LabeledSweep& ls,
@@ -60,9 +98,41 @@ void SemanticMap::insert(
 {
 	const mrpt::poses::CPose3D robot(
 	    robotPose.x(), robotPose.y(), 0, robotPose.phi(), 0, 0);
-	const int rows = ls.points.rows, cols = ls.points.cols;
+	const std::vector<WorldPoint> pts = worldPoints(ls, robot, robotPose);
+	SweepEvidence e(m_geometry.cellCount(), ls.points.rows, ls.points.cols);
+	accumulatePoints(pts, ls, e);
+	markSeenFree(sweep, robot, robotPose, e);
+	updateCells(e);
 
-	// World points of the valid pixels.
+	// Objects: detections and labelled regions, merged into instances.
+	std::vector<int> seenThisSweep, viewedThisSweep;
+	countViews(sweep, robot, viewedThisSweep);
+	insertDetections(ls, robot, e, seenThisSweep, viewedThisSweep);
+	if (m_options.stairsCentroidFromCells)
+		for (auto& o : m_instances)
+			if (o.label == Label::Stairs &&
+			    std::find(seenThisSweep.begin(), seenThisSweep.end(), o.id) !=
+			        seenThisSweep.end())
+				centreOnCells(o);
+	insertRegions(ls, robot, e, seenThisSweep);
+
+	// 3D: every point into the OctoMap (endpoints; free space stays 2D).
+	if (m_options.octomap)
+	{
+		for (const auto& p : pts)
+			m_octree->updateNode(octomap::point3d(p.x, p.y, p.z), true, true);
+		m_octree->updateInnerOccupancy();
+	}
+
+	updateCosts();
+	m_sweeps++;
+}
+
+std::vector<SemanticMap::WorldPoint> SemanticMap::worldPoints(
+    const LabeledSweep& ls, const mrpt::poses::CPose3D& robot,
+    const mrpt::poses::CPose2D& robotPose)
+{
+	const int rows = ls.points.rows, cols = ls.points.cols;
 	std::vector<WorldPoint> pts;
 	pts.reserve(static_cast<std::size_t>(rows) * cols);
 	double xmin = robotPose.x(), xmax = xmin, ymin = robotPose.y(), ymax = ymin;
@@ -87,9 +157,66 @@ void SemanticMap::insert(
 			ymax = std::max(ymax, wy);
 		}
 	growToInclude(xmin, ymin, xmax, ymax);
-	const GridGeometry& g = m_geometry;
+	return pts;
+}
 
-	// Sensor position on the grid (rays start there).
+void SemanticMap::accumulatePoints(
+    const std::vector<WorldPoint>& pts, const LabeledSweep& ls,
+    SweepEvidence& e)
+{
+	const GridGeometry& g = m_geometry;
+	const auto& registry = ClassRegistry::instance();
+	const LabelSet ground =
+	    registry.select([](const ClassInfo& c) { return c.ground; });
+	const LabelSet overhead =
+	    registry.select([](const ClassInfo& c) { return c.overhead; });
+	auto& labelLayer = get("labels");
+	auto& stairsLayer = get(kStairsSweeps);
+	std::vector<uint8_t> stairsHere(g.cellCount(), 0);
+	for (const auto& p : pts)
+	{
+		int cx, cy;
+		if (!worldToCell(p.x, p.y, cx, cy)) continue;
+		const std::size_t i = g.index(cy, cx);
+		e.cellOfPixel[static_cast<std::size_t>(p.r) * e.cols + p.c] =
+		    static_cast<int>(i);
+		const Label l = ls.label(
+		    static_cast<std::size_t>(p.r), static_cast<std::size_t>(p.c));
+		if (l != Label::Unknown)
+		{
+			LabelSet s(static_cast<LabelSet::mask_t>(labelLayer[i]));
+			s.insert(l);
+			labelLayer[i] = static_cast<float>(s.mask());
+			if (l == Label::Stairs && !stairsHere[i])
+			{
+				stairsHere[i] = 1;
+				stairsLayer[i] += 1;
+			}
+		}
+		if (ground.contains(l) || p.height < m_options.obstacleMinHeight)
+		{
+			e.freeEnd[i] = 1;
+			if (!ls.roughnessBar.empty())
+			{
+				const float rb = ls.roughnessBar.at<float>(p.r, p.c);
+				if (std::isfinite(rb))
+				{
+					e.roughSum[i] += rb;
+					e.roughN[i]++;
+				}
+			}
+		}
+		else if (p.height <= m_options.robotHeight && !overhead.contains(l))
+			e.hit[i] = 1;
+	}
+}
+
+void SemanticMap::markSeenFree(
+    const Sweep& sweep, const mrpt::poses::CPose3D& robot,
+    const mrpt::poses::CPose2D& robotPose, SweepEvidence& e) const
+{
+	const GridGeometry& g = m_geometry;
+	// Free space: the rays from the sensor to every ground cell seen.
 	double sx = robotPose.x(), sy = robotPose.y(), sz = 0;
 	if (sweep.rows() > 0)
 	{
@@ -98,64 +225,14 @@ void SemanticMap::insert(
 	}
 	int scx, scy;
 	worldToCell(sx, sy, scx, scy);
-
-	// Per-sweep evidence.
-	std::vector<uint8_t> hit(g.cellCount(), 0), freeEnd(g.cellCount(), 0),
-	    seenFree(g.cellCount(), 0);
-	auto& labelLayer = get("labels");
-	auto& roughLayer = get("roughness");
-	auto& obsLayer = get("observations");
-	std::vector<float> roughSum(g.cellCount(), 0.0f);
-	std::vector<uint16_t> roughN(g.cellCount(), 0);
-	std::vector<int> cellOfPixel(static_cast<std::size_t>(rows) * cols, -1);
-	auto& stairsLayer = get(kStairsSweeps);
-	std::vector<uint8_t> stairsHere(g.cellCount(), 0);
-	for (const auto& p : pts)
-	{
-		int cx, cy;
-		if (!worldToCell(p.x, p.y, cx, cy)) continue;
-		const std::size_t i = g.index(cy, cx);
-		cellOfPixel[static_cast<std::size_t>(p.r) * cols + p.c] =
-		    static_cast<int>(i);
-		const Label l = ls.label(
-		    static_cast<std::size_t>(p.r), static_cast<std::size_t>(p.c));
-		if (l != Label::Unknown)
-		{
-			LabelSet s(static_cast<LabelSet::mask_t>(labelLayer[i]));
-			s.insert(l);
-			labelLayer[i] = s.mask();
-			if (l == Label::Stairs && !stairsHere[i])
-			{
-				stairsHere[i] = 1;
-				stairsLayer[i] += 1;
-			}
-		}
-		if (isGround(l) || p.height < m_options.obstacleMinHeight)
-		{
-			freeEnd[i] = 1;
-			if (!ls.roughnessBar.empty())
-			{
-				const float rb = ls.roughnessBar.at<float>(p.r, p.c);
-				if (std::isfinite(rb))
-				{
-					roughSum[i] += rb;
-					roughN[i]++;
-				}
-			}
-		}
-		else if (p.height <= m_options.robotHeight && l != Label::Ceiling)
-			hit[i] = 1;
-	}
-
-	// Free space: the rays from the sensor to every ground cell seen.
 	for (int cy = 0; cy < g.rows; cy++)
 		for (int cx = 0; cx < g.cols; cx++)
-			if (freeEnd[g.index(cy, cx)])
+			if (e.freeEnd[g.index(cy, cx)])
 				traceLine(
 				    scx, scy, cx, cy,
 				    [&](int x, int y)
 				    {
-					    if (g.contains(y, x)) seenFree[g.index(y, x)] = 1;
+					    if (g.contains(y, x)) e.seenFree[g.index(y, x)] = 1;
 				    });
 
 	// The robot stands on its footprint: free, though the laser cannot
@@ -171,69 +248,64 @@ void SemanticMap::insert(
 			if (!cellToWorld(rcx + dx, rcy + dy, x, y)) continue;
 			if (std::hypot(x - robotPose.x(), y - robotPose.y()) <=
 			    m_options.robotRadius)
-				seenFree[g.index(rcy + dy, rcx + dx)] = 1;
+				e.seenFree[g.index(rcy + dy, rcx + dx)] = 1;
 		}
+}
 
+void SemanticMap::updateCells(const SweepEvidence& e)
+{
+	const GridGeometry& g = m_geometry;
+	auto& roughLayer = get("roughness");
+	auto& obsLayer = get("observations");
 	const float pHit = static_cast<float>(m_options.hitProbability);
 	const float pFree = static_cast<float>(m_options.freeProbability);
 	for (int cy = 0; cy < g.rows; cy++)
 		for (int cx = 0; cx < g.cols; cx++)
 		{
 			const std::size_t i = g.index(cy, cx);
-			if (hit[i])
+			if (e.hit[i])
 				m_occupancy.updateCell(cx, cy, pHit);
-			else if (seenFree[i])
+			else if (e.seenFree[i])
 				m_occupancy.updateCell(cx, cy, pFree);
 			else
 				continue;
 			obsLayer[i] += 1;
-			if (roughN[i])
+			if (e.roughN[i])
 			{
-				const float mean = roughSum[i] / roughN[i];
+				const float mean = e.roughSum[i] / e.roughN[i];
 				const float prev = roughLayer[i];
 				roughLayer[i] = std::isnan(prev) ? mean : 0.5f * (prev + mean);
 			}
 		}
+}
 
-	// Objects: detections and door regions, merged into instances.
+void SemanticMap::paintObject(
+    const SweepEvidence& e, int id, const cv::Rect& box,
+    const std::function<bool(int, int)>& belongs)
+{
 	auto& objLayer = get("objects");
-	std::vector<int> seenThisSweep, viewedThisSweep;
-	countViews(sweep, robot, viewedThisSweep);
-	auto toWorldBox = [&](const mrpt::math::TPoint3D& a,
-	                      const mrpt::math::TPoint3D& b,
-	                      mrpt::math::TPoint3D& lo, mrpt::math::TPoint3D& hi)
-	{
-		lo = {1e18, 1e18, 1e18};
-		hi = {-1e18, -1e18, -1e18};
-		for (int k = 0; k < 8; k++)
+	const cv::Rect clip = box & cv::Rect(0, 0, e.cols, e.rows);
+	for (int r = clip.y; r < clip.y + clip.height; r++)
+		for (int c = clip.x; c < clip.x + clip.width; c++)
 		{
-			double x, y, z;
-			robot.composePoint(
-			    (k & 1) ? b.x : a.x, (k & 2) ? b.y : a.y, (k & 4) ? b.z : a.z,
-			    x, y, z);
-			lo = {std::min(lo.x, x), std::min(lo.y, y), std::min(lo.z, z)};
-			hi = {std::max(hi.x, x), std::max(hi.y, y), std::max(hi.z, z)};
+			const int i =
+			    e.cellOfPixel[static_cast<std::size_t>(r) * e.cols + c];
+			if (i >= 0 && belongs(r, c))
+				objLayer[static_cast<std::size_t>(i)] = static_cast<float>(id);
 		}
-	};
-	auto paint = [&](int id, const cv::Rect& box, auto&& belongs)
-	{
-		const cv::Rect clip = box & cv::Rect(0, 0, cols, rows);
-		for (int r = clip.y; r < clip.y + clip.height; r++)
-			for (int c = clip.x; c < clip.x + clip.width; c++)
-			{
-				const int i =
-				    cellOfPixel[static_cast<std::size_t>(r) * cols + c];
-				if (i >= 0 && belongs(r, c))
-					objLayer[static_cast<std::size_t>(i)] =
-					    static_cast<float>(id);
-			}
-	};
+}
+
+void SemanticMap::insertDetections(
+    const LabeledSweep& ls, const mrpt::poses::CPose3D& robot,
+    const SweepEvidence& e, std::vector<int>& seenThisSweep,
+    std::vector<int>& viewedThisSweep)
+{
 	for (const auto& d : ls.detections)
 	{
 		const mrpt::math::TPoint3D half{
 		    d.extent.x / 2, d.extent.y / 2, d.extent.z / 2};
 		mrpt::math::TPoint3D lo, hi, wc;
-		toWorldBox(d.centroid - half, d.centroid + half, lo, hi);
+		toWorldBox(robot, d.centroid - half, d.centroid + half, lo, hi);
 		robot.composePoint(d.centroid, wc);
 		int id = 0;
 		mergeObject(
@@ -248,8 +320,8 @@ void SemanticMap::insert(
 				if (o.id == id) o.views++;
 			viewedThisSweep.push_back(id);
 		}
-		paint(
-		    id, d.imageBox,
+		paintObject(
+		    e, id, d.imageBox,
 		    [&](int r, int c)
 		    {
 			    return ls.label(
@@ -257,38 +329,31 @@ void SemanticMap::insert(
 			               static_cast<std::size_t>(c)) == d.label;
 		    });
 	}
-	if (m_options.stairsCentroidFromCells)
-		for (auto& o : m_instances)
-			if (o.label == Label::Stairs &&
-			    std::find(seenThisSweep.begin(), seenThisSweep.end(), o.id) !=
-			        seenThisSweep.end())
-				centreOnCells(o);
+}
+
+void SemanticMap::insertRegions(
+    const LabeledSweep& ls, const mrpt::poses::CPose3D& robot,
+    const SweepEvidence& e, std::vector<int>& seenThisSweep)
+{
+	const auto& registry = ClassRegistry::instance();
 	for (const auto& reg : ls.regions)
 	{
-		if (reg.label != Label::Door) continue;
+		if (!registry.contains(reg.label) ||
+		    classInfo(reg.label).instances !=
+		        ClassInfo::InstanceSource::Regions)
+			continue;
 		mrpt::math::TPoint3D lo, hi, wc;
-		toWorldBox(reg.minCorner, reg.maxCorner, lo, hi);
+		toWorldBox(robot, reg.minCorner, reg.maxCorner, lo, hi);
 		robot.composePoint(reg.centroid, wc);
 		int id = 0;
 		mergeObject(
-		    Label::Door, wc, {reg.width, 0, reg.height}, lo, hi, 1.0,
+		    reg.label, wc, {reg.width, 0, reg.height}, lo, hi, 1.0,
 		    seenThisSweep, id);
-		paint(
-		    id, reg.imageBox,
+		paintObject(
+		    e, id, reg.imageBox,
 		    [&](int r, int c)
 		    { return ls.regionIds.at<int32_t>(r, c) == reg.id; });
 	}
-
-	// 3D: every point into the OctoMap (endpoints; free space stays 2D).
-	if (m_options.octomap)
-	{
-		for (const auto& p : pts)
-			m_octree->updateNode(octomap::point3d(p.x, p.y, p.z), true, true);
-		m_octree->updateInnerOccupancy();
-	}
-
-	updateCosts();
-	m_sweeps++;
 }
 
 void SemanticMap::countViews(
@@ -316,9 +381,14 @@ void SemanticMap::countViews(
 	    thetas.size() > 1
 	        ? (thetas.back() - thetas.front()) / (thetas.size() - 1)
 	        : 1;
+	// Region classes (doors) are found by the rules in every sweep that
+	// sees them: no views to count.
+	const LabelSet fromRegions = ClassRegistry::instance().select(
+	    [](const ClassInfo& c)
+	    { return c.instances == ClassInfo::InstanceSource::Regions; });
 	for (auto& o : m_instances)
 	{
-		if (o.label == Label::Door) continue;
+		if (fromRegions.contains(o.label)) continue;
 		mrpt::math::TPoint3D p;
 		robot.inverseComposePoint(o.centroid, p);
 		const double dx = p.x - axis.x(), dy = p.y - axis.y(),
@@ -363,15 +433,21 @@ void SemanticMap::centreOnCells(ObjectInstance& o) const
 	x1 = std::min(x1, g.cols - 1);
 	y1 = std::min(y1, g.rows - 1);
 	if (x1 < x0 || y1 < y0) return;
+	// A wall, or an object beside the flight that a false stairs detection
+	// took in (a class whose sightings merge one by one), is no part of it.
+	LabelSet notFlight = ClassRegistry::instance().select(
+	    [](const ClassInfo& c)
+	    {
+		    return c.instances == ClassInfo::InstanceSource::Detections &&
+		           c.merge == ClassInfo::Merge::BySighting;
+	    });
+	notFlight.insert(Label::Wall);
 	const auto labelled = [&](int cx, int cy)
 	{
 		const LabelSet ls(
 		    static_cast<LabelSet::mask_t>(labels[g.index(cy, cx)]));
-		// A wall, or an object beside the flight that a false stairs
-		// detection took in, is no part of it.
-		return ls.contains(Label::Stairs) && !ls.contains(Label::Wall) &&
-		       !ls.contains(Label::Washbasin) &&
-		       !ls.contains(Label::Wastebasket);
+		return ls.contains(Label::Stairs) &&
+		       (ls.mask() & notFlight.mask()) == 0;
 	};
 	// Cells labelled in too few sweeps, against the footprint's most
 	// labelled one, are no part of the flight (a map saved without the
@@ -447,8 +523,10 @@ void SemanticMap::mergeObject(
     std::vector<int>& seenThisSweep, int& id)
 {
 	// The nearest instance of the label within mergeDistance or whose
-	// footprint overlaps the detection's (washbasins, wastebaskets: within
-	// objectMergeDistance of one of its sightings).
+	// footprint overlaps the detection's (classes merged by sighting, e.g.
+	// washbasins: within objectMergeDistance of one of its sightings).
+	const bool byFootprint =
+	    classInfo(label).merge == ClassInfo::Merge::ByFootprint;
 	ObjectInstance* best = nullptr;
 	double bestD = std::numeric_limits<double>::infinity();
 	for (auto& o : m_instances)
@@ -457,7 +535,7 @@ void SemanticMap::mergeObject(
 		const double d =
 		    std::hypot(o.centroid.x - centroid.x, o.centroid.y - centroid.y);
 		bool joins;
-		if (label == Label::Stairs || label == Label::Door)
+		if (byFootprint)
 			joins =
 			    d < m_options.mergeDistance ||
 			    (o.minCorner.x <= maxCorner.x && minCorner.x <= o.maxCorner.x &&

@@ -1,5 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/config/CConfigFileBase.h>
+#include <semnav/common/ClassRegistry.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
 #include <semnav/map/TravelCostModel.h>
@@ -59,6 +60,47 @@ void TravelCostModel::TOptions::saveToConfigFile(
 TravelCostModel::TravelCostModel() : TravelCostModel(TOptions()) {}
 TravelCostModel::TravelCostModel(const TOptions& o) : m_options(o) {}
 
+double TravelCostModel::surfaceCost(Label l) const
+{
+	const auto& o = m_options;
+	switch (l)
+	{
+		case Label::Floor:
+			return o.floorCost;
+		case Label::Door:
+			return o.doorCost;
+		case Label::Sidewalk:
+			return o.sidewalkCost;
+		case Label::Grass:
+			return o.grassCost;
+		case Label::Stairs:
+			return o.stairsCost;
+		default:
+			return classInfo(l).travelCost;
+	}
+}
+
+double TravelCostModel::labelCost(
+    Label l, double roughness, double obstacleCost) const
+{
+	const auto& o = m_options;
+	const ClassInfo& c = classInfo(l);
+	switch (c.passage)
+	{
+		case ClassInfo::Passage::Blocking:
+			return obstacleCost;
+		case ClassInfo::Passage::Surface:
+			break;
+		default:
+			return 0;
+	}
+	if (c.walkingOnly && o.robotType != RobotType::Walking) return o.lethalCost;
+	double u = surfaceCost(l);
+	if (c.roughnessRaisesCost && !std::isnan(roughness))
+		u += o.grassRoughnessGain * std::max(0.0, 1.0 - roughness);
+	return u;
+}
+
 double TravelCostModel::cost(
     LabelSet labels, double roughness, Occupancy occupancy) const
 {
@@ -70,43 +112,8 @@ double TravelCostModel::cost(
 	    occupancy == Occupancy::Free ? 0.0 : o.lethalCost;
 	double u = 0;
 	for (Label l : allLabels())
-	{
-		if (!labels.contains(l)) continue;
-		double lu = 0;
-		switch (l)
-		{
-			case Label::Floor:
-				lu = o.floorCost;
-				break;
-			case Label::Door:
-				lu = o.doorCost;
-				break;
-			case Label::Sidewalk:
-				lu = o.sidewalkCost;
-				break;
-			case Label::Grass:
-				lu = o.grassCost + (std::isnan(roughness)
-				                        ? 0.0
-				                        : o.grassRoughnessGain *
-				                              std::max(0.0, 1.0 - roughness));
-				break;
-			case Label::Stairs:
-				lu = o.robotType == RobotType::Walking ? o.stairsCost
-				                                       : o.lethalCost;
-				break;
-			case Label::Wall:
-			case Label::Obstacle:
-			case Label::Washbasin:
-			case Label::Wastebasket:
-				lu = obstacleCost;
-				break;
-			case Label::Ceiling:
-			case Label::Unknown:
-				lu = 0;
-				break;
-		}
-		u = std::max(u, lu);
-	}
+		if (labels.contains(l))
+			u = std::max(u, labelCost(l, roughness, obstacleCost));
 	return std::min(u, o.lethalCost);
 }
 

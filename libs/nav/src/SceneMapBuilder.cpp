@@ -1,4 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/ClassRegistry.h>
 #include <semnav/common/LabelSet.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/nav/SceneMapBuilder.h>
@@ -62,8 +63,7 @@ constexpr std::size_t kGroundTruthObservations = 1000;
 
 bool isInstanceLabel(Label l)
 {
-	return l == Label::Door || l == Label::Stairs || l == Label::Washbasin ||
-	       l == Label::Wastebasket;
+	return classInfo(l).hasInstances();
 }
 }  // namespace
 

@@ -21,6 +21,7 @@ void GroundTruthScorer::add(
 	    (groundTruth.type() != CV_8U && groundTruth.type() != CV_16U))
 		throw Error("GroundTruthScorer: unexpected image types");
 	const bool wide = groundTruth.type() == CV_16U;
+	const std::size_t count = allLabels().size();
 	for (int r = 0; r < predicted.rows; r++)
 	{
 		const uint8_t* P = predicted.ptr<uint8_t>(r);
@@ -30,7 +31,7 @@ void GroundTruthScorer::add(
 			if (!V[c]) continue;
 			const unsigned g = wide ? (groundTruth.ptr<uint16_t>(r)[c] & 0xFFu)
 			                        : groundTruth.ptr<uint8_t>(r)[c];
-			if (g >= kLabelCount || P[c] >= kLabelCount)
+			if (g >= count || P[c] >= count)
 				throw Error(
 				    "label id " + std::to_string(std::max<unsigned>(g, P[c])) +
 				    " is not a semnav label");
@@ -45,7 +46,7 @@ GroundTruthScorer::ClassScore GroundTruthScorer::score(Label l) const
 {
 	const auto i = static_cast<std::size_t>(l);
 	ClassScore s;
-	for (std::size_t k = 0; k < kLabelCount; k++)
+	for (std::size_t k = 0; k < kMaxLabelCount; k++)
 	{
 		s.groundTruthPixels += m_conf[i][k];
 		s.predictedPixels += m_conf[k][i];
@@ -65,7 +66,7 @@ GroundTruthScorer::ClassScore GroundTruthScorer::score(Label l) const
 std::vector<Label> GroundTruthScorer::labelsSeen() const
 {
 	std::vector<Label> out;
-	for (std::size_t i = 1; i < kLabelCount; i++)
+	for (std::size_t i = 1; i < allLabels().size(); i++)
 	{
 		const auto s = score(static_cast<Label>(i));
 		if (s.groundTruthPixels > 0 || s.predictedPixels > 0)
@@ -87,13 +88,14 @@ cv::Mat GroundTruthScorer::readLabelImage(const std::string& path)
 		throw IoError(
 		    "label image " + path + " is not a 1-channel 8- or 16-bit PNG");
 	cv::Mat out(img.rows, img.cols, CV_8U);
+	const std::size_t count = allLabels().size();
 	for (int r = 0; r < img.rows; r++)
 		for (int c = 0; c < img.cols; c++)
 		{
 			const unsigned v = img.depth() == CV_16U
 			                       ? (img.at<uint16_t>(r, c) & 0xFFu)
 			                       : img.at<uint8_t>(r, c);
-			if (v >= kLabelCount)
+			if (v >= count)
 				throw IoError(
 				    "label image " + path + " holds label id " +
 				    std::to_string(v) + ", not a semnav label");

@@ -1,4 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/ClassRegistry.h>
 #include <semnav/perception/PerceptionImages.h>
 
 #include <algorithm>
@@ -17,22 +18,10 @@ cv::Mat toViewerLayout(const cv::Mat& m)
 
 cv::Vec3b labelColour(Label l)
 {
-	// RGB, listed in Label order; stored BGR.
-	static const unsigned char rgb[kLabelCount][3] = {
-	    {90, 90, 90},     // unknown
-	    {40, 110, 255},   // floor
-	    {255, 220, 0},    // ceiling
-	    {220, 30, 30},    // wall
-	    {140, 70, 10},    // door
-	    {200, 200, 200},  // sidewalk
-	    {20, 170, 20},    // grass
-	    {255, 140, 0},    // stairs
-	    {0, 220, 220},    // washbasin
-	    {255, 0, 255},    // wastebasket
-	    {140, 40, 210}};  // obstacle
-	const auto i =
-	    std::min<std::size_t>(static_cast<std::size_t>(l), kLabelCount - 1);
-	return cv::Vec3b(rgb[i][2], rgb[i][1], rgb[i][0]);
+	const auto& registry = ClassRegistry::instance();
+	const ClassInfo::Rgb c =
+	    registry.info(registry.contains(l) ? l : Label::Unknown).labelColour;
+	return cv::Vec3b(c.b, c.g, c.r);
 }
 
 cv::Mat normals(const cv::Mat& bgr)
@@ -74,12 +63,12 @@ cv::Mat labels(const cv::Mat& labelIds, const cv::Mat& validMask)
 	// Legend: one swatch + name per label, in rows below the image.
 	const int w = std::max(img.cols, 360), cellW = 120, cellH = 18;
 	const int perRow = std::max(1, w / cellW);
-	const int legendRows =
-	    static_cast<int>((kLabelCount + perRow - 1) / perRow);
+	const std::size_t count = allLabels().size();
+	const int legendRows = static_cast<int>((count + perRow - 1) / perRow);
 	cv::Mat out(
 	    img.rows + legendRows * cellH + 4, w, CV_8UC3, cv::Scalar::all(255));
 	img.copyTo(out(cv::Rect(0, 0, img.cols, img.rows)));
-	for (std::size_t i = 0; i < kLabelCount; i++)
+	for (std::size_t i = 0; i < count; i++)
 	{
 		const int x = static_cast<int>(i % perRow) * cellW + 4;
 		const int y = img.rows + 4 + static_cast<int>(i / perRow) * cellH;

@@ -1,4 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/ClassRegistry.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/planning/SemanticPlanner.h>
 
@@ -61,6 +62,15 @@ GoalLayer SemanticPlanner::goalsOf(
 SemanticPlanner::Plan SemanticPlanner::toLabel(
     double x, double y, Label label, CostProfile profile) const
 {
+	if (!classInfo(label).goal)
+	{
+		std::string goals;
+		for (Label l : allLabels())
+			if (classInfo(l).goal)
+				goals += (goals.empty() ? "" : ", ") + labelName(l);
+		throw NoInstanceError(
+		    labelName(label) + " is no goal class (goals: " + goals + ")");
+	}
 	const auto objs = m_map.instances(label);
 	if (objs.empty())
 	{

@@ -1,5 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/config/CConfigFileBase.h>
+#include <semnav/common/ClassRegistry.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
 #include <semnav/planning/PlanningErrors.h>
@@ -81,14 +82,14 @@ int readChoice(
 
 TraversabilityBuilder::TOptions::TOptions()
 {
-	const double blocked = kBlocked;
 	labelU.fill(0);
-	labelU[static_cast<std::size_t>(Label::Wall)] = blocked;
-	labelU[static_cast<std::size_t>(Label::Grass)] = 0.05;
-	labelU[static_cast<std::size_t>(Label::Stairs)] = 0.1;
-	labelU[static_cast<std::size_t>(Label::Washbasin)] = blocked;
-	labelU[static_cast<std::size_t>(Label::Wastebasket)] = blocked;
-	labelU[static_cast<std::size_t>(Label::Obstacle)] = blocked;
+	for (Label l : allLabels())
+	{
+		const ClassInfo& c = classInfo(l);
+		labelU[static_cast<std::size_t>(l)] =
+		    c.passage == ClassInfo::Passage::Blocking ? kBlocked
+		                                              : c.plannerCost;
+	}
 	labelRadiusScale.fill(1);
 }
 
@@ -185,7 +186,7 @@ TraversabilityBuilder::TraversabilityBuilder(const TOptions& options)
 
 double TraversabilityBuilder::labelCost(Label l) const
 {
-	if (l == Label::Stairs && m_options.robotType == RobotType::Wheeled)
+	if (classInfo(l).walkingOnly && m_options.robotType == RobotType::Wheeled)
 		return m_options.L;
 	return std::min(m_options.labelU[static_cast<std::size_t>(l)], m_options.L);
 }
@@ -230,26 +231,38 @@ TraversabilityGrid TraversabilityBuilder::buildImpl(
     const std::vector<CellOccupancy>& occupancy, CostProfile profile) const
 {
 	validatePlanningGrid(g);
-	const std::size_t n = g.cellCount();
-	if (!labels.empty() && labels.size() != n)
-		throw PlanningError(
-		    "label layer has " + std::to_string(labels.size()) +
-		    " cells, the grid " + std::to_string(n));
-	if (!occupancy.empty() && occupancy.size() != n)
-		throw PlanningError(
-		    "occupancy layer has " + std::to_string(occupancy.size()) +
-		    " cells, the grid " + std::to_string(n));
+	checkLayerSize("label", labels.size(), g.cellCount());
+	checkLayerSize("occupancy", occupancy.size(), g.cellCount());
+	TraversabilityGrid grid(g, m_options.L, 0);
+	const std::vector<float> scale =
+	    cellCosts(baseU, baseLethal, labels, occupancy, grid.values());
+	for (const auto& [s, cells] : inflationSources(g, scale))
+		inflate(grid, influenceStencil(s, profile, g.resolution), cells);
+	return grid;
+}
 
+void TraversabilityBuilder::checkLayerSize(
+    const char* layer, std::size_t size, std::size_t cells)
+{
+	if (size != 0 && size != cells)
+		throw PlanningError(
+		    std::string(layer) + " layer has " + std::to_string(size) +
+		    " cells, the grid " + std::to_string(cells));
+}
+
+std::vector<float> TraversabilityBuilder::cellCosts(
+    const std::vector<float>* baseU, double baseLethal,
+    const std::vector<LabelSet>& labels,
+    const std::vector<CellOccupancy>& occupancy, std::vector<double>& u) const
+{
 	const double L = m_options.L;
-	TraversabilityGrid grid(g, L, 0);
-	auto& u = grid.values();
-
-	// Per cell: u from labels/occupancy; obstacles get the influence scale
-	// of their costliest reason (0 = not an obstacle, -1 = obstacle with no
-	// influence beyond the C-space).
-	std::array<double, kLabelCount> cost{};
+	const std::size_t n = u.size();
+	std::array<double, kMaxLabelCount> cost{};
 	for (Label l : allLabels())
 		cost[static_cast<std::size_t>(l)] = labelCost(l);
+	const std::size_t labelCount = allLabels().size();
+	// Obstacles get the influence scale of their costliest reason (0 = not
+	// an obstacle, -1 = obstacle with no influence beyond the C-space).
 	std::vector<float> scale(n, 0.f);
 	const auto markObstacle = [&](std::size_t i, double s)
 	{
@@ -279,7 +292,7 @@ TraversabilityGrid TraversabilityBuilder::buildImpl(
 					notEnterable[i] = 1;
 			}
 		}
-		const auto mask = labels.empty() ? 0u : labels[i].mask();
+		const LabelSet::mask_t mask = labels.empty() ? 0u : labels[i].mask();
 		if (baseU)
 		{
 			if ((*baseU)[i] >= baseLethal)
@@ -287,7 +300,7 @@ TraversabilityGrid TraversabilityBuilder::buildImpl(
 				// Influence of the costliest obstacle label seen there.
 				double s = 0;
 				bool labelled = false;
-				for (std::size_t k = 0; k < kLabelCount; k++)
+				for (std::size_t k = 0; k < labelCount; k++)
 					if ((mask & (1u << k)) && cost[k] >= L)
 					{
 						labelled = true;
@@ -302,7 +315,7 @@ TraversabilityGrid TraversabilityBuilder::buildImpl(
 				ui = std::max(ui, static_cast<double>((*baseU)[i]));
 		}
 		else
-			for (std::size_t k = 0; k < kLabelCount; k++)
+			for (std::size_t k = 0; k < labelCount; k++)
 			{
 				if (!(mask & (1u << k))) continue;
 				if (cost[k] >= L)
@@ -312,10 +325,15 @@ TraversabilityGrid TraversabilityBuilder::buildImpl(
 			}
 		u[i] = scale[i] != 0.f || notEnterable[i] ? L : ui;
 	}
+	return scale;
+}
 
-	// Influence around obstacles: only obstacle cells with a free
-	// 8-neighbour can be the nearest obstacle of a free cell.
-	const double res = g.resolution, R = m_options.robotRadius;
+std::map<float, std::vector<std::size_t>>
+TraversabilityBuilder::inflationSources(
+    const GridGeometry& g, const std::vector<float>& scale)
+{
+	// Only obstacle cells with a free 8-neighbour can be the nearest
+	// obstacle of a free cell.
 	std::map<float, std::vector<std::size_t>> sources;
 	for (int r = 0; r < g.rows; r++)
 		for (int c = 0; c < g.cols; c++)
@@ -333,50 +351,57 @@ TraversabilityGrid TraversabilityBuilder::buildImpl(
 					}
 			if (boundary) sources[std::max(scale[i], 0.f)].push_back(i);
 		}
+	return sources;
+}
 
-	for (const auto& [s, cells] : sources)
+std::vector<TraversabilityBuilder::StencilTap>
+TraversabilityBuilder::influenceStencil(
+    float s, CostProfile profile, double res) const
+{
+	const double L = m_options.L, R = m_options.robotRadius;
+	// f_s(r1) with r1 = d - R: [0, rBlock) -> L, [rBlock, rRing) -> ring.
+	double rBlock = 0, rRing = 0, ring = 0;
+	if (profile == CostProfile::Shortest)
+		rBlock = rRing = s * m_options.shortestRadius;
+	else
 	{
-		// f_s(r1) with r1 = d - R: [0, rBlock) -> L, [rBlock, rRing) -> ring.
-		double rBlock = 0, rRing = 0, ring = 0;
-		if (profile == CostProfile::Shortest)
-			rBlock = rRing = s * m_options.shortestRadius;
-		else
+		rBlock = 0.5 * s * m_options.safeRadius;
+		rRing = s * m_options.safeRadius;
+		ring = m_options.safeRingCost;
+	}
+	std::vector<StencilTap> stencil;
+	const int k = static_cast<int>(std::ceil((R + rRing) / res)) + 1;
+	for (int dr = -k; dr <= k; dr++)
+		for (int dc = -k; dc <= k; dc++)
 		{
-			rBlock = 0.5 * s * m_options.safeRadius;
-			rRing = s * m_options.safeRadius;
-			ring = m_options.safeRingCost;
+			const double ex = std::max(0.0, std::abs(dc) - 0.5) * res;
+			const double ey = std::max(0.0, std::abs(dr) - 0.5) * res;
+			const double r1 = std::hypot(ex, ey) - R;
+			const double v =
+			    r1 < rBlock ? L : (r1 < rRing ? std::min(ring, L) : 0.0);
+			if (v > 0) stencil.push_back({dr, dc, v});
 		}
-		struct Tap
+	return stencil;
+}
+
+void TraversabilityBuilder::inflate(
+    TraversabilityGrid& grid, const std::vector<StencilTap>& stencil,
+    const std::vector<std::size_t>& cells)
+{
+	const GridGeometry& g = grid.geometry();
+	auto& u = grid.values();
+	for (std::size_t i : cells)
+	{
+		const int r = static_cast<int>(i / g.cols);
+		const int c = static_cast<int>(i % g.cols);
+		for (const auto& t : stencil)
 		{
-			int dr, dc;
-			double v;
-		};
-		std::vector<Tap> stencil;
-		const int k = static_cast<int>(std::ceil((R + rRing) / res)) + 1;
-		for (int dr = -k; dr <= k; dr++)
-			for (int dc = -k; dc <= k; dc++)
-			{
-				const double ex = std::max(0.0, std::abs(dc) - 0.5) * res;
-				const double ey = std::max(0.0, std::abs(dr) - 0.5) * res;
-				const double r1 = std::hypot(ex, ey) - R;
-				const double v =
-				    r1 < rBlock ? L : (r1 < rRing ? std::min(ring, L) : 0.0);
-				if (v > 0) stencil.push_back({dr, dc, v});
-			}
-		for (std::size_t i : cells)
-		{
-			const int r = static_cast<int>(i / g.cols);
-			const int c = static_cast<int>(i % g.cols);
-			for (const auto& t : stencil)
-			{
-				const int rr = r + t.dr, cc = c + t.dc;
-				if (!g.contains(rr, cc)) continue;
-				double& ui = u[g.index(rr, cc)];
-				if (t.v > ui) ui = t.v;
-			}
+			const int rr = r + t.dr, cc = c + t.dc;
+			if (!g.contains(rr, cc)) continue;
+			double& ui = u[g.index(rr, cc)];
+			if (t.v > ui) ui = t.v;
 		}
 	}
-	return grid;
 }
 
 }  // namespace semnav

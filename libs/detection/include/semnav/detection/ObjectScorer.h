@@ -78,7 +78,7 @@ public:
 private:
 	int m_minPixels;
 	double m_minIou;
-	std::array<Score, kLabelCount> m_scores{};
+	std::array<Score, kMaxLabelCount> m_scores{};
 	std::size_t m_sweeps = 0;
 };
 

@@ -14,7 +14,8 @@ namespace semnav
  * layer files, the object list and the number of sweeps. Images have
  * map_server's orientation (row 0 = the largest y). Files:
  * occupancy.png (map_server trinary: 0 occupied, 254 free, 205 unknown,
- * otherwise 255 (1 - p)), labels.png (16-bit LabelSet mask), objects.png
+ * otherwise 255 (1 - p)), labels.png (16-bit LabelSet mask:
+ * classes with ids 16..23 are in layers/labels.pfm only), objects.png
  * (16-bit instance id), cost.png (16-bit, u / L * 65535), map.png (colour
  * rendering), octomap.bt, and under layers/ the exact state (log-odds
  * occupancy and every float layer as PFM) so that load(save(m)) == m.

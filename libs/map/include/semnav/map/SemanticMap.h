@@ -6,13 +6,16 @@
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/system/COutputLogger.h>
+#include <semnav/common/ClassRegistry.h>
 #include <semnav/common/GridGeometry.h>
 #include <semnav/common/LabelSet.h>
 #include <semnav/map/ObjectInstance.h>
 #include <semnav/map/TravelCostModel.h>
 
+#include <functional>
 #include <map>
 #include <memory>
+#include <opencv2/core/types.hpp>
 #include <string>
 #include <vector>
 
@@ -112,15 +115,18 @@ public:
 		double viewMaxBearingDeg = 90;
 		/** Washbasins whose detections never reach this height are not
 		 * reported (side tables, chairs, steps taken for one) (m). */
-		double washbasinMinTop = 0.75;
+		double washbasinMinTop =
+		    classInfo(Label::Washbasin).plausibility.minInstanceTop;
 		/** Washbasins with no wall cell within this distance of their
 		 * centroid are not reported (free-standing tables taken for
 		 * one); 0 = no check (m). */
-		double washbasinMaxWallDistance = 0.6;
+		double washbasinMaxWallDistance =
+		    classInfo(Label::Washbasin).plausibility.maxWallDistance;
 		/** Stairs whose detections never come down to this height are not
 		 * reported: a flight starts at the floor, a table top taken for
 		 * one does not (m). */
-		double stairsMaxBottom = 0.1;
+		double stairsMaxBottom =
+		    classInfo(Label::Stairs).plausibility.maxBottom;
 		/** A staircase's centroid (x, y) is the centre of the cells
 		 * labelled stairs (and not wall, washbasin or wastebasket in any
 		 * sweep) connected to its sightings within its footprint: one
@@ -135,7 +141,7 @@ public:
 		double stairsMinCellShare = 0.1;
 		/** Doors whose merged extent is lower than this are not reported
 		 * (fragments of walls or furniture taken for a door) (m). */
-		double doorMinHeight = 1.2;
+		double doorMinHeight = classInfo(Label::Door).plausibility.minHeight;
 		/** Insert points into the OctoMap. */
 		bool octomap = true;
 		TravelCostModel::TOptions cost;
@@ -257,6 +263,41 @@ public:
 	    std::size_t sweeps);
 
 private:
+	struct WorldPoint;
+	struct SweepEvidence;
+	/** World points of the sweep's valid pixels; grows the grid to hold
+	 * them and the robot. */
+	std::vector<WorldPoint> worldPoints(
+	    const LabeledSweep& labeled, const mrpt::poses::CPose3D& robot,
+	    const mrpt::poses::CPose2D& robotPose);
+	/** Labels (layer), hits, free ends and roughness of the points. */
+	void accumulatePoints(
+	    const std::vector<WorldPoint>& pts, const LabeledSweep& labeled,
+	    SweepEvidence& e);
+	/** Cells seen free: on the rays to free ends, under the robot. */
+	void markSeenFree(
+	    const Sweep& sweep, const mrpt::poses::CPose3D& robot,
+	    const mrpt::poses::CPose2D& robotPose, SweepEvidence& e) const;
+	/** Occupancy, observation counts and roughness from the evidence. */
+	void updateCells(const SweepEvidence& e);
+	/** Sets the "objects" layer to `id` in the cells of the pixels in `box`
+	 * for which belongs(row, col). */
+	void paintObject(
+	    const SweepEvidence& e, int id, const cv::Rect& box,
+	    const std::function<bool(int, int)>& belongs);
+	/** Merges the sweep's detections into instances. */
+	void insertDetections(
+	    const LabeledSweep& labeled, const mrpt::poses::CPose3D& robot,
+	    const SweepEvidence& e, std::vector<int>& seenThisSweep,
+	    std::vector<int>& viewedThisSweep);
+	/** Merges the labelled regions of region classes (doors) into
+	 * instances. */
+	void insertRegions(
+	    const LabeledSweep& labeled, const mrpt::poses::CPose3D& robot,
+	    const SweepEvidence& e, std::vector<int>& seenThisSweep);
+	/** Reporting rules of a class: its registry row, with the built-ins'
+	 * configured values. */
+	ClassInfo::Plausibility plausibility(Label l) const;
 	/** Counts a view of every instance the sweep had in line of sight. */
 	void countViews(
 	    const Sweep& sweep, const mrpt::poses::CPose3D& robot,

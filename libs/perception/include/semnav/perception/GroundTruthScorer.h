@@ -51,7 +51,8 @@ public:
 	static cv::Mat readLabelImage(const std::string& path);
 
 private:
-	std::array<std::array<std::size_t, kLabelCount>, kLabelCount> m_conf{};
+	std::array<std::array<std::size_t, kMaxLabelCount>, kMaxLabelCount>
+	    m_conf{};
 	std::size_t m_sweeps = 0, m_pixels = 0;
 };
 

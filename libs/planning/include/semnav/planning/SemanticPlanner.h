@@ -46,8 +46,9 @@ public:
 	    const SemanticMap& map, const CnnPlanner::TOptions& cnn,
 	    const TraversabilityBuilder::TOptions& traversability);
 
-	/** Least-cost path from (x, y) to any instance of `label`. Throws
-	 * NoInstanceError, StartOutsideMapError, StartBlockedError,
+	/** Least-cost path from (x, y) to any instance of `label`, a goal
+	 * class of the ClassRegistry. Throws NoInstanceError (also for a class
+	 * that is no goal), StartOutsideMapError, StartBlockedError,
 	 * EmptyGoalError, NoPathError. */
 	Plan toLabel(double x, double y, Label label, CostProfile profile) const;
 	/** Path to a given object of the map. */

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -93,12 +94,13 @@ public:
 		/** goal_reach_m: goal regions extend this far beyond the closest
 		 * allowed clearance (see goalRegionRadius()). */
 		double goalReach = 0.30;
-		/** u_<label>: traversability per label (by label id). u_stairs is
-		 * used by walking robots only. */
-		std::array<double, kLabelCount> labelU{};
+		/** u_<label>: traversability per label (by label id; defaults from
+		 * the ClassRegistry: plannerCost, blocked for blocking classes).
+		 * u_stairs (walking-only classes) is used by walking robots only. */
+		std::array<double, kMaxLabelCount> labelU{};
 		/** r_scale_<label>: multiplies the profile radius r for obstacles of
 		 * this label (the paper's per-object r_s). */
-		std::array<double, kLabelCount> labelRadiusScale{};
+		std::array<double, kMaxLabelCount> labelRadiusScale{};
 	};
 
 	TraversabilityBuilder();
@@ -137,10 +139,38 @@ public:
 	double goalRegionRadius(CostProfile profile) const;
 
 private:
+	/** One cell of an inflation stencil: offset and the u it imposes. */
+	struct StencilTap
+	{
+		int dr, dc;
+		double v;
+	};
+
 	TraversabilityGrid buildImpl(
 	    const GridGeometry& geometry, const std::vector<float>* baseU,
 	    double baseLethal, const std::vector<LabelSet>& labels,
 	    const std::vector<CellOccupancy>& occupancy, CostProfile profile) const;
+	/** Throws PlanningError unless the layer is empty or has `cells`. */
+	static void checkLayerSize(
+	    const char* layer, std::size_t size, std::size_t cells);
+	/** Fills `u` with each cell's own cost (L for obstacles and cells not
+	 * to enter) and returns each cell's obstacle influence scale (0: no
+	 * obstacle, -1: no influence beyond the C-space). */
+	std::vector<float> cellCosts(
+	    const std::vector<float>* baseU, double baseLethal,
+	    const std::vector<LabelSet>& labels,
+	    const std::vector<CellOccupancy>& occupancy,
+	    std::vector<double>& u) const;
+	/** Obstacle cells with a free 8-neighbour, by influence scale. */
+	static std::map<float, std::vector<std::size_t>> inflationSources(
+	    const GridGeometry& g, const std::vector<float>& scale);
+	/** The cells around an obstacle of scale `s` and their u (eq. (13)). */
+	std::vector<StencilTap> influenceStencil(
+	    float s, CostProfile profile, double resolution) const;
+	/** Raises u around `cells` to the stencil's values. */
+	static void inflate(
+	    TraversabilityGrid& grid, const std::vector<StencilTap>& stencil,
+	    const std::vector<std::size_t>& cells);
 
 	TOptions m_options;
 };
