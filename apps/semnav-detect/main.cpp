@@ -5,8 +5,10 @@
 #include <semnav/common/AtomicFile.h>
 #include <semnav/common/CommandLine.h>
 #include <semnav/common/DatasetListArg.h>
+#include <semnav/common/Percentile.h>
 #include <semnav/common/ProgressBar.h>
 #include <semnav/detection/CascadeDetector.h>
+#include <semnav/detection/CascadeTraining.h>
 #include <semnav/detection/DetectionImage.h>
 #include <semnav/detection/GroundTruthObject.h>
 #include <semnav/detection/ObjectScorer.h>
@@ -34,13 +36,6 @@ constexpr int kCountedPixels = 150;
 constexpr double kMatchIou = 0.3;
 /** Cell side for counting the distinct points of a missed object (m). */
 constexpr double kCellM = 0.02;
-
-double median(std::vector<double> v)
-{
-	if (v.empty()) return 0;
-	std::sort(v.begin(), v.end());
-	return v[v.size() / 2];
-}
 
 /** Detection image with the object proposals of every class (yellow), ground
  * truth (blue), accepted (green) and rejected (red) boxes, enlarged 2x; sweep
@@ -305,14 +300,16 @@ int main(int argc, char** argv)
 	auto& cmd = cli.cmd();
 	semnav::DatasetListArg argDatasets(
 	    cmd, "Dataset directories (semnav-sim output); required");
+	semnav::CascadeTraining::TOptions defaults;
+	const semnav::IniSections sections = defaults.iniSections();
+	cli.addWriteConfig(sections);
 	TCLAP::ValueArg<std::string> argConfig(
 	    "", "config", "Detector INI file (config/cascade.ini); required", false,
 	    "", "C.ini", cmd);
 	TCLAP::ValueArg<std::string> argOut(
 	    "", "out", "Write one PNG per sweep with the boxes here", false, "",
 	    "DIR", cmd);
-	TCLAP::SwitchArg argJson(
-	    "", "json", "Print a JSON summary on stdout", cmd, false);
+	TCLAP::SwitchArg& argJson = cli.addJson();
 	TCLAP::SwitchArg argMisses(
 	    "", "misses",
 	    "List on stderr every accepted detection that matches no object and "
@@ -322,9 +319,7 @@ int main(int argc, char** argv)
 	if (const auto code = cli.parse(argc, argv)) return *code;
 	const std::vector<std::string> datasets = argDatasets.values();
 	if (datasets.empty()) return cli.usageError("missing --datasets");
-	for (auto* a : {&argConfig})
-		if (a->getValue().empty())
-			return cli.usageError("missing --" + a->getName());
+	if (argConfig.getValue().empty()) return cli.usageError("missing --config");
 
 	return cli.run(
 	    [&]
@@ -454,8 +449,8 @@ int main(int argc, char** argv)
 		    j["objects_recognisable"] = objsRecognisable;
 		    j["objects_distinct_points"] = objsDistinct;
 		    j["sweeps"] = scorer.sweeps();
-		    j["ms_per_sweep_median"] = median(ms);
-		    j["ms_cascades_median"] = median(msCascades);
+		    j["ms_per_sweep_median"] = semnav::median(ms);
+		    j["ms_cascades_median"] = semnav::median(msCascades);
 		    j["rejected"] = rejections;
 		    if (argJson.getValue())
 			    std::cout << j.dump() << std::endl;
@@ -491,7 +486,8 @@ int main(int argc, char** argv)
 			    std::printf(
 			        "%zu sweeps, detection %.2f ms per sweep (median; cascades "
 			        "%.2f ms)\n",
-			        scorer.sweeps(), median(ms), median(msCascades));
+			        scorer.sweeps(), semnav::median(ms),
+			        semnav::median(msCascades));
 			    for (const auto& kv : rejections)
 				    std::printf(
 				        "  rejected by size check: %s x %zu\n",

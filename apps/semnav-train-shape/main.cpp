@@ -4,6 +4,7 @@
 #include <semnav/common/CommandLine.h>
 #include <semnav/common/DatasetListArg.h>
 #include <semnav/common/ProgressBar.h>
+#include <semnav/detection/CascadeTraining.h>
 #include <semnav/detection/ShapeTraining.h>
 #include <semnav/detection/ShapeVerifier.h>
 
@@ -30,6 +31,9 @@ int main(int argc, char** argv)
 	    false, "", "L", cmd);
 	semnav::DatasetListArg argDatasets(
 	    cmd, "Dataset directories (semnav-sim output); required");
+	semnav::CascadeTraining::TOptions defaults;
+	const semnav::IniSections sections = defaults.iniSections();
+	cli.addWriteConfig(sections);
 	TCLAP::ValueArg<std::string> argConfig(
 	    "", "config", "Detector INI file (config/cascade.ini); required", false,
 	    "", "C.ini", cmd);
@@ -92,8 +96,7 @@ int main(int argc, char** argv)
 	    "The range gate's range_scale_slack while collecting (in [1, 10]; "
 	    "0: the config's); default 0",
 	    false, 0, "S", cmd);
-	TCLAP::SwitchArg argJson(
-	    "", "json", "Print a JSON summary on stdout", cmd, false);
+	TCLAP::SwitchArg& argJson = cli.addJson();
 	if (const auto code = cli.parse(argc, argv)) return *code;
 	const std::vector<std::string> datasets = argDatasets.values();
 	if (datasets.empty()) return cli.usageError("missing --datasets");
