@@ -9,9 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <regex>
 #include <set>
-#include <sstream>
 #include <string>
 
 #include "AppRunner.h"
@@ -48,22 +46,29 @@ const fs::path& office()
 std::multiset<std::string> objectLabels(const std::string& json)
 {
 	std::multiset<std::string> labels;
-	for (const auto& o : nlohmann::json::parse(json).at("objects"))
+	const auto j = nlohmann::json::parse(json);
+	for (const auto& o : j.at("objects"))
 		labels.insert(o.at("label").get<std::string>());
 	return labels;
 }
 
-/** A copy of config/cascade.ini whose `key` of every class names `file`. */
+/** A copy of config/cascade.ini in kTmp whose `key` of every class names
+ * `file` (the other model paths made absolute). */
 fs::path cascadeIniNaming(
     const std::string& key, const fs::path& file, const std::string& name)
 {
 	std::ifstream in(kSource + "/config/cascade.ini");
-	std::stringstream text;
-	text << in.rdbuf();
-	const std::regex line("^" + key + " = .*$", std::regex::multiline);
 	const fs::path ini = kTmp / name;
-	std::ofstream(ini) << std::regex_replace(
-	    text.str(), line, key + " = " + file.string());
+	std::ofstream out(ini);
+	for (std::string line; std::getline(in, line);)
+	{
+		if (line.rfind(key + " = ", 0) == 0)
+			line = key + " = " + file.string();
+		else if (const auto at = line.find(" = ../"); at != std::string::npos)
+			line = line.substr(0, at) + " = " + kSource + "/config/" +
+			       line.substr(at + 3);
+		out << line << "\n";
+	}
 	return ini;
 }
 
