@@ -97,6 +97,52 @@ nlohmann::json checkJson(
 	if (!j.contains("crc_errors")) j["crc_errors"] = nullptr;
 	return j;
 }
+/** Serves the emulated devices until a signal or `duration` s (> 0),
+ * printing their terminals, then their counters. */
+void emulate(
+    const semnav::Scene& scene, const semnav::LmsEmulator::Options& lms,
+    const std::string& ptuLink, double duration, bool json)
+{
+	semnav::TiltingScannerEmulator devices(scene, lms, ptuLink);
+	devices.start();
+	const auto& l = devices.lms();
+	const auto& p = devices.ptu();
+	if (json)
+		std::cout
+		    << nlohmann::
+		           json{{"lms", l.devicePath()}, {"ptu", p.devicePath()}, {"lms_pts", l.slavePath()}, {"ptu_pts", p.slavePath()}}
+		               .dump()
+		    << std::endl;
+	else
+		std::cout << "LMS200 " << l.devicePath() << "\nPTU " << p.devicePath()
+		          << std::endl;
+	std::signal(SIGINT, onSignal);
+	std::signal(SIGTERM, onSignal);
+	const auto t0 = std::chrono::steady_clock::now();
+	while (!g_stop)
+	{
+		std::this_thread::sleep_for(std::chrono::milliseconds(50));
+		if (duration > 0 &&
+		    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+		            .count() > duration)
+			break;
+	}
+	devices.stop();
+	const auto c = l.counters();
+	const nlohmann::json j{
+	    {"scans_sent", c.scansSent},
+	    {"crc_injected", c.crcInjected},
+	    {"bytes_dropped", c.bytesDropped},
+	    {"commands", c.commands},
+	    {"nacks", c.nacks},
+	    {"stalls", c.stalls},
+	    {"disconnects", c.disconnects},
+	    {"ptu_commands", p.commands()}};
+	if (json)
+		std::cout << j.dump() << std::endl;
+	else
+		std::cout << "emulator: " << j.dump() << std::endl;
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -234,47 +280,7 @@ int main(int argc, char** argv)
 		    lo.disconnectAt = num["disconnect-at"];
 		    lo.disconnectFor = num["disconnect-for"];
 		    lo.truthLog = argTruth.getValue();
-		    semnav::TiltingScannerEmulator devices(
-		        scene, lo, argPtuLink.getValue());
-		    devices.start();
-		    const auto& lms = devices.lms();
-		    const auto& ptu = devices.ptu();
-		    if (json)
-			    std::cout
-			        << nlohmann::
-			               json{{"lms", lms.devicePath()}, {"ptu", ptu.devicePath()}, {"lms_pts", lms.slavePath()}, {"ptu_pts", ptu.slavePath()}}
-			                   .dump()
-			        << std::endl;
-		    else
-			    std::cout << "LMS200 " << lms.devicePath() << "\nPTU "
-			              << ptu.devicePath() << std::endl;
-		    std::signal(SIGINT, onSignal);
-		    std::signal(SIGTERM, onSignal);
-		    const auto t0 = std::chrono::steady_clock::now();
-		    const double duration = num["duration"];
-		    while (!g_stop)
-		    {
-			    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-			    if (duration > 0 && std::chrono::duration<double>(
-			                            std::chrono::steady_clock::now() - t0)
-			                                .count() > duration)
-				    break;
-		    }
-		    devices.stop();
-		    const auto c = lms.counters();
-		    nlohmann::json j{
-		        {"scans_sent", c.scansSent},
-		        {"crc_injected", c.crcInjected},
-		        {"bytes_dropped", c.bytesDropped},
-		        {"commands", c.commands},
-		        {"nacks", c.nacks},
-		        {"stalls", c.stalls},
-		        {"disconnects", c.disconnects},
-		        {"ptu_commands", ptu.commands()}};
-		    if (json)
-			    std::cout << j.dump() << std::endl;
-		    else
-			    std::cout << "emulator: " << j.dump() << std::endl;
+		    emulate(scene, lo, argPtuLink.getValue(), num["duration"], json);
 		    return 0;
 	    });
 }

@@ -6,6 +6,7 @@
 #include <semnav/common/IniSections.h>
 #include <semnav/common/Percentile.h>
 #include <semnav/common/ProgressBar.h>
+#include <semnav/detection/ScoreJson.h>
 #include <semnav/map/MapIO.h>
 #include <semnav/mapping/MapBuilder.h>
 
@@ -29,16 +30,7 @@ nlohmann::json summary(
 		     {"y", o.centroid.y},
 		     {"z", o.centroid.z},
 		     {"observations", o.observations}});
-	j["classes"] = nlohmann::json::object();
-	for (semnav::Label l : b.labelScores().labelsSeen())
-	{
-		const auto s = b.labelScores().score(l);
-		j["classes"][semnav::labelName(l)] = {
-		    {"precision", s.precision},
-		    {"recall", s.recall},
-		    {"f1", s.f1},
-		    {"pixels", s.groundTruthPixels}};
-	}
+	j["classes"] = semnav::labelScoresJson(b.labelScores());
 	j["ms_per_sweep_median"] = semnav::median(b.msPerSweep());
 	if (b.poseError().size() > 0)
 		j["localization"] = {

@@ -160,6 +160,31 @@ void printSummary(
 		    "  picture: %s\n  navlog (navlog-viewer): %s\n",
 		    run.pngPath().c_str(), run.navlogPath().c_str());
 }
+/** --localize MODE and --start-guess X,Y,YAW_DEG into `s`; the usage
+ * problem, if any. */
+std::optional<std::string> readLocalization(
+    const std::string& mode, const std::string& guess,
+    semnav::NavigationRun::Settings& s)
+{
+	using Mode = semnav::StopAndScanLocalizer::Mode;
+	if (!mode.empty())
+	{
+		if (mode != "global" && mode != "tracking")
+			return "--localize must be global or tracking, got '" + mode + "'";
+		s.localize = semnav::StopAndScanLocalizer::modeFromName(mode);
+	}
+	if (!guess.empty())
+	{
+		s.startGuess = semnav::CommandLine::parsePose(guess);
+		if (!s.startGuess)
+			return "--start-guess must be X,Y,YAW_DEG, got '" + guess + "'";
+	}
+	if (s.localize == Mode::Tracking && !s.startGuess)
+		return "--localize tracking needs --start-guess";
+	if (s.startGuess && s.localize != Mode::Tracking)
+		return "--start-guess needs --localize tracking";
+	return std::nullopt;
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -255,29 +280,9 @@ int main(int argc, char** argv)
 		    "--start must be X,Y,YAW_DEG, got '" + argStart.getValue() + "'");
 	if (argCommand.getValue().empty() == argGoal.getValue().empty())
 		return cli.usageError("give exactly one of --command, --goal");
-	using Mode = semnav::StopAndScanLocalizer::Mode;
-	if (!argLocalize.getValue().empty())
-	{
-		if (argLocalize.getValue() != "global" &&
-		    argLocalize.getValue() != "tracking")
-			return cli.usageError(
-			    "--localize must be global or tracking, got '" +
-			    argLocalize.getValue() + "'");
-		s.localize =
-		    semnav::StopAndScanLocalizer::modeFromName(argLocalize.getValue());
-	}
-	if (!argStartGuess.getValue().empty())
-	{
-		s.startGuess = semnav::CommandLine::parsePose(argStartGuess.getValue());
-		if (!s.startGuess)
-			return cli.usageError(
-			    "--start-guess must be X,Y,YAW_DEG, got '" +
-			    argStartGuess.getValue() + "'");
-	}
-	if (s.localize == Mode::Tracking && !s.startGuess)
-		return cli.usageError("--localize tracking needs --start-guess");
-	if (s.startGuess && s.localize != Mode::Tracking)
-		return cli.usageError("--start-guess needs --localize tracking");
+	if (const auto problem = readLocalization(
+	        argLocalize.getValue(), argStartGuess.getValue(), s))
+		return cli.usageError(*problem);
 	s.instancesFromScene = argSceneInstances.getValue();
 	s.outDir = argOut.getValue();
 

@@ -8,6 +8,7 @@
 #include <semnav/common/Percentile.h>
 #include <semnav/common/ProgressBar.h>
 #include <semnav/detection/PerceptionRun.h>
+#include <semnav/detection/ScoreJson.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -25,26 +26,13 @@ void printJson(const semnav::PerceptionRun& r)
 	j["objects"] = nlohmann::json::object();
 	if (r.scored())
 	{
-		for (const auto l : r.labelScores().labelsSeen())
-		{
-			const auto s = r.labelScores().score(l);
-			j["classes"][semnav::labelName(l)] = {
-			    {"precision", s.precision},
-			    {"recall", s.recall},
-			    {"f1", s.f1},
-			    {"pixels", s.groundTruthPixels}};
-		}
+		j["classes"] = semnav::labelScoresJson(r.labelScores());
 		// Object detection (issue 4's rule: an object counts when >= 150 of
 		// its pixels are visible; IoU >= 0.3 with a not yet matched object
 		// of the label is a true positive).
 		for (const auto l : r.objectLabels())
-		{
-			const auto s = r.objectScores().score(l);
-			j["objects"][semnav::labelName(l)] = {
-			    {"tp", s.tp},         {"fp", s.fp},
-			    {"fn", s.fn},         {"precision", s.precision},
-			    {"recall", s.recall}, {"ignored", s.ignored}};
-		}
+			j["objects"][semnav::labelName(l)] =
+			    semnav::objectScoreJson(r.objectScores().score(l));
 	}
 	if (r.detectsObjects())
 		j["ms_detection_per_sweep_median"] = semnav::median(r.msDetection());

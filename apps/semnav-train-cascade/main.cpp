@@ -8,6 +8,7 @@
 #include <semnav/common/DatasetListArg.h>
 #include <semnav/common/Error.h>
 #include <semnav/common/ProgressBar.h>
+#include <semnav/detection/CascadeConfigArg.h>
 #include <semnav/detection/CascadeTraining.h>
 
 #include <cstdint>
@@ -152,12 +153,7 @@ int main(int argc, char** argv)
 	TCLAP::ValueArg<std::string> argSeed(
 	    "", "seed", "Random seed (samples, negatives); default 1", false, "1",
 	    "N", cmd);
-	semnav::CascadeTraining::TOptions defaults;
-	const semnav::IniSections sections = defaults.iniSections();
-	TCLAP::ValueArg<std::string>& argConfig = cli.addConfig(
-	    sections,
-	    "INI file (see config/cascade.ini; also [CascadeDetector.<label>], "
-	    "[SampleGenerator.<label>], [CascadeTrainer.<label>])");
+	const semnav::CascadeConfigArg argConfig(cli, false);
 	TCLAP::ValueArg<std::string> argSamples(
 	    "", "samples",
 	    "Also write a mosaic of the first 400 positive samples to this PNG",
@@ -190,9 +186,9 @@ int main(int argc, char** argv)
 		    const semnav::Label label =
 		        semnav::labelFromName(argLabel.getValue());
 		    semnav::CascadeTraining::TOptions opts;
-		    if (!argConfig.getValue().empty())
+		    if (!argConfig.path().empty())
 			    opts = semnav::CascadeTraining::TOptions::fromIniFile(
-			        argConfig.getValue());
+			        argConfig.path());
 		    const semnav::CascadeTraining training(opts);
 		    if (!argScore.getValue().empty())
 		    {
@@ -218,8 +214,8 @@ int main(int argc, char** argv)
 		        << argLabel.getValue() << " --datasets";
 		    for (const auto& d : datasets) how << " " << d;
 		    how << " --out " << argOut.getValue() << " --seed " << *seed;
-		    if (!argConfig.getValue().empty())
-			    how << " --config " << argConfig.getValue();
+		    if (!argConfig.path().empty())
+			    how << " --config " << argConfig.path();
 		    semnav::HaarCascade cascade = res.cascade;
 		    cascade.note = how.str();
 		    semnav::CascadeXml::writeFile(argOut.getValue(), cascade);
