@@ -5,11 +5,16 @@
 #include <semnav/common/AtomicFile.h>
 #include <semnav/common/CommandLine.h>
 #include <semnav/common/DatasetListArg.h>
+#include <semnav/common/Percentile.h>
 #include <semnav/common/ProgressBar.h>
+#include <semnav/detection/CascadeConfigArg.h>
 #include <semnav/detection/CascadeDetector.h>
+#include <semnav/detection/CascadeTraining.h>
+#include <semnav/detection/DetectionEvaluation.h>
 #include <semnav/detection/DetectionImage.h>
 #include <semnav/detection/GroundTruthObject.h>
 #include <semnav/detection/ObjectScorer.h>
+#include <semnav/detection/ScoreJson.h>
 #include <semnav/detection/SimDataset.h>
 #include <semnav/perception/PerceptionPipeline.h>
 
@@ -28,19 +33,10 @@
 
 namespace
 {
-/** Issue 4's rule (ObjectScorer's): a ground-truth object counts from this
- * many visible pixels; a box matches it from this IoU. */
-constexpr int kCountedPixels = 150;
-constexpr double kMatchIou = 0.3;
-/** Cell side for counting the distinct points of a missed object (m). */
-constexpr double kCellM = 0.02;
-
-double median(std::vector<double> v)
-{
-	if (v.empty()) return 0;
-	std::sort(v.begin(), v.end());
-	return v[v.size() / 2];
-}
+using Evaluation = semnav::DetectionEvaluation;
+constexpr int kCountedPixels = Evaluation::kCountedPixels;
+constexpr double kMatchIou = Evaluation::kMatchIou;
+constexpr double kCellM = Evaluation::kCellM;
 
 /** Detection image with the object proposals of every class (yellow), ground
  * truth (blue), accepted (green) and rejected (red) boxes, enlarged 2x; sweep
@@ -108,42 +104,6 @@ std::string pointsOn(
 		out += buf;
 	}
 	return out.empty() ? "no points" : out;
-}
-
-/** How far the counted objects of a class get: a candidate of their label
- * reaches them (measured box IoU >= 0.3), one of those passes the size
- * check (then accepted, or rejected by the shape check or as a duplicate),
- * one is accepted. */
-struct Funnel
-{
-	std::size_t counted = 0, reached = 0, sized = 0, accepted = 0;
-};
-
-void addToFunnels(
-    const std::vector<semnav::GroundTruthObject>& objects,
-    const std::vector<semnav::CascadeDetector::Candidate>& cands,
-    std::map<semnav::Label, Funnel>& funnels)
-{
-	for (const auto& g : objects)
-	{
-		if (g.pixels < kCountedPixels) continue;
-		bool reached = false, sized = false, accepted = false;
-		for (const auto& c : cands)
-		{
-			if (c.label != g.label || !c.measure ||
-			    semnav::ObjectScorer::iou(c.measure->box, g.box) < kMatchIou)
-				continue;
-			reached = true;
-			sized |= c.accepted || c.rejection == "shape" ||
-			         c.rejection == "duplicate";
-			accepted |= c.accepted;
-		}
-		Funnel& f = funnels[g.label];
-		f.counted++;
-		f.reached += reached;
-		f.sized += sized;
-		f.accepted += accepted;
-	}
 }
 
 /** One stderr line per counted object without a matching accepted
@@ -248,49 +208,104 @@ void listMisses(
 		    bestOnIt, fate(onIt).c_str());
 	}
 }
-/** A figure beside issue 4's: the same detections, some counted objects
- * left out (as too small to count). */
-struct OtherCount
+nlohmann::json otherCountJson(const Evaluation::OtherCount& o, semnav::Label l)
 {
-	explicit OtherCount(std::string t) : title(std::move(t)) {}
+	const auto s = o.scorer.score(l);
+	const auto e = o.excluded.find(l);
+	return {
+	    {"tp", s.tp},
+	    {"fp", s.fp},
+	    {"fn", s.fn},
+	    {"excluded", e == o.excluded.end() ? 0 : e->second},
+	    {"precision", s.precision},
+	    {"recall", s.recall}};
+}
 
-	std::string title;
-	semnav::ObjectScorer scorer{kCountedPixels, kMatchIou};
-	std::map<semnav::Label, std::size_t> excluded;
+void printOtherCount(
+    const Evaluation::OtherCount& o, const std::vector<semnav::Label>& labels)
+{
+	std::printf("%s:\n", o.title.c_str());
+	for (auto l : labels)
+	{
+		const auto s = o.scorer.score(l);
+		const auto e = o.excluded.find(l);
+		std::printf(
+		    "  %-12s tp %4zu  fp %4zu  fn %4zu  (excluded %zu)  precision "
+		    "%.3f  recall %.3f\n",
+		    semnav::labelName(l).c_str(), s.tp, s.fp, s.fn,
+		    e == o.excluded.end() ? 0 : e->second, s.precision, s.recall);
+	}
+}
+Evaluation::Funnel funnelOf(const Evaluation& ev, semnav::Label l)
+{
+	const auto it = ev.funnels().find(l);
+	return it == ev.funnels().end() ? Evaluation::Funnel() : it->second;
+}
 
-	void add(
-	    const std::vector<semnav::Detection>& dets, const cv::Mat& groundTruth,
-	    const std::vector<semnav::Label>& labels,
-	    const semnav::ObjectScorer::ObjectKeys& left)
+nlohmann::json summaryJson(const Evaluation& ev)
+{
+	nlohmann::json j, objs, objsRecognisable, objsDistinct;
+	for (auto l : ev.labels())
 	{
-		for (const auto& k : left) excluded[k.first]++;
-		scorer.add(dets, groundTruth, labels, left);
+		const std::string name = semnav::labelName(l);
+		objs[name] = semnav::objectScoreJson(ev.scorer().score(l));
+		objsRecognisable[name] = otherCountJson(ev.recognisable(), l);
+		objsDistinct[name] = otherCountJson(ev.distinct(), l);
+		const auto f = funnelOf(ev, l);
+		j["funnel"][name] = {
+		    {"counted", f.counted},
+		    {"reached", f.reached},
+		    {"sized", f.sized},
+		    {"accepted", f.accepted}};
 	}
-	nlohmann::json json(semnav::Label l)
+	j["objects"] = objs;
+	j["objects_recognisable"] = objsRecognisable;
+	j["objects_distinct_points"] = objsDistinct;
+	j["sweeps"] = ev.scorer().sweeps();
+	j["ms_per_sweep_median"] = semnav::median(ev.msTotal());
+	j["ms_cascades_median"] = semnav::median(ev.msCascades());
+	j["rejected"] = ev.rejections();
+	return j;
+}
+
+void printSummary(const Evaluation& ev)
+{
+	const auto& labels = ev.labels();
+	for (auto l : labels)
 	{
-		const auto s = scorer.score(l);
-		return {
-		    {"tp", s.tp},
-		    {"fp", s.fp},
-		    {"fn", s.fn},
-		    {"excluded", excluded[l]},
-		    {"precision", s.precision},
-		    {"recall", s.recall}};
+		const auto s = ev.scorer().score(l);
+		std::printf(
+		    "%-12s tp %4zu  fp %4zu  fn %4zu  (ignored %zu)  precision %.3f  "
+		    "recall %.3f\n",
+		    semnav::labelName(l).c_str(), s.tp, s.fp, s.fn, s.ignored,
+		    s.precision, s.recall);
 	}
-	void print(const std::vector<semnav::Label>& labels)
+	printOtherCount(ev.recognisable(), labels);
+	printOtherCount(ev.distinct(), labels);
+	std::printf(
+	    "counted objects a candidate reaches (IoU >= 0.3), of them past the "
+	    "size check, an accepted one reaches:\n");
+	for (auto l : labels)
 	{
-		std::printf("%s:\n", title.c_str());
-		for (auto l : labels)
-		{
-			const auto s = scorer.score(l);
-			std::printf(
-			    "  %-12s tp %4zu  fp %4zu  fn %4zu  (excluded %zu)  "
-			    "precision %.3f  recall %.3f\n",
-			    semnav::labelName(l).c_str(), s.tp, s.fp, s.fn, excluded[l],
-			    s.precision, s.recall);
-		}
+		const auto f = funnelOf(ev, l);
+		const auto share = [&](std::size_t k)
+		{ return f.counted ? double(k) / double(f.counted) : 0.0; };
+		std::printf(
+		    "  %-12s %4zu counted  %4zu reached (%.3f)  %4zu sized (%.3f)  "
+		    "%4zu accepted (%.3f)\n",
+		    semnav::labelName(l).c_str(), f.counted, f.reached,
+		    share(f.reached), f.sized, share(f.sized), f.accepted,
+		    share(f.accepted));
 	}
-};
+	std::printf(
+	    "%zu sweeps, detection %.2f ms per sweep (median; cascades %.2f ms)\n",
+	    ev.scorer().sweeps(), semnav::median(ev.msTotal()),
+	    semnav::median(ev.msCascades()));
+	for (const auto& kv : ev.rejections())
+		std::printf(
+		    "  rejected by size check: %s x %zu\n", kv.first.c_str(),
+		    kv.second);
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -305,14 +320,11 @@ int main(int argc, char** argv)
 	auto& cmd = cli.cmd();
 	semnav::DatasetListArg argDatasets(
 	    cmd, "Dataset directories (semnav-sim output); required");
-	TCLAP::ValueArg<std::string> argConfig(
-	    "", "config", "Detector INI file (config/cascade.ini); required", false,
-	    "", "C.ini", cmd);
+	const semnav::CascadeConfigArg argConfig(cli, true);
 	TCLAP::ValueArg<std::string> argOut(
 	    "", "out", "Write one PNG per sweep with the boxes here", false, "",
 	    "DIR", cmd);
-	TCLAP::SwitchArg argJson(
-	    "", "json", "Print a JSON summary on stdout", cmd, false);
+	TCLAP::SwitchArg& argJson = cli.addJson();
 	TCLAP::SwitchArg argMisses(
 	    "", "misses",
 	    "List on stderr every accepted detection that matches no object and "
@@ -322,33 +334,15 @@ int main(int argc, char** argv)
 	if (const auto code = cli.parse(argc, argv)) return *code;
 	const std::vector<std::string> datasets = argDatasets.values();
 	if (datasets.empty()) return cli.usageError("missing --datasets");
-	for (auto* a : {&argConfig})
-		if (a->getValue().empty())
-			return cli.usageError("missing --" + a->getName());
 
 	return cli.run(
 	    [&]
 	    {
 		    const auto opts = semnav::CascadeDetector::TOptions::fromIniFile(
-		        argConfig.getValue());
-		    semnav::CascadeDetector detector(opts);
-		    std::vector<semnav::Label> labels;
-		    for (const auto& k : opts.classes) labels.push_back(k.label);
-		    semnav::PerceptionPipeline pipeline;
-		    semnav::ObjectScorer scorer(kCountedPixels, kMatchIou);
-		    // The same without the views no window detector can recognise
-		    // (an extra figure; issue 4's rule is scorer's).
-		    OtherCount recognisable{
-		        "without views beside the robot (|bearing| >= 80 deg) or seen "
-		        "over less than half their height"};
-		    // ...and objects counted by their distinct points, not pixels.
-		    OtherCount distinct{
-		        "counted by distinct points (>= " +
-		        std::to_string(kCountedPixels) +
-		        " occupied 2 cm cells), not pixels"};
-		    std::map<std::string, std::size_t> rejections;
-		    std::map<semnav::Label, Funnel> funnels;
-		    std::vector<double> ms, msCascades;
+		        argConfig.path());
+		    Evaluation ev(opts);
+		    auto& detector = ev.detector();
+		    const auto& labels = ev.labels();
 		    if (!argOut.getValue().empty())
 			    semnav::createDirectories(argOut.getValue());
 		    std::size_t n = 0;
@@ -358,43 +352,10 @@ int main(int argc, char** argv)
 			    semnav::ProgressBar bar(sweeps.size(), "detecting in " + dir);
 			    for (std::size_t i = 0; i < sweeps.size(); i++, n++)
 			    {
-				    semnav::LabeledSweep ls = pipeline.process(sweeps[i].sweep);
+				    const auto r = ev.add(sweeps[i]);
+				    const auto& ls = r.perception;
 				    const auto& sw = sweeps[i].sweep;
-				    const auto cands = detector.detectCandidates(
-				        sw.phis(), sw.thetas(), ls.normals, ls.normalMask,
-				        ls.points, ls.groundZ, ls.labels, ls.areaIds);
-				    ms.push_back(detector.lastTimings().total);
-				    msCascades.push_back(detector.lastTimings().cascades);
-				    std::vector<semnav::Detection> dets;
-				    for (const auto& c : cands)
-				    {
-					    if (!c.accepted)
-					    {
-						    rejections
-						        [semnav::labelName(c.label) + ": " +
-						         c.rejection]++;
-						    continue;
-					    }
-					    semnav::Detection d;
-					    d.label = c.label;
-					    d.imageBox = c.measure->box;
-					    d.score = c.neighbours;
-					    dets.push_back(d);
-				    }
-				    scorer.add(dets, sweeps[i].groundTruth, labels);
-				    const auto objects =
-				        semnav::GroundTruthObject::fromLabelImage(
-				            sweeps[i].groundTruth, labels);
-				    addToFunnels(objects, cands, funnels);
-				    recognisable.add(
-				        dets, sweeps[i].groundTruth, labels,
-				        recognisable.scorer.unrecognisable(
-				            sweeps[i].groundTruth, ls.points, ls.groundZ,
-				            labels));
-				    distinct.add(
-				        dets, sweeps[i].groundTruth, labels,
-				        distinct.scorer.fewDistinctPoints(
-				            sweeps[i].groundTruth, ls.points, labels, kCellM));
+				    const auto& cands = r.candidates;
 				    if (argMisses.getValue())
 				    {
 					    listMisses(
@@ -404,7 +365,7 @@ int main(int argc, char** argv)
 					            opts.proposalParams(
 					                opts.proposalJoinPx,
 					                opts.proposalRangeGap)),
-					        objects, cands);
+					        r.objects, cands);
 				    }
 				    if (!argOut.getValue().empty())
 				    {
@@ -430,73 +391,10 @@ int main(int argc, char** argv)
 				    bar.update(i + 1);
 			    }
 		    }
-		    nlohmann::json j, objs, objsRecognisable, objsDistinct;
-		    for (auto l : labels)
-		    {
-			    const auto s = scorer.score(l);
-			    objs[semnav::labelName(l)] = {
-			        {"tp", s.tp},
-			        {"fp", s.fp},
-			        {"fn", s.fn},
-			        {"ignored", s.ignored},
-			        {"precision", s.precision},
-			        {"recall", s.recall}};
-			    objsRecognisable[semnav::labelName(l)] = recognisable.json(l);
-			    objsDistinct[semnav::labelName(l)] = distinct.json(l);
-			    const Funnel& f = funnels[l];
-			    j["funnel"][semnav::labelName(l)] = {
-			        {"counted", f.counted},
-			        {"reached", f.reached},
-			        {"sized", f.sized},
-			        {"accepted", f.accepted}};
-		    }
-		    j["objects"] = objs;
-		    j["objects_recognisable"] = objsRecognisable;
-		    j["objects_distinct_points"] = objsDistinct;
-		    j["sweeps"] = scorer.sweeps();
-		    j["ms_per_sweep_median"] = median(ms);
-		    j["ms_cascades_median"] = median(msCascades);
-		    j["rejected"] = rejections;
 		    if (argJson.getValue())
-			    std::cout << j.dump() << std::endl;
+			    std::cout << summaryJson(ev).dump() << std::endl;
 		    else
-		    {
-			    for (auto l : labels)
-			    {
-				    const auto s = scorer.score(l);
-				    std::printf(
-				        "%-12s tp %4zu  fp %4zu  fn %4zu  (ignored %zu)  "
-				        "precision "
-				        "%.3f  recall %.3f\n",
-				        semnav::labelName(l).c_str(), s.tp, s.fp, s.fn,
-				        s.ignored, s.precision, s.recall);
-			    }
-			    recognisable.print(labels);
-			    distinct.print(labels);
-			    std::printf(
-			        "counted objects a candidate reaches (IoU >= 0.3), of "
-			        "them past the size check, an accepted one reaches:\n");
-			    for (auto l : labels)
-			    {
-				    const Funnel& f = funnels[l];
-				    const auto share = [&](std::size_t k)
-				    { return f.counted ? double(k) / double(f.counted) : 0.0; };
-				    std::printf(
-				        "  %-12s %4zu counted  %4zu reached (%.3f)  %4zu sized "
-				        "(%.3f)  %4zu accepted (%.3f)\n",
-				        semnav::labelName(l).c_str(), f.counted, f.reached,
-				        share(f.reached), f.sized, share(f.sized), f.accepted,
-				        share(f.accepted));
-			    }
-			    std::printf(
-			        "%zu sweeps, detection %.2f ms per sweep (median; cascades "
-			        "%.2f ms)\n",
-			        scorer.sweeps(), median(ms), median(msCascades));
-			    for (const auto& kv : rejections)
-				    std::printf(
-				        "  rejected by size check: %s x %zu\n",
-				        kv.first.c_str(), kv.second);
-		    }
+			    printSummary(ev);
 		    return 0;
 	    });
 }

@@ -6,10 +6,8 @@
 #include <semnav/common/CommandLine.h>
 #include <semnav/common/Error.h>
 #include <semnav/hwdrivers/CaptureCheck.h>
-#include <semnav/hwdrivers/LmsEmulator.h>
-#include <semnav/hwdrivers/PtuEmulator.h>
 #include <semnav/hwdrivers/SceneLineCaster.h>
-#include <semnav/hwdrivers/TiltHeadModel.h>
+#include <semnav/hwdrivers/TiltingScannerEmulator.h>
 #include <semnav/sim/SceneLoader.h>
 #include <sys/resource.h>
 
@@ -22,7 +20,6 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
 #include <thread>
 
 namespace
@@ -33,18 +30,6 @@ void onSignal(int)
 	g_stop = true;
 }
 
-std::optional<mrpt::math::TPose2D> parsePose(const std::string& s)
-{
-	std::istringstream is(s);
-	double v[3];
-	char c1 = 0, c2 = 0;
-	if (!(is >> v[0] >> c1 >> v[1] >> c2 >> v[2]) || c1 != ',' || c2 != ',')
-		return std::nullopt;
-	std::string rest;
-	if (is >> rest) return std::nullopt;
-	return mrpt::math::TPose2D(v[0], v[1], mrpt::DEG2RAD(v[2]));
-}
-
 std::optional<double> parseNumber(const std::string& s)
 {
 	if (s.empty()) return std::nullopt;
@@ -52,6 +37,111 @@ std::optional<double> parseNumber(const std::string& s)
 	const double v = std::strtod(s.c_str(), &end);
 	if (!end || *end != '\0' || !std::isfinite(v)) return std::nullopt;
 	return v;
+}
+
+/** The summary of a capture check, merged with the driver's stats file
+ * and the tilts of the emulator's truth log when given. */
+nlohmann::json checkJson(
+    const semnav::CaptureCheckResult& r, const std::string& rawlog,
+    const std::string& stats, const std::string& truthLog)
+{
+	nlohmann::json j;
+	if (!stats.empty())
+	{
+		std::ifstream f(stats);
+		if (!f) throw semnav::IoError("cannot read " + stats);
+		try
+		{
+			j = nlohmann::json::parse(f);
+		}
+		catch (const std::exception&)
+		{
+			throw semnav::IoError(stats + " is not JSON");
+		}
+		j["driver_lines"] = j.value("lines", 0);
+		j["driver_sweeps_complete"] = j.value("sweeps_complete", 0);
+		j.erase("sweeps_complete");
+	}
+	j["rawlog"] = rawlog;
+	j["objects"] = r.objects;
+	j["lines"] = r.lines;
+	j["sweeps"] = r.sweepsComplete;
+	j["sweeps_incomplete"] = r.sweepsIncomplete;
+	j["truncated"] = r.truncated;
+	j["pixels"] = r.pixels;
+	j["median_abs_error_m"] = r.medianAbsError;
+	j["within_3sigma"] = r.within3Sigma;
+	j["within_3sigma_1step"] = r.within3SigmaTilt;
+	j["spurious"] = r.spurious;
+	j["missed"] = r.missed;
+	nlohmann::json list = nlohmann::json::array();
+	for (const auto& sw : r.sweeps)
+		list.push_back(
+		    {{"rows", sw.rows},
+		     {"cols", sw.cols},
+		     {"pixels", sw.pixels},
+		     {"within_3sigma_1step", sw.within3SigmaTilt},
+		     {"missing_lines", sw.missingLines},
+		     {"theta_min_deg", mrpt::RAD2DEG(sw.thetaMin)},
+		     {"theta_max_deg", mrpt::RAD2DEG(sw.thetaMax)},
+		     {"complete", sw.complete}});
+	j["sweep_list"] = list;
+	if (!truthLog.empty())
+	{
+		const auto t = semnav::checkTilts(rawlog, truthLog);
+		j["tilt_matched"] = t.matched;
+		j["tilt_median_abs_error_deg"] = t.medianAbsErrorDeg;
+		j["tilt_p95_abs_error_deg"] = t.p95AbsErrorDeg;
+		j["time_median_offset_ms"] = t.medianTimeOffsetMs;
+	}
+	if (!j.contains("crc_errors")) j["crc_errors"] = nullptr;
+	return j;
+}
+/** Serves the emulated devices until a signal or `duration` s (> 0),
+ * printing their terminals, then their counters. */
+void emulate(
+    const semnav::Scene& scene, const semnav::LmsEmulator::Options& lms,
+    const std::string& ptuLink, double duration, bool json)
+{
+	semnav::TiltingScannerEmulator devices(scene, lms, ptuLink);
+	devices.start();
+	const auto& l = devices.lms();
+	const auto& p = devices.ptu();
+	if (json)
+		std::cout
+		    << nlohmann::
+		           json{{"lms", l.devicePath()}, {"ptu", p.devicePath()}, {"lms_pts", l.slavePath()}, {"ptu_pts", p.slavePath()}}
+		               .dump()
+		    << std::endl;
+	else
+		std::cout << "LMS200 " << l.devicePath() << "\nPTU " << p.devicePath()
+		          << std::endl;
+	std::signal(SIGINT, onSignal);
+	std::signal(SIGTERM, onSignal);
+	const auto t0 = std::chrono::steady_clock::now();
+	while (!g_stop)
+	{
+		std::this_thread::sleep_for(std::chrono::milliseconds(50));
+		if (duration > 0 &&
+		    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+		            .count() > duration)
+			break;
+	}
+	devices.stop();
+	const auto c = l.counters();
+	const nlohmann::json j{
+	    {"scans_sent", c.scansSent},
+	    {"crc_injected", c.crcInjected},
+	    {"bytes_dropped", c.bytesDropped},
+	    {"commands", c.commands},
+	    {"nacks", c.nacks},
+	    {"stalls", c.stalls},
+	    {"disconnects", c.disconnects},
+	    {"ptu_commands", p.commands()}};
+	if (json)
+		std::cout << j.dump() << std::endl;
+	else
+		std::cout << "emulator: " << j.dump() << std::endl;
 }
 }  // namespace
 
@@ -112,14 +202,13 @@ int main(int argc, char** argv)
 	    "Emulate: write each scan's time and true tilt here; check: compare "
 	    "the lines' tilts with it",
 	    false, "", "F.txt", cmd);
-	TCLAP::SwitchArg argJson(
-	    "", "json", "Machine-readable output on stdout", cmd, false);
+	TCLAP::SwitchArg& argJson = cli.addJson();
 	if (const auto code = cli.parse(argc, argv)) return *code;
 	if (argScene.getValue().empty()) return cli.usageError("missing --scene");
 	std::optional<mrpt::math::TPose2D> pose;
 	if (!argPose.getValue().empty())
 	{
-		pose = parsePose(argPose.getValue());
+		pose = semnav::CommandLine::parsePose(argPose.getValue());
 		if (!pose)
 			return cli.usageError(
 			    "--pose must be X,Y,YAW_DEG, got '" + argPose.getValue() + "'");
@@ -157,69 +246,18 @@ int main(int argc, char** argv)
 				        ": no trajectory pose; give --pose");
 			    pose = scene.trajectory.front();
 		    }
-		    const semnav::SceneLineCaster caster(scene);
-
 		    if (!argCheck.getValue().empty())
 		    {
-			    const double res = mrpt::DEG2RAD(
-			        semnav::PtuEmulator::kArcSecPerPosition / 3600.0);
-			    const auto r = semnav::checkCapture(
-			        argCheck.getValue(), caster, *pose, scene.sensor.rangeNoise,
-			        res, scene.sensor.thetaMax - scene.sensor.thetaMin);
-			    nlohmann::json j;
-			    if (!argStats.getValue().empty())
-			    {
-				    std::ifstream f(argStats.getValue());
-				    if (!f)
-					    throw semnav::IoError(
-					        "cannot read " + argStats.getValue());
-				    try
-				    {
-					    j = nlohmann::json::parse(f);
-				    }
-				    catch (const std::exception&)
-				    {
-					    throw semnav::IoError(
-					        argStats.getValue() + " is not JSON");
-				    }
-				    j["driver_lines"] = j.value("lines", 0);
-				    j["driver_sweeps_complete"] = j.value("sweeps_complete", 0);
-				    j.erase("sweeps_complete");
-			    }
-			    j["rawlog"] = argCheck.getValue();
-			    j["objects"] = r.objects;
-			    j["lines"] = r.lines;
-			    j["sweeps"] = r.sweepsComplete;
-			    j["sweeps_incomplete"] = r.sweepsIncomplete;
-			    j["truncated"] = r.truncated;
-			    j["pixels"] = r.pixels;
-			    j["median_abs_error_m"] = r.medianAbsError;
-			    j["within_3sigma"] = r.within3Sigma;
-			    j["within_3sigma_1step"] = r.within3SigmaTilt;
-			    j["spurious"] = r.spurious;
-			    j["missed"] = r.missed;
-			    nlohmann::json list = nlohmann::json::array();
-			    for (const auto& sw : r.sweeps)
-				    list.push_back(
-				        {{"rows", sw.rows},
-				         {"cols", sw.cols},
-				         {"pixels", sw.pixels},
-				         {"within_3sigma_1step", sw.within3SigmaTilt},
-				         {"missing_lines", sw.missingLines},
-				         {"theta_min_deg", mrpt::RAD2DEG(sw.thetaMin)},
-				         {"theta_max_deg", mrpt::RAD2DEG(sw.thetaMax)},
-				         {"complete", sw.complete}});
-			    j["sweep_list"] = list;
-			    if (!argTruth.getValue().empty())
-			    {
-				    const auto t = semnav::checkTilts(
-				        argCheck.getValue(), argTruth.getValue());
-				    j["tilt_matched"] = t.matched;
-				    j["tilt_median_abs_error_deg"] = t.medianAbsErrorDeg;
-				    j["tilt_p95_abs_error_deg"] = t.p95AbsErrorDeg;
-				    j["time_median_offset_ms"] = t.medianTimeOffsetMs;
-			    }
-			    if (!j.contains("crc_errors")) j["crc_errors"] = nullptr;
+			    const semnav::SceneLineCaster caster(scene);
+			    const double res =
+			        semnav::TiltingScannerEmulator::tiltResolution();
+			    const auto j = checkJson(
+			        semnav::checkCapture(
+			            argCheck.getValue(), caster, *pose,
+			            scene.sensor.rangeNoise, res,
+			            scene.sensor.thetaMax - scene.sensor.thetaMin),
+			        argCheck.getValue(), argStats.getValue(),
+			        argTruth.getValue());
 			    if (json)
 				    std::cout << j.dump() << std::endl;
 			    else
@@ -230,16 +268,10 @@ int main(int argc, char** argv)
 		    // Devices answer within milliseconds whatever else the machine
 		    // runs: raise our priority when allowed (the threads inherit it).
 		    ::setpriority(PRIO_PROCESS, 0, -10);
-		    const double res =
-		        mrpt::DEG2RAD(semnav::PtuEmulator::kArcSecPerPosition / 3600.0);
-		    const long lim = std::lround(mrpt::DEG2RAD(100.0) / res);
-		    semnav::TiltHeadModel head(res, -lim, lim);
 		    semnav::LmsEmulator::Options lo;
 		    lo.linkPath = argLmsLink.getValue();
 		    lo.powerOnBaud = baud;
 		    lo.robotPose = *pose;
-		    lo.rangeNoise = scene.sensor.rangeNoise;
-		    lo.maxRange = scene.sensor.maxRange;
 		    lo.seed = static_cast<uint64_t>(num["seed"]);
 		    lo.crcErrorRate = num["crc-error-rate"];
 		    lo.dropByteRate = num["drop-byte-rate"];
@@ -248,47 +280,7 @@ int main(int argc, char** argv)
 		    lo.disconnectAt = num["disconnect-at"];
 		    lo.disconnectFor = num["disconnect-for"];
 		    lo.truthLog = argTruth.getValue();
-		    semnav::LmsEmulator lms(caster, head, lo);
-		    semnav::PtuEmulator ptu(head, argPtuLink.getValue());
-		    lms.start();
-		    ptu.start();
-		    if (json)
-			    std::cout
-			        << nlohmann::
-			               json{{"lms", lms.devicePath()}, {"ptu", ptu.devicePath()}, {"lms_pts", lms.slavePath()}, {"ptu_pts", ptu.slavePath()}}
-			                   .dump()
-			        << std::endl;
-		    else
-			    std::cout << "LMS200 " << lms.devicePath() << "\nPTU "
-			              << ptu.devicePath() << std::endl;
-		    std::signal(SIGINT, onSignal);
-		    std::signal(SIGTERM, onSignal);
-		    const auto t0 = std::chrono::steady_clock::now();
-		    const double duration = num["duration"];
-		    while (!g_stop)
-		    {
-			    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-			    if (duration > 0 && std::chrono::duration<double>(
-			                            std::chrono::steady_clock::now() - t0)
-			                                .count() > duration)
-				    break;
-		    }
-		    ptu.stop();
-		    lms.stop();
-		    const auto c = lms.counters();
-		    nlohmann::json j{
-		        {"scans_sent", c.scansSent},
-		        {"crc_injected", c.crcInjected},
-		        {"bytes_dropped", c.bytesDropped},
-		        {"commands", c.commands},
-		        {"nacks", c.nacks},
-		        {"stalls", c.stalls},
-		        {"disconnects", c.disconnects},
-		        {"ptu_commands", ptu.commands()}};
-		    if (json)
-			    std::cout << j.dump() << std::endl;
-		    else
-			    std::cout << "emulator: " << j.dump() << std::endl;
+		    emulate(scene, lo, argPtuLink.getValue(), num["duration"], json);
 		    return 0;
 	    });
 }

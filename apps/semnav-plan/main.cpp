@@ -1,11 +1,9 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // semnav-plan: CNN path from a point to the nearest object of a label (or
 // an object, or a point) on a semantic map (docs/design.md, "Apps").
-#include <mrpt/config/CConfigFile.h>
 #include <semnav/common/AtomicFile.h>
 #include <semnav/common/CommandLine.h>
-#include <semnav/common/ConfigChecks.h>
-#include <semnav/common/Error.h>
+#include <semnav/common/IniSections.h>
 #include <semnav/map/MapIO.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/planning/GridExport.h>
@@ -37,6 +35,37 @@ std::optional<std::pair<double, double>> parseXY(const std::string& s)
 		return std::nullopt;
 	}
 }
+
+nlohmann::json planJson(
+    const semnav::SemanticPlanner::Plan& plan, semnav::CostProfile profile)
+{
+	nlohmann::json j{{"found", true}};
+	j["goal_label"] = plan.goalLabel == semnav::Label::Unknown
+	                      ? nullptr
+	                      : nlohmann::json(semnav::labelName(plan.goalLabel));
+	j["goal_object_id"] = plan.goalObjectId;
+	j["cost"] = plan.path.cost;
+	j["length_m"] = plan.path.lengthM;
+	j["iterations"] = plan.field.iterations;
+	j["ms"] = plan.field.milliseconds;
+	j["profile"] = semnav::costProfileName(profile);
+	j["path"] = nlohmann::json::array();
+	for (const auto& p : plan.path.points) j["path"].push_back({p.x, p.y});
+	return j;
+}
+
+void printPlan(
+    const semnav::SemanticPlanner::Plan& plan, const std::string& png)
+{
+	std::cout << "semnav-plan: path of " << plan.path.lengthM << " m, cost "
+	          << plan.path.cost;
+	if (plan.goalObjectId)
+		std::cout << ", to " << semnav::labelName(plan.goalLabel) << " #"
+		          << plan.goalObjectId;
+	std::cout << " (" << plan.field.iterations << " passes, "
+	          << plan.field.milliseconds << " ms)\n";
+	if (!png.empty()) std::cout << "  picture: " << png << "\n";
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -62,9 +91,16 @@ int main(int argc, char** argv)
 	TCLAP::ValueArg<std::string> argProfile(
 	    "", "profile", "shortest (default) or safe", false, "", "shortest|safe",
 	    cmd);
-	TCLAP::ValueArg<std::string> argConfig(
-	    "", "config", "INI file (see config/planning.ini)", false, "", "C.ini",
-	    cmd);
+	semnav::CnnPlanner::TOptions cnnOpts;
+	semnav::TraversabilityBuilder::TOptions travOpts;
+	semnav::SemanticMap::TOptions mapOpts;
+	semnav::IniSections sections;
+	sections.add(cnnOpts, "CnnPlanner")
+	    .add(travOpts, "Traversability")
+	    .add(mapOpts, "SemanticMap")
+	    .add(mapOpts.cost, "TravelCost");
+	TCLAP::ValueArg<std::string>& argConfig =
+	    cli.addConfig(sections, "INI file (see config/planning.ini)");
 	TCLAP::ValueArg<std::string> argPng(
 	    "", "png", "Write a picture of map, u, field and path", false, "",
 	    "OUT.png", cmd);
@@ -72,8 +108,7 @@ int main(int argc, char** argv)
 	    "", "export-grid",
 	    "Write PREFIX_u.npy, PREFIX_goal.npy, PREFIX_meta.json", false, "",
 	    "PREFIX", cmd);
-	TCLAP::SwitchArg argJson(
-	    "", "json", "Print a JSON summary on stdout", cmd, false);
+	TCLAP::SwitchArg& argJson = cli.addJson();
 	if (const auto code = cli.parse(argc, argv)) return *code;
 	if (argMap.getValue().empty()) return cli.usageError("missing --map");
 	const auto from = parseXY(argFrom.getValue());
@@ -93,19 +128,7 @@ int main(int argc, char** argv)
 	return cli.run(
 	    [&]
 	    {
-		    semnav::CnnPlanner::TOptions cnnOpts;
-		    semnav::TraversabilityBuilder::TOptions travOpts;
-		    semnav::SemanticMap::TOptions mapOpts;
-		    if (!argConfig.getValue().empty())
-		    {
-			    const auto cfg = semnav::openIniFile(
-			        argConfig.getValue(), {"CnnPlanner", "Traversability",
-			                               "SemanticMap", "TravelCost"});
-			    cnnOpts.loadFromConfigFile(*cfg, "CnnPlanner");
-			    travOpts.loadFromConfigFile(*cfg, "Traversability");
-			    mapOpts.loadFromConfigFile(*cfg, "SemanticMap");
-			    mapOpts.cost.loadFromConfigFile(*cfg, "TravelCost");
-		    }
+		    sections.loadIfGiven(argConfig.getValue());
 		    const semnav::CostProfile profile =
 		        argProfile.getValue().empty()
 		            ? travOpts.profile
@@ -133,21 +156,6 @@ int main(int argc, char** argv)
 				    plan = planner.toPoint(
 				        from->first, from->second, to->first, to->second,
 				        profile);
-
-			    j["found"] = true;
-			    j["goal_label"] =
-			        plan.goalLabel == semnav::Label::Unknown
-			            ? nullptr
-			            : nlohmann::json(semnav::labelName(plan.goalLabel));
-			    j["goal_object_id"] = plan.goalObjectId;
-			    j["cost"] = plan.path.cost;
-			    j["length_m"] = plan.path.lengthM;
-			    j["iterations"] = plan.field.iterations;
-			    j["ms"] = plan.field.milliseconds;
-			    j["profile"] = semnav::costProfileName(profile);
-			    j["path"] = nlohmann::json::array();
-			    for (const auto& p : plan.path.points)
-				    j["path"].push_back({p.x, p.y});
 			    if (!argPng.getValue().empty())
 			    {
 				    std::vector<uchar> buf;
@@ -159,20 +167,9 @@ int main(int argc, char** argv)
 			    if (!argExport.getValue().empty())
 				    semnav::exportPlanGrids(argExport.getValue(), plan);
 			    if (json)
-				    std::cout << j.dump() << std::endl;
+				    std::cout << planJson(plan, profile).dump() << std::endl;
 			    else
-			    {
-				    std::cout << "semnav-plan: path of " << plan.path.lengthM
-				              << " m, cost " << plan.path.cost;
-				    if (plan.goalObjectId)
-					    std::cout << ", to "
-					              << semnav::labelName(plan.goalLabel) << " #"
-					              << plan.goalObjectId;
-				    std::cout << " (" << plan.field.iterations << " passes, "
-				              << plan.field.milliseconds << " ms)\n";
-				    if (!argPng.getValue().empty())
-					    std::cout << "  picture: " << argPng.getValue() << "\n";
-			    }
+				    printPlan(plan, argPng.getValue());
 		    }
 		    catch (const semnav::PlanningError& e)
 		    {

@@ -1,10 +1,9 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // semnav-sim: simulates a tilting LMS200 in a scene and writes a rawlog
 // with ground truth (docs/design.md, "Apps").
-#include <mrpt/config/CConfigFile.h>
 #include <semnav/common/CommandLine.h>
-#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/IniSections.h>
 #include <semnav/common/ProgressBar.h>
 #include <semnav/sim/SceneLoader.h>
 #include <semnav/sim/SimulationRunner.h>
@@ -32,12 +31,12 @@ int main(int argc, char** argv)
 	    "", "seed",
 	    "Random seed (terrain, range and odometry noise); default 0", false,
 	    "0", "N", cmd);
-	TCLAP::ValueArg<std::string> argConfig(
-	    "", "config",
-	    "INI file with a [Simulator] section (see config/sim.ini)", false, "",
-	    "C.ini", cmd);
-	TCLAP::SwitchArg argJson(
-	    "", "json", "Print a JSON summary on stdout", cmd, false);
+	semnav::SimulationRunner::TOptions opts;
+	semnav::IniSections sections;
+	sections.add(opts, "Simulator");
+	TCLAP::ValueArg<std::string>& argConfig =
+	    cli.addConfig(sections, "INI file (see config/sim.ini)");
+	TCLAP::SwitchArg& argJson = cli.addJson();
 	if (const auto code = cli.parse(argc, argv)) return *code;
 	for (auto* a : {&argScene, &argOut})
 		if (a->getValue().empty())
@@ -57,12 +56,7 @@ int main(int argc, char** argv)
 	return cli.run(
 	    [&]
 	    {
-		    semnav::SimulationRunner::TOptions opts;
-		    if (!configPath.empty())
-		    {
-			    const auto cfg = semnav::openIniFile(configPath, {"Simulator"});
-			    opts.loadFromConfigFile(*cfg, "Simulator");
-		    }
+		    sections.loadIfGiven(configPath);
 		    const semnav::Scene scene =
 		        semnav::SceneLoader::loadFile(scenePath);
 		    const semnav::SimulationRunner runner(scene, opts, seed);

@@ -4,6 +4,8 @@
 #include <semnav/common/CommandLine.h>
 #include <semnav/common/DatasetListArg.h>
 #include <semnav/common/ProgressBar.h>
+#include <semnav/detection/CascadeConfigArg.h>
+#include <semnav/detection/CascadeTraining.h>
 #include <semnav/detection/ShapeTraining.h>
 #include <semnav/detection/ShapeVerifier.h>
 
@@ -30,9 +32,7 @@ int main(int argc, char** argv)
 	    false, "", "L", cmd);
 	semnav::DatasetListArg argDatasets(
 	    cmd, "Dataset directories (semnav-sim output); required");
-	TCLAP::ValueArg<std::string> argConfig(
-	    "", "config", "Detector INI file (config/cascade.ini); required", false,
-	    "", "C.ini", cmd);
+	const semnav::CascadeConfigArg argConfig(cli, true);
 	TCLAP::ValueArg<std::string> argOut(
 	    "", "out", "Output shape model (OpenCV XML); required", false, "",
 	    "L-shape.xml.gz", cmd);
@@ -92,12 +92,11 @@ int main(int argc, char** argv)
 	    "The range gate's range_scale_slack while collecting (in [1, 10]; "
 	    "0: the config's); default 0",
 	    false, 0, "S", cmd);
-	TCLAP::SwitchArg argJson(
-	    "", "json", "Print a JSON summary on stdout", cmd, false);
+	TCLAP::SwitchArg& argJson = cli.addJson();
 	if (const auto code = cli.parse(argc, argv)) return *code;
 	const std::vector<std::string> datasets = argDatasets.values();
 	if (datasets.empty()) return cli.usageError("missing --datasets");
-	for (auto* a : {&argLabel, &argConfig, &argOut})
+	for (auto* a : {&argLabel, &argOut})
 		if (a->getValue().empty())
 			return cli.usageError("missing --" + a->getName());
 	if (!(argPurity.getValue() >= 0 && argPurity.getValue() <= 1))
@@ -114,7 +113,7 @@ int main(int argc, char** argv)
 		    const semnav::Label label =
 		        semnav::labelFromName(argLabel.getValue());
 		    auto detector = semnav::CascadeDetector::TOptions::fromIniFile(
-		        argConfig.getValue());
+		        argConfig.path());
 		    if (argWithoutWindow.getValue())
 			    detector.segmentRangeWindow = false;
 		    if (argSlack.getValue() != 0)

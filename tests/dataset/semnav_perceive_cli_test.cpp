@@ -173,3 +173,26 @@ TEST_F(SemnavPerceiveCli, ThreeDtkScan)
 	EXPECT_EQ(n.rows, 226);
 	EXPECT_EQ(n.cols, 360);
 }
+
+TEST_F(SemnavPerceiveCli, DetectsObjectsByDefaultNotWithNoCascades)
+{
+	const std::string in = "--rawlog " +
+	                       (outdoorSim() / "outdoor.rawlog").string() +
+	                       " --gt-dir " + outdoorSim().string() + " --json";
+	const fs::path on = kTmp / "cascades-on", off = kTmp / "cascades-off";
+	const AppRun a = runApp("semnav-perceive", in + " --out " + on.string());
+	ASSERT_EQ(a.code, 0) << a.err;
+	const auto ja = nlohmann::json::parse(a.out);
+	for (const char* l : {"washbasin", "wastebasket", "stairs"})
+		EXPECT_TRUE(ja.at("objects").contains(l)) << l;
+	EXPECT_TRUE(ja.contains("ms_detection_per_sweep_median"));
+	EXPECT_TRUE(fs::exists(on / "sweep_0000_detections.png"));
+
+	const AppRun b = runApp(
+	    "semnav-perceive", in + " --out " + off.string() + " --no-cascades");
+	ASSERT_EQ(b.code, 0) << b.err;
+	const auto jb = nlohmann::json::parse(b.out);
+	EXPECT_TRUE(jb.at("objects").empty());
+	EXPECT_FALSE(jb.contains("ms_detection_per_sweep_median"));
+	EXPECT_FALSE(fs::exists(off / "sweep_0000_detections.png"));
+}

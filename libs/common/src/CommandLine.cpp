@@ -1,7 +1,10 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <semnav/common/CommandLine.h>
+#include <semnav/common/IniSections.h>
 
+#include <cmath>
 #include <iostream>
+#include <sstream>
 
 namespace semnav
 {
@@ -38,9 +41,84 @@ CommandLine::~CommandLine() = default;
 
 std::optional<int> CommandLine::parse(int argc, char** argv)
 {
-	if (m_cmd->parse(argc, argv)) return std::nullopt;
-	if (!m_output->failed) return 0;  // --help or --version
-	return usageError(m_output->message);
+	if (!m_cmd->parse(argc, argv))
+	{
+		if (!m_output->failed) return 0;  // --help or --version
+		return usageError(m_output->message);
+	}
+	if (const auto code = writeConfig()) return code;
+	for (const auto& check : m_checks)
+		if (const auto problem = check()) return usageError(*problem);
+	return std::nullopt;
+}
+
+void CommandLine::addCheck(
+    const std::function<std::optional<std::string>()>& check)
+{
+	m_checks.push_back(check);
+}
+
+TCLAP::SwitchArg& CommandLine::addJson()
+{
+	auto a = std::make_unique<TCLAP::SwitchArg>(
+	    "", "json", "Print a JSON summary on stdout", *m_cmd, false);
+	auto& ref = *a;
+	m_args.push_back(std::move(a));
+	return ref;
+}
+
+TCLAP::ValueArg<std::string>& CommandLine::addGtDir(const std::string& doc)
+{
+	auto a = std::make_unique<TCLAP::ValueArg<std::string>>(
+	    "", "gt-dir",
+	    "Ground truth written by semnav-sim (the directory holding "
+	    "<name>.gt.txt and <name>.labels/): " +
+	        doc,
+	    false, "", "DIR", *m_cmd);
+	auto& ref = *a;
+	m_args.push_back(std::move(a));
+	return ref;
+}
+
+TCLAP::ValueArg<std::string>& CommandLine::addConfig(
+    const IniSections& sections, const std::string& doc,
+    const std::string& defaultPath)
+{
+	std::string text = doc + " (sections:";
+	for (const auto& s : sections.sections()) text += " [" + s + "]";
+	text += defaultPath.empty() ? "); default: built-in values"
+	                            : "); default: " + defaultPath;
+	auto a = std::make_unique<TCLAP::ValueArg<std::string>>(
+	    "", "config", text, false, defaultPath, "C.ini", *m_cmd);
+	auto& ref = *a;
+	m_args.push_back(std::move(a));
+	addWriteConfig(sections);
+	return ref;
+}
+
+void CommandLine::addWriteConfig(const IniSections& sections)
+{
+	m_writeSections = &sections;
+	if (m_writeConfig) return;
+	auto a = std::make_unique<TCLAP::ValueArg<std::string>>(
+	    "", "write-config",
+	    "Write the built-in defaults of every INI section this app reads to "
+	    "FILE and exit",
+	    false, "", "FILE", *m_cmd);
+	m_writeConfig = a.get();
+	m_args.push_back(std::move(a));
+}
+
+std::optional<int> CommandLine::writeConfig() const
+{
+	if (!m_writeConfig || m_writeConfig->getValue().empty())
+		return std::nullopt;
+	return run(
+	    [&]
+	    {
+		    m_writeSections->write(m_writeConfig->getValue());
+		    return 0;
+	    });
 }
 
 int CommandLine::usageError(const std::string& what) const
@@ -68,6 +146,29 @@ std::optional<uint64_t> CommandLine::parseUnsigned(const std::string& s)
 	    s.find_first_not_of("0123456789") != std::string::npos)
 		return std::nullopt;
 	return std::stoull(s);
+}
+
+std::optional<mrpt::math::TPose2D> CommandLine::parsePose(const std::string& s)
+{
+	std::stringstream ss(s);
+	std::vector<double> v;
+	for (std::string t; std::getline(ss, t, ',');)
+	{
+		try
+		{
+			std::size_t n = 0;
+			v.push_back(std::stod(t, &n));
+			if (n != t.size()) return std::nullopt;
+		}
+		catch (const std::exception&)
+		{
+			return std::nullopt;
+		}
+	}
+	if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) ||
+	    !std::isfinite(v[2]))
+		return std::nullopt;
+	return mrpt::math::TPose2D(v[0], v[1], v[2] * M_PI / 180);
 }
 
 std::string CommandLine::firstLine(const std::string& msg)

@@ -55,6 +55,16 @@ CascadeTraining::TOptions CascadeTraining::TOptions::fromIniFile(
 	return o;
 }
 
+IniSections CascadeTraining::TOptions::iniSections()
+{
+	IniSections s;
+	s.add(detector, "CascadeDetector")
+	    .add(samples, "SampleGenerator")
+	    .add(trainer, "CascadeTrainer")
+	    .add(normals, "NormalImage");
+	return s;
+}
+
 CascadeTraining::CascadeTraining(const TOptions& options) : m_options(options)
 {
 }

@@ -17,6 +17,16 @@ inline std::size_t percentileRank(std::size_t n, double p)
 	return std::min(n - 1, static_cast<std::size_t>(p * double(n - 1) + 0.5));
 }
 
+/** The median of `v` (the mean of the two middle values of an even count);
+ * 0 when `v` is empty. */
+inline double median(std::vector<double> v)
+{
+	if (v.empty()) return 0;
+	std::sort(v.begin(), v.end());
+	const std::size_t n = v.size();
+	return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 /** The p-th percentile (p in 0..1) of a non-empty `v`: the element of rank
  * percentileRank(). Reorders `v` (std::nth_element). */
 template <typename T>

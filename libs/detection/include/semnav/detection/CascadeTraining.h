@@ -3,6 +3,7 @@
 
 #include <semnav/cascade/CascadeTrainer.h>
 #include <semnav/cascade/HaarCascade.h>
+#include <semnav/common/IniSections.h>
 #include <semnav/common/Label.h>
 #include <semnav/detection/CascadeDetector.h>
 #include <semnav/detection/SampleGenerator.h>
@@ -52,6 +53,9 @@ public:
 		}
 		/** Throws ConfigError (unknown section or key, bad value). */
 		static TOptions fromIniFile(const std::string& path);
+		/** The sections of config/cascade.ini bound to these options
+		 * (detector, samples, trainer, normals; for --write-config). */
+		IniSections iniSections();
 	};
 
 	struct Result
