@@ -133,8 +133,7 @@ HaarCascade::Stage StageTrainer::train(
 		scoreSplits(tryF, active, w, wy, bestScore, bestSplit);
 		std::size_t fb = F;
 		for (std::size_t f = 0; f < F; f++)
-			if (bestSplit[f] >= 0 &&
-			    (fb == F || bestScore[f] > bestScore[fb]))
+			if (bestSplit[f] >= 0 && (fb == F || bestScore[f] > bestScore[fb]))
 				fb = f;
 		if (fb == F) break;  // nothing separates the samples
 		const int k = bestSplit[fb];
@@ -211,8 +210,7 @@ void StageTrainer::trimWeights(
 	active.clear();
 	std::vector<double> sorted(w);
 	std::sort(sorted.begin(), sorted.end());
-	const double total =
-	    std::accumulate(sorted.begin(), sorted.end(), 0.0);
+	const double total = std::accumulate(sorted.begin(), sorted.end(), 0.0);
 	double acc = 0, thr = 0;
 	for (double s : sorted)
 	{
@@ -294,8 +292,7 @@ float StageTrainer::stageThreshold(
 				posSums.push_back(sums[i]);
 		std::sort(posSums.begin(), posSums.end());
 		const std::size_t idx = std::min(
-		    count - 1,
-		    std::size_t((1.0 - opt.minHitRate) * double(count)));
+		    count - 1, std::size_t((1.0 - opt.minHitRate) * double(count)));
 		float th = static_cast<float>(posSums[idx]);
 		const auto hits = [&](float t)
 		{
@@ -306,8 +303,7 @@ float StageTrainer::stageThreshold(
 		// Rounding to float must not lose positives the rank
 		// promised.
 		while (hits(th) < count - idx)
-			th = std::nextafter(
-			    th, -std::numeric_limits<float>::infinity());
+			th = std::nextafter(th, -std::numeric_limits<float>::infinity());
 		return th;
 	};
 	return C > 0 ? std::min(keeping(false, P), keeping(true, C))

@@ -10,11 +10,14 @@
 
 namespace semnav
 {
-ShapeTraining::Samples ShapeTraining::collect(
-    const std::vector<std::string>& datasets,
-    CascadeDetector::TOptions detector, Label label, const Params& params,
-    const std::function<void(const std::string&, std::size_t, std::size_t)>&
-        progress)
+namespace
+{
+/** The detector for `label` alone, as the shape forest learns it: without
+ * a shape check, the taller check, merging and growing; looser if
+ * `params` ask. */
+CascadeDetector::TOptions shapeDetector(
+    CascadeDetector::TOptions detector, Label label,
+    const ShapeTraining::Params& params)
 {
 	// Only this class, without a shape check, looser if asked.
 	const CascadeDetector::TClassOptions k = detector.classOptions(label);
@@ -31,64 +34,51 @@ ShapeTraining::Samples ShapeTraining::collect(
 	if (params.minNeighbors >= 0)
 		detector.classes[0].minNeighbors = params.minNeighbors;
 	if (params.maxStages >= 0) detector.classes[0].maxStages = params.maxStages;
-	CascadeDetector cascades(detector);
-	cascades.describeShapes(true);
-	PerceptionPipeline pipeline;
-	const std::vector<int> featureColumns = ObjectShape::columnsOf(
-	    ObjectShape::featureCount(params.grids, params.steps));
-	const int columns = int(featureColumns.size());
-	Samples out;
-	std::vector<float> rows;
-	std::vector<int> isObject;
-	for (const auto& dir : datasets)
+	return detector;
+}
+
+/** Whether candidate `c` is an object (1), another thing (0) or ambiguous
+ * (-1, counted in `out`): its best overlap with a ground-truth object of
+ * the class, and that object's share of its pixels. */
+int candidateKind(
+    const CascadeDetector::Candidate& c,
+    const std::vector<GroundTruthObject>& objects, const cv::Mat& groundTruth,
+    const ShapeTraining::Params& params, ShapeTraining::Samples& out)
+{
+	double best = 0;
+	const GroundTruthObject* bestObject = nullptr;
+	for (const auto& g : objects)
 	{
-		const auto sweeps = SimDataset::load(dir);
-		for (std::size_t i = 0; i < sweeps.size(); i++)
+		const double v = ObjectScorer::iou(c.measure->box, g.box);
+		if (v > best)
 		{
-			const auto& sw = sweeps[i].sweep;
-			const LabeledSweep ls = pipeline.process(sw);
-			const auto objects = GroundTruthObject::fromLabelImage(
-			    sweeps[i].groundTruth, {label});
-			for (const auto& c : cascades.detectCandidates(
-			         sw.phis(), sw.thetas(), ls.normals, ls.normalMask,
-			         ls.points, ls.groundZ, ls.labels, ls.areaIds))
-			{
-				if (!c.shape) continue;
-				double best = 0;
-				const GroundTruthObject* bestObject = nullptr;
-				for (const auto& g : objects)
-				{
-					const double v = ObjectScorer::iou(c.measure->box, g.box);
-					if (v > best)
-					{
-						best = v;
-						bestObject = &g;
-					}
-				}
-				const bool object = best >= params.objectIou;
-				if (!object && best >= params.otherIou)
-				{
-					out.ambiguous++;
-					continue;
-				}
-				if (object && params.minPurity > 0 &&
-				    bestObject->shareOf(
-				        sweeps[i].groundTruth, c.measure->pixels) <
-				        params.minPurity)
-				{
-					out.ambiguous++;
-					out.impure++;
-					continue;
-				}
-				(object ? out.objects : out.others)++;
-				for (int k : featureColumns)
-					rows.push_back((*c.shape)[std::size_t(k)]);
-				isObject.push_back(object ? 1 : 0);
-			}
-			out.sweeps++;
-			if (progress) progress(dir, i + 1, sweeps.size());
+			best = v;
+			bestObject = &g;
 		}
 	}
+	const bool object = best >= params.objectIou;
+	if (!object && best >= params.otherIou)
+	{
+		out.ambiguous++;
+		return -1;
+	}
+	if (object && params.minPurity > 0 &&
+	    bestObject->shareOf(groundTruth, c.measure->pixels) < params.minPurity)
+	{
+		out.ambiguous++;
+		out.impure++;
+		return -1;
+	}
+	return object ? 1 : 0;
+}
+
+/** Seeded random subsets of the samples (`rows` of `columns` features,
+ * `isObject`): objects to at most max_objects_per_other per other, then
+ * both kinds in proportion to at most max_samples. */
+void subsample(
+    const ShapeTraining::Params& params, int columns, std::vector<float>& rows,
+    std::vector<int>& isObject, ShapeTraining::Samples& out)
+{
 	// Seeded random subsets: objects to at most maxObjectsPerOther per other,
 	// then both kinds in proportion to at most maxSamples.
 	double keepObjects = double(out.objects), keepOthers = double(out.others);
@@ -128,6 +118,52 @@ ShapeTraining::Samples ShapeTraining::collect(
 	}
 	rows.swap(keptRows);
 	isObject.swap(kept);
+}
+}  // namespace
+
+ShapeTraining::Samples ShapeTraining::collect(
+    const std::vector<std::string>& datasets,
+    CascadeDetector::TOptions detector, Label label, const Params& params,
+    const std::function<void(const std::string&, std::size_t, std::size_t)>&
+        progress)
+{
+	CascadeDetector cascades(shapeDetector(detector, label, params));
+	cascades.describeShapes(true);
+	PerceptionPipeline pipeline;
+	const std::vector<int> featureColumns = ObjectShape::columnsOf(
+	    ObjectShape::featureCount(params.grids, params.steps));
+	const int columns = int(featureColumns.size());
+	Samples out;
+	std::vector<float> rows;
+	std::vector<int> isObject;
+	for (const auto& dir : datasets)
+	{
+		const auto sweeps = SimDataset::load(dir);
+		for (std::size_t i = 0; i < sweeps.size(); i++)
+		{
+			const auto& sw = sweeps[i].sweep;
+			const LabeledSweep ls = pipeline.process(sw);
+			const auto objects = GroundTruthObject::fromLabelImage(
+			    sweeps[i].groundTruth, {label});
+			for (const auto& c : cascades.detectCandidates(
+			         sw.phis(), sw.thetas(), ls.normals, ls.normalMask,
+			         ls.points, ls.groundZ, ls.labels, ls.areaIds))
+			{
+				if (!c.shape) continue;
+				const int kind = candidateKind(
+				    c, objects, sweeps[i].groundTruth, params, out);
+				if (kind < 0) continue;
+				const bool object = kind == 1;
+				(object ? out.objects : out.others)++;
+				for (int k : featureColumns)
+					rows.push_back((*c.shape)[std::size_t(k)]);
+				isObject.push_back(object ? 1 : 0);
+			}
+			out.sweeps++;
+			if (progress) progress(dir, i + 1, sweeps.size());
+		}
+	}
+	subsample(params, columns, rows, isObject, out);
 	const int n = static_cast<int>(isObject.size());
 	out.features = cv::Mat(n, columns, CV_32F, rows.data()).clone();
 	out.isObject = cv::Mat(n, 1, CV_32S, isObject.data()).clone();

@@ -218,6 +218,52 @@ void RuleClassifier::unlabelPlaneFragments()
 	}
 }
 
+namespace
+{
+/** A door candidate's outline in the image: per row of its box its first
+ * and last column, per column its top row, and its lowest and highest
+ * pixels. */
+struct DoorOutline
+{
+	std::vector<int> rowMin, rowMax, colMax;
+	int lowest = -1, highest = -1;
+};
+
+/** The outline of the pixels of surface `self` (ids `surf`, image `cols`
+ * wide) in rows minR..maxR and columns minC..maxC. */
+DoorOutline outlineOf(
+    const int* surf, const cv::Vec3f* P, int cols, int minR, int maxR, int minC,
+    int maxC, int self)
+{
+	const int nr = maxR - minR + 1, nc = maxC - minC + 1;
+	DoorOutline o;
+	o.rowMin.assign(nr, cols);
+	o.rowMax.assign(nr, -1);
+	o.colMax.assign(nc, -1);
+	float zLo = std::numeric_limits<float>::max(), zHi = -zLo;
+	for (int r = minR; r <= maxR; r++)
+		for (int c = minC; c <= maxC; c++)
+		{
+			if (surf[r * cols + c] != self) continue;
+			const float z = P[r * cols + c][2];
+			if (z < zLo)
+			{
+				zLo = z;
+				o.lowest = r * cols + c;
+			}
+			if (z > zHi)
+			{
+				zHi = z;
+				o.highest = r * cols + c;
+			}
+			o.rowMin[r - minR] = std::min(o.rowMin[r - minR], c);
+			o.rowMax[r - minR] = std::max(o.rowMax[r - minR], c);
+			o.colMax[c - minC] = std::max(o.colMax[c - minC], r);
+		}
+	return o;
+}
+}  // namespace
+
 RuleClassifier::DoorCheck RuleClassifier::checkDoor(
     int self, const std::vector<int>& wallCandidate,
     const std::vector<uint8_t>& isCeiling) const
@@ -243,32 +289,14 @@ RuleClassifier::DoorCheck RuleClassifier::checkDoor(
 		}
 		return compat[s] == 1;
 	};
-	const int nr = door.maxR - door.minR + 1, nc = door.maxC - door.minC + 1;
-	std::vector<int> rowMin(nr, cols), rowMax(nr, -1), colMax(nc, -1),
-	    colMin(nc, rows);
-	const auto* P = m_points->ptr<cv::Vec3f>(0);
-	float zLo = std::numeric_limits<float>::max(), zHi = -zLo;
-	int pLo = -1, pHi = -1;
-	for (int r = door.minR; r <= door.maxR; r++)
-		for (int c = door.minC; c <= door.maxC; c++)
-		{
-			if (m_surf[r * cols + c] != self) continue;
-			const float z = P[r * cols + c][2];
-			if (z < zLo)
-			{
-				zLo = z;
-				pLo = r * cols + c;
-			}
-			if (z > zHi)
-			{
-				zHi = z;
-				pHi = r * cols + c;
-			}
-			rowMin[r - door.minR] = std::min(rowMin[r - door.minR], c);
-			rowMax[r - door.minR] = std::max(rowMax[r - door.minR], c);
-			colMax[c - door.minC] = std::max(colMax[c - door.minC], r);
-			colMin[c - door.minC] = std::min(colMin[c - door.minC], r);
-		}
+	const DoorOutline o = outlineOf(
+	    m_surf.data(), m_points->ptr<cv::Vec3f>(0), cols, door.minR, door.maxR,
+	    door.minC, door.maxC, self);
+	const int nr = static_cast<int>(o.rowMin.size()),
+	          nc = static_cast<int>(o.colMax.size());
+	const std::vector<int>&rowMin = o.rowMin, &rowMax = o.rowMax,
+	      &colMax = o.colMax;
+	const int pLo = o.lowest, pHi = o.highest;
 	const int K = m_options.doorSearchPixels;
 	// Probes up to K pixels away; `border` when the probe runs out of the
 	// image (the field of view cuts the surface there).
