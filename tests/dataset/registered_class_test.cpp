@@ -21,6 +21,12 @@ namespace
 {
 const ClassInfo::Rgb kChairColour{123, 45, 67};
 
+/** Drops the classes a test registered, however it ends. */
+struct BuiltInsAfterwards
+{
+	~BuiltInsAfterwards() { ClassRegistry::instance().resetToBuiltIns(); }
+};
+
 ClassInfo chairClass()
 {
 	ClassInfo c;
@@ -42,7 +48,7 @@ protected:
 	{
 		chair = ClassRegistry::instance().add(chairClass());
 	}
-	void TearDown() override { ClassRegistry::instance().resetToBuiltIns(); }
+	const BuiltInsAfterwards m_builtIns;
 
 	static SemanticMap::TOptions mapOptions()
 	{
@@ -163,6 +169,7 @@ TEST_F(RegisteredClass, SavedMapsKeepItsInstances)
 
 TEST(ClassRegistry, RefusesBadNamesAndTooManyClasses)
 {
+	const BuiltInsAfterwards builtIns;
 	auto& registry = ClassRegistry::instance();
 	ClassInfo c;
 	c.name = "Chair";
@@ -179,4 +186,62 @@ TEST(ClassRegistry, RefusesBadNamesAndTooManyClasses)
 	registry.resetToBuiltIns();
 	EXPECT_EQ(registry.size(), kBuiltInLabelCount);
 	EXPECT_THROW(labelFromName("extra11"), UnknownLabelError);
+}
+
+TEST(ClassRegistry, RegisteredSurfacesCarryTheirCostsAndColour)
+{
+	const BuiltInsAfterwards builtIns;
+	auto& registry = ClassRegistry::instance();
+	ClassInfo gravel;
+	gravel.name = "gravel";
+	gravel.ground = true;
+	gravel.passage = ClassInfo::Passage::Surface;
+	gravel.travelCost = 0.5;
+	gravel.plannerCost = 0.3;
+	gravel.roughnessRaisesCost = true;
+	gravel.mapStyle = ClassInfo::MapStyle::Area;
+	gravel.mapColour = {11, 22, 33};
+	const Label g = registry.add(gravel);
+	ClassInfo ladder;
+	ladder.name = "ladder";
+	ladder.passage = ClassInfo::Passage::Surface;
+	ladder.travelCost = 3.0;
+	ladder.walkingOnly = true;
+	const Label l = registry.add(ladder);
+
+	// Travel cost: the registry's cost, plus roughness; walking only.
+	TravelCostModel::TOptions o;
+	const TravelCostModel wheeled(o);
+	const auto one = [](Label x)
+	{
+		LabelSet s;
+		s.insert(x);
+		return s;
+	};
+	const auto free = TravelCostModel::Occupancy::Free;
+	EXPECT_DOUBLE_EQ(wheeled.cost(one(g), 1.0, free), 0.5);
+	EXPECT_DOUBLE_EQ(
+	    wheeled.cost(one(g), 0.5, free), 0.5 + 0.5 * o.grassRoughnessGain);
+	EXPECT_DOUBLE_EQ(wheeled.cost(one(l), 1.0, free), o.lethalCost);
+	o.robotType = TravelCostModel::RobotType::Walking;
+	EXPECT_DOUBLE_EQ(TravelCostModel(o).cost(one(l), 1.0, free), 3.0);
+	// Planner defaults.
+	const TraversabilityBuilder::TOptions t;
+	EXPECT_DOUBLE_EQ(t.labelU[static_cast<std::size_t>(g)], 0.3);
+	EXPECT_GE(TraversabilityBuilder(t).labelCost(l), t.L) << "wheeled";
+
+	// A ground class frees its cells and colours them in the picture.
+	SemanticMap m;
+	std::vector<FakePoint> pts;
+	for (double x = 0.5; x <= 2.0; x += 0.03)
+		for (double y = -0.3; y <= 0.3; y += 0.03) pts.push_back({x, y, 0, g});
+	const auto f = makeFakeSweep(pts);
+	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
+	int cx, cy;
+	ASSERT_TRUE(m.worldToCell(1.5, 0.0, cx, cy));
+	EXPECT_EQ(m.cellState(cx, cy), SemanticMap::CellState::Free);
+	EXPECT_TRUE(m.labels(cx, cy).contains(g));
+	const cv::Mat img = MapRenderer::render(m, 1);
+	const int row = m.geometry().rows - 1 - cy;
+	EXPECT_EQ(img.at<cv::Vec3b>(row, cx), cv::Vec3b(33, 22, 11));
 }

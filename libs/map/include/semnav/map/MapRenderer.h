@@ -10,15 +10,16 @@ namespace semnav
 {
 /** Draws a SemanticMap like the paper's Fig. 4: white free floor (unknown
  * cells light grey, where the paper has white too), black walls and other
- * obstacles, one colour per object label
- * (door, stairs, washbasin, wastebasket, ...), north (+y) up, with a legend
- * and a 1 m scale bar. */
+ * obstacles, the colours of the ClassRegistry's area classes (sidewalk,
+ * grass) and of its instance classes' objects (door, stairs, washbasin,
+ * wastebasket, ...), north (+y) up, with a legend and a 1 m scale bar. */
 class MapRenderer
 {
 public:
 	/** BGR image; each cell is `pixelsPerCell` pixels wide. */
 	static cv::Mat render(const SemanticMap& map, int pixelsPerCell = 3);
-	/** BGR colour of a label in renderings. */
+	/** BGR colour of a label in renderings (its registry mapColour; white
+	 * for an id that is not registered). */
 	static cv::Scalar labelColor(Label l);
 };
 
