@@ -14,17 +14,15 @@
 
 #include "AppRunner.h"
 
+using namespace semnav::test;
 namespace fs = std::filesystem;
-using semnav::test::AppRun;
-using semnav::test::lineCount;
-using semnav::test::runApp;
 
 namespace
 {
+const std::set<std::string> kDetected = {"washbasin", "wastebasket", "stairs"};
 const std::string kSource = SEMNAV_SOURCE_DIR;
 const fs::path kTmp = fs::temp_directory_path() /
                       ("semnav_map_cli_" + std::to_string(::getpid()));
-const std::set<std::string> kDetected = {"washbasin", "wastebasket", "stairs"};
 
 /** The office simulated once (seed 1, as the README's tour). */
 const fs::path& office()
