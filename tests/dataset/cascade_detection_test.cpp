@@ -3,7 +3,7 @@
 // held-out simulated scene: they load in cv::CascadeClassifier, semnav's
 // evaluator agrees with OpenCV window by window on a real detection image,
 // detections fill LabeledSweep and score above a floor (the full figures
-// are in datasets/cascades/README.md).
+// are in docs/detection.md).
 #include <gtest/gtest.h>
 #include <semnav/cascade/CascadeEvaluator.h>
 #include <semnav/cascade/CascadeXml.h>

@@ -106,7 +106,7 @@ TEST(PerceptionAccuracy, ParkScene)
 // truncation at slanted image borders, height spread where R-bar is
 // missing). They do NOT meet the door bar (corridor, ~0.81-0.83) and the
 // sidewalk bar (campus, ~0.89): these floors guard against regressions
-// only (see libs/perception/README.md).
+// only (see docs/perception.md).
 TEST(PerceptionAccuracy, CorridorSceneRegression)
 {
 	expectF1(

@@ -4,7 +4,7 @@
 // arches and steps. What can be known without labels: every class gets
 // candidates that reach the shape check, and no wastebasket is found. (A
 // washbasin is found on scan001, on a pillar with a railing: a known false
-// alarm, datasets/cascades/README.md.)
+// alarm, docs/detection.md.)
 #include <gtest/gtest.h>
 #include <semnav/detection/CascadeDetector.h>
 #include <semnav/perception/PerceptionPipeline.h>

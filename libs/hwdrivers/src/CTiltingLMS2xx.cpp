@@ -473,43 +473,67 @@ void CTiltingLMS2xx::laserThread()
 	}
 }
 
+double CTiltingLMS2xx::headAngle(double theta) const
+{
+	return (theta - m_options.ptuOffset) * m_options.ptuSign;
+}
+
+// MRPT's PTU drivers throw once the port has gone (unplugged): count that as
+// no answer.
+void CTiltingLMS2xx::moveHead(double theta)
+{
+	try
+	{
+		if (m_ptuOpen) m_ptu->moveToAbsPos(m_options.ptuAxis, headAngle(theta));
+	}
+	catch (const std::exception&)
+	{
+	}
+}
+
+bool CTiltingLMS2xx::queryHead(double& theta)
+{
+	double angle = 0;
+	try
+	{
+		if (!m_ptuOpen || !m_ptu->absPosQ(m_options.ptuAxis, angle))
+			return false;
+	}
+	catch (const std::exception&)
+	{
+		return false;
+	}
+	theta = m_options.ptuSign * angle + m_options.ptuOffset;
+	return true;
+}
+
+void CTiltingLMS2xx::reopenHead(double target)
+{
+	MRPT_LOG_ERROR("the head does not answer: reopening it");
+	m_ptu->close();
+	m_ptuOpen = m_ptu->init(m_options.ptuPort);
+	if (!m_ptuOpen) return;
+	try
+	{
+		m_ptu->speed(m_options.ptuAxis, m_options.tiltSpeed);
+	}
+	catch (const std::exception&)
+	{
+	}
+	moveHead(target);
+}
+
 void CTiltingLMS2xx::headThread()
 {
 	const auto& o = m_options;
-	const char axis = o.ptuAxis;
 	const double res =
-	    axis == 'T' ? m_ptu->tiltResolution : m_ptu->panResolution;
+	    o.ptuAxis == 'T' ? m_ptu->tiltResolution : m_ptu->panResolution;
 	const double tol = std::max(1.5 * std::abs(res), mrpt::DEG2RAD(0.05));
-	auto headAngle = [&](double theta)
-	{ return (theta - o.ptuOffset) * o.ptuSign; };
-	// MRPT's PTU drivers throw once the port has gone (unplugged): count
-	// that as no answer.
-	auto move = [&](double theta)
-	{
-		try
-		{
-			if (m_ptuOpen) m_ptu->moveToAbsPos(axis, headAngle(theta));
-		}
-		catch (const std::exception&)
-		{
-		}
-	};
-	auto query = [&](double& angle)
-	{
-		try
-		{
-			return m_ptuOpen && m_ptu->absPosQ(axis, angle);
-		}
-		catch (const std::exception&)
-		{
-			return false;
-		}
-	};
 	// Start: go (unrecorded) to thetaMin, then sweep up.
 	bool sweeping = false;
 	int dir = 1;
 	double target = o.thetaMin;
-	move(target);
+	moveHead(target);
 	int failures = 0;
 	auto faultTime = Clock::now();
 	// "TP " at the PTU's 9600 baud.
@@ -519,25 +543,12 @@ void CTiltingLMS2xx::headThread()
 	while (!m_stop)
 	{
 		const auto t0 = Clock::now();
-		double angle = 0;
-		if (!query(angle))
+		double theta = 0;
+		if (!queryHead(theta))
 		{
 			if (++failures >= 10)
 			{
-				MRPT_LOG_ERROR("the head does not answer: reopening it");
-				m_ptu->close();
-				m_ptuOpen = m_ptu->init(o.ptuPort);
-				if (m_ptuOpen)
-				{
-					try
-					{
-						m_ptu->speed(axis, o.tiltSpeed);
-					}
-					catch (const std::exception&)
-					{
-					}
-					move(target);
-				}
+				reopenHead(target);
 				failures = 0;
 			}
 			sleepUnless(m_stop, o.ptuPollPeriod);
@@ -545,7 +556,6 @@ void CTiltingLMS2xx::headThread()
 		}
 		failures = 0;
 		const auto t1 = Clock::now();
-		const double theta = o.ptuSign * angle + o.ptuOffset;
 		// The head reports its position when it gets the query, about
 		// t0 + the query's line time; that holds when the round trip was as
 		// short as the shortest seen (no thread was held up on either
@@ -565,7 +575,7 @@ void CTiltingLMS2xx::headThread()
 			// Back to where the interrupted sweep started, not recording.
 			sweeping = false;
 			target = dir > 0 ? o.thetaMin : o.thetaMax;
-			move(target);
+			moveHead(target);
 			faultTime = t0;
 		}
 		else if (!sweeping)
@@ -576,7 +586,7 @@ void CTiltingLMS2xx::headThread()
 			{
 				sweeping = true;
 				target = dir > 0 ? o.thetaMax : o.thetaMin;
-				move(target);
+				moveHead(target);
 			}
 		}
 		else if (std::abs(theta - target) <= tol)
@@ -588,7 +598,7 @@ void CTiltingLMS2xx::headThread()
 			turned = true;
 			dir = -dir;
 			target = dir > 0 ? o.thetaMax : o.thetaMin;
-			move(target);
+			moveHead(target);
 		}
 		// A sweep starts or turns at this sample (the head waits at the
 		// end, so its time matters little); an interrupted one ends here.

@@ -21,14 +21,12 @@ std::string firstLine(const std::string& s)
 	const auto e = s.find('\n');
 	return e == std::string::npos ? s : s.substr(0, e);
 }
-}  // namespace
 
-CaptureCheckResult checkCapture(
-    const std::string& path, const SceneLineCaster& caster,
-    const mrpt::math::TPose2D& robot, double sigma, double tiltTol,
-    double nominalSpan)
+/** Every sweep of the rawlog at `path` (counting its objects and lines;
+ * a read error ends it as truncated). */
+std::vector<Sweep> readCapturedSweeps(
+    const std::string& path, double nominalSpan, CaptureCheckResult& res)
 {
-	CaptureCheckResult res;
 	if (!mrpt::system::fileExists(path))
 		throw RawlogError("rawlog " + path + " does not exist");
 	mrpt::io::CFileGZInputStream in;
@@ -73,15 +71,79 @@ CaptureCheckResult checkCapture(
 		throw RawlogError(
 		    "rawlog " + path + " holds no scan line (" +
 		    std::to_string(res.objects) + " objects)");
+	return sweeps;
+}
 
+/** Range errors of the captured sweeps against the ray-cast truth. */
+struct RangeErrors
+{
 	std::vector<double> absErr;
+	/** Pixels within 3 sigma of the truth at the line's tilt, and of the
+	 * truth anywhere within the tilt tolerance. */
 	std::size_t in3 = 0, in3t = 0;
+};
+
+/** Compares line r of s with the truth cast from `robot`. */
+void compareLine(
+    const Sweep& s, std::size_t r, const SceneLineCaster& caster,
+    const mrpt::math::TPose2D& robot, double sigma, double tiltTol,
+    RangeErrors& err, CaptureCheckResult& res)
+{
+	const auto& sp = s.sensorPose(r);
+	const mrpt::math::TPoint3D mount(sp.x(), sp.y(), sp.z());
+	const double maxR = 1.5 * s.maxRange();
+	const auto t0 = caster.cast(robot, sp, s.phis(), maxR);
+	const auto tLo = caster.cast(
+	    robot, tiltedSensorPose(mount, s.theta(r) - tiltTol), s.phis(), maxR);
+	const auto tHi = caster.cast(
+	    robot, tiltedSensorPose(mount, s.theta(r) + tiltTol), s.phis(), maxR);
+	for (std::size_t c = 0; c < s.cols(); c++)
+	{
+		const bool truthValid = t0[c] > 0 && t0[c] <= s.maxRange();
+		if (!s.valid(r, c))
+		{
+			// Near max range noise decides; count clear misses only.
+			if (truthValid && t0[c] < s.maxRange() - 5 * sigma) res.missed++;
+			continue;
+		}
+		if (t0[c] <= 0)
+		{
+			res.spurious++;
+			continue;
+		}
+		const double m = s.range(r, c);
+		const double e = std::abs(m - t0[c]);
+		err.absErr.push_back(e);
+		if (e <= 3 * sigma) err.in3++;
+		double best = e;
+		// Between the two bracketing tilts the truth is continuous unless an
+		// edge lies between; take the closest of the three or the measured
+		// value if it lies between them.
+		for (double t : {tLo[c], tHi[c]})
+			if (t > 0) best = std::min(best, std::abs(m - t));
+		const double lo = std::min({t0[c], tLo[c], tHi[c]});
+		const double hi = std::max({t0[c], tLo[c], tHi[c]});
+		if (tLo[c] > 0 && tHi[c] > 0 && m >= lo && m <= hi) best = 0;
+		if (best <= 3 * sigma) err.in3t++;
+	}
+}
+}  // namespace
+
+CaptureCheckResult checkCapture(
+    const std::string& path, const SceneLineCaster& caster,
+    const mrpt::math::TPose2D& robot, double sigma, double tiltTol,
+    double nominalSpan)
+{
+	CaptureCheckResult res;
+	const std::vector<Sweep> sweeps =
+	    readCapturedSweeps(path, nominalSpan, res);
+	RangeErrors err;
 	for (const Sweep& s : sweeps)
 	{
 		CaptureCheckResult::SweepInfo info;
 		info.rows = s.rows();
 		info.cols = s.cols();
-		const std::size_t pixels0 = absErr.size(), in3t0 = in3t;
+		const std::size_t pixels0 = err.absErr.size(), in3t0 = err.in3t;
 		info.missingLines = s.quality().missingLines;
 		info.thetaMin = s.rows() ? s.theta(0) : 0;
 		info.thetaMax = s.rows() ? s.theta(s.rows() - 1) : 0;
@@ -98,60 +160,23 @@ CaptureCheckResult checkCapture(
 			for (std::size_t c = 0; c < s.cols() && !any; c++)
 				any = s.valid(r, c);
 			if (!any) continue;  // missing line
-			const auto& sp = s.sensorPose(r);
-			const mrpt::math::TPoint3D mount(sp.x(), sp.y(), sp.z());
-			const double maxR = 1.5 * s.maxRange();
-			const auto t0 = caster.cast(robot, sp, s.phis(), maxR);
-			const auto tLo = caster.cast(
-			    robot, tiltedSensorPose(mount, s.theta(r) - tiltTol), s.phis(),
-			    maxR);
-			const auto tHi = caster.cast(
-			    robot, tiltedSensorPose(mount, s.theta(r) + tiltTol), s.phis(),
-			    maxR);
-			for (std::size_t c = 0; c < s.cols(); c++)
-			{
-				const bool truthValid = t0[c] > 0 && t0[c] <= s.maxRange();
-				if (!s.valid(r, c))
-				{
-					// Near max range noise decides; count clear misses only.
-					if (truthValid && t0[c] < s.maxRange() - 5 * sigma)
-						res.missed++;
-					continue;
-				}
-				if (t0[c] <= 0)
-				{
-					res.spurious++;
-					continue;
-				}
-				const double m = s.range(r, c);
-				const double e = std::abs(m - t0[c]);
-				absErr.push_back(e);
-				if (e <= 3 * sigma) in3++;
-				double best = e;
-				// Between the two bracketing tilts the truth is continuous
-				// unless an edge lies between; take the closest of the three
-				// or the measured value if it lies between them.
-				for (double t : {tLo[c], tHi[c]})
-					if (t > 0) best = std::min(best, std::abs(m - t));
-				const double lo = std::min({t0[c], tLo[c], tHi[c]});
-				const double hi = std::max({t0[c], tLo[c], tHi[c]});
-				if (tLo[c] > 0 && tHi[c] > 0 && m >= lo && m <= hi) best = 0;
-				if (best <= 3 * sigma) in3t++;
-			}
+			compareLine(s, r, caster, robot, sigma, tiltTol, err, res);
 		}
 		auto& last = res.sweeps.back();
-		last.pixels = absErr.size() - pixels0;
+		last.pixels = err.absErr.size() - pixels0;
 		last.within3SigmaTilt =
-		    last.pixels ? static_cast<double>(in3t - in3t0) / last.pixels : 0;
+		    last.pixels ? static_cast<double>(err.in3t - in3t0) / last.pixels
+		                : 0;
 	}
+	auto& absErr = err.absErr;
 	res.pixels = absErr.size();
 	if (!absErr.empty())
 	{
 		std::nth_element(
 		    absErr.begin(), absErr.begin() + absErr.size() / 2, absErr.end());
 		res.medianAbsError = absErr[absErr.size() / 2];
-		res.within3Sigma = static_cast<double>(in3) / absErr.size();
-		res.within3SigmaTilt = static_cast<double>(in3t) / absErr.size();
+		res.within3Sigma = static_cast<double>(err.in3) / absErr.size();
+		res.within3SigmaTilt = static_cast<double>(err.in3t) / absErr.size();
 	}
 	return res;
 }

@@ -148,14 +148,13 @@ void emitPoint(YAML::Emitter& e, const mrpt::math::TPoint3D& p)
 }
 }  // namespace
 
-void MapIO::save(const SemanticMap& map, const std::string& dir)
+namespace
 {
-	createDirectories(dir);
-	createDirectories((fs::path(dir) / "layers").string());
+/** occupancy.png (map_server trinary), labels.png, objects.png, cost.png
+ * and map.png. */
+void saveImages(const SemanticMap& map, const fs::path& dir, double L)
+{
 	const GridGeometry& g = map.geometry();
-	const double L = map.costModel().options().lethalCost;
-
-	// map_server occupancy image.
 	cv::Mat occ(
 	    std::max(g.rows, 1), std::max(g.cols, 1), CV_8UC1, cv::Scalar(205));
 	for (int cy = 0; cy < g.rows; cy++)
@@ -175,9 +174,9 @@ void MapIO::save(const SemanticMap& map, const std::string& dir)
 			}
 			occ.at<uint8_t>(g.rows - 1 - cy, cx) = v;
 		}
-	writeImage((fs::path(dir) / "occupancy.png").string(), occ);
+	writeImage((dir / "occupancy.png").string(), occ);
 	writeImage(
-	    (fs::path(dir) / "labels.png").string(),
+	    (dir / "labels.png").string(),
 	    toImage<uint16_t>(
 	        g, CV_16UC1, map.get("labels"),
 	        [](float f) {
@@ -185,7 +184,7 @@ void MapIO::save(const SemanticMap& map, const std::string& dir)
 		            static_cast<uint32_t>(f) & 0xFFFFu);
 	        }));
 	writeImage(
-	    (fs::path(dir) / "objects.png").string(),
+	    (dir / "objects.png").string(),
 	    toImage<uint16_t>(
 	        g, CV_16UC1, map.get("objects"),
 	        [](float f) { return static_cast<uint16_t>(f); }));
@@ -194,29 +193,31 @@ void MapIO::save(const SemanticMap& map, const std::string& dir)
 		v = static_cast<float>(
 		    std::round(std::min<double>(v, L) / L * 65535.0));
 	writeImage(
-	    (fs::path(dir) / "cost.png").string(),
+	    (dir / "cost.png").string(),
 	    toImage<uint16_t>(
 	        g, CV_16UC1, scaled,
 	        [](float f) { return static_cast<uint16_t>(f); }));
-	writeImage((fs::path(dir) / "map.png").string(), MapRenderer::render(map));
+	writeImage((dir / "map.png").string(), MapRenderer::render(map));
+}
 
-	// Exact state.
+/** layers/*.pfm, the exact state, and octomap.bt (opens in octovis). */
+void saveExactState(const SemanticMap& map, const fs::path& dir)
+{
+	const GridGeometry& g = map.geometry();
 	std::vector<float> logodds(g.cellCount());
 	const auto& raw = map.occupancyGrid().getRawMap();
 	for (std::size_t i = 0; i < logodds.size(); i++)
 		logodds[i] = static_cast<float>(raw[i]);
 	writeImage(
-	    (fs::path(dir) / "layers" / "occupancy_logodds.pfm").string(),
+	    (dir / "layers" / "occupancy_logodds.pfm").string(),
 	    toImage<float>(g, CV_32FC1, logodds, [](float f) { return f; }));
 	for (const auto& name : map.layers())
 		writeImage(
-		    (fs::path(dir) / "layers" / (name + ".pfm")).string(),
+		    (dir / "layers" / (name + ".pfm")).string(),
 		    toImage<float>(
 		        g, CV_32FC1, map.get(name), [](float f) { return f; }));
-
-	// OctoMap (binary, opens in octovis).
 	writeAtomically(
-	    (fs::path(dir) / "octomap.bt").string(),
+	    (dir / "octomap.bt").string(),
 	    [&](const std::string& tmp)
 	    {
 		    std::ofstream f(tmp, std::ios::binary);
@@ -224,7 +225,36 @@ void MapIO::save(const SemanticMap& map, const std::string& dir)
 		    if (!f || !map.octree().writeBinaryConst(f))
 			    throw IoError("cannot write " + tmp);
 	    });
+}
 
+void emitObjects(YAML::Emitter& e, const SemanticMap& map)
+{
+	e << YAML::Key << "objects" << YAML::Value << YAML::BeginSeq;
+	for (const auto& o : map.allInstances())
+	{
+		e << YAML::BeginMap;
+		e << YAML::Key << "id" << YAML::Value << o.id;
+		e << YAML::Key << "label" << YAML::Value << labelName(o.label);
+		e << YAML::Key << "centroid" << YAML::Value;
+		emitPoint(e, o.centroid);
+		e << YAML::Key << "extent" << YAML::Value;
+		emitPoint(e, o.extent());
+		e << YAML::Key << "min" << YAML::Value;
+		emitPoint(e, o.minCorner);
+		e << YAML::Key << "max" << YAML::Value;
+		emitPoint(e, o.maxCorner);
+		e << YAML::Key << "observations" << YAML::Value << o.observations;
+		e << YAML::Key << "views" << YAML::Value << o.views;
+		e << YAML::Key << "shape_score" << YAML::Value << o.bestShapeScore;
+		e << YAML::EndMap;
+	}
+	e << YAML::EndSeq;
+}
+
+/** map.yaml: the ROS map_server keys, then semnav's. */
+std::string mapYaml(const SemanticMap& map, double L)
+{
+	const GridGeometry& g = map.geometry();
 	YAML::Emitter e;
 	e << YAML::BeginMap;
 	e << YAML::Key << "image" << YAML::Value << "occupancy.png";
@@ -254,30 +284,21 @@ void MapIO::save(const SemanticMap& map, const std::string& dir)
 	e << YAML::Key << "layers" << YAML::Value << YAML::Flow << YAML::BeginSeq;
 	for (const auto& name : map.layers()) e << name;
 	e << YAML::EndSeq;
-	e << YAML::Key << "objects" << YAML::Value << YAML::BeginSeq;
-	for (const auto& o : map.allInstances())
-	{
-		e << YAML::BeginMap;
-		e << YAML::Key << "id" << YAML::Value << o.id;
-		e << YAML::Key << "label" << YAML::Value << labelName(o.label);
-		e << YAML::Key << "centroid" << YAML::Value;
-		emitPoint(e, o.centroid);
-		e << YAML::Key << "extent" << YAML::Value;
-		emitPoint(e, o.extent());
-		e << YAML::Key << "min" << YAML::Value;
-		emitPoint(e, o.minCorner);
-		e << YAML::Key << "max" << YAML::Value;
-		emitPoint(e, o.maxCorner);
-		e << YAML::Key << "observations" << YAML::Value << o.observations;
-		e << YAML::Key << "views" << YAML::Value << o.views;
-		e << YAML::Key << "shape_score" << YAML::Value << o.bestShapeScore;
-		e << YAML::EndMap;
-	}
-	e << YAML::EndSeq;
+	emitObjects(e, map);
 	e << YAML::EndMap;
 	e << YAML::EndMap;
-	writeFileAtomically(
-	    (fs::path(dir) / "map.yaml").string(), std::string(e.c_str()) + "\n");
+	return std::string(e.c_str()) + "\n";
+}
+}  // namespace
+
+void MapIO::save(const SemanticMap& map, const std::string& dir)
+{
+	createDirectories(dir);
+	createDirectories((fs::path(dir) / "layers").string());
+	const double L = map.costModel().options().lethalCost;
+	saveImages(map, dir, L);
+	saveExactState(map, dir);
+	writeFileAtomically((fs::path(dir) / "map.yaml").string(), mapYaml(map, L));
 }
 
 void MapIO::load(const std::string& dir, SemanticMap& map)

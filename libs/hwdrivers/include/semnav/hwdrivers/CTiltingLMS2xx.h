@@ -155,6 +155,14 @@ private:
 	};
 	void laserThread();
 	void headThread();
+	/** Head angle (PTU units) of tilt theta. */
+	double headAngle(double theta) const;
+	/** Sends the head to tilt theta; ignored while the PTU is gone. */
+	void moveHead(double theta);
+	/** The head's tilt now; false when it does not answer. */
+	bool queryHead(double& theta);
+	/** Closes and reopens the PTU, then sends it to `target`. */
+	void reopenHead(double target);
 	bool openLaser();
 	void closeLaser();
 	void writeStats() const;

@@ -21,7 +21,7 @@ namespace semnav
  * Option smooth_normals computes R on normals averaged over a
  * (2k+1)^2 window first: the paper's 4-neighbour normals carry the sensor's
  * range noise, which at 5 mm lowers R of a flat surface (see the tests and
- * libs/perception/README.md for the measured effect). */
+ * docs/perception.md for the measured effect). */
 class Roughness
 {
 public:
