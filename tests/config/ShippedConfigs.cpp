@@ -41,6 +41,16 @@ process_rate = 50
 max_queue_len = 2000
 sensorLabel = TILT_LMS
 )";
+/** A rawlog-grabber file: [global], then [TILT_LMS] with the grabber's
+ * sensor keys and CTiltingLMS2xx's. */
+ShippedConfig grabber(const std::string& file)
+{
+	ShippedConfig c;
+	c.file = file;
+	c.sections = {section<CTiltingLMS2xx::TOptions>("TILT_LMS")};
+	c.foreignKeys = {{"TILT_LMS", kGrabberSensorKeys}};
+	return c;
+}
 }  // namespace
 
 std::vector<ShippedConfig> shippedConfigs()
@@ -148,8 +158,7 @@ window_height = 12
 		all.push_back(c);
 	}
 	{
-		ShippedConfig c;
-		c.file = "grabber-emulated.ini";
+		ShippedConfig c = grabber("grabber-emulated.ini");
 		c.header =
 		    "rawlog-grabber + semnav's CTiltingLMS2xx against "
 		    "semnav-device-emulator:\n"
@@ -162,7 +171,6 @@ window_height = 12
 		    "scripts/capture-selftest\n"
 		    "runs both with this file, rewriting the paths for its own "
 		    "directory.";
-		c.sections = {section<CTiltingLMS2xx::TOptions>("TILT_LMS")};
 		c.foreignBefore = R"([global]
 rawlog_prefix = /tmp/semnav-capture/capture
 time_between_launches = 0
@@ -170,7 +178,6 @@ use_sensoryframes = false
 GRABBER_PERIOD_MS = 200
 rawlog_GZ_compress_level = 1
 )";
-		c.foreignKeys = {{"TILT_LMS", kGrabberSensorKeys}};
 		// The emulator's links; 500 kbaud (RS-422): the LMS200's full 37.5
 		// lines/s; timeouts for a busy machine's hiccups (0.5 s seen).
 		c.overrides = R"(
@@ -185,8 +192,7 @@ stats_file = /tmp/semnav-capture/stats.json
 		all.push_back(c);
 	}
 	{
-		ShippedConfig c;
-		c.file = "grabber-tilting-lms200.ini";
+		ShippedConfig c = grabber("grabber-tilting-lms200.ini");
 		c.header =
 		    "Capture with a real SICK LMS200 on a Directed Perception "
 		    "pan-tilt unit:\n"
@@ -196,7 +202,6 @@ stats_file = /tmp/semnav-capture/stats.json
 		    "CObservation2DRangeScan per scan\n"
 		    "line, the tilt of the line's time in its sensorPose "
 		    "(libs/hwdrivers/README.md).";
-		c.sections = {section<CTiltingLMS2xx::TOptions>("TILT_LMS")};
 		c.foreignBefore = R"([global]
 rawlog_prefix = ./semnav-capture
 time_between_launches = 300
@@ -204,7 +209,6 @@ use_sensoryframes = false
 GRABBER_PERIOD_MS = 500
 rawlog_GZ_compress_level = 1
 )";
-		c.foreignKeys = {{"TILT_LMS", kGrabberSensorKeys}};
 		// The robot's ports; RS-232 at 38400 baud gives about 4.7 lines/s,
 		// so 0.5 deg per line needs 2.34 deg/s (with an RS-422 adapter:
 		// COM_baudRate = 500000, tilt_speed_deg_s = 18.75).
@@ -219,82 +223,58 @@ stats_file = ./semnav-capture-stats.json
 )";
 		all.push_back(c);
 	}
-	{
-		ShippedConfig c;
-		c.file = "localization.ini";
-		c.header =
-		    "Localization (semnav-map --poses pf --loc-config "
-		    "config/localization.ini):\n"
-		    "particle filter on wall landmarks with main-direction heading "
-		    "correction\n(paper sec. 2.3).";
-		c.sections = {
-		    section<WallExtractor::TOptions>("WallExtractor"),
-		    section<WallMap::TOptions>("WallMap"),
-		    section<Localizer::TOptions>("Localizer")};
-		all.push_back(c);
-	}
-	{
-		ShippedConfig c;
-		c.file = "map.ini";
-		c.header =
-		    "semnav-map options (semnav-map --config config/map.ini). The "
-		    "perception\nsections of config/perception.ini may be added "
-		    "here too.";
-		c.sections = {
-		    section<SemanticMap::TOptions>("SemanticMap"),
-		    section<TravelCostModel::TOptions>("TravelCost"),
-		    section<SweepAssembler::TOptions>("SweepAssembler")};
-		all.push_back(c);
-	}
-	{
-		ShippedConfig c;
-		c.file = "navigation.ini";
-		c.header =
-		    "semnav navigation (semnav-nav, scripts/demo): the CNN path "
-		    "handed to MRPT's\nreactive navigator as waypoints, a simulated "
-		    "differential-drive robot, and\nMRPT's own reactive-navigation "
-		    "sections. The planner's options are in\nconfig/planning.ini "
-		    "(its robot_radius_m must match robot_radius_m below).";
-		c.sections = {
-		    section<SemanticNavigator::TOptions>("SemanticNavigator"),
-		    section<SimulatedRobot::TOptions>("SimulatedRobot"),
-		    section<StopAndScanLocalizer::TOptions>("StopAndScan")};
-		c.keptTailMarker = "# ---- MRPT reactive navigation";
-		all.push_back(c);
-	}
-	{
-		ShippedConfig c;
-		c.file = "perception.ini";
-		c.header =
-		    "semnav perception (semnav-perceive --config): normal image, "
-		    "range\nsegmentation, roughness and the rule-based classifier "
-		    "(paper sec. 2.1-2.2.1).";
-		c.sections = {
-		    section<NormalImage::TOptions>("NormalImage"),
-		    section<RangeSegmentation::TOptions>("RangeSegmentation"),
-		    section<Roughness::TOptions>("Roughness"),
-		    section<RuleClassifier::TOptions>("RuleClassifier")};
-		all.push_back(c);
-	}
-	{
-		ShippedConfig c;
-		c.file = "planning.ini";
-		c.header =
-		    "semnav path planning (CNN planner of the paper's sec. 3), used "
-		    "by\nsemnav-plan and semnav-nav. Path cost: sum over steps of "
-		    "(step length + u of\nthe cell entered).";
-		c.sections = {
-		    section<CnnPlanner::TOptions>("CnnPlanner"),
-		    section<TraversabilityBuilder::TOptions>("Traversability")};
-		all.push_back(c);
-	}
-	{
-		ShippedConfig c;
-		c.file = "sim.ini";
-		c.header = "semnav-sim options (semnav-sim --config config/sim.ini).";
-		c.sections = {section<SimulatorOptions>("Simulator")};
-		all.push_back(c);
-	}
+	all.push_back(
+	    {"localization.ini",
+	     "Localization (semnav-map --poses pf --loc-config "
+	     "config/localization.ini):\n"
+	     "particle filter on wall landmarks with main-direction heading "
+	     "correction\n(paper sec. 2.3).",
+	     {section<WallExtractor::TOptions>("WallExtractor"),
+	      section<WallMap::TOptions>("WallMap"),
+	      section<Localizer::TOptions>("Localizer")}});
+	all.push_back(
+	    {"map.ini",
+	     "semnav-map options (semnav-map --config config/map.ini). The "
+	     "perception\nsections of config/perception.ini may be added "
+	     "here too.",
+	     {section<SemanticMap::TOptions>("SemanticMap"),
+	      section<TravelCostModel::TOptions>("TravelCost"),
+	      section<SweepAssembler::TOptions>("SweepAssembler")}});
+	all.push_back(
+	    {"navigation.ini",
+	     "semnav navigation (semnav-nav, scripts/demo): the CNN path "
+	     "handed to MRPT's\nreactive navigator as waypoints, a simulated "
+	     "differential-drive robot, and\nMRPT's own reactive-navigation "
+	     "sections. The planner's options are in\nconfig/planning.ini "
+	     "(its robot_radius_m must match robot_radius_m below).",
+	     {section<SemanticNavigator::TOptions>("SemanticNavigator"),
+	      section<SimulatedRobot::TOptions>("SimulatedRobot"),
+	      section<StopAndScanLocalizer::TOptions>("StopAndScan")},
+	     "",
+	     {},
+	     "",
+	     "",
+	     "# ---- MRPT reactive navigation"});
+	all.push_back(
+	    {"perception.ini",
+	     "semnav perception (semnav-perceive --config): normal image, "
+	     "range\nsegmentation, roughness and the rule-based classifier "
+	     "(paper sec. 2.1-2.2.1).",
+	     {section<NormalImage::TOptions>("NormalImage"),
+	      section<RangeSegmentation::TOptions>("RangeSegmentation"),
+	      section<Roughness::TOptions>("Roughness"),
+	      section<RuleClassifier::TOptions>("RuleClassifier")}});
+	all.push_back(
+	    {"planning.ini",
+	     "semnav path planning (CNN planner of the paper's sec. 3), used "
+	     "by\nsemnav-plan and semnav-nav. Path cost: sum over steps of "
+	     "(step length + u of\nthe cell entered).",
+	     {section<CnnPlanner::TOptions>("CnnPlanner"),
+	      section<TraversabilityBuilder::TOptions>("Traversability")}});
+	all.push_back(
+	    {"sim.ini",
+	     "semnav-sim options (semnav-sim --config config/sim.ini).",
+	     {section<SimulatorOptions>("Simulator")}});
 	const std::string common =
 	    "\nEvery key is optional; the values below are the code's defaults "
 	    "except where\nmarked \"(default: ...)\" (docs/configuration.md). "

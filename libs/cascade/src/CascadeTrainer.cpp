@@ -93,17 +93,7 @@ const std::vector<std::string>& CascadeTrainer::TOptions::knownKeys()
 	return keys;
 }
 
-void CascadeTrainer::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void CascadeTrainer::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(CascadeTrainer::TOptions, optionTable())
 
 CascadeTrainer::CascadeTrainer() : CascadeTrainer(TOptions()) {}
 

@@ -336,17 +336,7 @@ const std::vector<std::string>& CascadeDetector::TClassOptions::knownKeys()
 	return keys;
 }
 
-void CascadeDetector::TClassOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	classTable().load(*this, c, s);
-}
-
-void CascadeDetector::TClassOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	classTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(CascadeDetector::TClassOptions, classTable())
 
 std::vector<DetectionPass> CascadeDetector::TClassOptions::passes(
     int rows, double el0, double el1, cv::Size window) const

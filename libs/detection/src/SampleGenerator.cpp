@@ -84,17 +84,7 @@ const std::vector<std::string>& SampleGenerator::TOptions::knownKeys()
 	return keys;
 }
 
-void SampleGenerator::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void SampleGenerator::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(SampleGenerator::TOptions, optionTable())
 
 SampleGenerator::SampleGenerator() = default;
 SampleGenerator::SampleGenerator(const TOptions& options) : m_options(options)

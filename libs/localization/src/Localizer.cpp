@@ -109,17 +109,7 @@ const OptionTable<O>& optionTable()
 }
 }  // namespace
 
-void Localizer::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void Localizer::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(Localizer::TOptions, optionTable())
 
 mrpt::bayes::CParticleFilter::TParticleFilterOptions Localizer::pfOptions(
     const TOptions& o)

@@ -47,17 +47,7 @@ const OptionTable<O>& optionTable()
 }
 }  // namespace
 
-void WallExtractor::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void WallExtractor::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(WallExtractor::TOptions, optionTable())
 
 WallObservation WallExtractor::extract(const LabeledSweep& ls) const
 {

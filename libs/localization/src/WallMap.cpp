@@ -48,17 +48,7 @@ const OptionTable<O>& optionTable()
 }
 }  // namespace
 
-void WallMap::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void WallMap::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(WallMap::TOptions, optionTable())
 
 void WallMap::addSegments(const std::vector<WallSegment>& worldSegments)
 {

@@ -124,17 +124,7 @@ const OptionTable<O>& optionTable()
 }
 }  // namespace
 
-void SemanticMap::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void SemanticMap::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(SemanticMap::TOptions, optionTable())
 
 SemanticMap::SemanticMap() : SemanticMap(TOptions()) {}
 

@@ -44,17 +44,7 @@ const OptionTable<O>& optionTable()
 }
 }  // namespace
 
-void TravelCostModel::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void TravelCostModel::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(TravelCostModel::TOptions, optionTable())
 
 TravelCostModel::TravelCostModel() : TravelCostModel(TOptions()) {}
 TravelCostModel::TravelCostModel(const TOptions& o) : m_options(o) {}

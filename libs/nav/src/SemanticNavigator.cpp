@@ -109,17 +109,7 @@ const OptionTable<O>& optionTable()
 }
 }  // namespace
 
-void SemanticNavigator::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void SemanticNavigator::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(SemanticNavigator::TOptions, optionTable())
 
 SemanticNavigator::SemanticNavigator(
     mrpt::nav::CRobot2NavInterface& robot, const SemanticMap& map,

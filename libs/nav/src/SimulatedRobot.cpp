@@ -49,17 +49,7 @@ const OptionTable<O>& optionTable()
 constexpr double kEpoch = 1577836800.0;  // 2020-01-01T00:00:00Z
 }  // namespace
 
-void SimulatedRobot::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void SimulatedRobot::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(SimulatedRobot::TOptions, optionTable())
 
 mrpt::Clock::time_point SimulatedRobot::timestampOf(double t)
 {

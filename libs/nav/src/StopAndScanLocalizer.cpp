@@ -100,17 +100,7 @@ const OptionTable<O>& optionTable()
 }
 }  // namespace
 
-void StopAndScanLocalizer::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void StopAndScanLocalizer::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(StopAndScanLocalizer::TOptions, optionTable())
 
 StopAndScanLocalizer::StopAndScanLocalizer(
     const Scene& scene, const SemanticMap& map, const TOptions& options,

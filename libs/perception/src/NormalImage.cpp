@@ -38,17 +38,7 @@ const OptionTable<O>& optionTable()
 }
 }  // namespace
 
-void NormalImage::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void NormalImage::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(NormalImage::TOptions, optionTable())
 
 NormalImage::NormalImage() : NormalImage(TOptions()) {}
 

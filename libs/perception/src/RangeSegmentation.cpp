@@ -31,17 +31,7 @@ const OptionTable<O>& optionTable()
 }
 }  // namespace
 
-void RangeSegmentation::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void RangeSegmentation::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(RangeSegmentation::TOptions, optionTable())
 
 RangeSegmentation::RangeSegmentation() : RangeSegmentation(TOptions()) {}
 

@@ -38,17 +38,7 @@ const OptionTable<O>& optionTable()
 }
 }  // namespace
 
-void Roughness::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void Roughness::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(Roughness::TOptions, optionTable())
 
 Roughness::Roughness() : Roughness(TOptions()) {}
 

@@ -165,16 +165,6 @@ const OptionTable<O>& optionTable()
 }
 }  // namespace
 
-void RuleClassifier::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void RuleClassifier::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(RuleClassifier::TOptions, optionTable())
 
 }  // namespace semnav

@@ -60,17 +60,7 @@ const std::vector<std::string>& CnnPlanner::TOptions::knownKeys()
 	return keys;
 }
 
-void CnnPlanner::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void CnnPlanner::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(CnnPlanner::TOptions, optionTable())
 
 CnnPlanner::CnnPlanner() : CnnPlanner(TOptions()) {}
 

@@ -151,17 +151,7 @@ const std::vector<std::string>& TraversabilityBuilder::TOptions::knownKeys()
 	return keys;
 }
 
-void TraversabilityBuilder::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void TraversabilityBuilder::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(TraversabilityBuilder::TOptions, optionTable())
 
 TraversabilityBuilder::TOptions::TOptions()
 {

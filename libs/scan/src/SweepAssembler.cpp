@@ -47,17 +47,7 @@ const OptionTable<O>& optionTable()
 }
 }  // namespace
 
-void SweepAssembler::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void SweepAssembler::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(SweepAssembler::TOptions, optionTable())
 
 SweepAssembler::SweepAssembler() : SweepAssembler(TOptions()) {}
 

@@ -39,17 +39,7 @@ const OptionTable<O>& optionTable()
 }
 }  // namespace
 
-void ThreeDtkReader::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void ThreeDtkReader::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(ThreeDtkReader::TOptions, optionTable())
 
 ThreeDtkReader::ThreeDtkReader() : ThreeDtkReader(TOptions()) {}
 

@@ -58,17 +58,7 @@ const std::vector<std::string>& SimulatorOptions::knownKeys()
 	return keys;
 }
 
-void SimulatorOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	optionTable().load(*this, c, s);
-}
-
-void SimulatorOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	optionTable().save(*this, c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(SimulatorOptions, optionTable())
 
 namespace
 {

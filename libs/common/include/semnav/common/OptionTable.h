@@ -384,3 +384,18 @@ private:
 };
 
 }  // namespace semnav
+
+/** Defines `Class::loadFromConfigFile` and `Class::saveToConfigFile` (MRPT's
+ * CLoadableOptions) by `table`, an expression giving the
+ * OptionTable<Class>. */
+#define SEMNAV_OPTIONS_FROM_TABLE(Class, table)                       \
+	void Class::loadFromConfigFile(                                   \
+	    const mrpt::config::CConfigFileBase& c, const std::string& s) \
+	{                                                                 \
+		(table).load(*this, c, s);                                    \
+	}                                                                 \
+	void Class::saveToConfigFile(                                     \
+	    mrpt::config::CConfigFileBase& c, const std::string& s) const \
+	{                                                                 \
+		(table).save(*this, c, s);                                    \
+	}
