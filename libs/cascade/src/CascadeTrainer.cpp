@@ -5,7 +5,7 @@
 #include <semnav/cascade/CascadeEvaluator.h>
 #include <semnav/cascade/CascadeTrainer.h>
 #include <semnav/cascade/IntegralImages.h>
-#include <semnav/common/ConfigChecks.h>
+#include <semnav/common/OptionTable.h>
 
 #include <algorithm>
 #include <chrono>
@@ -23,96 +23,78 @@
 namespace semnav
 {
 // ---------------------------------------------------------------- options
-const std::vector<std::string>& CascadeTrainer::TOptions::knownKeys()
-{
-	static const std::vector<std::string> keys{
-	    "window_width",     "window_height",          "feature_mode",
-	    "num_stages",       "min_hit_rate",           "calibration_fraction",
-	    "max_false_alarm",  "target_false_alarm",     "max_weak_count",
-	    "weight_trim_rate", "negatives_per_stage",    "feature_bins",
-	    "feature_fraction", "round_feature_fraction", "negative_scale_factor",
-	    "negative_max_iou", "min_negatives",          "threads"};
-	return keys;
-}
-
-void CascadeTrainer::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	checkKnownKeys(c, s, knownKeys());
-	TOptions o = *this;
-	o.windowWidth = readCheckedInt(c, s, "window_width", windowWidth, 8, 64);
-	o.windowHeight = readCheckedInt(c, s, "window_height", windowHeight, 8, 64);
-	const std::string mode =
-	    c.read_string(s, "feature_mode", haarModeName(this->mode), false);
-	try
-	{
-		o.mode = haarModeFromName(mode);
-	}
-	catch (const CascadeError& e)
-	{
-		throw ConfigError("[" + s + "] feature_mode: " + e.what());
-	}
-	o.numStages = readCheckedInt(c, s, "num_stages", numStages, 1, 100);
-	o.minHitRate = readChecked(c, s, "min_hit_rate", minHitRate, 0.5, 1.0);
-	o.calibrationFraction = readChecked(
-	    c, s, "calibration_fraction", calibrationFraction, 0.0, 0.9);
-	o.maxFalseAlarm =
-	    readChecked(c, s, "max_false_alarm", maxFalseAlarm, 0.01, 0.99);
-	o.targetFalseAlarm =
-	    readChecked(c, s, "target_false_alarm", targetFalseAlarm, 0.0, 1.0);
-	o.maxWeakCount =
-	    readCheckedInt(c, s, "max_weak_count", maxWeakCount, 1, 10000);
-	o.weightTrimRate =
-	    readChecked(c, s, "weight_trim_rate", weightTrimRate, 0.5, 1.0);
-	o.negativesPerStage = readCheckedInt(
-	    c, s, "negatives_per_stage", negativesPerStage, 10, 1000000);
-	o.featureBins = readCheckedInt(c, s, "feature_bins", featureBins, 2, 256);
-	o.featureFraction =
-	    readChecked(c, s, "feature_fraction", featureFraction, 0.001, 1.0);
-	o.roundFeatureFraction = readChecked(
-	    c, s, "round_feature_fraction", roundFeatureFraction, 0.001, 1.0);
-	o.negativeScaleFactor = readChecked(
-	    c, s, "negative_scale_factor", negativeScaleFactor, 1.01, 4.0);
-	o.negativeMaxIou =
-	    readChecked(c, s, "negative_max_iou", negativeMaxIou, 0.0, 1.0);
-	o.minNegatives =
-	    readCheckedInt(c, s, "min_negatives", minNegatives, 1, 1000000);
-	o.threads = readCheckedInt(c, s, "threads", threads, 0, 1024);
-	*this = o;
-}
-
 namespace
 {
-std::string num(double v)
+using O = CascadeTrainer::TOptions;
+const OptionTable<O>& optionTable()
 {
-	char buf[64];
-	std::snprintf(buf, sizeof(buf), "%.12g", v);
-	return buf;
+	static const auto t =
+	    OptionTable<O>()
+	        .integer(
+	            "window_width", &O::windowWidth, 8, 64,
+	            "Training window width (pixels).")
+	        .integer(
+	            "window_height", &O::windowHeight, 8, 64,
+	            "Training window height (pixels).")
+	        .named(
+	            "feature_mode", &O::mode, haarModeFromName, haarModeName,
+	            "BASIC | CORE | ALL (ALL: with 45-degree features).")
+	        .integer("num_stages", &O::numStages, 1, 100, "Most stages.")
+	        .real(
+	            "min_hit_rate", &O::minHitRate, 0.5, 1.0,
+	            "Each stage keeps this share of the positives.")
+	        .real(
+	            "calibration_fraction", &O::calibrationFraction, 0.0, 0.9,
+	            "Share of positives held out to set stage thresholds; 0: "
+	            "off.")
+	        .real(
+	            "max_false_alarm", &O::maxFalseAlarm, 0.01, 0.99,
+	            "Each stage accepts at most this share of negatives.")
+	        .real(
+	            "target_false_alarm", &O::targetFalseAlarm, 0.0, 1.0,
+	            "Stop at this overall false alarm rate (0: max_false_alarm "
+	            "^ num_stages).")
+	        .integer(
+	            "max_weak_count", &O::maxWeakCount, 1, 10000,
+	            "Most stumps per stage.")
+	        .real(
+	            "weight_trim_rate", &O::weightTrimRate, 0.5, 1.0,
+	            "Boosting weight trimming.")
+	        .integer(
+	            "negatives_per_stage", &O::negativesPerStage, 10, 1000000,
+	            "Negative windows per stage.")
+	        .integer(
+	            "feature_bins", &O::featureBins, 2, 256,
+	            "Histogram bins of a feature's values.")
+	        .real(
+	            "feature_fraction", &O::featureFraction, 0.001, 1.0,
+	            "Share of the feature pool drawn per stage (1: all).")
+	        .real(
+	            "round_feature_fraction", &O::roundFeatureFraction, 0.001, 1.0,
+	            "Share of those tried for each stump.")
+	        .real(
+	            "negative_scale_factor", &O::negativeScaleFactor, 1.01, 4.0,
+	            "Pyramid step for negative windows.")
+	        .real(
+	            "negative_max_iou", &O::negativeMaxIou, 0.0, 1.0,
+	            "Negatives overlap objects at most this much.")
+	        .integer(
+	            "min_negatives", &O::minNegatives, 1, 1000000,
+	            "Stop when fewer negative windows are still accepted.")
+	        .integer(
+	            "threads", &O::threads, 0, 1024,
+	            "OpenMP threads, 0 = all cores (same results).");
+	return t;
 }
 }  // namespace
 
-void CascadeTrainer::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
+const std::vector<std::string>& CascadeTrainer::TOptions::knownKeys()
 {
-	c.write(s, "window_width", std::to_string(windowWidth));
-	c.write(s, "window_height", std::to_string(windowHeight));
-	c.write(s, "feature_mode", haarModeName(mode));
-	c.write(s, "num_stages", std::to_string(numStages));
-	c.write(s, "min_hit_rate", num(minHitRate));
-	c.write(s, "calibration_fraction", num(calibrationFraction));
-	c.write(s, "max_false_alarm", num(maxFalseAlarm));
-	c.write(s, "target_false_alarm", num(targetFalseAlarm));
-	c.write(s, "max_weak_count", std::to_string(maxWeakCount));
-	c.write(s, "weight_trim_rate", num(weightTrimRate));
-	c.write(s, "negatives_per_stage", std::to_string(negativesPerStage));
-	c.write(s, "feature_bins", std::to_string(featureBins));
-	c.write(s, "feature_fraction", num(featureFraction));
-	c.write(s, "round_feature_fraction", num(roundFeatureFraction));
-	c.write(s, "negative_scale_factor", num(negativeScaleFactor));
-	c.write(s, "negative_max_iou", num(negativeMaxIou));
-	c.write(s, "min_negatives", std::to_string(minNegatives));
-	c.write(s, "threads", std::to_string(threads));
+	static const std::vector<std::string> keys = optionTable().keys();
+	return keys;
 }
+
+SEMNAV_OPTIONS_FROM_TABLE(CascadeTrainer::TOptions, optionTable())
 
 CascadeTrainer::CascadeTrainer() : CascadeTrainer(TOptions()) {}
 

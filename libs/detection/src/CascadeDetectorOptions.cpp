@@ -7,8 +7,8 @@
 #include <semnav/cascade/ExactResize.h>
 #include <semnav/cascade/IntegralImages.h>
 #include <semnav/cascade/RangeGate.h>
-#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/common/ParallelFor.h>
 #include <semnav/common/Percentile.h>
 #include <semnav/common/Timing.h>
@@ -37,14 +37,290 @@ namespace semnav
 {
 namespace
 {
-std::string num(double v)
+using Clock = std::chrono::steady_clock;
+
+using C = CascadeDetector::TClassOptions;
+const OptionTable<C>& classTable()
 {
-	char buf[64];
-	std::snprintf(buf, sizeof(buf), "%.12g", v);
-	return buf;
+	static const auto t =
+	    OptionTable<C>()
+	        .text(
+	            "cascade", &C::cascade,
+	            "Cascade XML (relative to this file's directory).")
+	        .check(
+	            [](const C& o) { return !o.cascade.empty(); },
+	            "cascade must name a cascade XML file")
+	        .real(
+	            "upscale", &C::upscale, 0.25, 8.0,
+	            "Near pass: the detection image is scaled by this.")
+	        .angle(
+	            "min_elevation_deg", &C::minElevation, -90, 90,
+	            "Near pass: lowest elevation searched.")
+	        .angle(
+	            "max_elevation_deg", &C::maxElevation, -90, 90,
+	            "Near pass: highest elevation searched.")
+	        .real(
+	            "far_upscale", &C::farUpscale, 0, 8.0,
+	            "Far pass scale (0: no far pass).")
+	        .real(
+	            "far_below_px", &C::farBelowPx, 0, 10000,
+	            "Objects smaller than this (box side) are left to the far "
+	            "pass.")
+	        .angle(
+	            "far_min_elevation_deg", &C::farMinElevation, -90, 90,
+	            "Far pass: lowest elevation searched.")
+	        .angle(
+	            "far_max_elevation_deg", &C::farMaxElevation, -90, 90,
+	            "Far pass: highest elevation searched.")
+	        .real(
+	            "scale_factor", &C::scaleFactor, 1.01, 3.0,
+	            "detectMultiScale's scale factor.")
+	        .integer(
+	            "min_neighbors", &C::minNeighbors, 0, 100,
+	            "detectMultiScale's min_neighbors.")
+	        .integer(
+	            "window_step", &C::windowStep, 0, 8,
+	            "Step between windows with range_scales (0: "
+	            "detectMultiScale's).")
+	        .real(
+	            "max_size_px", &C::maxSizePx, 0, 10000,
+	            "Largest box side searched (0: the image).")
+	        .real(
+	            "min_width_m", &C::minWidth, 0, 100,
+	            "Object width across the line of sight: at least...")
+	        .real("max_width_m", &C::maxWidth, 0, 100, "...at most.")
+	        .real(
+	            "min_top_m", &C::minTop, -10, 100,
+	            "Height of the object's top above the ground: at least...")
+	        .real("max_top_m", &C::maxTop, -10, 100, "...at most.")
+	        .real(
+	            "max_depth_m", &C::maxDepth, 0.01, 100,
+	            "Object points lie at most this far behind its nearest "
+	            "part.")
+	        .integer(
+	            "min_points", &C::minPoints, 1, 1000000,
+	            "Fewer object points: rejected.")
+	        .real(
+	            "min_size_m", &C::minSize, 0.01, 100,
+	            "Larger side of a whole object: at least...")
+	        .real(
+	            "min_cut_size_m", &C::minCutSize, 0.01, 100,
+	            "...(of one whose foot is not seen)...")
+	        .real("max_size_m", &C::maxSize, 0.01, 100, "...at most.")
+	        .integer(
+	            "proposal_min_neighbors", &C::proposalMinNeighbors, -1, 100,
+	            "min_neighbors around proposals (-1: min_neighbors).")
+	        .real(
+	            "border_px", &C::borderPx, 0, 1000,
+	            "Zero padding of each pass's band (windows around objects "
+	            "cut by the edge).")
+	        .optional(
+	            "channel",
+	            [](C& o, const mrpt::config::CConfigFileBase& c,
+	               const std::string& s)
+	            {
+		            if (!c.keyExists(s, "channel")) return;
+		            try
+		            {
+			            o.channel = channelFromName(
+			                c.read_string(s, "channel", "", true));
+		            }
+		            catch (const ConfigError& e)
+		            {
+			            throw ConfigError("[" + s + "] channel: " + e.what());
+		            }
+	            },
+	            [](const C& o, std::string& out)
+	            {
+		            if (o.channel) out = channelName(*o.channel);
+		            return o.channel.has_value();
+	            },
+	            "This class's detection image (unset: [CascadeDetector]'s).")
+	        .text(
+	            "shape_model", &C::shapeModel,
+	            "ShapeVerifier forest (relative as cascade); empty: no "
+	            "shape check.")
+	        .real(
+	            "min_shape_score", &C::minShapeScore, 0, 1,
+	            "Detections the forest scores lower are rejected.")
+	        .integer(
+	            "max_stages", &C::maxStages, 0, 1000,
+	            "Only the first this many stages are evaluated (0: all).")
+	        .flag(
+	            "segment_candidates", &C::segmentCandidates,
+	            "Every 3D segment of the object points is also a candidate.")
+	        .flag(
+	            "cascade_support", &C::cascadeSupport,
+	            "The shape model sees how many cascade windows cover a "
+	            "candidate.")
+	        .real(
+	            "back_wall_length_m", &C::backWallLength, 0, 100,
+	            "A wall this long behind the object is cut off (0: none).")
+	        .real(
+	            "max_continuing_share", &C::maxContinuingShare, 0, 1,
+	            "Rejected when more columns continue upwards (1: no check).")
+	        .real(
+	            "min_separation_m", &C::minSeparation, 0, 100,
+	            "Detections closer than this are one object (0: no check).")
+	        .real(
+	            "grow_m", &C::grow, 0, 10,
+	            "An accepted object is measured again in its box grown by "
+	            "this (0: not).")
+	        .check(
+	            [](const C& o)
+	            {
+		            return !(
+		                o.minWidth > o.maxWidth || o.minTop > o.maxTop ||
+		                o.minSize > o.maxSize || o.minCutSize > o.maxSize ||
+		                o.minElevation >= o.maxElevation ||
+		                (o.farUpscale > 0 &&
+		                 o.farMinElevation >= o.farMaxElevation));
+	            },
+	            "a minimum exceeds its maximum");
+	return t;
 }
 
-using Clock = std::chrono::steady_clock;
+using O = CascadeDetector::TOptions;
+
+/** `classes` and their sections [<section>.<label>]. */
+void loadClasses(
+    O& o, const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+	std::string list;
+	for (const auto& k : o.classes) list += labelName(k.label) + " ";
+	list = c.read_string(s, "classes", list, false);
+	std::istringstream in(list);
+	std::vector<CascadeDetector::TClassOptions> loaded;
+	for (std::string name; in >> name;)
+	{
+		Label l;
+		try
+		{
+			l = labelFromName(name);
+		}
+		catch (const Error& e)
+		{
+			throw ConfigError("[" + s + "] classes: " + e.what());
+		}
+		for (const auto& k : loaded)
+			if (k.label == l)
+				throw ConfigError(
+				    "[" + s + "] classes lists " + name + " twice");
+		CascadeDetector::TClassOptions k(l);
+		for (const auto& d : o.classes)
+			if (d.label == l) k = d;  // defaults of a known class
+		k.loadFromConfigFile(c, s + "." + name);
+		loaded.push_back(k);
+	}
+	o.classes = loaded;
+}
+
+const OptionTable<O>& optionTable()
+{
+	static const auto t =
+	    OptionTable<O>()
+	        .named(
+	            "channel", &O::channel, channelFromName, channelName,
+	            "Image the cascades see: grey | red | green | blue | view.")
+	        .integer(
+	            "normal_smoothing_px", &O::normalSmoothing, 0, 10,
+	            "Half width of the normal averaging before the image is "
+	            "made.")
+	        .choice(
+	            "projection", &O::panoramic,
+	            {{true, "panoramic"}, {false, "sweep"}},
+	            "panoramic (azimuth x elevation) | sweep (rows and "
+	            "columns, as the paper).")
+	        .custom(
+	            "classes", loadClasses,
+	            [](const O& o)
+	            {
+		            std::string list;
+		            for (const auto& k : o.classes)
+			            list += (list.empty() ? "" : " ") + labelName(k.label);
+		            return list;
+	            },
+	            "Classes with a cascade; each has a section "
+	            "[CascadeDetector.<label>].")
+	        .flag(
+	            "label_pixels", &O::labelPixels,
+	            "Object pixels of a detection get its label.")
+	        .real(
+	            "floor_tolerance_m", &O::floorTolerance, 0, 1,
+	            "Points this close to the ground are floor, not object.")
+	        .real(
+	            "measure_margin", &O::measureMargin, 0, 2,
+	            "An object is measured in its box grown by this share of "
+	            "its side.")
+	        .flag(
+	            "connected_object", &O::connectedObject,
+	            "The object is the points connected to the box centre's.")
+	        .flag(
+	            "proposals", &O::proposals,
+	            "Search only windows around the regions the rules left to "
+	            "objects.")
+	        .integer(
+	            "proposal_min_pixels", &O::proposalMinPixels, 1, 1000000,
+	            "Smaller regions are dropped.")
+	        .integer(
+	            "proposal_join_px", &O::proposalJoinPx, 0, 20,
+	            "Object pixels this close join one region...")
+	        .real(
+	            "proposal_max_height_m", &O::proposalMaxHeight, 0.05, 20,
+	            "Object points higher than this are not proposals.")
+	        .real(
+	            "proposal_margin", &O::proposalMargin, 0, 5,
+	            "The search window is the region grown by this share of "
+	            "the window side.")
+	        .real(
+	            "proposal_size_slack", &O::proposalSizeSlack, 1, 10,
+	            "Expected window sides are widened by this both ways.")
+	        .real(
+	            "proposal_foot_height_m", &O::proposalFootHeight, 0, 5,
+	            "A region this close to the ground shows its object whole.")
+	        .real(
+	            "proposal_fill", &O::proposalFill, 0, 1,
+	            "An object fills at least this share of its region's "
+	            "larger side.")
+	        .real(
+	            "proposal_range_gap_m", &O::proposalRangeGap, 0, 100,
+	            "Pixels of one region differ in range by at most this (+ 5 %).")
+	        .real(
+	            "proposal_top_margin_m", &O::proposalTopMargin, 0, 10,
+	            "Regions hold points at most max_top_m + this high.")
+	        .flag(
+	            "proposal_size_check", &O::proposalSizeCheck,
+	            "Skip regions whose real size cannot hold the class.")
+	        .flag(
+	            "range_scales", &O::rangeScales,
+	            "Evaluate only windows whose size fits the class at their "
+	            "range.")
+	        .real(
+	            "range_scale_slack", &O::rangeScaleSlack, 1, 10,
+	            "The range gate's sizes widened by this both ways.")
+	        .real(
+	            "range_cut_m", &O::rangeCut, 0, 100,
+	            "Closer, the lowest tilt line cuts objects (min_cut_size_m).")
+	        .flag(
+	            "range_objects_only", &O::rangeObjectsOnly,
+	            "Windows only around the points the rules left to objects.")
+	        .real(
+	            "segment_range_gap_m", &O::segmentRangeGap, 0, 100,
+	            "Segments (segment_candidates) split at range gaps this "
+	            "large.")
+	        .real(
+	            "segment_max_taller", &O::segmentMaxTaller, 0, 1e6,
+	            "A segment joined by more higher object pixels than this "
+	            "share is no candidate.")
+	        .flag(
+	            "segment_range_window", &O::segmentRangeWindow,
+	            "A segment is measured over its own horizontal range only.")
+	        .integer(
+	            "threads", &O::threads, 0, 64,
+	            "Threads over classes, passes and candidates; 0 = all "
+	            "cores.");
+	return t;
+}
 }  // namespace
 
 // ------------------------------------------------------------ options
@@ -56,156 +332,11 @@ CascadeDetector::TClassOptions::TClassOptions(Label l) : label(l)
 
 const std::vector<std::string>& CascadeDetector::TClassOptions::knownKeys()
 {
-	static const std::vector<std::string> keys{
-	    "cascade",
-	    "upscale",
-	    "min_elevation_deg",
-	    "max_elevation_deg",
-	    "far_upscale",
-	    "far_below_px",
-	    "far_min_elevation_deg",
-	    "far_max_elevation_deg",
-	    "scale_factor",
-	    "min_neighbors",
-	    "window_step",
-	    "max_size_px",
-	    "min_width_m",
-	    "max_width_m",
-	    "min_top_m",
-	    "max_top_m",
-	    "max_depth_m",
-	    "min_points",
-	    "min_size_m",
-	    "min_cut_size_m",
-	    "max_size_m",
-	    "proposal_min_neighbors",
-	    "border_px",
-	    "channel",
-	    "shape_model",
-	    "min_shape_score",
-	    "max_stages",
-	    "segment_candidates",
-	    "cascade_support",
-	    "back_wall_length_m",
-	    "max_continuing_share",
-	    "min_separation_m",
-	    "grow_m"};
+	static const std::vector<std::string> keys = classTable().keys();
 	return keys;
 }
 
-void CascadeDetector::TClassOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	checkKnownKeys(c, s, knownKeys());
-	TClassOptions o = *this;
-	o.cascade = c.read_string(s, "cascade", cascade, false);
-	if (o.cascade.empty())
-		throw ConfigError("[" + s + "] cascade must name a cascade XML file");
-	constexpr double deg = M_PI / 180.0;
-	o.upscale = readChecked(c, s, "upscale", upscale, 0.25, 8.0);
-	o.minElevation =
-	    readChecked(c, s, "min_elevation_deg", minElevation / deg, -90, 90) *
-	    deg;
-	o.maxElevation =
-	    readChecked(c, s, "max_elevation_deg", maxElevation / deg, -90, 90) *
-	    deg;
-	o.farUpscale = readChecked(c, s, "far_upscale", farUpscale, 0, 8.0);
-	o.farBelowPx = readChecked(c, s, "far_below_px", farBelowPx, 0, 10000);
-	o.farMinElevation =
-	    readChecked(
-	        c, s, "far_min_elevation_deg", farMinElevation / deg, -90, 90) *
-	    deg;
-	o.farMaxElevation =
-	    readChecked(
-	        c, s, "far_max_elevation_deg", farMaxElevation / deg, -90, 90) *
-	    deg;
-	o.scaleFactor = readChecked(c, s, "scale_factor", scaleFactor, 1.01, 3.0);
-	o.minNeighbors =
-	    readCheckedInt(c, s, "min_neighbors", minNeighbors, 0, 100);
-	o.windowStep = readCheckedInt(c, s, "window_step", windowStep, 0, 8);
-	o.maxSizePx = readChecked(c, s, "max_size_px", maxSizePx, 0, 10000);
-	o.minWidth = readChecked(c, s, "min_width_m", minWidth, 0, 100);
-	o.maxWidth = readChecked(c, s, "max_width_m", maxWidth, 0, 100);
-	o.minTop = readChecked(c, s, "min_top_m", minTop, -10, 100);
-	o.maxTop = readChecked(c, s, "max_top_m", maxTop, -10, 100);
-	o.maxDepth = readChecked(c, s, "max_depth_m", maxDepth, 0.01, 100);
-	o.minPoints = readCheckedInt(c, s, "min_points", minPoints, 1, 1000000);
-	o.minSize = readChecked(c, s, "min_size_m", minSize, 0.01, 100);
-	o.minCutSize = readChecked(c, s, "min_cut_size_m", minCutSize, 0.01, 100);
-	o.maxSize = readChecked(c, s, "max_size_m", maxSize, 0.01, 100);
-	o.proposalMinNeighbors = readCheckedInt(
-	    c, s, "proposal_min_neighbors", proposalMinNeighbors, -1, 100);
-	o.borderPx = readChecked(c, s, "border_px", borderPx, 0, 1000);
-	o.shapeModel = c.read_string(s, "shape_model", shapeModel, false);
-	o.minShapeScore = readChecked(c, s, "min_shape_score", minShapeScore, 0, 1);
-	o.maxStages = readCheckedInt(c, s, "max_stages", maxStages, 0, 1000);
-	o.segmentCandidates =
-	    readCheckedBool(c, s, "segment_candidates", segmentCandidates);
-	o.cascadeSupport = readCheckedBool(c, s, "cascade_support", cascadeSupport);
-	o.backWallLength =
-	    readChecked(c, s, "back_wall_length_m", backWallLength, 0, 100);
-	o.maxContinuingShare =
-	    readChecked(c, s, "max_continuing_share", maxContinuingShare, 0, 1);
-	o.minSeparation =
-	    readChecked(c, s, "min_separation_m", minSeparation, 0, 100);
-	o.grow = readChecked(c, s, "grow_m", grow, 0, 10);
-	if (c.keyExists(s, "channel"))
-	{
-		try
-		{
-			o.channel = channelFromName(c.read_string(s, "channel", "", true));
-		}
-		catch (const ConfigError& e)
-		{
-			throw ConfigError("[" + s + "] channel: " + e.what());
-		}
-	}
-	if (o.minWidth > o.maxWidth || o.minTop > o.maxTop ||
-	    o.minSize > o.maxSize || o.minCutSize > o.maxSize ||
-	    o.minElevation >= o.maxElevation ||
-	    (o.farUpscale > 0 && o.farMinElevation >= o.farMaxElevation))
-		throw ConfigError("[" + s + "] a minimum exceeds its maximum");
-	*this = o;
-}
-
-void CascadeDetector::TClassOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "cascade", cascade);
-	constexpr double deg = M_PI / 180.0;
-	c.write(s, "upscale", num(upscale));
-	c.write(s, "min_elevation_deg", num(minElevation / deg));
-	c.write(s, "max_elevation_deg", num(maxElevation / deg));
-	c.write(s, "far_upscale", num(farUpscale));
-	c.write(s, "far_below_px", num(farBelowPx));
-	c.write(s, "far_min_elevation_deg", num(farMinElevation / deg));
-	c.write(s, "far_max_elevation_deg", num(farMaxElevation / deg));
-	c.write(s, "scale_factor", num(scaleFactor));
-	c.write(s, "min_neighbors", std::to_string(minNeighbors));
-	c.write(s, "window_step", std::to_string(windowStep));
-	c.write(s, "max_size_px", num(maxSizePx));
-	c.write(s, "min_width_m", num(minWidth));
-	c.write(s, "max_width_m", num(maxWidth));
-	c.write(s, "min_top_m", num(minTop));
-	c.write(s, "max_top_m", num(maxTop));
-	c.write(s, "max_depth_m", num(maxDepth));
-	c.write(s, "min_points", std::to_string(minPoints));
-	c.write(s, "min_size_m", num(minSize));
-	c.write(s, "min_cut_size_m", num(minCutSize));
-	c.write(s, "max_size_m", num(maxSize));
-	c.write(s, "proposal_min_neighbors", std::to_string(proposalMinNeighbors));
-	c.write(s, "border_px", num(borderPx));
-	if (channel) c.write(s, "channel", channelName(*channel));
-	c.write(s, "shape_model", shapeModel);
-	c.write(s, "min_shape_score", num(minShapeScore));
-	c.write(s, "max_stages", std::to_string(maxStages));
-	writeBool(c, s, "segment_candidates", segmentCandidates);
-	writeBool(c, s, "cascade_support", cascadeSupport);
-	c.write(s, "back_wall_length_m", num(backWallLength));
-	c.write(s, "max_continuing_share", num(maxContinuingShare));
-	c.write(s, "min_separation_m", num(minSeparation));
-	c.write(s, "grow_m", num(grow));
-}
+SEMNAV_OPTIONS_FROM_TABLE(CascadeDetector::TClassOptions, classTable())
 
 std::vector<DetectionPass> CascadeDetector::TClassOptions::passes(
     int rows, double el0, double el1, cv::Size window) const
@@ -282,162 +413,20 @@ CascadeDetector::TOptions::TOptions()
 
 const std::vector<std::string>& CascadeDetector::TOptions::knownKeys()
 {
-	static const std::vector<std::string> keys{
-	    "channel",
-	    "normal_smoothing_px",
-	    "projection",
-	    "classes",
-	    "label_pixels",
-	    "floor_tolerance_m",
-	    "measure_margin",
-	    "connected_object",
-	    "proposals",
-	    "proposal_min_pixels",
-	    "proposal_join_px",
-	    "proposal_max_height_m",
-	    "proposal_margin",
-	    "proposal_size_slack",
-	    "proposal_foot_height_m",
-	    "proposal_fill",
-	    "proposal_range_gap_m",
-	    "proposal_top_margin_m",
-	    "proposal_size_check",
-	    "range_scales",
-	    "range_scale_slack",
-	    "range_cut_m",
-	    "range_objects_only",
-	    "segment_range_gap_m",
-	    "segment_max_taller",
-	    "segment_range_window",
-	    "threads"};
+	static const std::vector<std::string> keys = optionTable().keys();
 	return keys;
 }
 
 void CascadeDetector::TOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
-	checkKnownKeys(c, s, knownKeys());
-	TOptions o = *this;
-	try
-	{
-		o.channel = channelFromName(
-		    c.read_string(s, "channel", channelName(channel), false));
-	}
-	catch (const ConfigError& e)
-	{
-		throw ConfigError("[" + s + "] channel: " + e.what());
-	}
-	o.normalSmoothing =
-	    readCheckedInt(c, s, "normal_smoothing_px", normalSmoothing, 0, 10);
-	const std::string proj = c.read_string(
-	    s, "projection", panoramic ? "panoramic" : "sweep", false);
-	if (proj != "panoramic" && proj != "sweep")
-		throw ConfigError(
-		    "[" + s + "] projection = '" + proj +
-		    "' must be panoramic or sweep");
-	o.panoramic = proj == "panoramic";
-	o.labelPixels = readCheckedBool(c, s, "label_pixels", labelPixels);
-	o.floorTolerance =
-	    readChecked(c, s, "floor_tolerance_m", floorTolerance, 0, 1);
-	o.measureMargin = readChecked(c, s, "measure_margin", measureMargin, 0, 2);
-	o.connectedObject =
-	    readCheckedBool(c, s, "connected_object", connectedObject);
-	o.proposals = readCheckedBool(c, s, "proposals", proposals);
-	o.proposalMinPixels = readCheckedInt(
-	    c, s, "proposal_min_pixels", proposalMinPixels, 1, 1000000);
-	o.proposalJoinPx =
-	    readCheckedInt(c, s, "proposal_join_px", proposalJoinPx, 0, 20);
-	o.proposalMaxHeight =
-	    readChecked(c, s, "proposal_max_height_m", proposalMaxHeight, 0.05, 20);
-	o.proposalMargin =
-	    readChecked(c, s, "proposal_margin", proposalMargin, 0, 5);
-	o.proposalSizeSlack =
-	    readChecked(c, s, "proposal_size_slack", proposalSizeSlack, 1, 10);
-	o.proposalFootHeight =
-	    readChecked(c, s, "proposal_foot_height_m", proposalFootHeight, 0, 5);
-	o.proposalFill = readChecked(c, s, "proposal_fill", proposalFill, 0, 1);
-	o.proposalRangeGap =
-	    readChecked(c, s, "proposal_range_gap_m", proposalRangeGap, 0, 100);
-	o.proposalTopMargin =
-	    readChecked(c, s, "proposal_top_margin_m", proposalTopMargin, 0, 10);
-	o.proposalSizeCheck =
-	    readCheckedBool(c, s, "proposal_size_check", proposalSizeCheck);
-	o.rangeScales = readCheckedBool(c, s, "range_scales", rangeScales);
-	o.rangeScaleSlack =
-	    readChecked(c, s, "range_scale_slack", rangeScaleSlack, 1, 10);
-	o.rangeCut = readChecked(c, s, "range_cut_m", rangeCut, 0, 100);
-	o.rangeObjectsOnly =
-	    readCheckedBool(c, s, "range_objects_only", rangeObjectsOnly);
-	o.segmentRangeGap =
-	    readChecked(c, s, "segment_range_gap_m", segmentRangeGap, 0, 100);
-	o.segmentMaxTaller =
-	    readChecked(c, s, "segment_max_taller", segmentMaxTaller, 0, 1e6);
-	o.segmentRangeWindow =
-	    readCheckedBool(c, s, "segment_range_window", segmentRangeWindow);
-	o.threads = readCheckedInt(c, s, "threads", threads, 0, 64);
-	std::string list;
-	for (const auto& k : classes) list += labelName(k.label) + " ";
-	list = c.read_string(s, "classes", list, false);
-	std::istringstream in(list);
-	std::vector<TClassOptions> loaded;
-	for (std::string name; in >> name;)
-	{
-		Label l;
-		try
-		{
-			l = labelFromName(name);
-		}
-		catch (const Error& e)
-		{
-			throw ConfigError("[" + s + "] classes: " + e.what());
-		}
-		for (const auto& k : loaded)
-			if (k.label == l)
-				throw ConfigError(
-				    "[" + s + "] classes lists " + name + " twice");
-		TClassOptions k(l);
-		for (const auto& d : classes)
-			if (d.label == l) k = d;  // defaults of a known class
-		k.loadFromConfigFile(c, s + "." + name);
-		loaded.push_back(k);
-	}
-	o.classes = loaded;
-	*this = o;
+	optionTable().load(*this, c, s);
 }
 
 void CascadeDetector::TOptions::saveToConfigFile(
     mrpt::config::CConfigFileBase& c, const std::string& s) const
 {
-	c.write(s, "channel", channelName(channel));
-	c.write(s, "normal_smoothing_px", std::to_string(normalSmoothing));
-	c.write(s, "projection", std::string(panoramic ? "panoramic" : "sweep"));
-	std::string list;
-	for (const auto& k : classes)
-		list += (list.empty() ? "" : " ") + labelName(k.label);
-	c.write(s, "classes", list);
-	writeBool(c, s, "label_pixels", labelPixels);
-	c.write(s, "floor_tolerance_m", num(floorTolerance));
-	c.write(s, "measure_margin", num(measureMargin));
-	writeBool(c, s, "connected_object", connectedObject);
-	writeBool(c, s, "proposals", proposals);
-	c.write(s, "proposal_min_pixels", std::to_string(proposalMinPixels));
-	c.write(s, "proposal_join_px", std::to_string(proposalJoinPx));
-	c.write(s, "proposal_max_height_m", num(proposalMaxHeight));
-	c.write(s, "proposal_margin", num(proposalMargin));
-	c.write(s, "proposal_size_slack", num(proposalSizeSlack));
-	c.write(s, "proposal_foot_height_m", num(proposalFootHeight));
-	c.write(s, "proposal_fill", num(proposalFill));
-	c.write(s, "proposal_range_gap_m", num(proposalRangeGap));
-	c.write(s, "proposal_top_margin_m", num(proposalTopMargin));
-	writeBool(c, s, "proposal_size_check", proposalSizeCheck);
-	writeBool(c, s, "range_scales", rangeScales);
-	c.write(s, "range_scale_slack", num(rangeScaleSlack));
-	c.write(s, "range_cut_m", num(rangeCut));
-	writeBool(c, s, "range_objects_only", rangeObjectsOnly);
-	c.write(s, "segment_range_gap_m", num(segmentRangeGap));
-	c.write(s, "segment_max_taller", num(segmentMaxTaller));
-	writeBool(c, s, "segment_range_window", segmentRangeWindow);
-	c.write(s, "threads", std::to_string(threads));
+	optionTable().save(*this, c, s);
 	for (const auto& k : classes)
 		k.saveToConfigFile(c, s + "." + labelName(k.label));
 }

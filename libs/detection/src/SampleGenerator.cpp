@@ -1,7 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/config/CConfigFileBase.h>
-#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/detection/GroundTruthObject.h>
 #include <semnav/detection/SampleGenerator.h>
 
@@ -15,13 +15,49 @@ namespace semnav
 {
 namespace
 {
-constexpr double kDeg = M_PI / 180.0;
 
-std::string num(double v)
+using O = SampleGenerator::TOptions;
+const OptionTable<O>& optionTable()
 {
-	char buf[64];
-	std::snprintf(buf, sizeof(buf), "%.12g", v);
-	return buf;
+	static const auto t =
+	    OptionTable<O>()
+	        .integer(
+	            "positives", &O::positives, 1, 1000000,
+	            "Positive samples per class.")
+	        .integer(
+	            "min_object_pixels", &O::minObjectPixels, 1, 1000000,
+	            "Smallest instance cropped (detection-image pixels).")
+	        .real(
+	            "margin", &O::margin, 0.0, 2.0,
+	            "Window side = (1 + margin) x the instance box's larger "
+	            "side.")
+	        .angle(
+	            "max_x_angle_deg", &O::maxAngleX, 0, 80,
+	            "Random rotations of the perspective warp (+-): x.")
+	        .angle(
+	            "max_y_angle_deg", &O::maxAngleY, 0, 80,
+	            "Random rotations of the perspective warp (+-): y.")
+	        .angle(
+	            "max_z_angle_deg", &O::maxAngleZ, 0, 180,
+	            "Random rotations of the perspective warp (+-): z.")
+	        .real(
+	            "max_intensity_dev", &O::maxIntensityDev, 0, 255,
+	            "Random intensity shift (+-).")
+	        .real(
+	            "jitter", &O::jitter, 0, 0.5,
+	            "Window centre / size jitter (fraction of the side).")
+	        .real(
+	            "background_scale", &O::backgroundScale, 1.0, 10.0,
+	            "Background windows scaled by [1/s, s].")
+	        .real(
+	            "own_background_fraction", &O::ownBackgroundFraction, 0.0, 1.0,
+	            "Share of positives keeping their real surroundings (0: the "
+	            "paper's random backgrounds).")
+	        .flag(
+	            "range_negatives", &O::rangeNegatives,
+	            "Negatives only from the windows the detector's range gate "
+	            "lets through.");
+	return t;
 }
 
 /** Seeded generator with platform-independent mappings. */
@@ -80,62 +116,11 @@ cv::Mat randomBackground(
 
 const std::vector<std::string>& SampleGenerator::TOptions::knownKeys()
 {
-	static const std::vector<std::string> keys{
-	    "positives",
-	    "min_object_pixels",
-	    "margin",
-	    "max_x_angle_deg",
-	    "max_y_angle_deg",
-	    "max_z_angle_deg",
-	    "max_intensity_dev",
-	    "jitter",
-	    "background_scale",
-	    "own_background_fraction",
-	    "range_negatives"};
+	static const std::vector<std::string> keys = optionTable().keys();
 	return keys;
 }
 
-void SampleGenerator::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	checkKnownKeys(c, s, knownKeys());
-	TOptions o = *this;
-	o.positives = readCheckedInt(c, s, "positives", positives, 1, 1000000);
-	o.minObjectPixels =
-	    readCheckedInt(c, s, "min_object_pixels", minObjectPixels, 1, 1000000);
-	o.margin = readChecked(c, s, "margin", margin, 0.0, 2.0);
-	o.maxAngleX =
-	    readChecked(c, s, "max_x_angle_deg", maxAngleX / kDeg, 0, 80) * kDeg;
-	o.maxAngleY =
-	    readChecked(c, s, "max_y_angle_deg", maxAngleY / kDeg, 0, 80) * kDeg;
-	o.maxAngleZ =
-	    readChecked(c, s, "max_z_angle_deg", maxAngleZ / kDeg, 0, 180) * kDeg;
-	o.maxIntensityDev =
-	    readChecked(c, s, "max_intensity_dev", maxIntensityDev, 0, 255);
-	o.jitter = readChecked(c, s, "jitter", jitter, 0, 0.5);
-	o.backgroundScale =
-	    readChecked(c, s, "background_scale", backgroundScale, 1.0, 10.0);
-	o.ownBackgroundFraction = readChecked(
-	    c, s, "own_background_fraction", ownBackgroundFraction, 0.0, 1.0);
-	o.rangeNegatives = readCheckedBool(c, s, "range_negatives", rangeNegatives);
-	*this = o;
-}
-
-void SampleGenerator::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "positives", std::to_string(positives));
-	c.write(s, "min_object_pixels", std::to_string(minObjectPixels));
-	c.write(s, "margin", num(margin));
-	c.write(s, "max_x_angle_deg", num(maxAngleX / kDeg));
-	c.write(s, "max_y_angle_deg", num(maxAngleY / kDeg));
-	c.write(s, "max_z_angle_deg", num(maxAngleZ / kDeg));
-	c.write(s, "max_intensity_dev", num(maxIntensityDev));
-	c.write(s, "jitter", num(jitter));
-	c.write(s, "background_scale", num(backgroundScale));
-	c.write(s, "own_background_fraction", num(ownBackgroundFraction));
-	writeBool(c, s, "range_negatives", rangeNegatives);
-}
+SEMNAV_OPTIONS_FROM_TABLE(SampleGenerator::TOptions, optionTable())
 
 SampleGenerator::SampleGenerator() = default;
 SampleGenerator::SampleGenerator(const TOptions& options) : m_options(options)

@@ -5,8 +5,8 @@
 #include <mrpt/hwdrivers/CTuMicos.h>
 #include <mrpt/system/datetime.h>
 #include <semnav/common/AtomicFile.h>
-#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/hwdrivers/CTiltingLMS2xx.h>
 #include <semnav/hwdrivers/Lms2xxTelegramParser.h>
 #include <semnav/hwdrivers/MonitoredSerialPort.h>
@@ -72,6 +72,130 @@ std::string firstLine(const std::string& msg)
 	return msg;
 }
 
+using O = CTiltingLMS2xx::TOptions;
+const OptionTable<O>& optionTable()
+{
+	static const auto t =
+	    OptionTable<O>()
+	        .text("COM_port_LIN", &O::lmsPort, "Serial port of the LMS2xx.")
+	        .integer(
+	            "COM_baudRate", &O::baudRate, 9600, 500000,
+	            "9600 | 38400 (RS-232) | 500000 (RS-422).")
+	        .check(
+	            [](const O& o) {
+		            return o.baudRate == 9600 || o.baudRate == 38400 ||
+		                   o.baudRate == 500000;
+	            },
+	            [](const O& o)
+	            {
+		            return "COM_baudRate = " + std::to_string(o.baudRate) +
+		                   " is not an LMS2xx rate (9600, 38400, 500000)";
+	            })
+	        .integer(
+	            "FOV", &O::fovDeg, 100, 180, "Field of view, deg: 100 | 180.")
+	        .check(
+	            [](const O& o) { return o.fovDeg == 100 || o.fovDeg == 180; },
+	            "FOV must be 100 or 180")
+	        .integer(
+	            "resolution", &O::resolutionCdeg, 25, 100,
+	            "Angular resolution, 1/100 deg: 25 | 50 | 100.")
+	        .check(
+	            [](const O& o)
+	            {
+		            return o.resolutionCdeg == 25 || o.resolutionCdeg == 50 ||
+		                   o.resolutionCdeg == 100;
+	            },
+	            "resolution must be 25, 50 or 100")
+	        .check(
+	            [](const O& o)
+	            { return o.resolutionCdeg != 25 || o.fovDeg == 100; },
+	            "resolution = 25 needs FOV = 100 (LMS2xx)")
+	        .flag("mm_mode", &O::mmMode, "Millimetre range mode.")
+	        .text(
+	            "ptu_type", &O::ptuType,
+	            "dperception (Directed Perception PTU-46) | tumicos.")
+	        .check(
+	            [](const O& o) {
+		            return o.ptuType == "dperception" || o.ptuType == "tumicos";
+	            },
+	            [](const O& o) {
+		            return "ptu_type = '" + o.ptuType +
+		                   "' (known: dperception, tumicos)";
+	            })
+	        .text("ptu_port", &O::ptuPort, "Serial port of the pan-tilt unit.")
+	        .custom(
+	            "ptu_axis",
+	            [](O& o, const mrpt::config::CConfigFileBase& c,
+	               const std::string& s)
+	            {
+		            const std::string axis =
+		                c.read_string(s, "ptu_axis", std::string(1, o.ptuAxis));
+		            if (axis != "T" && axis != "P")
+			            throw ConfigError(
+			                "[" + s + "] ptu_axis must be T or P");
+		            o.ptuAxis = axis[0];
+	            },
+	            [](const O& o) { return std::string(1, o.ptuAxis); },
+	            "Axis that tilts the laser: T | P.")
+	        .real(
+	            "ptu_sign", &O::ptuSign, -1, 1,
+	            "theta = ptu_sign * head tilt + ptu_offset_deg (theta > 0 "
+	            "looks up).")
+	        .check(
+	            [](const O& o) { return o.ptuSign == 1 || o.ptuSign == -1; },
+	            "ptu_sign must be 1 or -1")
+	        .angle("ptu_offset_deg", &O::ptuOffset, -180, 180, "See ptu_sign.")
+	        .angle(
+	            "theta_min_deg", &O::thetaMin, -90, 90,
+	            "Lowest tilt of a sweep.")
+	        .angle(
+	            "theta_max_deg", &O::thetaMax, -90, 90,
+	            "Highest tilt of a sweep.")
+	        .check(
+	            [](const O& o) { return o.thetaMax > o.thetaMin; },
+	            "theta_max_deg must be larger than theta_min_deg")
+	        .angle(
+	            "tilt_speed_deg_s", &O::tiltSpeed, 0.01, 300,
+	            "Tilt speed (0.5 deg per line at the lines/s of the baud "
+	            "rate).")
+	        .real(
+	            "ptu_poll_period_s", &O::ptuPollPeriod, 0.001, 1.0,
+	            "The tilt is polled this often.")
+	        .realAt(
+	            "mount_x_m", [](O& o) -> double& { return o.mount.x; }, -10, 10,
+	            "Tilt axis in the robot frame: x.")
+	        .realAt(
+	            "mount_y_m", [](O& o) -> double& { return o.mount.y; }, -10, 10,
+	            "Tilt axis in the robot frame: y.")
+	        .realAt(
+	            "mount_z_m", [](O& o) -> double& { return o.mount.z; }, -10, 10,
+	            "Tilt axis in the robot frame: z.")
+	        .real(
+	            "max_range_m", &O::maxRange, 0.1, 81.0,
+	            "Farther returns are no returns.")
+	        .real(
+	            "range_noise_m", &O::rangeNoise, 0, 1,
+	            "Range noise (std dev) written into the observations.")
+	        .real(
+	            "stall_timeout_s", &O::stallTimeout, 0.05, 60,
+	            "No data for this long: the port is reopened.")
+	        .real(
+	            "reconnect_delay_s", &O::reconnectDelay, 0.01, 60,
+	            "Wait between reconnection attempts.")
+	        .real(
+	            "max_tilt_wait_s", &O::maxTiltWait, 0.05, 60,
+	            "Longest wait for a tilt reading.")
+	        .text(
+	            "stats_file", &O::statsFile,
+	            "Capture statistics (JSON) written here; empty: none.");
+	return t;
+}
+
+/** rawlog-grabber's keys of a sensor section. */
+const std::vector<std::string> kGrabberKeys{
+    "driver",          "process_rate", "max_queue_len",
+    "grab_decimation", "sensorLabel",  "rawlog-grabber-ignore"};
+
 /** Sleeps up to `s` seconds, waking early when `stop` is set. */
 void sleepUnless(const std::atomic<bool>& stop, double s)
 {
@@ -84,88 +208,13 @@ void sleepUnless(const std::atomic<bool>& stop, double s)
 void CTiltingLMS2xx::TOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
-	lmsPort = c.read_string(s, "COM_port_LIN", lmsPort);
-	baudRate = readCheckedInt(c, s, "COM_baudRate", baudRate, 9600, 500000);
-	if (baudRate != 9600 && baudRate != 38400 && baudRate != 500000)
-		throw ConfigError(
-		    where(s, "COM_baudRate") + " = " + std::to_string(baudRate) +
-		    " is not an LMS2xx rate (9600, 38400, 500000)");
-	fovDeg = readCheckedInt(c, s, "FOV", fovDeg, 100, 180);
-	if (fovDeg != 100 && fovDeg != 180)
-		throw ConfigError(where(s, "FOV") + " must be 100 or 180");
-	resolutionCdeg =
-	    readCheckedInt(c, s, "resolution", resolutionCdeg, 25, 100);
-	if (resolutionCdeg != 25 && resolutionCdeg != 50 && resolutionCdeg != 100)
-		throw ConfigError(where(s, "resolution") + " must be 25, 50 or 100");
-	if (resolutionCdeg == 25 && fovDeg != 100)
-		throw ConfigError(
-		    where(s, "resolution") + " = 25 needs FOV = 100 (LMS2xx)");
-	mmMode = readCheckedBool(c, s, "mm_mode", mmMode);
-	ptuType = c.read_string(s, "ptu_type", ptuType);
-	if (ptuType != "dperception" && ptuType != "tumicos")
-		throw ConfigError(
-		    where(s, "ptu_type") + " = '" + ptuType +
-		    "' (known: dperception, tumicos)");
-	ptuPort = c.read_string(s, "ptu_port", ptuPort);
-	const std::string axis =
-	    c.read_string(s, "ptu_axis", std::string(1, ptuAxis));
-	if (axis != "T" && axis != "P")
-		throw ConfigError(where(s, "ptu_axis") + " must be T or P");
-	ptuAxis = axis[0];
-	ptuSign = readChecked(c, s, "ptu_sign", ptuSign, -1, 1);
-	if (ptuSign != 1 && ptuSign != -1)
-		throw ConfigError(where(s, "ptu_sign") + " must be 1 or -1");
-	ptuOffset = mrpt::DEG2RAD(readChecked(
-	    c, s, "ptu_offset_deg", mrpt::RAD2DEG(ptuOffset), -180, 180));
-	thetaMin = mrpt::DEG2RAD(
-	    readChecked(c, s, "theta_min_deg", mrpt::RAD2DEG(thetaMin), -90, 90));
-	thetaMax = mrpt::DEG2RAD(
-	    readChecked(c, s, "theta_max_deg", mrpt::RAD2DEG(thetaMax), -90, 90));
-	if (!(thetaMax > thetaMin))
-		throw ConfigError(
-		    where(s, "theta_max_deg") + " must be larger than theta_min_deg");
-	tiltSpeed = mrpt::DEG2RAD(readChecked(
-	    c, s, "tilt_speed_deg_s", mrpt::RAD2DEG(tiltSpeed), 0.01, 300));
-	ptuPollPeriod =
-	    readChecked(c, s, "ptu_poll_period_s", ptuPollPeriod, 0.001, 1.0);
-	mount.x = readChecked(c, s, "mount_x_m", mount.x, -10, 10);
-	mount.y = readChecked(c, s, "mount_y_m", mount.y, -10, 10);
-	mount.z = readChecked(c, s, "mount_z_m", mount.z, -10, 10);
-	maxRange = readChecked(c, s, "max_range_m", maxRange, 0.1, 81.0);
-	rangeNoise = readChecked(c, s, "range_noise_m", rangeNoise, 0, 1);
-	stallTimeout = readChecked(c, s, "stall_timeout_s", stallTimeout, 0.05, 60);
-	reconnectDelay =
-	    readChecked(c, s, "reconnect_delay_s", reconnectDelay, 0.01, 60);
-	maxTiltWait = readChecked(c, s, "max_tilt_wait_s", maxTiltWait, 0.05, 60);
-	statsFile = c.read_string(s, "stats_file", statsFile);
+	optionTable().load(*this, c, s, kGrabberKeys);
 }
 
 void CTiltingLMS2xx::TOptions::saveToConfigFile(
     mrpt::config::CConfigFileBase& c, const std::string& s) const
 {
-	c.write(s, "COM_port_LIN", lmsPort);
-	c.write(s, "COM_baudRate", baudRate);
-	c.write(s, "FOV", fovDeg);
-	c.write(s, "resolution", resolutionCdeg);
-	c.write(s, "mm_mode", mmMode);
-	c.write(s, "ptu_type", ptuType);
-	c.write(s, "ptu_port", ptuPort);
-	c.write(s, "ptu_axis", std::string(1, ptuAxis));
-	c.write(s, "ptu_sign", ptuSign);
-	c.write(s, "ptu_offset_deg", mrpt::RAD2DEG(ptuOffset));
-	c.write(s, "theta_min_deg", mrpt::RAD2DEG(thetaMin));
-	c.write(s, "theta_max_deg", mrpt::RAD2DEG(thetaMax));
-	c.write(s, "tilt_speed_deg_s", mrpt::RAD2DEG(tiltSpeed));
-	c.write(s, "ptu_poll_period_s", ptuPollPeriod);
-	c.write(s, "mount_x_m", mount.x);
-	c.write(s, "mount_y_m", mount.y);
-	c.write(s, "mount_z_m", mount.z);
-	c.write(s, "max_range_m", maxRange);
-	c.write(s, "range_noise_m", rangeNoise);
-	c.write(s, "stall_timeout_s", stallTimeout);
-	c.write(s, "reconnect_delay_s", reconnectDelay);
-	c.write(s, "max_tilt_wait_s", maxTiltWait);
-	c.write(s, "stats_file", statsFile);
+	optionTable().save(*this, c, s);
 }
 
 CTiltingLMS2xx::CTiltingLMS2xx() : mrpt::system::COutputLogger("CTiltingLMS2xx")
@@ -199,18 +248,6 @@ CTiltingLMS2xx::~CTiltingLMS2xx()
 void CTiltingLMS2xx::loadConfig_sensorSpecific(
     const mrpt::config::CConfigFileBase& c, const std::string& section)
 {
-	checkKnownKeys(
-	    c, section,
-	    {"driver",           "process_rate",      "max_queue_len",
-	     "grab_decimation",  "sensorLabel",       "rawlog-grabber-ignore",
-	     "COM_port_LIN",     "COM_baudRate",      "FOV",
-	     "resolution",       "mm_mode",           "ptu_type",
-	     "ptu_port",         "ptu_axis",          "ptu_sign",
-	     "ptu_offset_deg",   "theta_min_deg",     "theta_max_deg",
-	     "tilt_speed_deg_s", "ptu_poll_period_s", "mount_x_m",
-	     "mount_y_m",        "mount_z_m",         "max_range_m",
-	     "range_noise_m",    "stall_timeout_s",   "reconnect_delay_s",
-	     "max_tilt_wait_s",  "stats_file"});
 	TOptions o;
 	o.loadFromConfigFile(c, section);
 	if (o.lmsPort.empty())

@@ -3,8 +3,8 @@
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/random/RandomGenerators.h>
-#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/localization/Localizer.h>
 #include <semnav/map/SemanticMap.h>
 
@@ -15,127 +15,101 @@
 
 namespace semnav
 {
-using mrpt::DEG2RAD;
-using mrpt::RAD2DEG;
 
-void Localizer::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
+namespace
 {
-	checkKnownKeys(
-	    c, s,
-	    {"particles",
-	     "global_particles",
-	     "adaptive_sample_size",
-	     "kld_bin_xy_m",
-	     "kld_bin_yaw_deg",
-	     "kld_delta",
-	     "kld_epsilon",
-	     "kld_min_samples",
-	     "kld_max_samples",
-	     "ess_threshold",
-	     "motion_xy_per_m",
-	     "motion_yaw_deg_per_m",
-	     "motion_yaw_per_rad",
-	     "motion_min_xy_m",
-	     "motion_min_yaw_deg",
-	     "initial_std_xy_m",
-	     "initial_std_yaw_deg",
-	     "main_directions",
-	     "heading_noise_deg",
-	     "max_correction_deg",
-	     "effective_points",
-	     "global_effective_points",
-	     "converged_std_xy_m",
-	     "converged_std_yaw_deg",
-	     "kidnap_detection",
-	     "kidnap_inlier_fraction",
-	     "kidnap_updates",
-	     "free_cell_threshold",
-	     "seed"});
-	particles = readCheckedInt(c, s, "particles", particles, 1, 10000000);
-	globalParticles =
-	    readCheckedInt(c, s, "global_particles", globalParticles, 1, 10000000);
-	adaptiveSampleSize =
-	    readCheckedBool(c, s, "adaptive_sample_size", adaptiveSampleSize);
-	kldBinXY = readChecked(c, s, "kld_bin_xy_m", kldBinXY, 0.001, 10);
-	kldBinYaw = DEG2RAD(
-	    readChecked(c, s, "kld_bin_yaw_deg", RAD2DEG(kldBinYaw), 0.01, 180));
-	kldDelta = readChecked(c, s, "kld_delta", kldDelta, 1e-6, 0.999);
-	kldEpsilon = readChecked(c, s, "kld_epsilon", kldEpsilon, 1e-6, 10);
-	kldMinSamples =
-	    readCheckedInt(c, s, "kld_min_samples", kldMinSamples, 1, 10000000);
-	kldMaxSamples = readCheckedInt(
-	    c, s, "kld_max_samples", kldMaxSamples, kldMinSamples, 10000000);
-	essThreshold = readChecked(c, s, "ess_threshold", essThreshold, 0, 1);
-	motionXYPerMeter =
-	    readChecked(c, s, "motion_xy_per_m", motionXYPerMeter, 0, 10);
-	motionYawPerMeter = DEG2RAD(readChecked(
-	    c, s, "motion_yaw_deg_per_m", RAD2DEG(motionYawPerMeter), 0, 180));
-	motionYawPerRad =
-	    readChecked(c, s, "motion_yaw_per_rad", motionYawPerRad, 0, 10);
-	motionMinXY = readChecked(c, s, "motion_min_xy_m", motionMinXY, 0, 10);
-	motionMinYaw = DEG2RAD(
-	    readChecked(c, s, "motion_min_yaw_deg", RAD2DEG(motionMinYaw), 0, 180));
-	initialStdXY = readChecked(c, s, "initial_std_xy_m", initialStdXY, 0, 100);
-	initialStdYaw = DEG2RAD(readChecked(
-	    c, s, "initial_std_yaw_deg", RAD2DEG(initialStdYaw), 0, 180));
-	mainDirections = readCheckedBool(c, s, "main_directions", mainDirections);
-	headingNoise = DEG2RAD(
-	    readChecked(c, s, "heading_noise_deg", RAD2DEG(headingNoise), 0, 45));
-	maxCorrection = DEG2RAD(
-	    readChecked(c, s, "max_correction_deg", RAD2DEG(maxCorrection), 0, 45));
-	effectivePoints =
-	    readChecked(c, s, "effective_points", effectivePoints, 0.01, 1e6);
-	globalEffectivePoints = readChecked(
-	    c, s, "global_effective_points", globalEffectivePoints, 0.01, 1e6);
-	convergedStdXY =
-	    readChecked(c, s, "converged_std_xy_m", convergedStdXY, 0, 100);
-	convergedStdYaw = DEG2RAD(readChecked(
-	    c, s, "converged_std_yaw_deg", RAD2DEG(convergedStdYaw), 0, 180));
-	kidnapDetection =
-	    readCheckedBool(c, s, "kidnap_detection", kidnapDetection);
-	kidnapInlierFraction =
-	    readChecked(c, s, "kidnap_inlier_fraction", kidnapInlierFraction, 0, 1);
-	kidnapUpdates =
-	    readCheckedInt(c, s, "kidnap_updates", kidnapUpdates, 1, 1000);
-	freeCellThreshold =
-	    readChecked(c, s, "free_cell_threshold", freeCellThreshold, 0, 1);
-	seed = readCheckedInt(c, s, "seed", seed, 0, 1 << 30);
+using O = Localizer::TOptions;
+const OptionTable<O>& optionTable()
+{
+	static const auto t =
+	    OptionTable<O>()
+	        .integer(
+	            "particles", &O::particles, 1, 10000000,
+	            "Particles of a pose-tracking start.")
+	        .integer(
+	            "global_particles", &O::globalParticles, 1, 10000000,
+	            "Particles of a global start.")
+	        .flag(
+	            "adaptive_sample_size", &O::adaptiveSampleSize,
+	            "KLD adaptive sample size (MRPT TKLDParams).")
+	        .real("kld_bin_xy_m", &O::kldBinXY, 0.001, 10, "KLD bin size.")
+	        .angle("kld_bin_yaw_deg", &O::kldBinYaw, 0.01, 180, "KLD bin size.")
+	        .real("kld_delta", &O::kldDelta, 1e-6, 0.999, "KLD delta.")
+	        .real("kld_epsilon", &O::kldEpsilon, 1e-6, 10, "KLD epsilon.")
+	        .integer(
+	            "kld_min_samples", &O::kldMinSamples, 1, 10000000,
+	            "KLD sample size bounds.")
+	        .integer(
+	            "kld_max_samples", &O::kldMaxSamples, &O::kldMinSamples,
+	            10000000, "KLD sample size bounds.")
+	        .real(
+	            "ess_threshold", &O::essThreshold, 0, 1,
+	            "Resample when the effective sample size fraction drops "
+	            "below.")
+	        .real(
+	            "motion_xy_per_m", &O::motionXYPerMeter, 0, 10,
+	            "Motion model: std of x, y per metre travelled.")
+	        .angle(
+	            "motion_yaw_deg_per_m", &O::motionYawPerMeter, 0, 180,
+	            "Motion model: std of yaw per metre travelled.")
+	        .real(
+	            "motion_yaw_per_rad", &O::motionYawPerRad, 0, 10,
+	            "Motion model: std of yaw per radian turned.")
+	        .real(
+	            "motion_min_xy_m", &O::motionMinXY, 0, 10,
+	            "Motion model: minimum std of x, y.")
+	        .angle(
+	            "motion_min_yaw_deg", &O::motionMinYaw, 0, 180,
+	            "Motion model: minimum std of yaw.")
+	        .real(
+	            "initial_std_xy_m", &O::initialStdXY, 0, 100,
+	            "Spread of a pose-tracking start.")
+	        .angle(
+	            "initial_std_yaw_deg", &O::initialStdYaw, 0, 180,
+	            "Spread of a pose-tracking start.")
+	        .flag(
+	            "main_directions", &O::mainDirections,
+	            "Main-direction heading correction in the propagation.")
+	        .angle(
+	            "heading_noise_deg", &O::headingNoise, 0, 45,
+	            "Noise added to the corrected heading.")
+	        .angle(
+	            "max_correction_deg", &O::maxCorrection, 0, 45,
+	            "Largest heading correction.")
+	        .real(
+	            "effective_points", &O::effectivePoints, 0.01, 1e6,
+	            "Log-likelihood scaled to this many independent samples "
+	            "per sweep.")
+	        .real(
+	            "global_effective_points", &O::globalEffectivePoints, 0.01, 1e6,
+	            "The same after a global start, until converged.")
+	        .real(
+	            "converged_std_xy_m", &O::convergedStdXY, 0, 100,
+	            "Converged when the spread is below this...")
+	        .angle(
+	            "converged_std_yaw_deg", &O::convergedStdYaw, 0, 180,
+	            "...and this.")
+	        .flag(
+	            "kidnap_detection", &O::kidnapDetection,
+	            "Known map: restart globally when the walls stop matching.")
+	        .real(
+	            "kidnap_inlier_fraction", &O::kidnapInlierFraction, 0, 1,
+	            "Kidnapped: fewer wall samples than this within 2 sigma of "
+	            "a map wall...")
+	        .integer(
+	            "kidnap_updates", &O::kidnapUpdates, 1, 1000,
+	            "...for this many updates.")
+	        .real(
+	            "free_cell_threshold", &O::freeCellThreshold, 0, 1,
+	            "Global starts use seen cells with occupancy below this.")
+	        .integer(
+	            "seed", &O::seed, 0, 1 << 30,
+	            "Random seed (MRPT's generator).");
+	return t;
 }
+}  // namespace
 
-void Localizer::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "particles", particles);
-	c.write(s, "global_particles", globalParticles);
-	c.write(s, "adaptive_sample_size", adaptiveSampleSize);
-	c.write(s, "kld_bin_xy_m", kldBinXY);
-	c.write(s, "kld_bin_yaw_deg", RAD2DEG(kldBinYaw));
-	c.write(s, "kld_delta", kldDelta);
-	c.write(s, "kld_epsilon", kldEpsilon);
-	c.write(s, "kld_min_samples", kldMinSamples);
-	c.write(s, "kld_max_samples", kldMaxSamples);
-	c.write(s, "ess_threshold", essThreshold);
-	c.write(s, "motion_xy_per_m", motionXYPerMeter);
-	c.write(s, "motion_yaw_deg_per_m", RAD2DEG(motionYawPerMeter));
-	c.write(s, "motion_yaw_per_rad", motionYawPerRad);
-	c.write(s, "motion_min_xy_m", motionMinXY);
-	c.write(s, "motion_min_yaw_deg", RAD2DEG(motionMinYaw));
-	c.write(s, "initial_std_xy_m", initialStdXY);
-	c.write(s, "initial_std_yaw_deg", RAD2DEG(initialStdYaw));
-	c.write(s, "main_directions", mainDirections);
-	c.write(s, "heading_noise_deg", RAD2DEG(headingNoise));
-	c.write(s, "max_correction_deg", RAD2DEG(maxCorrection));
-	c.write(s, "effective_points", effectivePoints);
-	c.write(s, "global_effective_points", globalEffectivePoints);
-	c.write(s, "converged_std_xy_m", convergedStdXY);
-	c.write(s, "converged_std_yaw_deg", RAD2DEG(convergedStdYaw));
-	c.write(s, "kidnap_detection", kidnapDetection);
-	c.write(s, "kidnap_inlier_fraction", kidnapInlierFraction);
-	c.write(s, "kidnap_updates", kidnapUpdates);
-	c.write(s, "free_cell_threshold", freeCellThreshold);
-	c.write(s, "seed", seed);
-}
+SEMNAV_OPTIONS_FROM_TABLE(Localizer::TOptions, optionTable())
 
 mrpt::bayes::CParticleFilter::TParticleFilterOptions Localizer::pfOptions(
     const TOptions& o)

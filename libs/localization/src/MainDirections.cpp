@@ -1,6 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-#include <mrpt/core/bits_math.h>
-#include <semnav/common/ConfigChecks.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/localization/MainDirections.h>
 
 #include <cmath>
@@ -15,30 +14,22 @@ double MainDirections::wrapQuarter(double a)
 	return a - M_PI / 4;
 }
 
-void MainDirections::TEstimateOptions::load(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
+const OptionTable<MainDirections::TEstimateOptions>&
+MainDirections::TEstimateOptions::optionTable()
 {
-	tolerance = mrpt::DEG2RAD(readChecked(
-	    c, s, "direction_tolerance_deg", mrpt::RAD2DEG(tolerance), 0.1, 45));
-	minLength = readChecked(c, s, "direction_min_length_m", minLength, 0, 1000);
-	minFraction =
-	    readChecked(c, s, "direction_min_fraction", minFraction, 0, 1);
-}
-
-void MainDirections::TEstimateOptions::save(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "direction_tolerance_deg", mrpt::RAD2DEG(tolerance));
-	c.write(s, "direction_min_length_m", minLength);
-	c.write(s, "direction_min_fraction", minFraction);
-}
-
-const std::vector<std::string>& MainDirections::TEstimateOptions::keys()
-{
-	static const std::vector<std::string> k{
-	    "direction_tolerance_deg", "direction_min_length_m",
-	    "direction_min_fraction"};
-	return k;
+	using O = TEstimateOptions;
+	static const auto t =
+	    OptionTable<O>()
+	        .angle(
+	            "direction_tolerance_deg", &O::tolerance, 0.1, 45,
+	            "Walls within this of the main direction are inliers.")
+	        .real(
+	            "direction_min_length_m", &O::minLength, 0, 1000,
+	            "Inliers must be at least this long in total...")
+	        .real(
+	            "direction_min_fraction", &O::minFraction, 0, 1,
+	            "...and this fraction of all walls' length.");
+	return t;
 }
 
 std::optional<double> MainDirections::estimate(

@@ -1,5 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-#include <semnav/common/ConfigChecks.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/localization/MainDirections.h>
 #include <semnav/localization/WallExtractor.h>
 #include <semnav/perception/LabeledSweep.h>
@@ -10,39 +10,44 @@
 
 namespace semnav
 {
-void WallExtractor::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
+namespace
 {
-	checkKnownKeys(
-	    c, s,
-	    {"min_points", "min_length_m", "max_residual_m", "max_normal_z",
-	     "endpoint_quantile", "sample_spacing_m", "max_samples",
-	     "direction_tolerance_deg", "direction_min_length_m",
-	     "direction_min_fraction"});
-	minPoints = readCheckedInt(c, s, "min_points", minPoints, 3, 1000000);
-	minLength = readChecked(c, s, "min_length_m", minLength, 0, 100);
-	maxResidual = readChecked(c, s, "max_residual_m", maxResidual, 0.001, 1);
-	maxNormalZ = readChecked(c, s, "max_normal_z", maxNormalZ, 0, 1);
-	endpointQuantile =
-	    readChecked(c, s, "endpoint_quantile", endpointQuantile, 0, 0.25);
-	sampleSpacing =
-	    readChecked(c, s, "sample_spacing_m", sampleSpacing, 0.01, 10);
-	maxSamples = readCheckedInt(c, s, "max_samples", maxSamples, 1, 100000);
-	directions.load(c, s);
+using O = WallExtractor::TOptions;
+const OptionTable<O>& optionTable()
+{
+	static const auto t =
+	    OptionTable<O>()
+	        .integer(
+	            "min_points", &O::minPoints, 3, 1000000,
+	            "Wall regions with fewer points are skipped.")
+	        .real(
+	            "min_length_m", &O::minLength, 0, 100,
+	            "Fitted segments shorter than this are dropped.")
+	        .real(
+	            "max_residual_m", &O::maxResidual, 0.001, 1,
+	            "Segments whose points spread more around the line are "
+	            "dropped.")
+	        .real(
+	            "max_normal_z", &O::maxNormalZ, 0, 1,
+	            "|normal z| above this is not a vertical surface.")
+	        .real(
+	            "endpoint_quantile", &O::endpointQuantile, 0, 0.25,
+	            "Endpoints at this quantile of the points along the line "
+	            "(and 1 - it).")
+	        .real(
+	            "sample_spacing_m", &O::sampleSpacing, 0.01, 10,
+	            "Spacing of the likelihood samples along the segments.")
+	        .integer(
+	            "max_samples", &O::maxSamples, 1, 100000,
+	            "At most this many likelihood samples per sweep.")
+	        .embed(
+	            &O::directions,
+	            MainDirections::TEstimateOptions::optionTable());
+	return t;
 }
+}  // namespace
 
-void WallExtractor::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "min_points", minPoints);
-	c.write(s, "min_length_m", minLength);
-	c.write(s, "max_residual_m", maxResidual);
-	c.write(s, "max_normal_z", maxNormalZ);
-	c.write(s, "endpoint_quantile", endpointQuantile);
-	c.write(s, "sample_spacing_m", sampleSpacing);
-	c.write(s, "max_samples", maxSamples);
-	directions.save(c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(WallExtractor::TOptions, optionTable())
 
 WallObservation WallExtractor::extract(const LabeledSweep& ls) const
 {

@@ -1,5 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-#include <semnav/common/ConfigChecks.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/localization/MainDirections.h>
 #include <semnav/localization/WallMap.h>
 #include <semnav/map/SemanticMap.h>
@@ -11,40 +11,44 @@
 
 namespace semnav
 {
-void WallMap::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
+namespace
 {
-	checkKnownKeys(
-	    c, s,
-	    {"resolution_m", "sigma_m", "max_distance_m", "hit_weight",
-	     "random_weight", "unknown_weight", "unknown_extension_m", "margin_m",
-	     "direction_tolerance_deg", "direction_min_length_m",
-	     "direction_min_fraction"});
-	resolution = readChecked(c, s, "resolution_m", resolution, 0.005, 1);
-	sigma = readChecked(c, s, "sigma_m", sigma, 0.005, 5);
-	maxDistance = readChecked(c, s, "max_distance_m", maxDistance, 0.01, 50);
-	hitWeight = readChecked(c, s, "hit_weight", hitWeight, 0, 1);
-	randomWeight = readChecked(c, s, "random_weight", randomWeight, 1e-6, 1);
-	unknownWeight = readChecked(c, s, "unknown_weight", unknownWeight, 1e-6, 1);
-	unknownExtension =
-	    readChecked(c, s, "unknown_extension_m", unknownExtension, 0, 100);
-	margin = readChecked(c, s, "margin_m", margin, 0, 100);
-	directions.load(c, s);
+using O = WallMap::TOptions;
+const OptionTable<O>& optionTable()
+{
+	static const auto t =
+	    OptionTable<O>()
+	        .real(
+	            "resolution_m", &O::resolution, 0.005, 1,
+	            "Cell size of the likelihood field over the map's walls.")
+	        .real(
+	            "sigma_m", &O::sigma, 0.005, 5,
+	            "Std dev of a wall sample's distance to a map wall.")
+	        .real(
+	            "max_distance_m", &O::maxDistance, 0.01, 50,
+	            "Distances are clamped to this.")
+	        .real(
+	            "hit_weight", &O::hitWeight, 0, 1,
+	            "Mixture weight of the wall likelihood.")
+	        .real(
+	            "random_weight", &O::randomWeight, 1e-6, 1,
+	            "Mixture weight of a random return.")
+	        .real(
+	            "unknown_weight", &O::unknownWeight, 1e-6, 1,
+	            "Likelihood of a sample in a never-observed cell (new "
+	            "walls are not mismatches).")
+	        .real(
+	            "unknown_extension_m", &O::unknownExtension, 0, 100,
+	            "Segments go on this far into never-observed cells.")
+	        .real("margin_m", &O::margin, 0, 100, "Room around the walls.")
+	        .embed(
+	            &O::directions,
+	            MainDirections::TEstimateOptions::optionTable());
+	return t;
 }
+}  // namespace
 
-void WallMap::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "resolution_m", resolution);
-	c.write(s, "sigma_m", sigma);
-	c.write(s, "max_distance_m", maxDistance);
-	c.write(s, "hit_weight", hitWeight);
-	c.write(s, "random_weight", randomWeight);
-	c.write(s, "unknown_weight", unknownWeight);
-	c.write(s, "unknown_extension_m", unknownExtension);
-	c.write(s, "margin_m", margin);
-	directions.save(c, s);
-}
+SEMNAV_OPTIONS_FROM_TABLE(WallMap::TOptions, optionTable())
 
 void WallMap::addSegments(const std::vector<WallSegment>& worldSegments)
 {

@@ -2,8 +2,8 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/poses/CPose3D.h>
 #include <octomap/OcTree.h>
-#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/map/SemanticMap.h>
 
 #include <algorithm>
@@ -23,120 +23,108 @@ const char* kObservations = "observations";
 
 const char* const SemanticMap::kStairsSweeps = "stairs_sweeps";
 
-void SemanticMap::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
+namespace
 {
-	checkKnownKeys(
-	    c, s,
-	    {"resolution_m",
-	     "grow_margin_m",
-	     "obstacle_min_height_m",
-	     "robot_height_m",
-	     "robot_radius_m",
-	     "hit_probability",
-	     "free_probability",
-	     "occupied_threshold",
-	     "free_threshold",
-	     "merge_distance_m",
-	     "object_merge_distance_m",
-	     "min_observations",
-	     "door_min_observations",
-	     "min_detection_ratio",
-	     "stairs_min_detection_ratio",
-	     "sure_shape_score",
-	     "sure_min_detection_ratio",
-	     "unsure_min_observations",
-	     "view_min_pixels",
-	     "view_max_bearing_deg",
-	     "washbasin_min_top_m",
-	     "washbasin_max_wall_distance_m",
-	     "stairs_max_bottom_m",
-	     "stairs_centroid_from_cells",
-	     "stairs_min_cell_share",
-	     "door_min_height_m",
-	     "octomap"});
-	resolution = readChecked(c, s, "resolution_m", resolution, 0.005, 1.0);
-	growMargin = readChecked(c, s, "grow_margin_m", growMargin, 0, 100);
-	obstacleMinHeight =
-	    readChecked(c, s, "obstacle_min_height_m", obstacleMinHeight, 0, 1.0);
-	robotHeight =
-	    readChecked(c, s, "robot_height_m", robotHeight, obstacleMinHeight, 10);
-	robotRadius = readChecked(c, s, "robot_radius_m", robotRadius, 0, 5);
-	hitProbability =
-	    readChecked(c, s, "hit_probability", hitProbability, 0.5, 0.99);
-	freeProbability =
-	    readChecked(c, s, "free_probability", freeProbability, 0.01, 0.5);
-	occupiedThreshold =
-	    readChecked(c, s, "occupied_threshold", occupiedThreshold, 0.5, 1);
-	freeThreshold = readChecked(c, s, "free_threshold", freeThreshold, 0, 0.5);
-	mergeDistance =
-	    readChecked(c, s, "merge_distance_m", mergeDistance, 0.01, 10);
-	objectMergeDistance = readChecked(
-	    c, s, "object_merge_distance_m", objectMergeDistance, 0.01, 10);
-	minObservations =
-	    readCheckedInt(c, s, "min_observations", minObservations, 1, 1000);
-	doorMinObservations = readCheckedInt(
-	    c, s, "door_min_observations", doorMinObservations, 1, 1000);
-	minDetectionRatio =
-	    readChecked(c, s, "min_detection_ratio", minDetectionRatio, 0, 1);
-	stairsMinDetectionRatio = readChecked(
-	    c, s, "stairs_min_detection_ratio", stairsMinDetectionRatio, 0, 1);
-	sureShapeScore =
-	    readChecked(c, s, "sure_shape_score", sureShapeScore, 0, 1);
-	sureMinDetectionRatio = readChecked(
-	    c, s, "sure_min_detection_ratio", sureMinDetectionRatio, 0, 1);
-	unsureMinObservations = readCheckedInt(
-	    c, s, "unsure_min_observations", unsureMinObservations, 1, 1000);
-	viewMinPixels =
-	    readCheckedInt(c, s, "view_min_pixels", viewMinPixels, 0, 1000000);
-	viewMaxBearingDeg =
-	    readChecked(c, s, "view_max_bearing_deg", viewMaxBearingDeg, 0, 180);
-	washbasinMinTop =
-	    readChecked(c, s, "washbasin_min_top_m", washbasinMinTop, 0, 3);
-	washbasinMaxWallDistance = readChecked(
-	    c, s, "washbasin_max_wall_distance_m", washbasinMaxWallDistance, 0, 5);
-	stairsMaxBottom =
-	    readChecked(c, s, "stairs_max_bottom_m", stairsMaxBottom, 0, 3);
-	stairsCentroidFromCells = readCheckedBool(
-	    c, s, "stairs_centroid_from_cells", stairsCentroidFromCells);
-	stairsMinCellShare =
-	    readChecked(c, s, "stairs_min_cell_share", stairsMinCellShare, 0, 1);
-	doorMinHeight =
-	    readChecked(c, s, "door_min_height_m", doorMinHeight, 0, 10);
-	octomap = readCheckedBool(c, s, "octomap", octomap);
+using O = SemanticMap::TOptions;
+const OptionTable<O>& optionTable()
+{
+	static const auto t =
+	    OptionTable<O>()
+	        .real(
+	            "resolution_m", &O::resolution, 0.005, 1.0,
+	            "Cell size (the paper: 5 cm).")
+	        .real(
+	            "grow_margin_m", &O::growMargin, 0, 100,
+	            "Room added around new points when the map grows.")
+	        .real(
+	            "obstacle_min_height_m", &O::obstacleMinHeight, 0, 1.0,
+	            "Points from floor + this height...")
+	        .real(
+	            "robot_height_m", &O::robotHeight, &O::obstacleMinHeight, 10,
+	            "...up to this height are obstacles.")
+	        .real(
+	            "robot_radius_m", &O::robotRadius, 0, 5,
+	            "The cells the robot stands on are marked free.")
+	        .real(
+	            "hit_probability", &O::hitProbability, 0.5, 0.99,
+	            "Occupancy update of a cell hit in a sweep.")
+	        .real(
+	            "free_probability", &O::freeProbability, 0.01, 0.5,
+	            "Occupancy update of a cell seen free in a sweep.")
+	        .real(
+	            "occupied_threshold", &O::occupiedThreshold, 0.5, 1,
+	            "Occupied above this occupancy (also map.yaml's).")
+	        .real(
+	            "free_threshold", &O::freeThreshold, 0, 0.5,
+	            "Free below this occupancy (also map.yaml's).")
+	        .real(
+	            "merge_distance_m", &O::mergeDistance, 0.01, 10,
+	            "Doors and stairs closer than this (or overlapping) are one "
+	            "object.")
+	        .real(
+	            "object_merge_distance_m", &O::objectMergeDistance, 0.01, 10,
+	            "Washbasins and wastebaskets join an instance only this "
+	            "close to one of its detections.")
+	        .integer(
+	            "min_observations", &O::minObservations, 1, 1000,
+	            "Cascade objects seen in fewer sweeps are not reported.")
+	        .integer(
+	            "door_min_observations", &O::doorMinObservations, 1, 1000,
+	            "Doors seen in fewer sweeps are not reported.")
+	        .real(
+	            "min_detection_ratio", &O::minDetectionRatio, 0, 1,
+	            "Cascade objects detected in a smaller share of the sweeps "
+	            "that saw them are not reported.")
+	        .real(
+	            "stairs_min_detection_ratio", &O::stairsMinDetectionRatio, 0, 1,
+	            "The same for stairs.")
+	        .real(
+	            "sure_shape_score", &O::sureShapeScore, 0, 1,
+	            "An object is sure when a detection scored this on its 3D "
+	            "shape check.")
+	        .real(
+	            "sure_min_detection_ratio", &O::sureMinDetectionRatio, 0, 1,
+	            "Sure objects need only this detection ratio.")
+	        .integer(
+	            "unsure_min_observations", &O::unsureMinObservations, 1, 1000,
+	            "Objects that are not sure need this many "
+	            "detections.")
+	        .integer(
+	            "view_min_pixels", &O::viewMinPixels, 0, 1000000,
+	            "A sweep sees an object in line of sight that would "
+	            "cover this many pixels...")
+	        .real(
+	            "view_max_bearing_deg", &O::viewMaxBearingDeg, 0, 180,
+	            "...within this bearing of the robot's heading.")
+	        .real(
+	            "washbasin_min_top_m", &O::washbasinMinTop, 0, 3,
+	            "Washbasins never reaching this height are not reported.")
+	        .real(
+	            "washbasin_max_wall_distance_m", &O::washbasinMaxWallDistance,
+	            0, 5,
+	            "Washbasins without a wall this close are not reported "
+	            "(0: no check).")
+	        .real(
+	            "stairs_max_bottom_m", &O::stairsMaxBottom, 0, 3,
+	            "Stairs never coming down to this height are not reported.")
+	        .flag(
+	            "stairs_centroid_from_cells", &O::stairsCentroidFromCells,
+	            "A staircase's centroid is that of its stairs cells.")
+	        .real(
+	            "stairs_min_cell_share", &O::stairsMinCellShare, 0, 1,
+	            "Only cells labelled stairs in this share of the flight's "
+	            "sweeps (0: all).")
+	        .real(
+	            "door_min_height_m", &O::doorMinHeight, 0, 10,
+	            "Lower doors are not reported.")
+	        .flag(
+	            "octomap", &O::octomap,
+	            "Put every point into the OctoMap (octomap.bt).");
+	return t;
 }
+}  // namespace
 
-void SemanticMap::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "resolution_m", resolution);
-	c.write(s, "grow_margin_m", growMargin);
-	c.write(s, "obstacle_min_height_m", obstacleMinHeight);
-	c.write(s, "robot_height_m", robotHeight);
-	c.write(s, "robot_radius_m", robotRadius);
-	c.write(s, "hit_probability", hitProbability);
-	c.write(s, "free_probability", freeProbability);
-	c.write(s, "occupied_threshold", occupiedThreshold);
-	c.write(s, "free_threshold", freeThreshold);
-	c.write(s, "merge_distance_m", mergeDistance);
-	c.write(s, "object_merge_distance_m", objectMergeDistance);
-	c.write(s, "min_observations", minObservations);
-	c.write(s, "door_min_observations", doorMinObservations);
-	c.write(s, "min_detection_ratio", minDetectionRatio);
-	c.write(s, "stairs_min_detection_ratio", stairsMinDetectionRatio);
-	c.write(s, "sure_shape_score", sureShapeScore);
-	c.write(s, "sure_min_detection_ratio", sureMinDetectionRatio);
-	c.write(s, "unsure_min_observations", unsureMinObservations);
-	c.write(s, "view_min_pixels", viewMinPixels);
-	c.write(s, "view_max_bearing_deg", viewMaxBearingDeg);
-	c.write(s, "washbasin_min_top_m", washbasinMinTop);
-	c.write(s, "washbasin_max_wall_distance_m", washbasinMaxWallDistance);
-	c.write(s, "stairs_max_bottom_m", stairsMaxBottom);
-	writeBool(c, s, "stairs_centroid_from_cells", stairsCentroidFromCells);
-	c.write(s, "stairs_min_cell_share", stairsMinCellShare);
-	c.write(s, "door_min_height_m", doorMinHeight);
-	writeBool(c, s, "octomap", octomap);
-}
+SEMNAV_OPTIONS_FROM_TABLE(SemanticMap::TOptions, optionTable())
 
 SemanticMap::SemanticMap() : SemanticMap(TOptions()) {}
 

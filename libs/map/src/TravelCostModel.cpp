@@ -1,8 +1,8 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/config/CConfigFileBase.h>
 #include <semnav/common/ClassRegistry.h>
-#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/map/TravelCostModel.h>
 
 #include <algorithm>
@@ -10,52 +10,43 @@
 
 namespace semnav
 {
-void TravelCostModel::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
+namespace
 {
-	checkKnownKeys(
-	    c, s,
-	    {"lethal_cost", "floor_cost", "door_cost", "sidewalk_cost",
-	     "grass_cost", "grass_roughness_gain", "stairs_cost", "robot_type",
-	     "unknown_cost"});
-	lethalCost = readChecked(c, s, "lethal_cost", lethalCost, 1, 1e9);
-	floorCost = readChecked(c, s, "floor_cost", floorCost, 0, lethalCost);
-	doorCost = readChecked(c, s, "door_cost", doorCost, 0, lethalCost);
-	sidewalkCost =
-	    readChecked(c, s, "sidewalk_cost", sidewalkCost, 0, lethalCost);
-	grassCost = readChecked(c, s, "grass_cost", grassCost, 0, lethalCost);
-	grassRoughnessGain = readChecked(
-	    c, s, "grass_roughness_gain", grassRoughnessGain, 0, lethalCost);
-	stairsCost = readChecked(c, s, "stairs_cost", stairsCost, 0, lethalCost);
-	unknownCost = readChecked(c, s, "unknown_cost", unknownCost, 0, lethalCost);
-	const std::string type = c.read_string(
-	    s, "robot_type",
-	    robotType == RobotType::Walking ? "walking" : "wheeled");
-	if (type == "wheeled")
-		robotType = RobotType::Wheeled;
-	else if (type == "walking")
-		robotType = RobotType::Walking;
-	else
-		throw ConfigError(
-		    "[" + s + "] robot_type = '" + type +
-		    "' is not 'wheeled' or 'walking'");
+using O = TravelCostModel::TOptions;
+const OptionTable<O>& optionTable()
+{
+	static const auto t =
+	    OptionTable<O>()
+	        .real(
+	            "lethal_cost", &O::lethalCost, 1, 1e9,
+	            "Cost of a blocked cell (the paper's L).")
+	        .real("floor_cost", &O::floorCost, 0, &O::lethalCost, "Floor.")
+	        .real("door_cost", &O::doorCost, 0, &O::lethalCost, "Door.")
+	        .real(
+	            "sidewalk_cost", &O::sidewalkCost, 0, &O::lethalCost,
+	            "Sidewalk.")
+	        .real(
+	            "grass_cost", &O::grassCost, 0, &O::lethalCost,
+	            "Grass: grass_cost + grass_roughness_gain * (1 - R-bar).")
+	        .real(
+	            "grass_roughness_gain", &O::grassRoughnessGain, 0,
+	            &O::lethalCost, "See grass_cost.")
+	        .real(
+	            "stairs_cost", &O::stairsCost, 0, &O::lethalCost,
+	            "Stairs: passable at this cost for a walking robot only.")
+	        .choice(
+	            "robot_type", &O::robotType,
+	            {{TravelCostModel::RobotType::Wheeled, "wheeled"},
+	             {TravelCostModel::RobotType::Walking, "walking"}},
+	            "wheeled | walking.")
+	        .real(
+	            "unknown_cost", &O::unknownCost, 0, &O::lethalCost,
+	            "Cost of a cell never observed.");
+	return t;
 }
+}  // namespace
 
-void TravelCostModel::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "lethal_cost", lethalCost);
-	c.write(s, "floor_cost", floorCost);
-	c.write(s, "door_cost", doorCost);
-	c.write(s, "sidewalk_cost", sidewalkCost);
-	c.write(s, "grass_cost", grassCost);
-	c.write(s, "grass_roughness_gain", grassRoughnessGain);
-	c.write(s, "stairs_cost", stairsCost);
-	c.write(
-	    s, "robot_type",
-	    robotType == RobotType::Walking ? "walking" : "wheeled");
-	c.write(s, "unknown_cost", unknownCost);
-}
+SEMNAV_OPTIONS_FROM_TABLE(TravelCostModel::TOptions, optionTable())
 
 TravelCostModel::TravelCostModel() : TravelCostModel(TOptions()) {}
 TravelCostModel::TravelCostModel(const TOptions& o) : m_options(o) {}

@@ -3,7 +3,7 @@
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/poses/CPoint2D.h>
 #include <mrpt/poses/CPose2D.h>
-#include <semnav/common/ConfigChecks.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/common/Timing.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/nav/NavigationErrors.h>
@@ -46,61 +46,70 @@ std::string makeTempDir()
 }
 }  // namespace
 
-void SemanticNavigator::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
+namespace
 {
-	checkKnownKeys(
-	    c, s,
-	    {"profile", "max_waypoint_spacing_m", "waypoint_allowed_distance_m",
-	     "goal_allowed_distance_m", "max_replans", "path_check_distance_m",
-	     "path_clearance_m", "path_blocked_steps", "sensed_obstacle_range_m",
-	     "align_threshold_deg", "start_snap_m"});
-	profile = c.read_string(s, "profile", profile);
-	if (profile != "planning")
-	{
-		try
-		{
-			costProfileFromName(profile);
-		}
-		catch (const Error& e)
-		{
-			throw ConfigError("[" + s + "] profile: " + e.what());
-		}
-	}
-	maxWaypointSpacing = readChecked(
-	    c, s, "max_waypoint_spacing_m", maxWaypointSpacing, 0.1, 100);
-	waypointAllowedDistance = readChecked(
-	    c, s, "waypoint_allowed_distance_m", waypointAllowedDistance, 0.01, 10);
-	goalAllowedDistance = readChecked(
-	    c, s, "goal_allowed_distance_m", goalAllowedDistance, 0.01, 10);
-	maxReplans = readCheckedInt(c, s, "max_replans", maxReplans, 0, 100000);
-	pathCheckDistance =
-	    readChecked(c, s, "path_check_distance_m", pathCheckDistance, 0, 100);
-	pathClearance = readChecked(c, s, "path_clearance_m", pathClearance, 0, 10);
-	pathBlockedSteps =
-	    readCheckedInt(c, s, "path_blocked_steps", pathBlockedSteps, 1, 1000);
-	sensedObstacleRange = readChecked(
-	    c, s, "sensed_obstacle_range_m", sensedObstacleRange, 0, 100);
-	alignThresholdDeg =
-	    readChecked(c, s, "align_threshold_deg", alignThresholdDeg, 0, 180);
-	startSnap = readChecked(c, s, "start_snap_m", startSnap, 0, 10);
+using O = SemanticNavigator::TOptions;
+const OptionTable<O>& optionTable()
+{
+	static const auto t =
+	    OptionTable<O>()
+	        .custom(
+	            "profile",
+	            [](O& o, const mrpt::config::CConfigFileBase& c,
+	               const std::string& s)
+	            {
+		            o.profile = c.read_string(s, "profile", o.profile);
+		            if (o.profile == "planning") return;
+		            try
+		            {
+			            costProfileFromName(o.profile);
+		            }
+		            catch (const Error& e)
+		            {
+			            throw ConfigError("[" + s + "] profile: " + e.what());
+		            }
+	            },
+	            [](const O& o) { return o.profile; },
+	            "Cost profile: shortest | safe | planning (planning.ini's).")
+	        .real(
+	            "max_waypoint_spacing_m", &O::maxWaypointSpacing, 0.1, 100,
+	            "Longest straight leg between two waypoints of the thinned "
+	            "CNN path.")
+	        .real(
+	            "waypoint_allowed_distance_m", &O::waypointAllowedDistance,
+	            0.01, 10, "An intermediate waypoint is reached this close.")
+	        .real(
+	            "goal_allowed_distance_m", &O::goalAllowedDistance, 0.01, 10,
+	            "The goal is reached this close.")
+	        .integer(
+	            "max_replans", &O::maxReplans, 0, 100000,
+	            "Replans before the navigation fails.")
+	        .real(
+	            "path_check_distance_m", &O::pathCheckDistance, 0, 100,
+	            "Look-ahead along the path for sensed obstacles the map "
+	            "lacks.")
+	        .real(
+	            "path_clearance_m", &O::pathClearance, 0, 10,
+	            "Such an obstacle this close to the path blocks it.")
+	        .integer(
+	            "path_blocked_steps", &O::pathBlockedSteps, 1, 1000,
+	            "Steps the path must be seen blocked before a replan.")
+	        .real(
+	            "sensed_obstacle_range_m", &O::sensedObstacleRange, 0, 100,
+	            "On a replan, sensed points this close become obstacles.")
+	        .real(
+	            "align_threshold_deg", &O::alignThresholdDeg, 0, 180,
+	            "First waypoint more off the heading: turn on the spot "
+	            "first.")
+	        .real(
+	            "start_snap_m", &O::startSnap, 0, 10,
+	            "A replan from a blocked cell starts from the nearest free "
+	            "cell this close.");
+	return t;
 }
+}  // namespace
 
-void SemanticNavigator::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "profile", profile);
-	c.write(s, "max_waypoint_spacing_m", maxWaypointSpacing);
-	c.write(s, "waypoint_allowed_distance_m", waypointAllowedDistance);
-	c.write(s, "goal_allowed_distance_m", goalAllowedDistance);
-	c.write(s, "max_replans", maxReplans);
-	c.write(s, "path_check_distance_m", pathCheckDistance);
-	c.write(s, "path_clearance_m", pathClearance);
-	c.write(s, "path_blocked_steps", pathBlockedSteps);
-	c.write(s, "sensed_obstacle_range_m", sensedObstacleRange);
-	c.write(s, "align_threshold_deg", alignThresholdDeg);
-	c.write(s, "start_snap_m", startSnap);
-}
+SEMNAV_OPTIONS_FROM_TABLE(SemanticNavigator::TOptions, optionTable())
 
 SemanticNavigator::SemanticNavigator(
     mrpt::nav::CRobot2NavInterface& robot, const SemanticMap& map,

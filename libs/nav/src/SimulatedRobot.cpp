@@ -4,8 +4,8 @@
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/poses/CPose2D.h>
-#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/nav/SimulatedRobot.h>
 
 #include <cmath>
@@ -15,83 +15,41 @@ namespace semnav
 {
 namespace
 {
-std::vector<double> readList(
-    const mrpt::config::CConfigFileBase& c, const std::string& s,
-    const std::string& key, const std::vector<double>& current, double lo,
-    double hi)
+using O = SimulatedRobot::TOptions;
+const OptionTable<O>& optionTable()
 {
-	const std::string text = c.read_string(s, key, "");
-	if (text.empty()) return current;
-	std::istringstream is(text);
-	std::vector<double> out;
-	for (std::string t; is >> t;)
-	{
-		std::size_t n = 0;
-		double v = 0;
-		try
-		{
-			v = std::stod(t, &n);
-		}
-		catch (const std::exception&)
-		{
-			n = 0;
-		}
-		if (n != t.size() || !(v >= lo && v <= hi))
-			throw ConfigError(
-			    "[" + s + "] " + key + ": '" + t + "' is not a number in [" +
-			    std::to_string(lo) + ", " + std::to_string(hi) + "]");
-		out.push_back(v);
-	}
-	if (out.empty())
-		throw ConfigError("[" + s + "] " + key + ": expected numbers");
-	return out;
-}
-
-std::string listText(const std::vector<double>& v)
-{
-	std::ostringstream os;
-	for (std::size_t i = 0; i < v.size(); i++) os << (i ? " " : "") << v[i];
-	return os.str();
+	static const auto t =
+	    OptionTable<O>()
+	        .real(
+	            "robot_radius_m", &O::robotRadius, 0.05, 5,
+	            "Radius of the simulated robot's disc.")
+	        .reals(
+	            "scan_heights_m", &O::scanHeights, 0.0, 10,
+	            "Heights of the horizontal obstacle scans.")
+	        .real(
+	            "scan_fov_deg", &O::scanFovDeg, 1, 360,
+	            "Field of view of each scan.")
+	        .integer("scan_beams", &O::scanBeams, 2, 100000, "Beams per scan.")
+	        .real("scan_max_range_m", &O::scanMaxRange, 0.1, 100, "Scan range.")
+	        .reals(
+	            "collision_heights_m", &O::collisionHeights, 0.0, 10,
+	            "Heights at which the robot's disc is checked for "
+	            "collisions.")
+	        .integer(
+	            "collision_rays", &O::collisionRays, 8, 100000,
+	            "Rays around the disc per collision height.")
+	        .real(
+	            "time_step_s", &O::timeStep, 0.001, 10, "Simulation time step.")
+	        .real(
+	            "max_time_s", &O::maxTime, 0.1, 1e6,
+	            "A navigation taking longer fails.");
+	return t;
 }
 
 constexpr double kEpoch = 1577836800.0;  // 2020-01-01T00:00:00Z
 }  // namespace
 
-void SimulatedRobot::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	checkKnownKeys(
-	    c, s,
-	    {"robot_radius_m", "scan_heights_m", "scan_fov_deg", "scan_beams",
-	     "scan_max_range_m", "collision_heights_m", "collision_rays",
-	     "time_step_s", "max_time_s"});
-	robotRadius = readChecked(c, s, "robot_radius_m", robotRadius, 0.05, 5);
-	scanHeights = readList(c, s, "scan_heights_m", scanHeights, 0.0, 10);
-	scanFovDeg = readChecked(c, s, "scan_fov_deg", scanFovDeg, 1, 360);
-	scanBeams = readCheckedInt(c, s, "scan_beams", scanBeams, 2, 100000);
-	scanMaxRange =
-	    readChecked(c, s, "scan_max_range_m", scanMaxRange, 0.1, 100);
-	collisionHeights =
-	    readList(c, s, "collision_heights_m", collisionHeights, 0.0, 10);
-	collisionRays =
-	    readCheckedInt(c, s, "collision_rays", collisionRays, 8, 100000);
-	timeStep = readChecked(c, s, "time_step_s", timeStep, 0.001, 10);
-	maxTime = readChecked(c, s, "max_time_s", maxTime, 0.1, 1e6);
-}
-
-void SimulatedRobot::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "robot_radius_m", robotRadius);
-	c.write(s, "scan_heights_m", listText(scanHeights));
-	c.write(s, "scan_fov_deg", scanFovDeg);
-	c.write(s, "scan_beams", scanBeams);
-	c.write(s, "scan_max_range_m", scanMaxRange);
-	c.write(s, "collision_heights_m", listText(collisionHeights));
-	c.write(s, "collision_rays", collisionRays);
-	c.write(s, "time_step_s", timeStep);
-	c.write(s, "max_time_s", maxTime);
-}
+SEMNAV_OPTIONS_FROM_TABLE(SimulatedRobot::TOptions, optionTable())
 
 mrpt::Clock::time_point SimulatedRobot::timestampOf(double t)
 {

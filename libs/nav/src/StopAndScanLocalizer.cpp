@@ -2,8 +2,8 @@
 #include <mrpt/core/format.h>
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/poses/CPose2D.h>
-#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/common/Timing.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/nav/NavigationErrors.h>
@@ -31,71 +31,76 @@ StopAndScanLocalizer::Mode StopAndScanLocalizer::modeFromName(
 	    "localization mode must be global or tracking, got '" + name + "'");
 }
 
-void StopAndScanLocalizer::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
+namespace
 {
-	checkKnownKeys(
-	    c, s,
-	    {"converged_fraction", "converged_radius_m", "converged_yaw_deg",
-	     "unknown_cells", "uniqueness_check", "uniqueness_step_m",
-	     "uniqueness_margin", "uniqueness_min_distance_m", "max_sweeps",
-	     "turn_deg", "turn_speed_deg_s", "line_period_s", "guess_std_xy_m",
-	     "guess_std_yaw_deg", "guess_particles", "rescan_distance_m",
-	     "odometry_noise", "seed"});
-	convergedFraction =
-	    readChecked(c, s, "converged_fraction", convergedFraction, 0.5, 1.0);
-	convergedRadius =
-	    readChecked(c, s, "converged_radius_m", convergedRadius, 0.01, 10);
-	convergedYaw = mrpt::DEG2RAD(readChecked(
-	    c, s, "converged_yaw_deg", mrpt::RAD2DEG(convergedYaw), 0.1, 180));
-	unknownCells = readCheckedBool(c, s, "unknown_cells", unknownCells);
-	uniquenessCheck =
-	    readCheckedBool(c, s, "uniqueness_check", uniquenessCheck);
-	uniquenessStep =
-	    readChecked(c, s, "uniqueness_step_m", uniquenessStep, 0.02, 5);
-	uniquenessMargin =
-	    readChecked(c, s, "uniqueness_margin", uniquenessMargin, 0, 100);
-	uniquenessMinDistance = readChecked(
-	    c, s, "uniqueness_min_distance_m", uniquenessMinDistance, 0.05, 100);
-	maxSweeps = readCheckedInt(c, s, "max_sweeps", maxSweeps, 1, 100);
-	turnAngle = mrpt::DEG2RAD(
-	    readChecked(c, s, "turn_deg", mrpt::RAD2DEG(turnAngle), 1, 180));
-	turnSpeed = mrpt::DEG2RAD(readChecked(
-	    c, s, "turn_speed_deg_s", mrpt::RAD2DEG(turnSpeed), 1, 360));
-	linePeriod = readChecked(c, s, "line_period_s", linePeriod, 0, 10);
-	guessStdXY = readChecked(c, s, "guess_std_xy_m", guessStdXY, 0.001, 10);
-	guessStdYaw = mrpt::DEG2RAD(readChecked(
-	    c, s, "guess_std_yaw_deg", mrpt::RAD2DEG(guessStdYaw), 0.01, 180));
-	guessParticles =
-	    readCheckedInt(c, s, "guess_particles", guessParticles, 10, 1000000);
-	rescanDistance =
-	    readChecked(c, s, "rescan_distance_m", rescanDistance, 0, 1000);
-	odometryNoise = readCheckedBool(c, s, "odometry_noise", odometryNoise);
-	seed = readCheckedInt(c, s, "seed", seed, 0, 1 << 30);
+using O = StopAndScanLocalizer::TOptions;
+const OptionTable<O>& optionTable()
+{
+	static const auto t =
+	    OptionTable<O>()
+	        .real(
+	            "converged_fraction", &O::convergedFraction, 0.5, 1.0,
+	            "Converged when this share of the particle weight lies "
+	            "within...")
+	        .real(
+	            "converged_radius_m", &O::convergedRadius, 0.01, 10,
+	            "...this distance...")
+	        .angle(
+	            "converged_yaw_deg", &O::convergedYaw, 0.1, 180,
+	            "...and heading of the estimate.")
+	        .flag(
+	            "unknown_cells", &O::unknownCells,
+	            "Wall samples in never-observed map cells score [WallMap] "
+	            "unknown_weight.")
+	        .flag(
+	            "uniqueness_check", &O::uniquenessCheck,
+	            "A global start is accepted only if no other place of the "
+	            "map fits as well.")
+	        .real(
+	            "uniqueness_step_m", &O::uniquenessStep, 0.02, 5,
+	            "Grid of the places scored.")
+	        .real(
+	            "uniqueness_margin", &O::uniquenessMargin, 0, 100,
+	            "Another place within this mean log-likelihood...")
+	        .real(
+	            "uniqueness_min_distance_m", &O::uniquenessMinDistance, 0.05,
+	            100, "...and farther than this makes a start ambiguous.")
+	        .integer(
+	            "max_sweeps", &O::maxSweeps, 1, 100,
+	            "Sweeps of a start before it fails.")
+	        .angle(
+	            "turn_deg", &O::turnAngle, 1, 180,
+	            "Turn on the spot between sweeps...")
+	        .angle(
+	            "turn_speed_deg_s", &O::turnSpeed, 1, 360, "...at this speed.")
+	        .real(
+	            "line_period_s", &O::linePeriod, 0, 10,
+	            "Time of one scan line: a sweep stops the robot this long "
+	            "per line.")
+	        .real(
+	            "guess_std_xy_m", &O::guessStdXY, 0.001, 10,
+	            "Tracking start: particle cloud around the guess.")
+	        .angle(
+	            "guess_std_yaw_deg", &O::guessStdYaw, 0.01, 180,
+	            "Tracking start: heading spread.")
+	        .integer(
+	            "guess_particles", &O::guessParticles, 10, 1000000,
+	            "Tracking start: particles.")
+	        .real(
+	            "rescan_distance_m", &O::rescanDistance, 0, 1000,
+	            "Stop and scan again after this much travel (0: never).")
+	        .flag(
+	            "odometry_noise", &O::odometryNoise,
+	            "Odometry gets the scene's odometry errors while "
+	            "localizing.")
+	        .integer(
+	            "seed", &O::seed, 0, 1 << 30,
+	            "Laser range noise and odometry noise.");
+	return t;
 }
+}  // namespace
 
-void StopAndScanLocalizer::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "converged_fraction", convergedFraction);
-	c.write(s, "converged_radius_m", convergedRadius);
-	c.write(s, "converged_yaw_deg", mrpt::RAD2DEG(convergedYaw));
-	c.write(s, "unknown_cells", unknownCells);
-	c.write(s, "uniqueness_check", uniquenessCheck);
-	c.write(s, "uniqueness_step_m", uniquenessStep);
-	c.write(s, "uniqueness_margin", uniquenessMargin);
-	c.write(s, "uniqueness_min_distance_m", uniquenessMinDistance);
-	c.write(s, "max_sweeps", maxSweeps);
-	c.write(s, "turn_deg", mrpt::RAD2DEG(turnAngle));
-	c.write(s, "turn_speed_deg_s", mrpt::RAD2DEG(turnSpeed));
-	c.write(s, "line_period_s", linePeriod);
-	c.write(s, "guess_std_xy_m", guessStdXY);
-	c.write(s, "guess_std_yaw_deg", mrpt::RAD2DEG(guessStdYaw));
-	c.write(s, "guess_particles", guessParticles);
-	c.write(s, "rescan_distance_m", rescanDistance);
-	c.write(s, "odometry_noise", odometryNoise);
-	c.write(s, "seed", seed);
-}
+SEMNAV_OPTIONS_FROM_TABLE(StopAndScanLocalizer::TOptions, optionTable())
 
 StopAndScanLocalizer::StopAndScanLocalizer(
     const Scene& scene, const SemanticMap& map, const TOptions& options,

@@ -1,8 +1,8 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
-#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/perception/NormalImage.h>
 
 #include <algorithm>
@@ -12,36 +12,33 @@
 
 namespace semnav
 {
-using mrpt::DEG2RAD;
-using mrpt::RAD2DEG;
 
-void NormalImage::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
+namespace
 {
-	checkKnownKeys(
-	    c, s,
-	    {"min_neighbour_distance_m", "max_neighbour_distance_m",
-	     "min_pair_angle_deg"});
-	minNeighbourDistance = readChecked(
-	    c, s, "min_neighbour_distance_m", minNeighbourDistance, 0, 1);
-	maxNeighbourDistance = readChecked(
-	    c, s, "max_neighbour_distance_m", maxNeighbourDistance, 1e-4, 10);
-	minPairAngle = DEG2RAD(
-	    readChecked(c, s, "min_pair_angle_deg", RAD2DEG(minPairAngle), 0, 45));
-	if (minNeighbourDistance >= maxNeighbourDistance)
-		throw ConfigError(
-		    "[" + s +
-		    "] min_neighbour_distance_m must be below "
-		    "max_neighbour_distance_m");
+using O = NormalImage::TOptions;
+const OptionTable<O>& optionTable()
+{
+	static const auto t =
+	    OptionTable<O>()
+	        .real(
+	            "min_neighbour_distance_m", &O::minNeighbourDistance, 0, 1,
+	            "The paper's eps0: closer neighbours are rejected.")
+	        .real(
+	            "max_neighbour_distance_m", &O::maxNeighbourDistance, 1e-4, 10,
+	            "The paper's eps1: farther neighbours are rejected.")
+	        .angle(
+	            "min_pair_angle_deg", &O::minPairAngle, 0, 45,
+	            "Edge vector pairs closer to (anti)parallel are skipped.")
+	        .check(
+	            [](const O& o)
+	            { return o.minNeighbourDistance < o.maxNeighbourDistance; },
+	            "min_neighbour_distance_m must be below "
+	            "max_neighbour_distance_m");
+	return t;
 }
+}  // namespace
 
-void NormalImage::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "min_neighbour_distance_m", minNeighbourDistance);
-	c.write(s, "max_neighbour_distance_m", maxNeighbourDistance);
-	c.write(s, "min_pair_angle_deg", RAD2DEG(minPairAngle));
-}
+SEMNAV_OPTIONS_FROM_TABLE(NormalImage::TOptions, optionTable())
 
 NormalImage::NormalImage() : NormalImage(TOptions()) {}
 

@@ -1,7 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/config/CConfigFileBase.h>
-#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/perception/RangeSegmentation.h>
 
 #include <cmath>
@@ -9,27 +9,29 @@
 
 namespace semnav
 {
-void RangeSegmentation::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
+namespace
 {
-	checkKnownKeys(
-	    c, s, {"max_neighbour_difference_m", "min_area_px", "connectivity"});
-	maxNeighbourDifference = readChecked(
-	    c, s, "max_neighbour_difference_m", maxNeighbourDifference, 0, 10);
-	minAreaPixels =
-	    readCheckedInt(c, s, "min_area_px", minAreaPixels, 0, 1000000);
-	connectivity = readCheckedInt(c, s, "connectivity", connectivity, 4, 8);
-	if (connectivity != 4 && connectivity != 8)
-		throw ConfigError("[" + s + "] connectivity must be 4 or 8");
+using O = RangeSegmentation::TOptions;
+const OptionTable<O>& optionTable()
+{
+	static const auto t =
+	    OptionTable<O>()
+	        .real(
+	            "max_neighbour_difference_m", &O::maxNeighbourDifference, 0, 10,
+	            "Flood fill joins neighbours with closer ranges.")
+	        .integer(
+	            "min_area_px", &O::minAreaPixels, 0, 1000000,
+	            "Larger areas are numbered 1..n, the others are 0.")
+	        .integer("connectivity", &O::connectivity, 4, 8, "4 or 8.")
+	        .check(
+	            [](const O& o)
+	            { return o.connectivity == 4 || o.connectivity == 8; },
+	            "connectivity must be 4 or 8");
+	return t;
 }
+}  // namespace
 
-void RangeSegmentation::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "max_neighbour_difference_m", maxNeighbourDifference);
-	c.write(s, "min_area_px", minAreaPixels);
-	c.write(s, "connectivity", connectivity);
-}
+SEMNAV_OPTIONS_FROM_TABLE(RangeSegmentation::TOptions, optionTable())
 
 RangeSegmentation::RangeSegmentation() : RangeSegmentation(TOptions()) {}
 

@@ -1,6 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/config/CConfigFileBase.h>
-#include <semnav/common/ConfigChecks.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/perception/Roughness.h>
 
 #include <cmath>
@@ -11,32 +11,34 @@
 
 namespace semnav
 {
-void Roughness::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
+namespace
 {
-	checkKnownKeys(
-	    c, s,
-	    {"window_half_width_px", "square_width_px", "min_square_px",
-	     "smooth_normals", "smoothing_half_width_px"});
-	windowHalfWidth =
-	    readCheckedInt(c, s, "window_half_width_px", windowHalfWidth, 1, 20);
-	squareWidth = readCheckedInt(c, s, "square_width_px", squareWidth, 1, 100);
-	minSquarePixels =
-	    readCheckedInt(c, s, "min_square_px", minSquarePixels, 1, 10000);
-	smoothNormals = readCheckedBool(c, s, "smooth_normals", smoothNormals);
-	smoothingHalfWidth = readCheckedInt(
-	    c, s, "smoothing_half_width_px", smoothingHalfWidth, 1, 10);
+using O = Roughness::TOptions;
+const OptionTable<O>& optionTable()
+{
+	static const auto t =
+	    OptionTable<O>()
+	        .integer(
+	            "window_half_width_px", &O::windowHalfWidth, 1, 20,
+	            "R: mean dot product with the normals of the (2w+1)^2 "
+	            "window.")
+	        .integer(
+	            "square_width_px", &O::squareWidth, 1, 100,
+	            "R-bar: mean R over squares of w' x w' pixels.")
+	        .integer(
+	            "min_square_px", &O::minSquarePixels, 1, 10000,
+	            "Squares with fewer pixels of the area have no R-bar.")
+	        .flag(
+	            "smooth_normals", &O::smoothNormals,
+	            "R on normals averaged over (2k+1)^2 pixels first.")
+	        .integer(
+	            "smoothing_half_width_px", &O::smoothingHalfWidth, 1, 10,
+	            "k of smooth_normals.");
+	return t;
 }
+}  // namespace
 
-void Roughness::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "window_half_width_px", windowHalfWidth);
-	c.write(s, "square_width_px", squareWidth);
-	c.write(s, "min_square_px", minSquarePixels);
-	writeBool(c, s, "smooth_normals", smoothNormals);
-	c.write(s, "smoothing_half_width_px", smoothingHalfWidth);
-}
+SEMNAV_OPTIONS_FROM_TABLE(Roughness::TOptions, optionTable())
 
 Roughness::Roughness() : Roughness(TOptions()) {}
 

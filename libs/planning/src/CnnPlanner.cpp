@@ -1,7 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/config/CConfigFileBase.h>
-#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/common/ParallelFor.h>
 #include <semnav/planning/CnnPlanner.h>
 #include <semnav/planning/PlanningErrors.h>
@@ -31,47 +31,36 @@ const char* cnnScheduleName(CnnSchedule s)
 	return s == CnnSchedule::Jacobi ? "jacobi" : "sweep";
 }
 
+namespace
+{
+using O = CnnPlanner::TOptions;
+const OptionTable<O>& optionTable()
+{
+	static const auto t =
+	    OptionTable<O>()
+	        .choice(
+	            "schedule", &O::schedule,
+	            {{CnnSchedule::Sweep, "sweep"},
+	             {CnnSchedule::Jacobi, "jacobi"}},
+	            "Diffusion update: sweep (in-place raster passes) | "
+	            "jacobi (eq. (10), reference).")
+	        .integer(
+	            "threads", &O::threads, 0, 1024,
+	            "Threads (bands of the grid); 0 = all cores.")
+	        .integer(
+	            "max_iterations", &O::maxIterations, 0, 1000000000,
+	            "Passes or updates before giving up; 0 = no limit.");
+	return t;
+}
+}  // namespace
+
 const std::vector<std::string>& CnnPlanner::TOptions::knownKeys()
 {
-	static const std::vector<std::string> keys{
-	    "schedule", "threads", "max_iterations"};
+	static const std::vector<std::string> keys = optionTable().keys();
 	return keys;
 }
 
-void CnnPlanner::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	checkKnownKeys(c, s, knownKeys());
-	TOptions o = *this;
-	std::string name = c.read_string(s, "schedule", "", false);
-	name.erase(0, name.find_first_not_of(" \t"));
-	name.erase(name.find_last_not_of(" \t\r\n") + 1);
-	if (!name.empty())
-	{
-		try
-		{
-			o.schedule = cnnScheduleFromName(name);
-		}
-		catch (const PlanningError&)
-		{
-			throw ConfigError(
-			    "[" + s + "] schedule = '" + name +
-			    "' is not one of sweep | jacobi");
-		}
-	}
-	o.threads = readCheckedInt(c, s, "threads", threads, 0, 1024);
-	o.maxIterations =
-	    readCheckedInt(c, s, "max_iterations", maxIterations, 0, 1000000000);
-	*this = o;
-}
-
-void CnnPlanner::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "schedule", std::string(cnnScheduleName(schedule)));
-	c.write(s, "threads", std::to_string(threads));
-	c.write(s, "max_iterations", std::to_string(maxIterations));
-}
+SEMNAV_OPTIONS_FROM_TABLE(CnnPlanner::TOptions, optionTable())
 
 CnnPlanner::CnnPlanner() : CnnPlanner(TOptions()) {}
 

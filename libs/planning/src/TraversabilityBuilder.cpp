@@ -1,8 +1,8 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/config/CConfigFileBase.h>
 #include <semnav/common/ClassRegistry.h>
-#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/planning/PlanningErrors.h>
 #include <semnav/planning/TraversabilityBuilder.h>
 
@@ -40,45 +40,119 @@ std::string lowerTrimmed(std::string s)
 	return s;
 }
 
-std::string num(double v)
+using O = TraversabilityBuilder::TOptions;
+constexpr double kBlocked = TraversabilityBuilder::kBlocked;
+
+/** A cost u in [0, L] or the word "blocked"; values >= L block, and so do
+ * kept values that reach a new L. */
+void addCost(
+    OptionTable<O>& t, const std::string& key,
+    const std::function<double&(O&)>& at, const std::string& doc)
 {
-	char buf[64];
-	std::snprintf(buf, sizeof(buf), "%.12g", v);
-	return buf;
+	t.custom(
+	    key,
+	    [=](O& o, const mrpt::config::CConfigFileBase& c, const std::string& s)
+	    {
+		    double& u = at(o);
+		    if (u >= o.L) u = kBlocked;
+		    const std::string text =
+		        lowerTrimmed(c.read_string(s, key, "", false));
+		    if (text == "blocked")
+			    u = kBlocked;
+		    else if (!text.empty())
+		    {
+			    u = readChecked(c, s, key, u, 0, o.L);
+			    if (u >= o.L) u = kBlocked;
+		    }
+	    },
+	    [=](const O& o)
+	    {
+		    const double u = at(const_cast<O&>(o));
+		    return u >= o.L ? std::string("blocked") : numberText(u);
+	    },
+	    doc);
 }
 
-/** A cost in [0, L] or the word "blocked"; values >= L block. */
-double readCost(
-    const mrpt::config::CConfigFileBase& c, const std::string& s,
-    const std::string& key, double current, double L)
+OptionTable<O> makeOptionTable()
 {
-	const std::string t = lowerTrimmed(c.read_string(s, key, "", false));
-	if (t == "blocked") return TraversabilityBuilder::kBlocked;
-	if (t.empty()) return current;
-	const double v = readChecked(c, s, key, current, 0, L);
-	return v >= L ? TraversabilityBuilder::kBlocked : v;
+	OptionTable<O> t;
+	t.real(
+	     "L", &O::L, 1, 1e9,
+	     "The paper's L: u = L blocks a cell; must exceed any path cost.")
+	    .choice(
+	        "robot_type", &O::robotType,
+	        {{RobotType::Wheeled, "wheeled"}, {RobotType::Walking, "walking"}},
+	        "wheeled | walking: stairs are traversable for walking robots "
+	        "only.")
+	    .real(
+	        "robot_radius_m", &O::robotRadius, 0, 5,
+	        "Cells where the robot's disc would touch an obstacle are "
+	        "blocked.")
+	    .choice(
+	        "profile", &O::profile,
+	        {{CostProfile::Shortest, "shortest"}, {CostProfile::Safe, "safe"}},
+	        "Default cost profile: shortest | safe.")
+	    .real(
+	        "shortest_radius_m", &O::shortestRadius, 0, 5,
+	        "Shortest profile: blocked below this clearance.")
+	    .real(
+	        "safe_radius_m", &O::safeRadius, 0, 5,
+	        "Safe profile: blocked below r/2 of clearance, safe_ring_cost "
+	        "up to r.");
+	addCost(
+	    t, "safe_ring_cost", [](O& o) -> double& { return o.safeRingCost; },
+	    "u of the safe profile's ring [r/2, r): [0, L] or blocked.");
+	addCost(
+	    t, "u_unobserved", [](O& o) -> double& { return o.uUnobserved; },
+	    "u of never-observed cells: [0, L] or blocked.");
+	t.flag(
+	     "inflate_unobserved", &O::inflateUnobserved,
+	     "A blocked unobserved cell is inflated like an obstacle.")
+	    .real(
+	        "goal_reach_m", &O::goalReach, 0, 10,
+	        "Goal regions extend this far beyond the closest allowed "
+	        "position.");
+	for (Label l : allLabels())
+		addCost(
+		    t, "u_" + labelName(l),
+		    [i = static_cast<std::size_t>(l)](O& o) -> double&
+		    { return o.labelU[i]; },
+		    "u of " + labelName(l) +
+		        " cells: [0, L] or blocked (an "
+		        "obstacle).");
+	for (Label l : allLabels())
+	{
+		const auto i = static_cast<std::size_t>(l);
+		t.custom(
+		    "r_scale_" + labelName(l),
+		    [i, key = "r_scale_" + labelName(l)](
+		        O& o, const mrpt::config::CConfigFileBase& c,
+		        const std::string& s)
+		    {
+			    o.labelRadiusScale[i] =
+			        readChecked(c, s, key, o.labelRadiusScale[i], 0, 10);
+		    },
+		    [i](const O& o) { return numberText(o.labelRadiusScale[i]); },
+		    "Influence radius scale around " + labelName(l) +
+		        " (0: C-space only).");
+	}
+	return t;
 }
 
-std::string costText(double u, double L)
+const OptionTable<O>& optionTable()
 {
-	return u >= L ? std::string("blocked") : num(u);
-}
-
-/** One word out of `names`; ConfigError otherwise. */
-int readChoice(
-    const mrpt::config::CConfigFileBase& c, const std::string& s,
-    const std::string& key, int current, const std::vector<std::string>& names)
-{
-	const std::string t = lowerTrimmed(c.read_string(s, key, "", false));
-	if (t.empty()) return current;
-	for (std::size_t i = 0; i < names.size(); i++)
-		if (t == names[i]) return static_cast<int>(i);
-	std::string list;
-	for (const auto& n : names) list += (list.empty() ? "" : " | ") + n;
-	throw ConfigError(
-	    "[" + s + "] " + key + " = '" + t + "' is not one of " + list);
+	static const OptionTable<O> t = makeOptionTable();
+	return t;
 }
 }  // namespace
+
+const std::vector<std::string>& TraversabilityBuilder::TOptions::knownKeys()
+{
+	static const std::vector<std::string> keys = optionTable().keys();
+	return keys;
+}
+
+SEMNAV_OPTIONS_FROM_TABLE(TraversabilityBuilder::TOptions, optionTable())
 
 TraversabilityBuilder::TOptions::TOptions()
 {
@@ -91,87 +165,6 @@ TraversabilityBuilder::TOptions::TOptions()
 		                                              : c.plannerCost;
 	}
 	labelRadiusScale.fill(1);
-}
-
-const std::vector<std::string>& TraversabilityBuilder::TOptions::knownKeys()
-{
-	static const std::vector<std::string> keys = []
-	{
-		std::vector<std::string> k{
-		    "L",
-		    "robot_type",
-		    "robot_radius_m",
-		    "profile",
-		    "shortest_radius_m",
-		    "safe_radius_m",
-		    "safe_ring_cost",
-		    "u_unobserved",
-		    "inflate_unobserved",
-		    "goal_reach_m"};
-		for (Label l : allLabels()) k.push_back("u_" + labelName(l));
-		for (Label l : allLabels()) k.push_back("r_scale_" + labelName(l));
-		return k;
-	}();
-	return keys;
-}
-
-void TraversabilityBuilder::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	checkKnownKeys(c, s, knownKeys());
-	TOptions o = *this;  // assign only when everything is valid
-	o.L = readChecked(c, s, "L", L, 1, 1e9);
-	// Kept costs that reach the new L block.
-	const auto rescale = [&](double v) { return v >= o.L ? kBlocked : v; };
-	o.robotType = static_cast<RobotType>(readChoice(
-	    c, s, "robot_type", static_cast<int>(robotType),
-	    {"wheeled", "walking"}));
-	o.robotRadius = readChecked(c, s, "robot_radius_m", robotRadius, 0, 5);
-	o.profile = static_cast<CostProfile>(readChoice(
-	    c, s, "profile", static_cast<int>(profile), {"shortest", "safe"}));
-	o.shortestRadius =
-	    readChecked(c, s, "shortest_radius_m", shortestRadius, 0, 5);
-	o.safeRadius = readChecked(c, s, "safe_radius_m", safeRadius, 0, 5);
-	o.safeRingCost =
-	    readCost(c, s, "safe_ring_cost", rescale(safeRingCost), o.L);
-	o.uUnobserved = readCost(c, s, "u_unobserved", rescale(uUnobserved), o.L);
-	o.inflateUnobserved =
-	    readCheckedBool(c, s, "inflate_unobserved", inflateUnobserved);
-	o.goalReach = readChecked(c, s, "goal_reach_m", goalReach, 0, 10);
-	for (Label l : allLabels())
-	{
-		const auto i = static_cast<std::size_t>(l);
-		o.labelU[i] =
-		    readCost(c, s, "u_" + labelName(l), rescale(labelU[i]), o.L);
-		o.labelRadiusScale[i] = readChecked(
-		    c, s, "r_scale_" + labelName(l), labelRadiusScale[i], 0, 10);
-	}
-	*this = o;
-}
-
-void TraversabilityBuilder::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "L", num(L));
-	c.write(
-	    s, "robot_type",
-	    std::string(robotType == RobotType::Walking ? "walking" : "wheeled"));
-	c.write(s, "robot_radius_m", num(robotRadius));
-	c.write(s, "profile", std::string(costProfileName(profile)));
-	c.write(s, "shortest_radius_m", num(shortestRadius));
-	c.write(s, "safe_radius_m", num(safeRadius));
-	c.write(s, "safe_ring_cost", costText(safeRingCost, L));
-	c.write(s, "u_unobserved", costText(uUnobserved, L));
-	writeBool(c, s, "inflate_unobserved", inflateUnobserved);
-	c.write(s, "goal_reach_m", num(goalReach));
-	for (Label l : allLabels())
-		c.write(
-		    s, "u_" + labelName(l),
-		    costText(labelU[static_cast<std::size_t>(l)], L));
-	for (Label l : allLabels())
-		c.write(
-		    s, "r_scale_" + labelName(l),
-		    num(labelRadiusScale[static_cast<std::size_t>(l)]));
 }
 
 TraversabilityBuilder::TraversabilityBuilder()

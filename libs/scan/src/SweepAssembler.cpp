@@ -2,7 +2,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/obs/CObservationOdometry.h>
-#include <semnav/common/ConfigChecks.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/scan/SweepAssembler.h>
 #include <semnav/scan/TiltGeometry.h>
 
@@ -11,45 +11,43 @@
 
 namespace semnav
 {
-using mrpt::DEG2RAD;
-using mrpt::RAD2DEG;
 
-void SweepAssembler::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
+namespace
 {
-	checkKnownKeys(
-	    c, s,
-	    {"sensor_label", "same_tilt_tolerance_deg", "min_valid_range_m",
-	     "nominal_span_deg", "complete_span_fraction", "split_on_motion",
-	     "motion_tolerance_m", "motion_tolerance_deg"});
-	sensorLabel = c.read_string(s, "sensor_label", sensorLabel);
-	sameTiltTolerance = DEG2RAD(readChecked(
-	    c, s, "same_tilt_tolerance_deg", RAD2DEG(sameTiltTolerance), 0, 5));
-	minValidRange =
-	    readChecked(c, s, "min_valid_range_m", minValidRange, 0, 10);
-	nominalSpan = DEG2RAD(
-	    readChecked(c, s, "nominal_span_deg", RAD2DEG(nominalSpan), 0, 180));
-	completeSpanFraction =
-	    readChecked(c, s, "complete_span_fraction", completeSpanFraction, 0, 1);
-	splitOnMotion = readCheckedBool(c, s, "split_on_motion", splitOnMotion);
-	motionTolerance =
-	    readChecked(c, s, "motion_tolerance_m", motionTolerance, 0, 10);
-	motionToleranceYaw = DEG2RAD(readChecked(
-	    c, s, "motion_tolerance_deg", RAD2DEG(motionToleranceYaw), 0, 180));
+using O = SweepAssembler::TOptions;
+const OptionTable<O>& optionTable()
+{
+	static const auto t =
+	    OptionTable<O>()
+	        .text(
+	            "sensor_label", &O::sensorLabel,
+	            "Only lines with this sensorLabel; empty = the first seen.")
+	        .angle(
+	            "same_tilt_tolerance_deg", &O::sameTiltTolerance, 0, 5,
+	            "Tilts closer than this are the same line.")
+	        .real(
+	            "min_valid_range_m", &O::minValidRange, 0, 10,
+	            "Returns closer than this are the robot itself.")
+	        .angle(
+	            "nominal_span_deg", &O::nominalSpan, 0, 180,
+	            "Tilt span of a complete sweep; 0 = the largest seen.")
+	        .real(
+	            "complete_span_fraction", &O::completeSpanFraction, 0, 1,
+	            "Sweeps spanning less of it are incomplete.")
+	        .flag(
+	            "split_on_motion", &O::splitOnMotion,
+	            "End a sweep when the odometry moves (stop-and-scan).")
+	        .real(
+	            "motion_tolerance_m", &O::motionTolerance, 0, 10,
+	            "Odometry moves below this are no motion...")
+	        .angle(
+	            "motion_tolerance_deg", &O::motionToleranceYaw, 0, 180,
+	            "...nor turns below this.");
+	return t;
 }
+}  // namespace
 
-void SweepAssembler::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "sensor_label", sensorLabel);
-	c.write(s, "same_tilt_tolerance_deg", RAD2DEG(sameTiltTolerance));
-	c.write(s, "min_valid_range_m", minValidRange);
-	c.write(s, "nominal_span_deg", RAD2DEG(nominalSpan));
-	c.write(s, "complete_span_fraction", completeSpanFraction);
-	writeBool(c, s, "split_on_motion", splitOnMotion);
-	c.write(s, "motion_tolerance_m", motionTolerance);
-	c.write(s, "motion_tolerance_deg", RAD2DEG(motionToleranceYaw));
-}
+SEMNAV_OPTIONS_FROM_TABLE(SweepAssembler::TOptions, optionTable())
 
 SweepAssembler::SweepAssembler() : SweepAssembler(TOptions()) {}
 
@@ -267,7 +265,8 @@ Sweep SweepAssembler::build(const std::vector<Line>& lines, EndReason why)
 	if (!q.complete)
 		MRPT_LOG_WARN_FMT(
 		    "sweep %u incomplete: tilt span %.1f deg of %.1f deg (%s)",
-		    static_cast<unsigned>(m_emitted), RAD2DEG(span), RAD2DEG(reference),
+		    static_cast<unsigned>(m_emitted), mrpt::RAD2DEG(span),
+		    mrpt::RAD2DEG(reference),
 		    why == EndReason::Motion     ? "robot moved"
 		    : why == EndReason::Reversal ? "head reversed early"
 		                                 : "stream ended");

@@ -1,7 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/core/bits_math.h>
-#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/scan/ThreeDtkReader.h>
 #include <semnav/scan/TiltGeometry.h>
 
@@ -16,32 +16,30 @@ namespace semnav
 using mrpt::DEG2RAD;
 using mrpt::RAD2DEG;
 
-void ThreeDtkReader::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
+namespace
 {
-	checkKnownKeys(
-	    c, s,
-	    {"cols", "beam_step_deg", "no_return_range_m", "min_range_m",
-	     "max_range_m"});
-	cols = static_cast<std::size_t>(
-	    readCheckedInt(c, s, "cols", static_cast<int>(cols), 1, 10000));
-	beamStep =
-	    DEG2RAD(readChecked(c, s, "beam_step_deg", RAD2DEG(beamStep), 0.01, 5));
-	noReturnRange =
-	    readChecked(c, s, "no_return_range_m", noReturnRange, 0.1, 1000);
-	minRange = readChecked(c, s, "min_range_m", minRange, 0, 100);
-	maxRange = readChecked(c, s, "max_range_m", maxRange, 0.1, 1000);
+using O = ThreeDtkReader::TOptions;
+const OptionTable<O>& optionTable()
+{
+	static const auto t =
+	    OptionTable<O>()
+	        .integer("cols", &O::cols, 1, 10000, "Beams per scan line.")
+	        .angle(
+	            "beam_step_deg", &O::beamStep, 0.01, 5, "Angle between beams.")
+	        .real(
+	            "no_return_range_m", &O::noReturnRange, 0.1, 1000,
+	            "Range written for beams without a return.")
+	        .real(
+	            "min_range_m", &O::minRange, 0, 100,
+	            "Closer returns are invalid.")
+	        .real(
+	            "max_range_m", &O::maxRange, 0.1, 1000,
+	            "Farther returns are invalid.");
+	return t;
 }
+}  // namespace
 
-void ThreeDtkReader::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-	c.write(s, "cols", static_cast<int>(cols));
-	c.write(s, "beam_step_deg", RAD2DEG(beamStep));
-	c.write(s, "no_return_range_m", noReturnRange);
-	c.write(s, "min_range_m", minRange);
-	c.write(s, "max_range_m", maxRange);
-}
+SEMNAV_OPTIONS_FROM_TABLE(ThreeDtkReader::TOptions, optionTable())
 
 ThreeDtkReader::ThreeDtkReader() : ThreeDtkReader(TOptions()) {}
 

@@ -1,7 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #pragma once
 
-#include <mrpt/config/CConfigFileBase.h>
+#include <semnav/common/OptionTable.h>
 #include <semnav/localization/WallSegment.h>
 
 #include <optional>
@@ -21,14 +21,14 @@ public:
 	struct TEstimateOptions
 	{
 		/** Inlier tolerance (rad). */
-		double tolerance = 0.0872664626;  // 5 deg
+		double tolerance = 5.0 * M_PI / 180;
 		/** Minimum inlier length (m) and fraction of the total length. */
 		double minLength = 1.5;
 		double minFraction = 0.5;
 
-		void load(const mrpt::config::CConfigFileBase& c, const std::string& s);
-		void save(mrpt::config::CConfigFileBase& c, const std::string& s) const;
-		static const std::vector<std::string>& keys();
+		/** The keys, for OptionTable::embed() in the estimating class's
+		 * table. */
+		static const OptionTable<TEstimateOptions>& optionTable();
 	};
 
 	/** estimate() with the options' parameters. */

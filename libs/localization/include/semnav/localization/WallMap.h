@@ -56,7 +56,7 @@ public:
 		/** Room around the walls (m). */
 		double margin = 1.0;
 		/** Main direction estimate (as WallExtractor). */
-		MainDirections::TEstimateOptions directions{0.0872664626, 1.5, 0.4};
+		MainDirections::TEstimateOptions directions{5.0 * M_PI / 180, 1.5, 0.4};
 	};
 
 	WallMap() = default;

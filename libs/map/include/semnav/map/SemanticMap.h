@@ -93,7 +93,7 @@ public:
 		/** The same for stairs, whose cascade finds a flight in about half
 		 * of the sweeps that see it (a table taken for stairs: one in
 		 * three or fewer). */
-		double stairsMinDetectionRatio = 0.6;
+		double stairsMinDetectionRatio = 0.4;
 		/** A cascade object is sure when one of its detections scored at
 		 * least this on its class's shape check
 		 * (ObjectInstance::bestShapeScore). */
