@@ -7,6 +7,7 @@
 #include <semnav/cascade/ExactResize.h>
 #include <semnav/cascade/IntegralImages.h>
 #include <semnav/cascade/RangeGate.h>
+#include <semnav/common/ClassRegistry.h>
 #include <semnav/common/Error.h>
 #include <semnav/common/OptionTable.h>
 #include <semnav/common/ParallelFor.h>
@@ -327,7 +328,21 @@ const OptionTable<O>& optionTable()
 CascadeDetector::TClassOptions::TClassOptions() = default;
 CascadeDetector::TClassOptions::TClassOptions(Label l) : label(l)
 {
-	cascade = labelName(l) + ".xml";
+	// The class's row in the registry: its files and plausible sizes.
+	const ClassInfo& info = classInfo(l);
+	cascade = info.cascadeFile.empty() ? info.name + ".xml" : info.cascadeFile;
+	const auto& p = info.plausibility;
+	if (p.maxWidth < ClassInfo::kInf)
+	{
+		minWidth = p.minWidth;
+		maxWidth = p.maxWidth;
+	}
+	if (p.maxTop < ClassInfo::kInf)
+	{
+		minTop = p.minTop;
+		maxTop = p.maxTop;
+	}
+	if (p.maxDepth < ClassInfo::kInf) maxDepth = p.maxDepth;
 }
 
 const std::vector<std::string>& CascadeDetector::TClassOptions::knownKeys()
@@ -372,17 +387,13 @@ std::vector<DetectionPass> CascadeDetector::TClassOptions::passes(
 
 CascadeDetector::TOptions::TOptions()
 {
-	// Built-in defaults for the paper's three classes (config/cascade.ini
-	// holds the tuned values).
+	// Built-in defaults for the paper's three classes: sizes and files from
+	// the class registry, the search passes here (config/cascade.ini holds
+	// the tuned values).
 	TClassOptions wb(Label::Washbasin);
 	wb.upscale = 1.0;
 	wb.farUpscale = 2.5;
 	wb.farBelowPx = 24;
-	wb.minWidth = 0.25;
-	wb.maxWidth = 0.9;
-	wb.minTop = 0.6;
-	wb.maxTop = 1.1;
-	wb.maxDepth = 0.6;
 	wb.minSize = 0.7;
 	wb.minCutSize = 0.35;
 	wb.maxSize = 1.2;
@@ -390,21 +401,11 @@ CascadeDetector::TOptions::TOptions()
 	bin.upscale = 1.0;
 	bin.farUpscale = 3.0;
 	bin.farBelowPx = 24;
-	bin.minWidth = 0.12;
-	bin.maxWidth = 0.55;
-	bin.minTop = 0.2;
-	bin.maxTop = 0.65;
-	bin.maxDepth = 0.45;
 	bin.minSize = 0.28;
 	bin.minCutSize = 0.2;
 	bin.maxSize = 0.6;
 	TClassOptions st(Label::Stairs);
 	st.upscale = 1.0;
-	st.minWidth = 0.6;
-	st.maxWidth = 2.2;
-	st.minTop = 0.25;
-	st.maxTop = 2.0;
-	st.maxDepth = 2.5;
 	st.minSize = 0.8;
 	st.minCutSize = 0.6;
 	st.maxSize = 3.0;

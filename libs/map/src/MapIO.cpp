@@ -200,7 +200,7 @@ void saveImages(const SemanticMap& map, const fs::path& dir, double L)
 	writeImage((dir / "map.png").string(), MapRenderer::render(map));
 }
 
-/** layers/*.pfm, the exact state, and octomap.bt (opens in octovis). */
+/** The exact state (layers/<name>.pfm), and octomap.bt (opens in octovis). */
 void saveExactState(const SemanticMap& map, const fs::path& dir)
 {
 	const GridGeometry& g = map.geometry();
