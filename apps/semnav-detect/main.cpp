@@ -7,16 +7,16 @@
 #include <semnav/common/DatasetListArg.h>
 #include <semnav/common/Percentile.h>
 #include <semnav/common/ProgressBar.h>
-#include <semnav/detection/CascadeConfigArg.h>
 #include <semnav/detection/CascadeDetector.h>
-#include <semnav/detection/CascadeTraining.h>
-#include <semnav/detection/DetectionEvaluation.h>
 #include <semnav/detection/DetectionImage.h>
-#include <semnav/detection/GroundTruthObject.h>
-#include <semnav/detection/ObjectScorer.h>
-#include <semnav/detection/ScoreJson.h>
-#include <semnav/detection/SimDataset.h>
 #include <semnav/perception/PerceptionPipeline.h>
+#include <semnav/training/CascadeConfigArg.h>
+#include <semnav/training/CascadeTraining.h>
+#include <semnav/training/DetectionEvaluation.h>
+#include <semnav/training/GroundTruthObject.h>
+#include <semnav/training/ObjectScorer.h>
+#include <semnav/training/ScoreJson.h>
+#include <semnav/training/SimDataset.h>
 
 #include <algorithm>
 #include <cmath>

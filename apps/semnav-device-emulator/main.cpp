@@ -5,9 +5,9 @@
 #include <mrpt/core/bits_math.h>
 #include <semnav/common/CommandLine.h>
 #include <semnav/common/Error.h>
-#include <semnav/hwdrivers/CaptureCheck.h>
-#include <semnav/hwdrivers/SceneLineCaster.h>
-#include <semnav/hwdrivers/TiltingScannerEmulator.h>
+#include <semnav/emulation/CaptureCheck.h>
+#include <semnav/emulation/SceneLineCaster.h>
+#include <semnav/emulation/TiltingScannerEmulator.h>
 #include <semnav/sim/SceneLoader.h>
 #include <sys/resource.h>
 

@@ -6,9 +6,9 @@
 #include <semnav/common/IniSections.h>
 #include <semnav/common/Percentile.h>
 #include <semnav/common/ProgressBar.h>
-#include <semnav/detection/ScoreJson.h>
 #include <semnav/map/MapIO.h>
 #include <semnav/mapping/MapBuilder.h>
+#include <semnav/training/ScoreJson.h>
 
 #include <iostream>
 #include <nlohmann/json.hpp>

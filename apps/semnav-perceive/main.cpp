@@ -7,8 +7,8 @@
 #include <semnav/common/IniSections.h>
 #include <semnav/common/Percentile.h>
 #include <semnav/common/ProgressBar.h>
-#include <semnav/detection/PerceptionRun.h>
-#include <semnav/detection/ScoreJson.h>
+#include <semnav/training/PerceptionRun.h>
+#include <semnav/training/ScoreJson.h>
 
 #include <cstdio>
 #include <filesystem>

@@ -8,8 +8,8 @@
 #include <semnav/common/DatasetListArg.h>
 #include <semnav/common/Error.h>
 #include <semnav/common/ProgressBar.h>
-#include <semnav/detection/CascadeConfigArg.h>
-#include <semnav/detection/CascadeTraining.h>
+#include <semnav/training/CascadeConfigArg.h>
+#include <semnav/training/CascadeTraining.h>
 
 #include <cstdint>
 #include <cstdio>

@@ -4,10 +4,10 @@
 #include <semnav/common/CommandLine.h>
 #include <semnav/common/DatasetListArg.h>
 #include <semnav/common/ProgressBar.h>
-#include <semnav/detection/CascadeConfigArg.h>
-#include <semnav/detection/CascadeTraining.h>
-#include <semnav/detection/ShapeTraining.h>
 #include <semnav/detection/ShapeVerifier.h>
+#include <semnav/training/CascadeConfigArg.h>
+#include <semnav/training/CascadeTraining.h>
+#include <semnav/training/ShapeTraining.h>
 
 #include <algorithm>
 #include <cstdio>

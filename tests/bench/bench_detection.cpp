@@ -24,12 +24,12 @@
 // (OPENCV_FOR_THREADS_NUM=1 for one thread: detectMultiScale is parallel).
 #include <benchmark/benchmark.h>
 #include <semnav/detection/CascadeDetector.h>
-#include <semnav/detection/GroundTruthObject.h>
 #include <semnav/perception/PerceptionPipeline.h>
 #include <semnav/sim/RayCaster.h>
 #include <semnav/sim/SceneLoader.h>
 #include <semnav/sim/SimulationRunner.h>
 #include <semnav/sim/TiltingLaserSimulator.h>
+#include <semnav/training/GroundTruthObject.h>
 #include <unistd.h>
 
 #include <cstdio>

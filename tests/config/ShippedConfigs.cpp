@@ -5,7 +5,6 @@
 #include <semnav/cascade/CascadeTrainer.h>
 #include <semnav/common/ConfigFileWriter.h>
 #include <semnav/detection/CascadeDetector.h>
-#include <semnav/detection/SampleGenerator.h>
 #include <semnav/hwdrivers/CTiltingLMS2xx.h>
 #include <semnav/localization/Localizer.h>
 #include <semnav/localization/WallExtractor.h>
@@ -23,6 +22,7 @@
 #include <semnav/planning/TraversabilityBuilder.h>
 #include <semnav/scan/SweepAssembler.h>
 #include <semnav/sim/SimulatorOptions.h>
+#include <semnav/training/SampleGenerator.h>
 
 #include <sstream>
 

@@ -8,14 +8,14 @@
 #include <semnav/cascade/CascadeEvaluator.h>
 #include <semnav/cascade/CascadeXml.h>
 #include <semnav/detection/CascadeDetector.h>
-#include <semnav/detection/GroundTruthObject.h>
-#include <semnav/detection/ObjectScorer.h>
-#include <semnav/detection/ShapeTraining.h>
 #include <semnav/perception/PerceptionPipeline.h>
 #include <semnav/sim/RayCaster.h>
 #include <semnav/sim/SceneLoader.h>
 #include <semnav/sim/SimulationRunner.h>
 #include <semnav/sim/TiltingLaserSimulator.h>
+#include <semnav/training/GroundTruthObject.h>
+#include <semnav/training/ObjectScorer.h>
+#include <semnav/training/ShapeTraining.h>
 
 #include <cstdio>
 #include <filesystem>

@@ -4,7 +4,7 @@
 #include <semnav/cascade/CascadeError.h>
 #include <semnav/common/Error.h>
 #include <semnav/detection/CascadeDetector.h>
-#include <semnav/detection/CascadeTraining.h>
+#include <semnav/training/CascadeTraining.h>
 #include <unistd.h>
 
 #include <cmath>

@@ -1,8 +1,8 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <gtest/gtest.h>
+#include <semnav/emulation/PseudoTerminal.h>
 #include <semnav/hwdrivers/Lms2xxTelegram.h>
 #include <semnav/hwdrivers/MonitoredSerialPort.h>
-#include <semnav/hwdrivers/PseudoTerminal.h>
 
 #include <vector>
 

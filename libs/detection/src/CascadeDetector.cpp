@@ -8,8 +8,8 @@
 #include <semnav/common/Error.h>
 #include <semnav/common/ParallelFor.h>
 #include <semnav/common/Timing.h>
+#include <semnav/detection/BoxOverlap.h>
 #include <semnav/detection/CascadeDetector.h>
-#include <semnav/detection/ObjectScorer.h>
 
 #include <algorithm>
 #include <cmath>
@@ -446,7 +446,7 @@ std::vector<CascadeDetector::Candidate> CascadeDetector::classCandidates(
 	std::move(segments.begin(), segments.end(), std::back_inserter(cands));
 	for (auto& c : cands)
 		for (std::size_t j = 0; j < boxes.size(); j++)
-			if (ObjectScorer::iou(c.box, boxes[j]) >= 0.3)
+			if (boxIou(c.box, boxes[j]) >= 0.3)
 				c.cascadeSupport += std::max(1, neighbours[j]);
 	return cands;
 }

@@ -15,7 +15,6 @@
 #include <semnav/common/Timing.h>
 #include <semnav/detection/BackWall.h>
 #include <semnav/detection/CascadeDetector.h>
-#include <semnav/detection/ObjectScorer.h>
 #include <semnav/detection/ShapeVerifier.h>
 
 #include <algorithm>
