@@ -25,6 +25,8 @@ std::string where(const std::string& section, const std::string& key)
 	return "[" + section + "] " + key;
 }
 
+}  // namespace
+
 std::string trimmed(const std::string& s)
 {
 	const auto b = s.find_first_not_of(" \t\r\n");
@@ -32,7 +34,6 @@ std::string trimmed(const std::string& s)
 	const auto e = s.find_last_not_of(" \t\r\n");
 	return s.substr(b, e - b + 1);
 }
-}  // namespace
 
 void checkKnownKeys(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section,

@@ -1,6 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/config/CConfigFileBase.h>
 #include <semnav/common/AtomicFile.h>
+#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/ConfigFileWriter.h>
 
 #include <sstream>
@@ -9,14 +10,6 @@ namespace semnav
 {
 namespace
 {
-std::string trimmed(const std::string& s)
-{
-	const auto b = s.find_first_not_of(" \t\r\n");
-	if (b == std::string::npos) return {};
-	const auto e = s.find_last_not_of(" \t\r\n");
-	return s.substr(b, e - b + 1);
-}
-
 /** Records the keys written to it in order, with their comments. */
 class RecordingConfig : public mrpt::config::CConfigFileBase
 {

@@ -1,8 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/config/CConfigFile.h>
-#include <mrpt/config/CConfigFileMemory.h>
-#include <semnav/common/AtomicFile.h>
 #include <semnav/common/ConfigChecks.h>
+#include <semnav/common/ConfigFileWriter.h>
 #include <semnav/common/IniSections.h>
 
 #include <algorithm>
@@ -34,22 +33,15 @@ void IniSections::loadIfGiven(const std::string& path) const
 	if (!path.empty()) load(path);
 }
 
-void IniSections::save(mrpt::config::CConfigFileBase& cfg) const
+std::vector<ConfigSection> IniSections::configSections() const
 {
-	for (const auto& e : m_entries) e.options->saveToConfigFile(cfg, e.section);
-}
-
-std::string IniSections::text() const
-{
-	mrpt::config::CConfigFileMemory mem;
-	save(mem);
-	std::string s;
-	mem.getContent(s);
-	return s;
+	std::vector<ConfigSection> out;
+	for (const auto& e : m_entries) out.push_back({e.section, e.options});
+	return out;
 }
 
 void IniSections::write(const std::string& path) const
 {
-	writeFileAtomically(path, text());
+	writeConfigFile(path, configSections());
 }
 }  // namespace semnav

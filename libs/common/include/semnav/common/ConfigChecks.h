@@ -14,6 +14,9 @@ class CConfigFile;
 
 namespace semnav
 {
+/** `s` without leading and trailing spaces, tabs and line ends. */
+std::string trimmed(const std::string& s);
+
 /** Throws ConfigError when `section` holds a key not listed in `known`. */
 void checkKnownKeys(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section,

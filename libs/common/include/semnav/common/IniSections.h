@@ -3,6 +3,7 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/config/CLoadableOptions.h>
+#include <semnav/common/ConfigFileWriter.h>
 
 #include <string>
 #include <vector>
@@ -33,11 +34,11 @@ public:
 	/** load() when `path` is not empty. */
 	void loadIfGiven(const std::string& path) const;
 
-	/** Saves every bound options struct into `cfg`. */
-	void save(mrpt::config::CConfigFileBase& cfg) const;
-	/** The INI text save() gives. */
-	std::string text() const;
-	/** Writes text() to `path` atomically; throws IoError. */
+	/** The bound sections, for configText() / writeConfigFile(). */
+	std::vector<ConfigSection> configSections() const;
+	/** Writes the bound options as the shipped config files are written
+	 * (writeConfigFile(): each key below its doc), atomically; throws
+	 * IoError. */
 	void write(const std::string& path) const;
 
 private:
