@@ -133,11 +133,4 @@ std::unique_ptr<mrpt::config::CConfigFile> openIniFile(
 	return cfg;
 }
 
-void writeBool(
-    mrpt::config::CConfigFileBase& cfg, const std::string& section,
-    const std::string& key, bool value)
-{
-	cfg.write(section, key, std::string(value ? "true" : "false"));
-}
-
 }  // namespace semnav

@@ -39,11 +39,6 @@ bool readCheckedBool(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section,
     const std::string& key, bool current);
 
-/** Writes a bool as readCheckedBool() reads it back: true or false. */
-void writeBool(
-    mrpt::config::CConfigFileBase& cfg, const std::string& section,
-    const std::string& key, bool value);
-
 /** Opens an INI file; throws ConfigError when it does not exist or holds a
  * section not in `knownSections`. */
 std::unique_ptr<mrpt::config::CConfigFile> openIniFile(
