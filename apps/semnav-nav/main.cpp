@@ -7,7 +7,7 @@
 #include <semnav/common/IniSections.h>
 #include <semnav/common/ShippedConfig.h>
 #include <semnav/nav/NavCommand.h>
-#include <semnav/nav/NavigationRun.h>
+#include <semnav/navsim/NavigationRun.h>
 
 #include <cmath>
 #include <cstdio>
@@ -223,6 +223,9 @@ int main(int argc, char** argv)
 	TCLAP::ValueArg<std::string> argPlanning(
 	    "", "planning-config", "Planning INI", false, shipped("planning.ini"),
 	    "P.ini", cmd);
+	TCLAP::ValueArg<std::string> argSimConfig(
+	    "", "sim-config", "Simulator INI ([SimulatedRobot])", false,
+	    shipped("sim.ini"), "S.ini", cmd);
 	TCLAP::MultiArg<std::string> argSceneInstances(
 	    "", "instances-from-scene",
 	    "Add the scene's objects of LABEL to the map as instances (ground "
@@ -257,8 +260,10 @@ int main(int argc, char** argv)
 	perceptionSections.add(
 	    s.perception, "", semnav::PerceptionPipeline::sections());
 	all.add(c.navigator, "SemanticNavigator")
-	    .add(c.robot, "SimulatedRobot")
 	    .add(c.stopAndScan, "StopAndScan")
+	    .add(c.robotInterface, "RobotNavInterface")
+	    .add(c.sweepObstacles, "SweepObstacles")
+	    .add(c.robot, "SimulatedRobot")
 	    .add(c.cnn, "CnnPlanner")
 	    .add(c.traversability, "Traversability")
 	    .add(c.map, "SemanticMap")
@@ -294,8 +299,9 @@ int main(int argc, char** argv)
 		            ? semnav::NavCommand::parse(argCommand.getValue())
 		            : semnav::NavCommand::nearest(
 		                  semnav::labelFromName(argGoal.getValue()));
-		    s.config = semnav::NavigationConfig::load(
-		        argConfig.getValue(), argPlanning.getValue());
+		    s.config = semnav::SimulationConfig::load(
+		        argConfig.getValue(), argPlanning.getValue(),
+		        argSimConfig.getValue());
 		    if (s.localize)
 		    {
 			    localizationSections.load(argLocConfig.getValue());

@@ -6,6 +6,7 @@
 #include <semnav/common/IniSections.h>
 #include <semnav/common/ProgressBar.h>
 #include <semnav/sim/SceneLoader.h>
+#include <semnav/sim/SimulatedRobotOptions.h>
 #include <semnav/sim/SimulationRunner.h>
 
 #include <cstdint>
@@ -32,8 +33,10 @@ int main(int argc, char** argv)
 	    "Random seed (terrain, range and odometry noise); default 0", false,
 	    "0", "N", cmd);
 	semnav::SimulationRunner::TOptions opts;
+	// [SimulatedRobot] of sim.ini is semnav-nav's; checked, not used here.
+	semnav::SimulatedRobotOptions robotOptions;
 	semnav::IniSections sections;
-	sections.add(opts, "Simulator");
+	sections.add(opts, "Simulator").add(robotOptions, "SimulatedRobot");
 	TCLAP::ValueArg<std::string>& argConfig =
 	    cli.addConfig(sections, "INI file (see config/sim.ini)");
 	TCLAP::SwitchArg& argJson = cli.addJson();

@@ -20,14 +20,15 @@
 #include <benchmark/benchmark.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <semnav/map/SemanticMap.h>
-#include <semnav/nav/NavigationConfig.h>
-#include <semnav/nav/SceneMapBuilder.h>
+#include <semnav/nav/RobotNavInterface.h>
 #include <semnav/nav/SemanticNavigator.h>
-#include <semnav/nav/SimulatedRobot.h>
+#include <semnav/navsim/SceneMapBuilder.h>
+#include <semnav/navsim/SimulationConfig.h>
 #include <semnav/planning/CnnPlanner.h>
 #include <semnav/planning/DijkstraPlanner.h>
 #include <semnav/planning/SemanticPlanner.h>
 #include <semnav/sim/SceneLoader.h>
+#include <semnav/sim/SimulatedRobot.h>
 
 #include <memory>
 
@@ -37,16 +38,18 @@ namespace
 {
 struct Fixture
 {
-	NavigationConfig config;
+	SimulationConfig config;
 	Scene scene;
 	SemanticMap map;
 	std::unique_ptr<SimulatedRobot> robot;
+	std::unique_ptr<RobotNavInterface> robotInterface;
 	std::unique_ptr<SemanticNavigator> nav;
 
 	Fixture()
-	    : config(NavigationConfig::load(
+	    : config(SimulationConfig::load(
 	          std::string(SEMNAV_SOURCE_DIR) + "/config/navigation.ini",
-	          std::string(SEMNAV_SOURCE_DIR) + "/config/planning.ini")),
+	          std::string(SEMNAV_SOURCE_DIR) + "/config/planning.ini",
+	          std::string(SEMNAV_SOURCE_DIR) + "/config/sim.ini")),
 	      scene(SceneLoader::loadFile(
 	          std::string(SEMNAV_SOURCE_DIR) + "/datasets/office/office.yaml")),
 	      map(config.map)
@@ -54,17 +57,21 @@ struct Fixture
 		SceneMapBuilder::build(scene, map);
 		robot = std::make_unique<SimulatedRobot>(
 		    scene, config.robot, mrpt::math::TPose2D(5.0, 1.5, 0.8));
+		robotInterface = std::make_unique<RobotNavInterface>(
+		    robot->base(), robot->truePose(), robot->obstacles(), *robot,
+		    config.robotInterface);
+		robotInterface->setMinLoggingLevel(mrpt::system::LVL_ERROR);
 		nav = std::make_unique<SemanticNavigator>(
-		    *robot, map, *config.mrptSections, config.cnn,
+		    *robotInterface, map, *config.mrptSections, config.cnn,
 		    config.traversability, config.navigator);
 		nav->setMinLoggingLevel(mrpt::system::LVL_ERROR);
-		robot->setMinLoggingLevel(mrpt::system::LVL_ERROR);
+		robot->base().setMinLoggingLevel(mrpt::system::LVL_ERROR);
 		nav->start(NavCommand::nearest(Label::Washbasin));
 		// A few steps so the navigator is under way.
 		for (int i = 0; i < 20; i++)
 		{
 			nav->step();
-			robot->simulate();
+			robot->tick();
 		}
 	}
 };
@@ -94,7 +101,7 @@ void BM_NavigatorStep(benchmark::State& st)
 		f.nav->step();
 		st.PauseTiming();
 		// Keep the scene still: the same situation every iteration.
-		f.robot->stop(false);
+		f.robotInterface->stop(false);
 		st.ResumeTiming();
 	}
 }
@@ -116,7 +123,7 @@ void BM_SenseObstacles(benchmark::State& st)
 	auto& f = fixture();
 	mrpt::maps::CSimplePointsMap obs;
 	mrpt::system::TTimeStamp t;
-	for (auto _ : st) f.robot->senseObstacles(obs, t);
+	for (auto _ : st) f.robotInterface->senseObstacles(obs, t);
 	st.counters["points"] = static_cast<double>(obs.size());
 }
 BENCHMARK(BM_SenseObstacles)->Unit(benchmark::kMillisecond);
@@ -125,7 +132,8 @@ void BM_CollisionCheck(benchmark::State& st)
 {
 	auto& f = fixture();
 	for (auto _ : st)
-		benchmark::DoNotOptimize(f.robot->inCollision(f.robot->pose()));
+		benchmark::DoNotOptimize(
+		    f.robot->base().inCollision(f.robot->base().pose()));
 }
 BENCHMARK(BM_CollisionCheck)->Unit(benchmark::kMillisecond);
 /** The inputs of one replan's plan: u and the goal regions of every
@@ -137,7 +145,7 @@ const SemanticPlanner::Plan& washbasinPlan()
 		auto& f = fixture();
 		const SemanticPlanner planner(
 		    f.map, f.config.cnn, f.config.traversability);
-		const auto r = f.robot->pose();
+		const auto r = f.robot->base().pose();
 		return planner.toLabel(r.x, r.y, Label::Washbasin, f.nav->profile());
 	}();
 	return p;

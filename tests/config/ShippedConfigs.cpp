@@ -11,8 +11,8 @@
 #include <semnav/localization/WallMap.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/map/TravelCostModel.h>
+#include <semnav/nav/RobotNavInterface.h>
 #include <semnav/nav/SemanticNavigator.h>
-#include <semnav/nav/SimulatedRobot.h>
 #include <semnav/nav/StopAndScanLocalizer.h>
 #include <semnav/perception/NormalImage.h>
 #include <semnav/perception/RangeSegmentation.h>
@@ -20,7 +20,9 @@
 #include <semnav/perception/RuleClassifier.h>
 #include <semnav/planning/CnnPlanner.h>
 #include <semnav/planning/TraversabilityBuilder.h>
+#include <semnav/robot/SweepObstacles.h>
 #include <semnav/scan/SweepAssembler.h>
+#include <semnav/sim/SimulatedRobot.h>
 #include <semnav/sim/SimulatorOptions.h>
 #include <semnav/training/SampleGenerator.h>
 
@@ -243,13 +245,15 @@ stats_file = ./semnav-capture-stats.json
 	all.push_back(
 	    {"navigation.ini",
 	     "semnav navigation (semnav-nav, scripts/demo): the CNN path "
-	     "handed to MRPT's\nreactive navigator as waypoints, a simulated "
-	     "differential-drive robot, and\nMRPT's own reactive-navigation "
-	     "sections. The planner's options are in\nconfig/planning.ini "
-	     "(its robot_radius_m must match robot_radius_m below).",
+	     "handed to MRPT's\nreactive navigator as waypoints, stop-and-scan "
+	     "localization, the robot\ninterface MRPT drives (obstacles from "
+	     "the latest sweep) and MRPT's own\nreactive-navigation sections "
+	     "(RobotModel_circular_shape_radius must match\nrobot_radius_m of "
+	     "config/planning.ini and of [SimulatedRobot] in config/sim.ini).",
 	     {section<SemanticNavigator::TOptions>("SemanticNavigator"),
-	      section<SimulatedRobot::TOptions>("SimulatedRobot"),
-	      section<StopAndScanLocalizer::TOptions>("StopAndScan")},
+	      section<StopAndScanLocalizer::TOptions>("StopAndScan"),
+	      section<RobotNavInterface::TOptions>("RobotNavInterface"),
+	      section<SweepObstacles::TOptions>("SweepObstacles")},
 	     "",
 	     {},
 	     "",
@@ -273,8 +277,11 @@ stats_file = ./semnav-capture-stats.json
 	      section<TraversabilityBuilder::TOptions>("Traversability")}});
 	all.push_back(
 	    {"sim.ini",
-	     "semnav-sim options (semnav-sim --config config/sim.ini).",
-	     {section<SimulatorOptions>("Simulator")}});
+	     "The simulator: [Simulator] for semnav-sim (--config "
+	     "config/sim.ini), the\nsimulated robot [SimulatedRobot] for "
+	     "semnav-nav (--sim-config config/sim.ini).",
+	     {section<SimulatorOptions>("Simulator"),
+	      section<SimulatedRobot::TOptions>("SimulatedRobot")}});
 	const std::string common =
 	    "\nEvery key is optional; the values below are the code's defaults "
 	    "except where\nmarked \"(default: ...)\" (docs/configuration.md). "

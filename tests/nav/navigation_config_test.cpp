@@ -59,14 +59,13 @@ TEST(NavigationConfig, ShippedFilesLoad)
 	const auto c = NavigationConfig::load(kNav, kPlan);
 	EXPECT_EQ(c.navigator.profile, "safe");
 	EXPECT_DOUBLE_EQ(c.navigator.goalAllowedDistance, 0.15);
-	EXPECT_EQ(c.robot.scanHeights.size(), 2u);
-	EXPECT_DOUBLE_EQ(c.robot.timeStep, 0.1);
-	// The simulated robot, the PTG shape and the planner's C-space agree.
-	EXPECT_DOUBLE_EQ(c.robot.robotRadius, c.traversability.robotRadius);
+	EXPECT_DOUBLE_EQ(c.sweepObstacles.maxHeight, 1.0);
+	EXPECT_DOUBLE_EQ(c.robotInterface.alignMaxSpeedDeg, 45);
+	// The PTG shape and the planner's C-space agree.
 	EXPECT_NEAR(
 	    c.mrptSections->read_double(
 	        "CReactiveNavigationSystem", "RobotModel_circular_shape_radius", 0),
-	    c.robot.robotRadius, 0.02);
+	    c.traversability.robotRadius, 0.02);
 	EXPECT_EQ(
 	    c.mrptSections->read_int("CReactiveNavigationSystem", "PTG_COUNT", 0),
 	    3);
@@ -89,21 +88,19 @@ TEST(NavigationConfig, BadInputIsAnError)
 	    std::string::npos);
 	EXPECT_NE(errorOf(variant("profile = safe", "profile = fastest")), "");
 	EXPECT_NE(
-	    errorOf(variant("scan_beams = 240", "scan_beams = many"))
-	        .find("scan_beams"),
+	    errorOf(variant("max_age_s = 60", "max_age_s = old")).find("max_age_s"),
 	    std::string::npos);
 	EXPECT_NE(
-	    errorOf(
-	        variant("scan_heights_m = 0.15 0.75", "scan_heights_m = 0.15 x"))
-	        .find("scan_heights_m"),
+	    errorOf(variant("align_gain = 2.25", "align_gain = 0"))
+	        .find("align_gain"),
 	    std::string::npos);
 	// A typo in one of MRPT's keys (MRPT itself would ignore it).
 	const std::string e =
 	    errorOf(variant("secure_distance_start", "secure_distance_strat"));
 	EXPECT_NE(e.find("secure_distance_strat"), std::string::npos) << e;
 	EXPECT_NE(
-	    errorOf(variant("[SimulatedRobot]", "[SimulatedRobots]"))
-	        .find("SimulatedRobots"),
+	    errorOf(variant("[SweepObstacles]", "[SweepObstacle]"))
+	        .find("SweepObstacle"),
 	    std::string::npos);
 	EXPECT_NE(errorOf("/nonexistent/navigation.ini"), "");
 	EXPECT_EQ(errorOf(kNav), "");

@@ -89,18 +89,29 @@ const std::vector<std::string>& NavigationConfig::mrptSectionNames()
 }
 
 NavigationConfig NavigationConfig::load(
-    const std::string& navigationIni, const std::string& planningIni)
+    const std::string& navigationIni, const std::string& planningIni,
+    const std::vector<ExtraSection>& extra)
 {
 	NavigationConfig c;
-	std::vector<std::string> known{
-	    "SemanticNavigator", "SimulatedRobot", "StopAndScan"};
+	std::vector<ExtraSection> semnavSections{
+	    {"SemanticNavigator", &c.navigator},
+	    {"StopAndScan", &c.stopAndScan},
+	    {"RobotNavInterface", &c.robotInterface},
+	    {"SweepObstacles", &c.sweepObstacles}};
+	semnavSections.insert(semnavSections.end(), extra.begin(), extra.end());
+	std::set<std::string> ours;
+	std::vector<std::string> known;
+	for (const auto& s : semnavSections)
+	{
+		ours.insert(s.name);
+		known.push_back(s.name);
+	}
 	for (const auto& s : mrptSectionNames()) known.push_back(s);
 	const auto ini = openIniFile(navigationIni, known);
 	try
 	{
-		c.navigator.loadFromConfigFile(*ini, "SemanticNavigator");
-		c.robot.loadFromConfigFile(*ini, "SimulatedRobot");
-		c.stopAndScan.loadFromConfigFile(*ini, "StopAndScan");
+		for (const auto& s : semnavSections)
+			s.options->loadFromConfigFile(*ini, s.name);
 	}
 	catch (const ConfigError& e)
 	{
@@ -111,9 +122,7 @@ NavigationConfig NavigationConfig::load(
 	ini->getAllSections(sections);
 	for (const auto& s : sections)
 	{
-		if (s == "SemanticNavigator" || s == "SimulatedRobot" ||
-		    s == "StopAndScan")
-			continue;
+		if (ours.count(s)) continue;
 		std::vector<std::string> keys;
 		ini->getAllKeys(s, keys);
 		for (const auto& k : keys)
@@ -126,9 +135,7 @@ NavigationConfig NavigationConfig::load(
 		mrptEcho(*mrptSections, echo);
 		for (const auto& s : sections)
 		{
-			if (s == "SemanticNavigator" || s == "SimulatedRobot" ||
-			    s == "StopAndScan")
-				continue;
+			if (ours.count(s)) continue;
 			std::vector<std::string> keys, echoed;
 			ini->getAllKeys(s, keys);
 			echo.getAllKeys(s, echoed);

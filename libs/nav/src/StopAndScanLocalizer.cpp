@@ -7,8 +7,12 @@
 #include <semnav/common/Timing.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/nav/NavigationErrors.h>
-#include <semnav/nav/SimulatedRobot.h>
 #include <semnav/nav/StopAndScanLocalizer.h>
+#include <semnav/robot/ControlClock.h>
+#include <semnav/robot/LocalizedPose.h>
+#include <semnav/robot/PoseSource.h>
+#include <semnav/robot/RobotBase.h>
+#include <semnav/scan/SweepSource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -74,10 +78,6 @@ const OptionTable<O>& optionTable()
 	        .angle(
 	            "turn_speed_deg_s", &O::turnSpeed, 1, 360, "...at this speed.")
 	        .real(
-	            "line_period_s", &O::linePeriod, 0, 10,
-	            "Time of one scan line: a sweep stops the robot this long "
-	            "per line.")
-	        .real(
 	            "guess_std_xy_m", &O::guessStdXY, 0.001, 10,
 	            "Tracking start: particle cloud around the guess.")
 	        .angle(
@@ -88,14 +88,7 @@ const OptionTable<O>& optionTable()
 	            "Tracking start: particles.")
 	        .real(
 	            "rescan_distance_m", &O::rescanDistance, 0, 1000,
-	            "Stop and scan again after this much travel (0: never).")
-	        .flag(
-	            "odometry_noise", &O::odometryNoise,
-	            "Odometry gets the scene's odometry errors while "
-	            "localizing.")
-	        .integer(
-	            "seed", &O::seed, 0, 1 << 30,
-	            "Laser range noise and odometry noise.");
+	            "Stop and scan again after this much travel (0: never).");
 	return t;
 }
 }  // namespace
@@ -103,11 +96,10 @@ const OptionTable<O>& optionTable()
 SEMNAV_OPTIONS_FROM_TABLE(StopAndScanLocalizer::TOptions, optionTable())
 
 StopAndScanLocalizer::StopAndScanLocalizer(
-    const Scene& scene, const SemanticMap& map, const TOptions& options,
+    const SemanticMap& map, const TOptions& options,
     const MappingLocalizer::TOptions& localization,
     const PerceptionPipeline::TOptions& perception)
     : mrpt::system::COutputLogger("StopAndScanLocalizer"),
-      m_scene(scene),
       m_map(map),
       m_options(options),
       m_locOptions(localization),
@@ -158,20 +150,15 @@ void StopAndScanLocalizer::makeLocalizer(const Localizer::TOptions& o)
 StopAndScanLocalizer::~StopAndScanLocalizer() = default;
 
 StopAndScanLocalizer::Report StopAndScanLocalizer::start(
-    SimulatedRobot& robot, Mode mode,
+    const RobotInterfaces& robot, Mode mode,
     const std::optional<mrpt::math::TPose2D>& guess)
 {
 	const auto t0 = std::chrono::steady_clock::now();
-	if (!m_laser || m_caster != &robot.caster())
-	{
-		m_caster = &robot.caster();
-		m_laser = std::make_unique<TiltingLaserSimulator>(
-		    *m_caster, m_scene.sensor, static_cast<uint64_t>(m_options.seed));
-	}
-	if (m_options.odometryNoise)
-		robot.setOdometryNoise(
-		    m_scene.odometry, static_cast<uint64_t>(m_options.seed) + 7919);
-	m_lastOdometry = robot.odometry();
+	if (!robot.base || !robot.sweeps || !robot.clock || !robot.pose)
+		throw Error(
+		    "localization: the robot lacks a base, sweeps, clock or pose");
+	m_started = true;
+	m_lastOdometry = robot.base->odometry().pose;
 
 	Report rep;
 	rep.mode = mode;
@@ -195,12 +182,46 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::start(
 	}
 
 	sweepUntilConverged(robot, mode == Mode::Global, false, rep, t0);
-	robot.setPoseEstimate(rep.estimate);
+	report(robot, rep.estimate);
 	return rep;
 }
 
+void StopAndScanLocalizer::report(
+    const RobotInterfaces& robot, const mrpt::math::TPose2D& estimate)
+{
+	robot.pose->setEstimate(estimate, robot.base->odometry().pose);
+}
+
+void StopAndScanLocalizer::stopNow(const RobotInterfaces& robot)
+{
+	robot.base->stop();
+	robot.clock->tick();
+}
+
+void StopAndScanLocalizer::turnInPlace(
+    const RobotInterfaces& robot, double angle)
+{
+	const double dt = robot.clock->period();
+	const double speed = m_options.turnSpeed;
+	double turned = 0;
+	for (int guard = 0; guard < 100000; guard++)
+	{
+		const double left = std::abs(angle) - std::abs(turned);
+		if (left <= 1e-3) break;
+		const double before = robot.base->odometry().pose.phi;
+		if (!robot.base->setVelocity(
+		        0, (angle >= 0 ? 1 : -1) * std::min(speed, left / dt)))
+			throw LocalizationFailedError(
+			    "localization: the base refused to turn (emergency stop?)");
+		robot.clock->waitFor(dt);
+		turned +=
+		    mrpt::math::wrapToPi(robot.base->odometry().pose.phi - before);
+	}
+	stopNow(robot);
+}
+
 void StopAndScanLocalizer::sweepUntilConverged(
-    SimulatedRobot& robot, bool global, bool turnFirst, Report& rep,
+    const RobotInterfaces& robot, bool global, bool turnFirst, Report& rep,
     std::chrono::steady_clock::time_point t0)
 {
 	// (m_startObs: the sweeps of rep.records the caller kept.)
@@ -210,8 +231,7 @@ void StopAndScanLocalizer::sweepUntilConverged(
 	for (int k = static_cast<int>(rep.records.size()); k < m_options.maxSweeps;
 	     k++)
 	{
-		if (k > 0 || turnFirst)
-			robot.turnInPlace(m_options.turnAngle, m_options.turnSpeed);
+		if (k > 0 || turnFirst) turnInPlace(robot, m_options.turnAngle);
 		const SweepRecord r = sweepAndUpdate(robot);
 		rep.records.push_back(r);
 		rep.sweeps++;
@@ -282,12 +302,13 @@ void StopAndScanLocalizer::sweepUntilConverged(
 		        "%.2f m, %.1f deg)", last.stdXY, mrpt::RAD2DEG(last.stdYaw)));
 }
 
-StopAndScanLocalizer::Report StopAndScanLocalizer::rescan(SimulatedRobot& robot)
+StopAndScanLocalizer::Report StopAndScanLocalizer::rescan(
+    const RobotInterfaces& robot)
 {
-	if (!m_laser)
+	if (!m_started)
 		throw LocalizationFailedError("localization: rescan before start");
 	const auto t0 = std::chrono::steady_clock::now();
-	robot.stopNow();
+	stopNow(robot);
 	Report rep;
 	rep.mode = Mode::Tracking;
 	rep.recovery = false;
@@ -327,37 +348,35 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::rescan(SimulatedRobot& robot)
 		}
 		sweepUntilConverged(robot, r.kidnapped, true, rep, t0);
 	}
-	robot.setPoseEstimate(rep.estimate);
+	report(robot, rep.estimate);
 	return rep;
 }
 
 StopAndScanLocalizer::SweepRecord StopAndScanLocalizer::sweepAndUpdate(
-    SimulatedRobot& robot)
+    const RobotInterfaces& robot)
 {
 	const auto t0 = std::chrono::steady_clock::now();
 	SweepRecord rec;
-	rec.truePose = robot.pose();
-	rec.odometry = robot.odometry();
-	const SimulatedSweep sim = m_laser->simulate(
-	    rec.truePose, m_sweepIndex,
-	    SimulatedRobot::timestampOf(robot.simTime()), m_options.linePeriod);
-	// The robot stands still while the head nods.
-	const double sweepTime =
-	    m_options.linePeriod * static_cast<double>(m_laser->lineCount());
-	if (sweepTime > 0) robot.simulate(sweepTime);
-	Sweep sweep = sim.toSweep();
-	sweep.setOdometry(mrpt::poses::CPose2D(robot.odometry()));
+	if (robot.truth) rec.truePose = robot.truth->pose();
+	rec.odometry = robot.base->odometry().pose;
+	// The sweep begun now, while the robot stands still.
+	if (!robot.sweeps->next(m_sweep, mrpt::Clock::now()))
+		throw LocalizationFailedError(
+		    std::string("localization: no sweep (") +
+		    SweepSource::endName(robot.sweeps->end()) +
+		    "): " + robot.sweeps->endMessage());
+	const Sweep& sweep = m_sweep;
 	m_perception.process(sweep, m_labeled);
 	const WallObservation obs = m_extractor.extract(m_labeled);
+	const mrpt::math::TPose2D odometry = sweep.odometry().asTPose();
 	if (m_inStart)
 	{
 		m_startObs.push_back(obs);
-		m_startOdo.push_back(robot.odometry());
+		m_startOdo.push_back(odometry);
 	}
-	const mrpt::poses::CPose2D incr = mrpt::poses::CPose2D(robot.odometry()) -
-	                                  mrpt::poses::CPose2D(m_lastOdometry);
-	m_lastOdometry = robot.odometry();
-	m_sweepIndex++;
+	const mrpt::poses::CPose2D incr =
+	    mrpt::poses::CPose2D(odometry) - mrpt::poses::CPose2D(m_lastOdometry);
+	m_lastOdometry = odometry;
 	const LocalizationUpdate u = m_localizer->update(incr, obs);
 	rec.estimate = u.pose.asTPose();
 	rec.estimate.phi = mrpt::math::wrapToPi(rec.estimate.phi);
@@ -374,9 +393,14 @@ StopAndScanLocalizer::SweepRecord StopAndScanLocalizer::sweepAndUpdate(
 	    (u.converged || rec.massNear >= m_options.convergedFraction) &&
 	    u.inlierFraction >= m_locOptions.localizer.kidnapInlierFraction;
 	rec.updateMs = u.ms;
-	const mrpt::math::TPose2D now = robot.pose();
-	rec.errorXY = std::hypot(rec.estimate.x - now.x, rec.estimate.y - now.y);
-	rec.errorYaw = std::abs(mrpt::math::wrapToPi(rec.estimate.phi - now.phi));
+	if (robot.truth)
+	{
+		const mrpt::math::TPose2D now = robot.truth->pose();
+		rec.errorXY =
+		    std::hypot(rec.estimate.x - now.x, rec.estimate.y - now.y);
+		rec.errorYaw =
+		    std::abs(mrpt::math::wrapToPi(rec.estimate.phi - now.phi));
+	}
 	rec.ms = msSince(t0);
 	m_records.push_back(rec);
 	return rec;

@@ -3,11 +3,12 @@
 
 #include <mrpt/config/CConfigFileMemory.h>
 #include <semnav/map/SemanticMap.h>
+#include <semnav/nav/RobotNavInterface.h>
 #include <semnav/nav/SemanticNavigator.h>
-#include <semnav/nav/SimulatedRobot.h>
 #include <semnav/nav/StopAndScanLocalizer.h>
 #include <semnav/planning/CnnPlanner.h>
 #include <semnav/planning/TraversabilityBuilder.h>
+#include <semnav/robot/SweepObstacles.h>
 
 #include <memory>
 #include <string>
@@ -15,12 +16,14 @@
 
 namespace semnav
 {
-/** Everything a navigation run is configured with:
- * config/navigation.ini ([SemanticNavigator], [SimulatedRobot],
- * [StopAndScan] and MRPT's
- * reactive-navigation sections, based on MRPT's reactive2d_config.ini) and
- * config/planning.ini ([CnnPlanner], [Traversability], optionally
- * [SemanticMap], [TravelCost] for loading maps).
+/** Everything the runtime's navigation is configured with:
+ * config/navigation.ini ([SemanticNavigator], [StopAndScan],
+ * [RobotNavInterface], [SweepObstacles] and MRPT's reactive-navigation
+ * sections, based on MRPT's reactive2d_config.ini) and config/planning.ini
+ * ([CnnPlanner], [Traversability], optionally [SemanticMap], [TravelCost]
+ * for loading maps). The robot's own sections (e.g. the simulator's
+ * [SimulatedRobot], see SimulationConfig) are loaded by whoever owns them
+ * through `extra`.
  *
  * Sections other than these are errors; keys of semnav's sections are
  * checked by their TOptions; keys of MRPT's sections are checked against
@@ -29,8 +32,9 @@ namespace semnav
 struct NavigationConfig
 {
 	SemanticNavigator::TOptions navigator;
-	SimulatedRobot::TOptions robot;
 	StopAndScanLocalizer::TOptions stopAndScan;
+	RobotNavInterface::TOptions robotInterface;
+	SweepObstacles::TOptions sweepObstacles;
 	CnnPlanner::TOptions cnn;
 	TraversabilityBuilder::TOptions traversability;
 	SemanticMap::TOptions map;
@@ -41,10 +45,18 @@ struct NavigationConfig
 	/** Sections of navigation.ini that belong to MRPT. */
 	static const std::vector<std::string>& mrptSectionNames();
 
-	/** Loads navigation.ini and (if not empty) planning.ini. Throws
-	 * ConfigError naming file, section and key. */
+	/** A section of navigation.ini loaded by another layer. */
+	struct ExtraSection
+	{
+		std::string name;
+		mrpt::config::CLoadableOptions* options = nullptr;
+	};
+
+	/** Loads navigation.ini (with the `extra` sections) and (if not empty)
+	 * planning.ini. Throws ConfigError naming file, section and key. */
 	static NavigationConfig load(
-	    const std::string& navigationIni, const std::string& planningIni);
+	    const std::string& navigationIni, const std::string& planningIni,
+	    const std::vector<ExtraSection>& extra = {});
 };
 
 }  // namespace semnav

@@ -10,8 +10,7 @@
 #include <semnav/localization/WallExtractor.h>
 #include <semnav/perception/LabeledSweep.h>
 #include <semnav/perception/PerceptionPipeline.h>
-#include <semnav/sim/Scene.h>
-#include <semnav/sim/TiltingLaserSimulator.h>
+#include <semnav/robot/RobotInterfaces.h>
 
 #include <chrono>
 #include <memory>
@@ -22,22 +21,25 @@
 namespace semnav
 {
 class SemanticMap;
-class SimulatedRobot;
 
-/** Localization of a SimulatedRobot in a known semantic map, the way the
- * paper's robot does it (sec. 2.3): stop, take a tilting-laser sweep
- * (TiltingLaserSimulator on the scene, at the robot's true pose), run
- * perception (PerceptionPipeline) and the wall extractor, and update the
- * wall-landmark particle filter (Localizer on the map's walls) with the
- * robot's odometry since the previous sweep.
+/** Localization of a robot in a known semantic map, the way the paper's
+ * robot does it (sec. 2.3): stop the base, take the next sweep taken while
+ * it stood still (the robot's SweepSource), run perception
+ * (PerceptionPipeline) and the wall extractor, and update the wall-landmark
+ * particle filter (Localizer on the map's walls) with the odometry since
+ * the previous sweep. It sees the robot only through RobotInterfaces (base,
+ * sweeps, clock, reported pose): the same code runs on a robot and in the
+ * simulator.
  *
  * - start(): global (particles over the map's free cells) or tracking
  *   (particles around a rough guess). While the filter has not converged
  *   the robot turns on the spot by turn_deg and sweeps again, at most
- *   max_sweeps sweeps; then LocalizationFailedError. On success the robot
- *   reports the estimate (SimulatedRobot::setPoseEstimate).
- * - rescan(): one more stop-and-scan update during navigation; the robot's
- *   reported pose jumps to the new estimate.
+ *   max_sweeps sweeps; then LocalizationFailedError. On success the
+ *   robot's reported pose (RobotInterfaces::pose) takes the estimate.
+ * - rescan(): one more stop-and-scan update during navigation; the reported
+ *   pose jumps to the new estimate.
+ * - With RobotInterfaces::truth (a simulation), every sweep record also
+ *   holds the true pose and the estimate's error; nothing else uses it.
  *
  * Options: INI section [StopAndScan] (config/navigation.ini). */
 class StopAndScanLocalizer : public mrpt::system::COutputLogger
@@ -95,9 +97,6 @@ public:
 		double turnAngle = mrpt::DEG2RAD(60.0);
 		/** turn_speed_deg_s (rad/s). */
 		double turnSpeed = mrpt::DEG2RAD(45.0);
-		/** line_period_s: time of one scan line; a sweep stops the robot
-		 * for lines x period of simulated time. */
-		double linePeriod = 1.0 / 75;
 		/** guess_std_xy_m, guess_std_yaw_deg, guess_particles: the particle
 		 * cloud of a tracking start around --start-guess. */
 		double guessStdXY = 0.5;
@@ -106,17 +105,13 @@ public:
 		/** rescan_distance_m: during navigation, stop and scan after this
 		 * much odometry travel (0: never). */
 		double rescanDistance = 1.0;
-		/** odometry_noise: the robot's odometry gets the scene's odometry
-		 * errors (heading bias and noise) while localizing. */
-		bool odometryNoise = true;
-		/** seed: laser range noise and odometry noise. */
-		int seed = 1;
 	};
 
 	/** One sweep and its filter update. */
 	struct SweepRecord
 	{
-		/** True pose, estimate and the robot's odometry at the sweep. */
+		/** True pose (with RobotInterfaces::truth), estimate and the
+		 * robot's odometry at the sweep. */
 		mrpt::math::TPose2D truePose, estimate, odometry;
 		double stdXY = 0, stdYaw = 0;
 		std::size_t segments = 0;
@@ -140,11 +135,12 @@ public:
 		/** Wall clock of the check, ms. */
 		double checkMs = 0;
 		mrpt::math::TPose2D rival;
-		/** Sweep simulation + perception + walls + update, wall clock. */
+		/** Sweep + perception + walls + update, wall clock. */
 		double ms = 0;
 		/** Filter update alone (Localizer), ms. */
 		double updateMs = 0;
-		/** Error of the estimate against the true pose (m, rad). */
+		/** Error of the estimate against the true pose (m, rad; with
+		 * RobotInterfaces::truth). */
 		double errorXY = 0, errorYaw = 0;
 	};
 
@@ -168,19 +164,20 @@ public:
 		std::vector<SweepRecord> records;
 	};
 
-	/** `map` is the known map (its walls and free cells); `scene` is what
-	 * the laser sees. Both must outlive the localizer. Throws
-	 * LocalizationFailedError when the map has no walls. */
+	/** `map` is the known map (its walls and free cells); it must outlive
+	 * the localizer. Throws LocalizationFailedError when the map has no
+	 * walls. */
 	StopAndScanLocalizer(
-	    const Scene& scene, const SemanticMap& map, const TOptions& options,
+	    const SemanticMap& map, const TOptions& options,
 	    const MappingLocalizer::TOptions& localization,
 	    const PerceptionPipeline::TOptions& perception);
 	~StopAndScanLocalizer() override;
 
 	/** Localizes the robot where it stands (see the class comment). A
-	 * tracking start needs `guess`. Throws LocalizationFailedError. */
+	 * tracking start needs `guess`. Throws LocalizationFailedError (also
+	 * when the sweep source ends). */
 	Report start(
-	    SimulatedRobot& robot, Mode mode,
+	    const RobotInterfaces& robot, Mode mode,
 	    const std::optional<mrpt::math::TPose2D>& guess = std::nullopt);
 
 	/** One stop-and-scan update: stops the robot, sweeps, updates the
@@ -189,7 +186,7 @@ public:
 	 * spread over the map again), the robot turns and sweeps as at a start
 	 * (global after a kidnapping, with the uniqueness check) until
 	 * converged; else LocalizationFailedError ("lost while navigating"). */
-	Report rescan(SimulatedRobot& robot);
+	Report rescan(const RobotInterfaces& robot);
 
 	/** Every sweep so far (start and rescans). */
 	const std::vector<SweepRecord>& records() const { return m_records; }
@@ -197,12 +194,20 @@ public:
 	const Localizer& localizer() const { return *m_localizer; }
 
 private:
-	SweepRecord sweepAndUpdate(SimulatedRobot& robot);
+	SweepRecord sweepAndUpdate(const RobotInterfaces& robot);
+	/** Turns on the spot by `angle` (rad, by odometry) at turn_speed_deg_s,
+	 * one command per control period, then stops. */
+	void turnInPlace(const RobotInterfaces& robot, double angle);
+	/** Stops the base and lets one control period pass. */
+	static void stopNow(const RobotInterfaces& robot);
+	/** The robot reports `estimate` from now on. */
+	static void report(
+	    const RobotInterfaces& robot, const mrpt::math::TPose2D& estimate);
 	/** Sweeps (turning between them; also before the first when
 	 * `turnFirst`) until converged, appending to rep (which may hold
 	 * sweeps already); fills rep; throws LocalizationFailedError. */
 	void sweepUntilConverged(
-	    SimulatedRobot& robot, bool global, bool turnFirst, Report& rep,
+	    const RobotInterfaces& robot, bool global, bool turnFirst, Report& rep,
 	    std::chrono::steady_clock::time_point t0);
 	/** New Localizer with options `o` on the known map. */
 	void makeLocalizer(const Localizer::TOptions& o);
@@ -215,7 +220,6 @@ private:
 	 * convergedYaw of `estimate`. */
 	double massNear(const mrpt::math::TPose2D& estimate) const;
 
-	const Scene& m_scene;
 	const SemanticMap& m_map;
 	TOptions m_options;
 	MappingLocalizer::TOptions m_locOptions;
@@ -224,8 +228,8 @@ private:
 	std::unique_ptr<Localizer> m_localizer;
 	/** Scored walls when unknownCells. */
 	WallMap m_walls;
-	const RayCaster* m_caster = nullptr;
-	std::unique_ptr<TiltingLaserSimulator> m_laser;
+	bool m_started = false;
+	Sweep m_sweep;
 	LabeledSweep m_labeled;
 	std::vector<SweepRecord> m_records;
 	/** The current start's observations and odometry at each. */
@@ -234,7 +238,6 @@ private:
 	/** Free places of the map on the uniqueness grid. */
 	std::vector<mrpt::math::TPoint2D> m_places;
 	mrpt::math::TPose2D m_lastOdometry;
-	std::size_t m_sweepIndex = 0;
 	bool m_inStart = false;
 };
 

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 #include <semnav/map/MapIO.h>
 #include <semnav/map/SemanticMap.h>
-#include <semnav/nav/SceneMapBuilder.h>
+#include <semnav/navsim/SceneMapBuilder.h>
 #include <semnav/planning/SemanticPlanner.h>
 #include <semnav/sim/SceneLoader.h>
 

@@ -2,7 +2,7 @@
 #include <semnav/common/ClassRegistry.h>
 #include <semnav/common/LabelSet.h>
 #include <semnav/map/SemanticMap.h>
-#include <semnav/nav/SceneMapBuilder.h>
+#include <semnav/navsim/SceneMapBuilder.h>
 
 #include <algorithm>
 #include <cmath>

@@ -6,9 +6,9 @@
 // the map lacks and after a map change, and typed stops.
 #include <gtest/gtest.h>
 #include <semnav/map/SemanticMap.h>
-#include <semnav/nav/NavigationConfig.h>
-#include <semnav/nav/SceneMapBuilder.h>
-#include <semnav/nav/SimulatedNavigation.h>
+#include <semnav/navsim/SceneMapBuilder.h>
+#include <semnav/navsim/SimulatedNavigation.h>
+#include <semnav/navsim/SimulationConfig.h>
 #include <semnav/sim/SceneLoader.h>
 
 #include <cmath>
@@ -25,7 +25,7 @@ namespace
 {
 const std::string kSrc = SEMNAV_SOURCE_DIR;
 
-const NavigationConfig& config()
+const SimulationConfig& config()
 {
 	return test::shippedNavigationConfig();
 }
@@ -209,8 +209,9 @@ TEST(SemanticNavigation, ReplansOnTheNavigatorsBlockedEvents)
 {
 	// Without the look-ahead on sensed obstacles, only MRPT's events (way
 	// blocked, target blocked, navigation error) can trigger the replan.
-	NavigationConfig c = NavigationConfig::load(
-	    kSrc + "/config/navigation.ini", kSrc + "/config/planning.ini");
+	SimulationConfig c = SimulationConfig::load(
+	    kSrc + "/config/navigation.ini", kSrc + "/config/planning.ini",
+	    kSrc + "/config/sim.ini");
 	c.navigator.pathCheckDistance = 0;
 	SemanticMap map(c.map);
 	SceneMapBuilder::build(scene("datasets/nav/two_routes.yaml"), map);

@@ -1,7 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <semnav/map/MapRenderer.h>
 #include <semnav/map/SemanticMap.h>
-#include <semnav/nav/NavigationRenderer.h>
+#include <semnav/navsim/NavigationRenderer.h>
 
 #include <cmath>
 #include <cstdio>

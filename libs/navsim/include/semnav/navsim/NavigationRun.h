@@ -3,9 +3,9 @@
 
 #include <semnav/localization/MappingLocalizer.h>
 #include <semnav/map/SemanticMap.h>
-#include <semnav/nav/NavigationConfig.h>
-#include <semnav/nav/SimulatedNavigation.h>
 #include <semnav/nav/StopAndScanLocalizer.h>
+#include <semnav/navsim/SimulatedNavigation.h>
+#include <semnav/navsim/SimulationConfig.h>
 #include <semnav/perception/PerceptionPipeline.h>
 #include <semnav/sim/Scene.h>
 
@@ -25,7 +25,7 @@ public:
 	/** What a run is made of. */
 	struct Settings
 	{
-		NavigationConfig config;
+		SimulationConfig config;
 		/** The scene the robot drives in (YAML). */
 		std::string scene;
 		/** The map: a semnav-map directory, else the ground truth of the

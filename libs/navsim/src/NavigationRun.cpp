@@ -1,9 +1,9 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <semnav/common/AtomicFile.h>
 #include <semnav/map/MapIO.h>
-#include <semnav/nav/NavigationRenderer.h>
-#include <semnav/nav/NavigationRun.h>
-#include <semnav/nav/SceneMapBuilder.h>
+#include <semnav/navsim/NavigationRenderer.h>
+#include <semnav/navsim/NavigationRun.h>
+#include <semnav/navsim/SceneMapBuilder.h>
 #include <semnav/planning/PlanningErrors.h>
 #include <semnav/planning/SemanticPlanner.h>
 #include <semnav/sim/SceneLoader.h>
@@ -47,15 +47,10 @@ SimulatedNavigation::Result NavigationRun::run(
     const NavCommand& command, const mrpt::math::TPose2D& start)
 {
 	SimulatedNavigation sim(m_map, m_scene, m_settings.config);
-	std::unique_ptr<StopAndScanLocalizer> localizer;
 	if (m_settings.localize)
-	{
-		localizer = std::make_unique<StopAndScanLocalizer>(
-		    m_scene, m_map, m_settings.config.stopAndScan,
-		    m_settings.localization, m_settings.perception);
 		sim.setLocalization(
-		    localizer.get(), *m_settings.localize, m_settings.startGuess);
-	}
+		    *m_settings.localize, m_settings.localization,
+		    m_settings.perception, m_settings.startGuess);
 	const auto r = sim.run(command, start, m_navlog);
 	if (!m_png.empty())
 	{

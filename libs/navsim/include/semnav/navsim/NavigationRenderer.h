@@ -1,7 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #pragma once
 
-#include <semnav/nav/SimulatedNavigation.h>
+#include <semnav/navsim/SimulatedNavigation.h>
 
 #include <opencv2/core/mat.hpp>
 

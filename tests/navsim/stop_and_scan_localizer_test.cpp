@@ -8,13 +8,12 @@
 #include <mrpt/math/wrap2pi.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/map/SemanticMap.h>
-#include <semnav/nav/NavigationConfig.h>
 #include <semnav/nav/NavigationErrors.h>
-#include <semnav/nav/SceneMapBuilder.h>
-#include <semnav/nav/SimulatedNavigation.h>
-#include <semnav/nav/SimulatedRobot.h>
 #include <semnav/nav/StopAndScanLocalizer.h>
+#include <semnav/navsim/SceneMapBuilder.h>
+#include <semnav/navsim/SimulatedNavigation.h>
 #include <semnav/sim/SceneLoader.h>
+#include <semnav/sim/SimulatedRobot.h>
 
 #include <cmath>
 #include <iostream>
@@ -31,7 +30,7 @@ namespace
 {
 const std::string kSrc = SEMNAV_SOURCE_DIR;
 
-const NavigationConfig& config()
+const SimulationConfig& config()
 {
 	return test::shippedNavigationConfig();
 }
@@ -127,11 +126,8 @@ double pathLength(const std::vector<mrpt::math::TPose2D>& t)
 TEST(StopAndScanLocalizer, GlobalStartInTheOfficeThenReachesTheWastebasket)
 {
 	const mrpt::math::TPose2D start(2.2, 1.5, 0);
-	StopAndScanLocalizer loc(
-	    office(), officeMap(), config().stopAndScan, locOptions(),
-	    perceptionOptions());
 	SimulatedNavigation sim(officeMap(), office(), config());
-	sim.setLocalization(&loc, Mode::Global);
+	sim.setLocalization(Mode::Global, locOptions(), perceptionOptions());
 	const auto r = sim.run(NavCommand::nearest(Label::Wastebasket), start);
 	ASSERT_TRUE(r.localization);
 	print("global (2.2, 1.5, 0)", r);
@@ -180,11 +176,9 @@ TEST(StopAndScanLocalizer, TrackingFromARoughGuessConverges)
 	const mrpt::math::TPose2D start(6.2, 2.6, 0);
 	const mrpt::math::TPose2D guess(6.55, 2.25, mrpt::DEG2RAD(10.0));
 	ASSERT_NEAR(std::hypot(guess.x - start.x, guess.y - start.y), 0.5, 0.01);
-	StopAndScanLocalizer loc(
-	    office(), officeMap(), config().stopAndScan, locOptions(),
-	    perceptionOptions());
 	SimulatedNavigation sim(officeMap(), office(), config());
-	sim.setLocalization(&loc, Mode::Tracking, guess);
+	sim.setLocalization(
+	    Mode::Tracking, locOptions(), perceptionOptions(), guess);
 	const auto r = sim.run(NavCommand::nearest(Label::Washbasin), start);
 	ASSERT_TRUE(r.localization);
 	print("tracking (6.2, 2.6, 0) from (6.55, 2.25, 10)", r);
@@ -206,14 +200,13 @@ TEST(StopAndScanLocalizer, StopAndScanKeepsTheDriftingOdometryOnTheMap)
 	const NavCommand cmd = NavCommand::parse("go to 10.0 5.2");
 	const auto run = [&](double rescan)
 	{
-		NavigationConfig c = NavigationConfig::load(
-		    kSrc + "/config/navigation.ini", kSrc + "/config/planning.ini");
+		SimulationConfig c = SimulationConfig::load(
+		    kSrc + "/config/navigation.ini", kSrc + "/config/planning.ini",
+		    kSrc + "/config/sim.ini");
 		c.stopAndScan.rescanDistance = rescan;
-		StopAndScanLocalizer loc(
-		    office(), officeMap(), c.stopAndScan, locOptions(),
-		    perceptionOptions());
 		SimulatedNavigation sim(officeMap(), office(), c);
-		sim.setLocalization(&loc, Mode::Tracking, start);
+		sim.setLocalization(
+		    Mode::Tracking, locOptions(), perceptionOptions(), start);
 		auto r = sim.run(cmd, start);
 		const auto& e = r.estimatedTrajectory.back();
 		std::cerr << "rescan every " << rescan << " m: " << r.rescans.size()
@@ -273,10 +266,8 @@ trajectory:
 	ASSERT_GT(15.0 - 0.1, hall.sensor.maxRange);
 	SemanticMap map(config().map);
 	SceneMapBuilder::build(hall, map);
-	StopAndScanLocalizer loc(
-	    hall, map, config().stopAndScan, locOptions(), perceptionOptions());
 	SimulatedNavigation sim(map, hall, config());
-	sim.setLocalization(&loc, Mode::Global);
+	sim.setLocalization(Mode::Global, locOptions(), perceptionOptions());
 	try
 	{
 		sim.run(NavCommand::nearest(Label::Wastebasket), {15, 15, 0.3});
@@ -295,8 +286,9 @@ trajectory:
 		EXPECT_NE(m.find("0 wall segments seen"), std::string::npos) << m;
 	}
 	ASSERT_EQ(
-	    loc.records().size(), std::size_t(config().stopAndScan.maxSweeps));
-	for (const auto& s : loc.records())
+	    sim.localizer()->records().size(),
+	    std::size_t(config().stopAndScan.maxSweeps));
+	for (const auto& s : sim.localizer()->records())
 	{
 		EXPECT_EQ(s.segments, 0u);
 		EXPECT_FALSE(s.converged);
@@ -330,11 +322,12 @@ trajectory:
 	// Shipped options: the two hypotheses stay alive, never converged.
 	{
 		StopAndScanLocalizer loc(
-		    room, map, config().stopAndScan, locOptions(), perceptionOptions());
+		    map, config().stopAndScan, locOptions(), perceptionOptions());
 		SimulatedRobot robot(room, config().robot, start);
+		robot.enableOdometryNoise(room.odometry);
 		try
 		{
-			loc.start(robot, Mode::Global);
+			loc.start(robot.interfaces(), Mode::Global);
 			ADD_FAILURE() << "localized in a symmetric room";
 		}
 		catch (const LocalizationFailedError& e)
@@ -356,12 +349,12 @@ trajectory:
 		o.convergedFraction = 0.5;
 		o.maxSweeps = 3;
 		o.uniquenessCheck = check;
-		StopAndScanLocalizer loc(
-		    room, map, o, locOptions(), perceptionOptions());
+		StopAndScanLocalizer loc(map, o, locOptions(), perceptionOptions());
 		SimulatedRobot robot(room, config().robot, start);
+		robot.enableOdometryNoise(room.odometry);
 		if (!check)
 		{
-			const auto rep = loc.start(robot, Mode::Global);
+			const auto rep = loc.start(robot.interfaces(), Mode::Global);
 			EXPECT_TRUE(rep.converged);
 			std::cerr << "without the check: accepted (" << rep.estimate.x
 			          << ", " << rep.estimate.y << "), truth (" << rep.truth.x
@@ -370,7 +363,7 @@ trajectory:
 		}
 		try
 		{
-			loc.start(robot, Mode::Global);
+			loc.start(robot.interfaces(), Mode::Global);
 			ADD_FAILURE() << "the uniqueness check accepted a twin";
 		}
 		catch (const LocalizationFailedError& e)
@@ -402,23 +395,24 @@ TEST(StopAndScanLocalizer, ACarriedRobotIsFoundAgainByTheNextRescan)
 	// do not fit, the filter restarts over the map, the robot turns and
 	// sweeps until it is localized at the new place.
 	StopAndScanLocalizer loc(
-	    office(), officeMap(), config().stopAndScan, locOptions(),
-	    perceptionOptions());
+	    officeMap(), config().stopAndScan, locOptions(), perceptionOptions());
 	SimulatedRobot robot(office(), config().robot, {2.2, 1.5, 0});
+	robot.enableOdometryNoise(office().odometry);
+	const RobotInterfaces io = robot.interfaces();
 	const auto first =
-	    loc.start(robot, Mode::Tracking, mrpt::math::TPose2D(2.2, 1.5, 0));
+	    loc.start(io, Mode::Tracking, mrpt::math::TPose2D(2.2, 1.5, 0));
 	ASSERT_TRUE(first.converged);
 	EXPECT_LT(first.errorXY, 0.1);
 	// Ordinary rescan: nothing to recover.
-	const auto same = loc.rescan(robot);
+	const auto same = loc.rescan(io);
 	EXPECT_FALSE(same.recovery);
 	EXPECT_EQ(same.sweeps, 1);
 	EXPECT_LT(same.errorXY, 0.1);
 
 	const mrpt::math::TPose2D carried(6.2, 2.6, M_PI / 2);
-	robot.vehicle().setCurrentGTPose(carried);
-	const auto odo = robot.odometry();
-	const auto rep = loc.rescan(robot);
+	robot.base().carryTo(carried);
+	const auto odo = robot.base().odometry().pose;
+	const auto rep = loc.rescan(io);
 	for (const auto& r : rep.records)
 		std::cerr << "  recovery sweep: " << r.segments << " walls, inliers "
 		          << r.inliers << ", kidnapped " << r.kidnapped << ", error "
@@ -432,8 +426,8 @@ TEST(StopAndScanLocalizer, ACarriedRobotIsFoundAgainByTheNextRescan)
 	EXPECT_NEAR(rep.truth.x, carried.x, 0.02);
 	EXPECT_NEAR(rep.truth.y, carried.y, 0.02);
 	// The robot reports the new estimate; its odometry only turned.
-	EXPECT_NEAR(robot.estimatedPose().x, rep.estimate.x, 1e-6);
-	EXPECT_NEAR(robot.odometry().x, odo.x, 0.02);
+	EXPECT_NEAR(robot.localizedPose().pose().x, rep.estimate.x, 1e-6);
+	EXPECT_NEAR(robot.base().odometry().pose.x, odo.x, 0.02);
 }
 
 TEST(StopAndScanLocalizer, AMapWithoutWallsIsRejected)
@@ -454,7 +448,7 @@ trajectory:
 	try
 	{
 		StopAndScanLocalizer loc(
-		    s, map, config().stopAndScan, locOptions(), perceptionOptions());
+		    map, config().stopAndScan, locOptions(), perceptionOptions());
 		FAIL() << "accepted a map without walls";
 	}
 	catch (const LocalizationFailedError& e)
@@ -480,7 +474,8 @@ TEST(StopAndScanLocalizer, OptionsRejectUnknownKeysAndOutOfRange)
 	EXPECT_THROW(load("[StopAndScan]\nmax_sweep = 3\n"), ConfigError);
 	EXPECT_THROW(load("[StopAndScan]\nmax_sweeps = 0\n"), ConfigError);
 	EXPECT_THROW(load("[StopAndScan]\nturn_deg = 400\n"), ConfigError);
-	EXPECT_THROW(load("[StopAndScan]\nodometry_noise = maybe\n"), ConfigError);
+	EXPECT_THROW(
+	    load("[StopAndScan]\nuniqueness_check = maybe\n"), ConfigError);
 	// Round trip.
 	StopAndScanLocalizer::TOptions a;
 	a.maxSweeps = 4;

@@ -4,13 +4,17 @@
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/math/TPose2D.h>
 #include <semnav/common/Label.h>
+#include <semnav/localization/MappingLocalizer.h>
 #include <semnav/nav/NavCommand.h>
-#include <semnav/nav/NavigationConfig.h>
+#include <semnav/nav/NavigationLoop.h>
 #include <semnav/nav/SemanticNavigator.h>
 #include <semnav/nav/StopAndScanLocalizer.h>
+#include <semnav/navsim/SimulationConfig.h>
+#include <semnav/perception/PerceptionPipeline.h>
 #include <semnav/sim/Scene.h>
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,10 +22,15 @@
 namespace semnav
 {
 class SemanticMap;
+class SimulatedRobot;
 
-/** A headless navigation run: a SimulatedRobot in `scene` driven by a
- * SemanticNavigator planning on `map`, in simulated time, until the goal is
- * reached, the navigator stops, or [SimulatedRobot] max_time_s passes. */
+/** A headless navigation run in simulation: a SimulatedRobot in `scene`,
+ * plugged through its seams into the runtime's own pieces (MRPT's
+ * navigator over RobotNavInterface, SemanticNavigator planning on `map`,
+ * StopAndScanLocalizer, NavigationLoop), in simulated time, until the goal
+ * is reached, the navigator stops, or [SimulatedRobot] max_time_s passes.
+ * Only the evaluation (collisions, true trajectory, errors) reads the
+ * simulated world. */
 class SimulatedNavigation
 {
 public:
@@ -67,20 +76,25 @@ public:
 
 	/** Called after every step with the simulated time; may change the
 	 * map and call notifyMapChanged(). */
-	using StepHook = std::function<void(double simTime, SemanticNavigator&)>;
+	using StepHook = NavigationLoop::StepHook;
 
 	SimulatedNavigation(
 	    const SemanticMap& map, const Scene& scene,
-	    const NavigationConfig& config);
+	    const SimulationConfig& config);
 
-	/** The robot does not know its start pose: before the run
-	 * `localizer` localizes it where it stands (`mode`; a tracking start
+	/** The robot does not know its start pose: before the run a
+	 * StopAndScanLocalizer (options from the config, `localization` and
+	 * `perception`) localizes it where it stands (`mode`; a tracking start
 	 * from `guess`), and the navigator sees that estimate composed with the
-	 * robot's odometry; with [StopAndScan] rescan_distance_m > 0 the robot
-	 * stops and scans again on the way. nullptr: the navigator sees the
-	 * true pose (default). The localizer must outlive run(). */
+	 * robot's odometry (which gets the scene's odometry errors); with
+	 * [StopAndScan] rescan_distance_m > 0 the robot stops and scans again on
+	 * the way. Without this call the navigator sees the true pose. The
+	 * localizer lives as long as this object (localizer()). Throws
+	 * LocalizationFailedError when the map has no walls. */
 	void setLocalization(
-	    StopAndScanLocalizer* localizer, StopAndScanLocalizer::Mode mode,
+	    StopAndScanLocalizer::Mode mode,
+	    const MappingLocalizer::TOptions& localization,
+	    const PerceptionPipeline::TOptions& perception,
 	    const std::optional<mrpt::math::TPose2D>& guess = std::nullopt);
 
 	/** Runs one command from `start` (the true pose). With `navlogPath`, MRPT's
@@ -91,11 +105,21 @@ public:
 	    const NavCommand& command, const mrpt::math::TPose2D& start,
 	    const std::string& navlogPath = "", const StepHook& hook = {});
 
+	/** The localizer of setLocalization() (nullptr without). */
+	const StopAndScanLocalizer* localizer() const { return m_localizer.get(); }
+
 private:
+	/** Writes MRPT's navigation log of `nav` to navlogPath at the end. */
+	class NavLog;
+	/** The result's outcome and evaluation fields. */
+	void evaluate(
+	    const SemanticNavigator& nav, const SimulatedRobot& robot,
+	    Result& r) const;
+
 	const SemanticMap& m_map;
 	const Scene& m_scene;
-	const NavigationConfig& m_config;
-	StopAndScanLocalizer* m_localizer = nullptr;
+	const SimulationConfig& m_config;
+	std::unique_ptr<StopAndScanLocalizer> m_localizer;
 	StopAndScanLocalizer::Mode m_mode = StopAndScanLocalizer::Mode::Global;
 	std::optional<mrpt::math::TPose2D> m_guess;
 };

@@ -2,7 +2,7 @@
 #pragma once
 // The shipped navigation configuration and scenes of the source tree, for
 // the navigation tests.
-#include <semnav/nav/NavigationConfig.h>
+#include <semnav/navsim/SimulationConfig.h>
 #include <semnav/sim/SceneLoader.h>
 
 #include <string>
@@ -16,11 +16,11 @@ inline const std::string& sourceDir()
 }
 
 /** config/navigation.ini + config/planning.ini, loaded once. */
-inline const NavigationConfig& shippedNavigationConfig()
+inline const SimulationConfig& shippedNavigationConfig()
 {
-	static const NavigationConfig c = NavigationConfig::load(
+	static const SimulationConfig c = SimulationConfig::load(
 	    sourceDir() + "/config/navigation.ini",
-	    sourceDir() + "/config/planning.ini");
+	    sourceDir() + "/config/planning.ini", sourceDir() + "/config/sim.ini");
 	return c;
 }
 

@@ -1,0 +1,173 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/AtomicFile.h>
+#include <semnav/common/Error.h>
+#include <semnav/map/SemanticMap.h>
+#include <semnav/nav/NavigationErrors.h>
+#include <semnav/nav/RobotNavInterface.h>
+#include <semnav/navsim/SimulatedNavigation.h>
+#include <semnav/sim/SimulatedRobot.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+namespace semnav
+{
+namespace
+{
+double distanceToBox(
+    const mrpt::math::TPoint2D& p, const mrpt::math::TPoint3D& lo,
+    const mrpt::math::TPoint3D& hi)
+{
+	const double dx = std::max({lo.x - p.x, 0.0, p.x - hi.x});
+	const double dy = std::max({lo.y - p.y, 0.0, p.y - hi.y});
+	return std::hypot(dx, dy);
+}
+}  // namespace
+
+/** MRPT writes its navigation log into a directory of its own naming: a
+ * private one next to the target, renamed to the target at the end. */
+class SimulatedNavigation::NavLog
+{
+public:
+	NavLog(SemanticNavigator& nav, const std::string& path)
+	    : m_nav(nav), m_path(path)
+	{
+		if (m_path.empty()) return;
+		const auto parent = std::filesystem::path(m_path).parent_path();
+		const auto dir = parent.empty() ? std::filesystem::path(".") : parent;
+		createDirectories(dir.string());
+		m_dir = (dir / (".navlog-" + std::to_string(::getpid()))).string();
+		std::filesystem::remove_all(m_dir);
+		m_nav.setNavLogDirectory(m_dir);
+	}
+	~NavLog()
+	{
+		if (!m_dir.empty()) std::filesystem::remove_all(m_dir);
+	}
+	/** Closes the log and moves it to the target; returns the target. */
+	std::string finish()
+	{
+		if (m_dir.empty()) return "";
+		m_nav.setNavLogDirectory("");  // closes the file
+		std::string written;
+		for (const auto& e : std::filesystem::directory_iterator(m_dir))
+			if (e.path().extension() == ".reactivenavlog")
+				written = e.path().string();
+		if (written.empty())
+			throw IoError("MRPT wrote no navigation log in " + m_dir);
+		std::filesystem::rename(written, m_path);
+		return m_path;
+	}
+
+private:
+	SemanticNavigator& m_nav;
+	std::string m_path, m_dir;
+};
+
+SimulatedNavigation::SimulatedNavigation(
+    const SemanticMap& map, const Scene& scene, const SimulationConfig& config)
+    : m_map(map), m_scene(scene), m_config(config)
+{
+}
+
+void SimulatedNavigation::setLocalization(
+    StopAndScanLocalizer::Mode mode,
+    const MappingLocalizer::TOptions& localization,
+    const PerceptionPipeline::TOptions& perception,
+    const std::optional<mrpt::math::TPose2D>& guess)
+{
+	m_localizer = std::make_unique<StopAndScanLocalizer>(
+	    m_map, m_config.stopAndScan, localization, perception);
+	m_mode = mode;
+	m_guess = guess;
+}
+
+SimulatedNavigation::Result SimulatedNavigation::run(
+    const NavCommand& command, const mrpt::math::TPose2D& start,
+    const std::string& navlogPath, const StepHook& hook)
+{
+	const auto wall0 = std::chrono::steady_clock::now();
+	Result r;
+	r.command = command;
+	r.start = start;
+
+	SimulatedRobot robot(m_scene, m_config.robot, start);
+	robot.base().setMinLoggingLevel(mrpt::system::LVL_ERROR);
+	if (robot.base().inCollision(start))
+		throw NavigationError(
+		    "start (" + std::to_string(start.x) + ", " +
+		    std::to_string(start.y) + ") is inside an obstacle of the scene");
+	const RobotInterfaces io = robot.interfaces();
+	// Without localization the robot knows its pose.
+	const PoseSource* reported = &robot.truePose();
+	if (m_localizer)
+	{
+		robot.enableOdometryNoise(m_scene.odometry);
+		r.localization = m_localizer->start(io, m_mode, m_guess);
+		reported = &robot.localizedPose();
+	}
+	RobotNavInterface robotInterface(
+	    robot.base(), *reported, robot.obstacles(), robot,
+	    m_config.robotInterface);
+	robotInterface.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+	SemanticNavigator nav(
+	    robotInterface, m_map, *m_config.mrptSections, m_config.cnn,
+	    m_config.traversability, m_config.navigator);
+	nav.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+	NavLog navlog(nav, navlogPath);
+
+	nav.start(command);
+	NavigationLoop loop(nav, io, m_localizer.get());
+	const NavigationLoop::Result lr = loop.run(m_config.robot.maxTime, hook);
+	// Let the robot come to rest.
+	robot.tick();
+
+	r.steps = lr.steps;
+	r.medianStepMs = lr.medianStepMs;
+	r.rescans = lr.rescans;
+	r.recoveries = lr.recoveries;
+	evaluate(nav, robot, r);
+	r.navlog = navlog.finish();
+	r.wallSeconds =
+	    std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0)
+	        .count();
+	return r;
+}
+
+void SimulatedNavigation::evaluate(
+    const SemanticNavigator& nav, const SimulatedRobot& robot, Result& r) const
+{
+	r.reason = nav.stopReason();
+	r.success = r.reason == SemanticNavigator::StopReason::Reached;
+	r.message = nav.stopMessage();
+	r.objectId = nav.goalObjectId();
+	const SimulatedBase& base = robot.base();
+	r.finalPose = base.pose();
+	const mrpt::math::TPoint2D fin{r.finalPose.x, r.finalPose.y};
+	if (r.objectId)
+	{
+		const ObjectInstance& o = m_map.instance(r.objectId);
+		r.objectLabel = o.label;
+		r.objectXY = {o.centroid.x, o.centroid.y};
+		r.distanceToGoal = distanceToBox(fin, o.minCorner, o.maxCorner);
+	}
+	else if (r.command.kind == NavCommand::Kind::Point)
+	{
+		r.objectXY = {r.command.x, r.command.y};
+		r.distanceToGoal = std::hypot(fin.x - r.command.x, fin.y - r.command.y);
+	}
+	r.collisions = base.collisions();
+	r.collisionPoses = base.collisionPoses();
+	r.simTime = base.time();
+	r.replans = nav.replans();
+	r.trajectory = base.trajectory();
+	r.estimatedTrajectory = robot.estimatedTrajectory();
+	r.plans = nav.plans();
+	r.sensedObstacles = nav.planner().extraObstacles();
+}
+
+}  // namespace semnav
