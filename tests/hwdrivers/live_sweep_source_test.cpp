@@ -5,6 +5,9 @@
 // the emulators are checked in tests/emulation.
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/serialization/CArchive.h>
 #include <semnav/common/Error.h>
 #include <semnav/emulation/PtuEmulator.h>
 #include <semnav/hwdrivers/LiveSweepSource.h>
@@ -16,6 +19,7 @@
 #include <filesystem>
 #include <future>
 #include <thread>
+#include <vector>
 
 using namespace semnav;
 using namespace std::chrono_literals;
@@ -170,5 +174,56 @@ TEST_F(
 	EXPECT_FALSE(back.next(s));
 	EXPECT_EQ(back.end(), SweepSource::End::EndOfLog);
 	EXPECT_EQ(back.reader().objectsRead(), 1u);
+	fs::remove(o.recordPath);
+}
+
+TEST_F(LiveSweepSourceWithoutLaser, EveryNewOdometryReadingIsRecordedInOrder)
+{
+	auto cfg = config();
+	LiveSweepSource::TOptions o;
+	o.deviceLostAfter = 60;
+	o.recordPath =
+	    (fs::temp_directory_path() /
+	     ("semnav_live_odo_" + std::to_string(::getpid()) + ".rawlog"))
+	        .string();
+	// A new reading every 4th poll (same time in between = not new).
+	std::atomic<int> polls{0};
+	const auto t0 = mrpt::Clock::now();
+	auto provider = [&]
+	{
+		const int k = polls++ / 4;
+		return LiveSweepSource::OdometryReading{
+		    mrpt::poses::CPose2D(0.1 * k, 0, 0),
+		    t0 + std::chrono::milliseconds(k)};
+	};
+	std::size_t readings = 0;
+	{
+		LiveSweepSource source(cfg, "TILT_LMS", o, provider);
+		std::this_thread::sleep_for(600ms);
+		source.stop();
+		readings = source.odometryReadings();
+		EXPECT_NEAR(readings, (polls + 3) / 4, 1.0);
+		EXPECT_GE(readings, 5u);
+	}
+	mrpt::io::CFileGZInputStream in(o.recordPath);
+	auto arch = mrpt::serialization::archiveFrom(in);
+	std::vector<mrpt::obs::CObservationOdometry::Ptr> read;
+	try
+	{
+		for (;;)
+			read.push_back(
+			    std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(
+			        arch.ReadObject()));
+	}
+	catch (const mrpt::serialization::CExceptionEOF&)
+	{
+	}
+	ASSERT_EQ(read.size(), readings);
+	for (std::size_t i = 0; i < read.size(); i++)
+	{
+		ASSERT_TRUE(read[i]);
+		EXPECT_NEAR(read[i]->odometry.x(), 0.1 * i, 1e-12);
+		EXPECT_EQ(read[i]->timestamp, t0 + std::chrono::milliseconds(i));
+	}
 	fs::remove(o.recordPath);
 }

@@ -7,6 +7,7 @@
 #include <semnav/hwdrivers/LiveSweepSource.h>
 #include <semnav/scan/RawlogWriter.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -232,9 +233,16 @@ void LiveSweepSource::pollOdometry()
 	}
 	else if (m_odometryReadings > 0)
 		return;  // the origin, once
-	if (r.timestamp == Clock::time_point{}) r.timestamp = Clock::now();
-	if (m_odometryReadings > 0 && r.timestamp <= m_lastOdometryTime) return;
-	m_lastOdometryTime = r.timestamp;
+	const bool stamped = r.timestamp != Clock::time_point{};
+	if (m_odometryReadings > 0 && stamped && r.timestamp == m_lastProvidedTime)
+		return;  // not a new reading
+	m_lastProvidedTime = r.timestamp;
+	// Not after it was polled (a reading "from the future", another clock,
+	// would wait for a line taken after it), and in time order.
+	const auto now = Clock::now();
+	auto t = stamped && r.timestamp < now ? r.timestamp : now;
+	if (m_odometryReadings > 0) t = std::max(t, m_lastOdometryTime);
+	m_lastOdometryTime = r.timestamp = t;
 	auto odo = mrpt::obs::CObservationOdometry::Create();
 	odo->sensorLabel = "ODOMETRY";
 	odo->timestamp = r.timestamp;
@@ -332,6 +340,8 @@ void LiveSweepSource::run()
 			    until - Clock::now(),
 			    Clock::duration(std::chrono::milliseconds(10))));
 	}
+	// Every reading into the recording.
+	flushOdometry(Clock::time_point::max());
 }
 
 }  // namespace semnav

@@ -77,7 +77,10 @@ public:
 		SweepAssembler::TOptions assembler;
 	};
 
-	/** One odometry reading (mrpt::Clock time; a zero time = when polled). */
+	/** One odometry reading, stamped in this machine's mrpt::Clock time. A
+	 * reading is new when its time differs from the previous one's; a zero
+	 * time makes every poll a reading, stamped when polled (as is a time
+	 * in the future). */
 	struct OdometryReading
 	{
 		mrpt::poses::CPose2D pose;
@@ -152,7 +155,7 @@ private:
 	// Owned by the source's thread.
 	std::optional<SweepAssembler> m_assembler;
 	std::deque<mrpt::obs::CObservation::Ptr> m_pendingOdometry;
-	mrpt::Clock::time_point m_lastOdometryTime{};
+	mrpt::Clock::time_point m_lastOdometryTime{}, m_lastProvidedTime{};
 	double m_odometryHold = 0;
 
 	std::thread m_thread;
