@@ -4,6 +4,7 @@
 // sensor needs its head); the laser's port has no device. The sweeps from
 // the emulators are checked in tests/emulation.
 #include <gtest/gtest.h>
+#include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/obs/CObservationOdometry.h>
@@ -101,6 +102,26 @@ TEST(LiveSweepSourceConfig, BadSectionsNameTheKeyOrPort)
 	o.deviceLostAfter = 0.25;
 	EXPECT_NE(
 	    configError(ok, o).find("device_lost_after_s"), std::string::npos);
+	// The shipped configuration for the real devices (38400 baud, 45 s
+	// sweeps) passes with the default (automatic) limit.
+	mrpt::config::CConfigFile real(
+	    std::string(SEMNAV_SOURCE_DIR) + "/config/grabber-tilting-lms200.ini");
+	mrpt::config::CConfigFileMemory realIni;
+	std::vector<std::string> keys;
+	real.getAllKeys("TILT_LMS", keys);
+	for (const auto& k : keys)
+		realIni.write("TILT_LMS", k, real.read_string("TILT_LMS", k, ""));
+	realIni.write("TILT_LMS", "ptu_port", "/nonexistent/ptu");
+	std::string err;
+	try
+	{
+		LiveSweepSource s(realIni, "TILT_LMS");
+	}
+	catch (const std::exception& e)
+	{
+		err = e.what();
+	}
+	EXPECT_NE(err.find("/nonexistent/ptu"), std::string::npos) << err;
 	// Valid, but the head is not there.
 	EXPECT_NE(
 	    configError(ok, quickLoss()).find("/nonexistent/ptu"),

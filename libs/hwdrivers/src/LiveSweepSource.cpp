@@ -34,14 +34,19 @@ const OptionTable<O>& optionTable()
 	static const auto t =
 	    OptionTable<O>()
 	        .real(
-	            "device_lost_after_s", &O::deviceLostAfter, 0.1, 3600,
-	            "No scan line for this long: the source ends (device lost).")
+	            "device_lost_after_s", &O::deviceLostAfter, 0, 3600,
+	            "No scan line for this long: the source ends (device lost); "
+	            "0: a fault's recovery + 10 s.")
 	        .text(
 	            "record_rawlog", &O::recordPath,
 	            "Rawlog recording every line and odometry reading; empty: "
 	            "none.");
 	return t;
 }
+
+/** Automatic device_lost_after_s: this much beyond a fault's recovery
+ * (MRPT's laser setup alone may take 5 s). */
+constexpr double kLostMargin = 10.0;
 
 /** Shortest silence a fault of the sensor can cause before lines flow
  * again: the stall detection, one reconnection attempt and the head's way
@@ -68,7 +73,9 @@ LiveSweepSource::LiveSweepSource(
 	const auto& so = m_sensor->options();
 	if (!(m_sensor->getProcessRate() > 0))
 		throw ConfigError("[" + section + "] process_rate must be > 0");
-	if (m_options.deviceLostAfter <= faultRecoveryTime(so))
+	if (m_options.deviceLostAfter <= 0)
+		m_options.deviceLostAfter = faultRecoveryTime(so) + kLostMargin;
+	else if (m_options.deviceLostAfter <= faultRecoveryTime(so))
 	{
 		char msg[200];
 		std::snprintf(

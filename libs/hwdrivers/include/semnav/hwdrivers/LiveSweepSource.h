@@ -67,8 +67,8 @@ public:
 		/** No scan line for this long ends the source with DeviceLost (s).
 		 * Must exceed one fault's recovery by the sensor: stall_timeout_s +
 		 * reconnect_delay_s + one sweep's time (the head goes back to the
-		 * start of the cut sweep without recording). */
-		double deviceLostAfter = 15.0;
+		 * start of the cut sweep without recording). 0: that + 10 s. */
+		double deviceLostAfter = 0;
 		/** Rawlog recording every line and odometry reading; empty = none.
 		 * Written to a temporary file, renamed at stop(). */
 		std::string recordPath;
@@ -124,6 +124,8 @@ public:
 		return m_assemblerOptions;
 	}
 	const CTiltingLMS2xx::TOptions& sensorOptions() const;
+	/** The silence (s) after which the source ends with DeviceLost. */
+	double deviceLostAfter() const { return m_options.deviceLostAfter; }
 	/** The sensor's counters (faults, reconnects, ...). */
 	CTiltingLMS2xx::Stats sensorStats() const;
 
