@@ -180,6 +180,90 @@ nlohmann::json parseJson(const std::string& text)
 		return nlohmann::json::object();
 	}
 }
+/** semnav-device-emulator serving the office scene on pseudo-terminals in
+ * a scratch directory, with `extra` options (faults); the shipped
+ * [TILT_LMS] section pointed at it. */
+struct EmulatedScanner
+{
+	std::string dir;
+	BackgroundProcess process;
+
+	explicit EmulatedScanner(
+	    const std::string& name, std::vector<std::string> extra = {})
+	    : dir(scratch(name)),
+	      process(arguments(dir, extra), dir + "/emulator.log")
+	{
+		for (int i = 0; i < 100 && !fs::exists(dir + "/ptu"); i++)
+			std::this_thread::sleep_for(100ms);
+	}
+	bool started() const
+	{
+		return fs::exists(dir + "/lms") && fs::exists(dir + "/ptu");
+	}
+	mrpt::config::CConfigFileMemory config() const
+	{
+		mrpt::config::CConfigFile shipped(
+		    kSource + "/config/grabber-emulated.ini");
+		mrpt::config::CConfigFileMemory cfg;
+		std::vector<std::string> keys;
+		shipped.getAllKeys("TILT_LMS", keys);
+		for (const auto& key : keys)
+			cfg.write(
+			    "TILT_LMS", key, shipped.read_string("TILT_LMS", key, ""));
+		cfg.write("TILT_LMS", "COM_port_LIN", dir + "/lms");
+		cfg.write("TILT_LMS", "ptu_port", dir + "/ptu");
+		cfg.write("TILT_LMS", "stats_file", dir + "/stats.json");
+		return cfg;
+	}
+
+private:
+	static std::vector<std::string> arguments(
+	    const std::string& dir, const std::vector<std::string>& extra)
+	{
+		std::vector<std::string> a{
+		    kEmulator,    "--scene",     kScene,
+		    "--lms-link", dir + "/lms",  "--ptu-link",
+		    dir + "/ptu", "--truth-log", dir + "/truth.txt"};
+		a.insert(a.end(), extra.begin(), extra.end());
+		return a;
+	}
+};
+
+/** `live` against the first complete recorded sweep of its direction,
+ * line for line (see compare()). */
+void expectMatchesRecorded(
+    const Sweep& l, const std::vector<Sweep>& recorded, double tolerance)
+{
+	const double step = mrpt::DEG2RAD(0.5);  // tilt per line (18.75 deg/s)
+	const auto g = std::find_if(
+	    recorded.begin(), recorded.end(),
+	    [&](const Sweep& s)
+	    { return s.quality().ascending == l.quality().ascending; });
+	ASSERT_NE(g, recorded.end()) << "no recorded sweep in that direction";
+	const auto c = compare(l, *g, tolerance, step);
+	std::cout << (l.quality().ascending ? "ascending" : "descending")
+	          << ": rows " << l.rows() << " / grabber " << g->rows()
+	          << ", with data " << c.rows << " / " << rowsWithData(*g).size()
+	          << ", matched " << c.rowsMatched << ", max tilt gap "
+	          << c.maxTiltGapDeg << " deg, ends " << c.tiltMinDiffDeg << " / "
+	          << c.tiltMaxDiffDeg << " deg; pixels " << c.pixels
+	          << ", consistent " << c.consistentFraction()
+	          << ", validity mismatch " << c.validityMismatch << std::endl;
+	// The same tilt grid (span / step); a few lines may be missing in
+	// either (a host thread held up, see docs/hardware.md).
+	EXPECT_NEAR(static_cast<double>(l.rows()), g->rows(), 2.0);
+	EXPECT_GE(c.rows, l.rows() * 9 / 10);
+	EXPECT_GE(c.rowsMatched + 1, c.rows);
+	// Rows interleave: each live row within a line step of a recorded
+	// one (half a step + the timing tolerance, ~0.1 deg).
+	EXPECT_LT(c.maxTiltGapDeg, 0.5 * mrpt::RAD2DEG(step) + 0.15);
+	EXPECT_LT(std::abs(c.tiltMinDiffDeg), mrpt::RAD2DEG(step) + 0.15);
+	EXPECT_LT(std::abs(c.tiltMaxDiffDeg), mrpt::RAD2DEG(step) + 0.15);
+	EXPECT_GT(c.pixels, 200u * 300u);
+	EXPECT_GT(c.consistentFraction(), 0.97);
+	EXPECT_LT(c.validityMismatch, c.pixels / 100);
+}
+
 }  // namespace
 
 TEST(LiveSweepSourceWithEmulators, SweepsEqualTheGrabbersLineForLine)
@@ -198,23 +282,10 @@ TEST(LiveSweepSourceWithEmulators, SweepsEqualTheGrabbersLineForLine)
 	ASSERT_TRUE(grabCheck.contains("rawlog"));
 
 	// 2. The same emulated scene and pose, read by LiveSweepSource.
-	const std::string liveDir = scratch("source");
-	BackgroundProcess emulator(
-	    {kEmulator, "--scene", kScene, "--lms-link", liveDir + "/lms",
-	     "--ptu-link", liveDir + "/ptu", "--truth-log", liveDir + "/truth.txt"},
-	    liveDir + "/emulator.log");
-	for (int i = 0; i < 100 && !fs::exists(liveDir + "/ptu"); i++)
-		std::this_thread::sleep_for(100ms);
-	ASSERT_TRUE(fs::exists(liveDir + "/lms")) << "emulator did not start";
-	mrpt::config::CConfigFile shipped(kSource + "/config/grabber-emulated.ini");
-	mrpt::config::CConfigFileMemory cfg;
-	std::vector<std::string> keys;
-	shipped.getAllKeys("TILT_LMS", keys);
-	for (const auto& key : keys)
-		cfg.write("TILT_LMS", key, shipped.read_string("TILT_LMS", key, ""));
-	cfg.write("TILT_LMS", "COM_port_LIN", liveDir + "/lms");
-	cfg.write("TILT_LMS", "ptu_port", liveDir + "/ptu");
-	cfg.write("TILT_LMS", "stats_file", liveDir + "/stats.json");
+	EmulatedScanner emulator("source");
+	ASSERT_TRUE(emulator.started()) << "emulator did not start";
+	const std::string& liveDir = emulator.dir;
+	const auto cfg = emulator.config();
 	LiveSweepSource::TOptions options;
 	options.recordPath = liveDir + "/live.rawlog";
 	ScriptedOdometry odometry;
@@ -249,7 +320,7 @@ TEST(LiveSweepSourceWithEmulators, SweepsEqualTheGrabbersLineForLine)
 		          << (stats.lines - 1) / std::max(stats.firstLineAge, 1e-9)
 		          << " lines/s" << std::endl;
 	}
-	emulator.stop();
+	emulator.process.stop();
 
 	EXPECT_EQ(live[0].odometry(), mrpt::poses::CPose2D());
 	EXPECT_EQ(live[1].odometry(), mrpt::poses::CPose2D());
@@ -262,41 +333,10 @@ TEST(LiveSweepSourceWithEmulators, SweepsEqualTheGrabbersLineForLine)
 	for (auto& s :
 	     readRawlogSweeps(grabCheck["rawlog"].get<std::string>(), assembler))
 		if (s.quality().complete) recorded.push_back(std::move(s));
-	const double step = mrpt::DEG2RAD(0.5);  // tilt per line (18.75 deg/s)
 	// Two independent noise draws (3 sigma each way) and the head's
 	// reported position, one PTU step (0.051 deg) off at most.
 	const double tolerance = 3 * std::sqrt(2.0) * rangeNoise;
-	for (const Sweep& l : live)
-	{
-		const auto g = std::find_if(
-		    recorded.begin(), recorded.end(),
-		    [&](const Sweep& s)
-		    { return s.quality().ascending == l.quality().ascending; });
-		ASSERT_NE(g, recorded.end()) << "no recorded sweep in that direction";
-		const auto c = compare(l, *g, tolerance, step);
-		std::cout << (l.quality().ascending ? "ascending" : "descending")
-		          << ": rows " << l.rows() << " / grabber " << g->rows()
-		          << ", with data " << c.rows << " / "
-		          << rowsWithData(*g).size() << ", matched " << c.rowsMatched
-		          << ", max tilt gap " << c.maxTiltGapDeg << " deg, ends "
-		          << c.tiltMinDiffDeg << " / " << c.tiltMaxDiffDeg
-		          << " deg; pixels " << c.pixels << ", consistent "
-		          << c.consistentFraction() << ", validity mismatch "
-		          << c.validityMismatch << std::endl;
-		// The same tilt grid (span / step); a few lines may be missing in
-		// either (a host thread held up, see docs/hardware.md).
-		EXPECT_NEAR(static_cast<double>(l.rows()), g->rows(), 2.0);
-		EXPECT_GE(c.rows, l.rows() * 9 / 10);
-		EXPECT_GE(c.rowsMatched + 1, c.rows);
-		// Rows interleave: each live row within a line step of a recorded
-		// one (half a step + the timing tolerance, ~0.1 deg).
-		EXPECT_LT(c.maxTiltGapDeg, 0.5 * mrpt::RAD2DEG(step) + 0.15);
-		EXPECT_LT(std::abs(c.tiltMinDiffDeg), mrpt::RAD2DEG(step) + 0.15);
-		EXPECT_LT(std::abs(c.tiltMaxDiffDeg), mrpt::RAD2DEG(step) + 0.15);
-		EXPECT_GT(c.pixels, 200u * 300u);
-		EXPECT_GT(c.consistentFraction(), 0.97);
-		EXPECT_LT(c.validityMismatch, c.pixels / 100);
-	}
+	for (const Sweep& l : live) expectMatchesRecorded(l, recorded, tolerance);
 
 	// 4. The live recording read back gives exactly its sweeps...
 	RawlogSweepSource back(options.recordPath, assembler);
@@ -323,4 +363,40 @@ TEST(LiveSweepSourceWithEmulators, SweepsEqualTheGrabbersLineForLine)
 		fs::remove_all(grabDir);
 		fs::remove_all(liveDir);
 	}
+}
+
+TEST(LiveSweepSourceWithEmulators, UnpluggedLaserEndsDeviceLostNamingThePort)
+{
+	const CaptureRunLock lock;
+	// Unplugged 2 s after the continuous output started, for good.
+	const EmulatedScanner emulator(
+	    "lost", {"--disconnect-at", "2", "--disconnect-for", "1000"});
+	ASSERT_TRUE(emulator.started()) << "emulator did not start";
+	const auto cfg = emulator.config();
+	LiveSweepSource::TOptions options;
+	options.deviceLostAfter = 8;  // > 1 + 0.3 + 5.6 s of recovery
+	{
+		LiveSweepSource source(cfg, "TILT_LMS", options);
+		const auto t0 = std::chrono::steady_clock::now();
+		Sweep s;
+		// The first sweep is cut by the fault: nothing complete comes.
+		EXPECT_FALSE(source.next(s));
+		const double waited =
+		    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+		        .count();
+		EXPECT_EQ(source.end(), SweepSource::End::DeviceLost);
+		EXPECT_GT(source.linesReceived(), 20u);
+		EXPECT_GE(source.sensorStats().faults, 1u);
+		// The sweep cut by the fault, counted when the source ended.
+		EXPECT_EQ(source.skippedIncomplete(), 1u);
+		// 2 s of lines (after the laser's setup), then 8 s of silence.
+		EXPECT_GT(waited, 10.0);
+		EXPECT_LT(waited, 25.0);
+		const std::string msg = source.endMessage();
+		std::cout << msg << " after " << waited << " s" << std::endl;
+		EXPECT_NE(msg.find(emulator.dir + "/lms"), std::string::npos) << msg;
+		EXPECT_NE(msg.find("device lost"), std::string::npos) << msg;
+		EXPECT_EQ(msg.find(" 0 faults"), std::string::npos) << msg;
+	}
+	if (!::testing::Test::HasFailure()) fs::remove_all(emulator.dir);
 }

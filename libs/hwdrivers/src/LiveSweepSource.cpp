@@ -338,6 +338,10 @@ void LiveSweepSource::run()
 			    "reconnects, %zu lines without a tilt)",
 			    silent, m_sensor->options().ptuPort.c_str(), s.faults,
 			    s.reconnects, s.linesNoTilt);
+			// The cut sweep is counted (or returned, had it got to its end).
+			flushOdometry(Clock::time_point::max());
+			m_assembler->finish();
+			queueSweeps();
 			endWith(End::DeviceLost, msg);
 			break;
 		}
