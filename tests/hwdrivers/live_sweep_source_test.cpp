@@ -248,3 +248,27 @@ TEST_F(LiveSweepSourceWithoutLaser, EveryNewOdometryReadingIsRecordedInOrder)
 	}
 	fs::remove(o.recordPath);
 }
+
+TEST(LiveSweepSourceConfig, OwnKeysLoadAndUnknownOnesAreErrors)
+{
+	LiveSweepSource::TOptions o;
+	o.loadFromConfigFile(
+	    mrpt::config::CConfigFileMemory("[LIVE]\ndevice_lost_after_s = "
+	                                    "20\nrecord_rawlog = /tmp/r.rawlog\n"),
+	    "LIVE");
+	EXPECT_EQ(o.deviceLostAfter, 20.0);
+	EXPECT_EQ(o.recordPath, "/tmp/r.rawlog");
+	try
+	{
+		o.loadFromConfigFile(
+		    mrpt::config::CConfigFileMemory("[LIVE]\ndevice_lost_s = 1\n"),
+		    "LIVE");
+		ADD_FAILURE() << "unknown key accepted";
+	}
+	catch (const ConfigError& e)
+	{
+		EXPECT_NE(
+		    std::string(e.what()).find("device_lost_s"), std::string::npos);
+	}
+	EXPECT_EQ(o.deviceLostAfter, 20.0);
+}
