@@ -28,6 +28,23 @@ nlohmann::json poseJson(const mrpt::math::TPose2D& p)
 	return {p.x, p.y, deg(p.phi)};
 }
 
+nlohmann::json arrivalsJson(const semnav::SimulatedNavigation::Result& r)
+{
+	nlohmann::json out = nlohmann::json::array();
+	for (const auto& a : r.arrivals)
+		out.push_back(
+		    {{"confirmed", a.confirmed},
+		     {"reason", a.reason},
+		     {"relocalized", a.relocalized},
+		     {"object_distance_m", std::isfinite(a.objectDistance)
+		                               ? nlohmann::json(a.objectDistance)
+		                               : nlohmann::json(nullptr)},
+		     {"label_points", a.labelPoints},
+		     {"object_checked", a.objectChecked},
+		     {"estimate", poseJson(a.estimate)}});
+	return out;
+}
+
 nlohmann::json localizationJson(const semnav::SimulatedNavigation::Result& r)
 {
 	const auto& l = *r.localization;
@@ -69,7 +86,8 @@ nlohmann::json localizationJson(const semnav::SimulatedNavigation::Result& r)
 	    {"ms", l.ms},
 	    {"per_sweep", recs},
 	    {"rescans", rescans},
-	    {"recoveries", r.recoveries}};
+	    {"recoveries", r.recoveries},
+	    {"arrival_checks", arrivalsJson(r)}};
 	if (!r.estimatedTrajectory.empty())
 	{
 		const auto& e = r.estimatedTrajectory.back();

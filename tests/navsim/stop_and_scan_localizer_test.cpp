@@ -437,6 +437,74 @@ trajectory:
 	}
 }
 
+TEST(StopAndScanLocalizer, AWrongBeliefIsNeverAnArrival)
+{
+	// The robot stands at (1.5, 1.2) of the symmetric room but is told it
+	// stands at the half-turned twin pose: the walls fit there too, so the
+	// tracking start converges on the twin and the robot drives to where
+	// the wastebasket would be in that belief. The sweep at the goal sees
+	// no wastebasket there. With the semantic evidence the robot
+	// relocalizes globally, drives again and arrives; with walls only it
+	// cannot relocalize and stops with arrival_not_confirmed - never a
+	// false "reached".
+	const Scene room = SceneLoader::parse(
+	    R"(
+name: symroom
+bounds: [0, 0, 6, 4]
+ceiling_height: 2.7
+objects:
+  - {label: wall, box: {center: [3, 0.05, 1.35], size: [6, 0.1, 2.7]}}
+  - {label: wall, box: {center: [3, 3.95, 1.35], size: [6, 0.1, 2.7]}}
+  - {label: wall, box: {center: [0.05, 2, 1.35], size: [0.1, 3.8, 2.7]}}
+  - {label: wall, box: {center: [5.95, 2, 1.35], size: [0.1, 3.8, 2.7]}}
+  - {label: wastebasket, cylinder: {center: [3, 3.5, 0.2], radius: 0.15, height: 0.4}}
+trajectory:
+  - [1.5, 1.2, 0]
+)",
+	    "symroom");
+	SemanticMap map(config().map);
+	SceneMapBuilder::build(room, map);
+	const auto cascades =
+	    CascadeDetector::TOptions::fromIniFile(kSrc + "/config/cascade.ini");
+	const mrpt::math::TPose2D start(1.5, 1.2, mrpt::DEG2RAD(17.0));
+	const mrpt::math::TPose2D twin(4.5, 2.8, mrpt::DEG2RAD(197.0));
+	for (const bool semantic : {true, false})
+	{
+		auto loc = locOptions();
+		if (!semantic)
+			loc.semantic.classPoints = loc.semantic.groundPoints =
+			    loc.semantic.objectPoints = 0;
+		SimulatedNavigation sim(map, room, config());
+		sim.setLocalization(
+		    Mode::Tracking, loc, perceptionOptions(), twin, cascades);
+		const auto r = sim.run(NavCommand::nearest(Label::Wastebasket), start);
+		std::cerr << (semantic ? "semantic" : "walls only") << ": "
+		          << SemanticNavigator::stopReasonName(r.reason) << ", "
+		          << r.distanceToGoal << " m from it, " << r.arrivals.size()
+		          << " arrival checks, " << r.recoveries << " recoveries ("
+		          << r.message << ")\n";
+		ASSERT_GE(r.arrivals.size(), 1u);
+		EXPECT_FALSE(r.arrivals.front().confirmed);
+		EXPECT_NE(
+		    r.arrivals.front().reason.find("no wastebasket"),
+		    std::string::npos);
+		if (semantic)
+		{
+			EXPECT_TRUE(r.success) << r.message;
+			EXPECT_TRUE(r.arrivals.back().confirmed);
+			EXPECT_GE(r.recoveries, 1);
+			EXPECT_LT(r.distanceToGoal, 1.0);
+		}
+		else
+		{
+			EXPECT_FALSE(r.success);
+			EXPECT_EQ(
+			    r.reason, SemanticNavigator::StopReason::ArrivalNotConfirmed);
+			EXPECT_GT(r.distanceToGoal, 2.0);
+		}
+	}
+}
+
 TEST(StopAndScanLocalizer, ACarriedRobotIsFoundAgainByTheNextRescan)
 {
 	// Localized at (2.2, 1.5), then carried to (6.2, 2.6) facing north while

@@ -1,5 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <semnav/common/Percentile.h>
+#include <semnav/nav/NavigationErrors.h>
 #include <semnav/nav/NavigationLoop.h>
 #include <semnav/robot/ControlClock.h>
 #include <semnav/robot/RobotBase.h>
@@ -17,10 +18,59 @@ NavigationLoop::Result NavigationLoop::run(
     double deadline, const StepHook& hook)
 {
 	Result r;
+	for (int attempt = 0;; attempt++)
+	{
+		drive(deadline, hook, r);
+		if (m_nav.state() != SemanticNavigator::State::Reached ||
+		    !m_localizer || !m_localizer->options().arrivalCheck)
+			break;
+		auto check = m_localizer->confirmArrival(
+		    m_robot, m_nav.command(), m_nav.goalObjectId());
+		r.rescans.insert(
+		    r.rescans.end(), check.records.begin(), check.records.end());
+		if (check.relocalized) r.recoveries++;
+		r.arrivals.push_back(check);
+		if (check.confirmed) break;
+		if (attempt >= m_localizer->options().arrivalAttempts)
+		{
+			m_nav.refuseArrival("arrival not confirmed: " + check.reason);
+			break;
+		}
+		if (!check.relocalized && !relocalize(r, check.reason)) break;
+		m_nav.notifyPoseCorrected();
+		if (!m_nav.retry()) break;
+	}
+	if (!m_stepMs.empty()) r.medianStepMs = median(m_stepMs);
+	return r;
+}
+
+bool NavigationLoop::relocalize(Result& r, const std::string& why)
+{
+	// The goal is not where the robot believes it is: the belief is wrong.
+	// Localize again from scratch where it stands (global, with the
+	// uniqueness check) before trying again.
+	try
+	{
+		const auto rep =
+		    m_localizer->start(m_robot, StopAndScanLocalizer::Mode::Global);
+		r.rescans.insert(
+		    r.rescans.end(), rep.records.begin(), rep.records.end());
+		r.recoveries++;
+		return true;
+	}
+	catch (const LocalizationFailedError& e)
+	{
+		m_nav.refuseArrival(
+		    "arrival not confirmed (" + why + ") and " + e.what());
+		return false;
+	}
+}
+
+void NavigationLoop::drive(double deadline, const StepHook& hook, Result& r)
+{
 	const double rescanDistance =
 	    m_localizer ? m_localizer->options().rescanDistance : 0.0;
 	double lastScanAt = m_robot.base->odometry().distance;
-	std::vector<double> stepMs;
 	while (m_nav.state() == SemanticNavigator::State::Navigating)
 	{
 		if (m_robot.clock->now() >= deadline)
@@ -29,7 +79,7 @@ NavigationLoop::Result NavigationLoop::run(
 			break;
 		}
 		m_nav.step();
-		stepMs.push_back(m_nav.lastStepMs());
+		m_stepMs.push_back(m_nav.lastStepMs());
 		r.steps++;
 		if (m_nav.state() != SemanticNavigator::State::Navigating) break;
 		m_robot.clock->tick();
@@ -45,8 +95,6 @@ NavigationLoop::Result NavigationLoop::run(
 		}
 		if (hook) hook(m_robot.clock->now(), m_nav);
 	}
-	if (!stepMs.empty()) r.medianStepMs = median(stepMs);
-	return r;
 }
 
 }  // namespace semnav

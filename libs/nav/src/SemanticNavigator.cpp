@@ -233,6 +233,8 @@ const char* SemanticNavigator::stopReasonName(StopReason r)
 			return "timeout";
 		case StopReason::Cancelled:
 			return "cancelled";
+		case StopReason::ArrivalNotConfirmed:
+			return "arrival_not_confirmed";
 	}
 	return "?";
 }
@@ -253,6 +255,8 @@ const char* SemanticNavigator::replanReasonName(ReplanReason r)
 			return "path_blocked_by_sensed_obstacle";
 		case ReplanReason::MapChanged:
 			return "map_changed";
+		case ReplanReason::ArrivalNotConfirmed:
+			return "arrival_not_confirmed";
 	}
 	return "?";
 }
@@ -369,6 +373,22 @@ void SemanticNavigator::cancel(StopReason reason)
 {
 	if (m_state == State::Navigating)
 		stopWith(reason, std::string("navigation ") + stopReasonName(reason));
+}
+
+bool SemanticNavigator::retry()
+{
+	if (m_state != State::Reached) return m_state == State::Navigating;
+	m_state = State::Navigating;
+	m_reason = StopReason::None;
+	m_message.clear();
+	m_planner.setExtraObstacles({});
+	return replan(ReplanReason::ArrivalNotConfirmed);
+}
+
+void SemanticNavigator::refuseArrival(const std::string& why)
+{
+	if (m_state == State::Reached)
+		stopWith(StopReason::ArrivalNotConfirmed, why);
 }
 
 void SemanticNavigator::addSensedObstacles()

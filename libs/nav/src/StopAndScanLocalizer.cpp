@@ -88,7 +88,20 @@ const OptionTable<O>& optionTable()
 	            "Tracking start: particles.")
 	        .real(
 	            "rescan_distance_m", &O::rescanDistance, 0, 1000,
-	            "Stop and scan again after this much travel (0: never).");
+	            "Stop and scan again after this much travel (0: never).")
+	        .flag(
+	            "arrival_check", &O::arrivalCheck,
+	            "At the goal: turn toward it, sweep and confirm the arrival.")
+	        .real(
+	            "arrival_tolerance_m", &O::arrivalTolerance, 0.05, 10,
+	            "An object goal is confirmed by its label seen this close to "
+	            "the map's object...")
+	        .integer(
+	            "arrival_min_points", &O::arrivalMinPoints, 1, 100000,
+	            "...as a detection or at least this many labelled points.")
+	        .integer(
+	            "arrival_attempts", &O::arrivalAttempts, 0, 100,
+	            "Unconfirmed arrivals navigate again this many times.");
 	return t;
 }
 }  // namespace
@@ -418,6 +431,81 @@ StopAndScanLocalizer::SweepRecord StopAndScanLocalizer::sweepAndUpdate(
 	rec.ms = msSince(t0);
 	m_records.push_back(rec);
 	return rec;
+}
+
+StopAndScanLocalizer::ArrivalCheck StopAndScanLocalizer::confirmArrival(
+    const RobotInterfaces& robot, const NavCommand& command, int objectId)
+{
+	ArrivalCheck check;
+	Label label = Label::Unknown;
+	mrpt::math::TPoint2D target{command.x, command.y};
+	if (objectId)
+	{
+		const ObjectInstance& o = m_map.instance(objectId);
+		label = o.label;
+		target = {o.centroid.x, o.centroid.y};
+	}
+	// Face the goal: an object beside or behind the robot is out of the
+	// laser's view.
+	const mrpt::math::TPose2D pose = robot.pose->pose();
+	const double bearing = mrpt::math::wrapToPi(
+	    std::atan2(target.y - pose.y, target.x - pose.x) - pose.phi);
+	if (objectId && std::abs(bearing) > mrpt::DEG2RAD(10.0))
+		turnInPlace(robot, bearing);
+	const Report rep = rescan(robot);
+	check.records = rep.records;
+	check.estimate = rep.estimate;
+	check.relocalized = rep.recovery;
+	if (rep.recovery)
+	{
+		check.reason = "the sweep at the goal found the robot elsewhere";
+		return check;
+	}
+	const auto detected = m_perception.objectLabels();
+	check.objectChecked =
+	    objectId &&
+	    (label == Label::Door ||
+	     std::find(detected.begin(), detected.end(), label) != detected.end());
+	if (!check.objectChecked)
+	{
+		check.confirmed = true;
+		return check;
+	}
+	checkObject(label, target, check);
+	return check;
+}
+
+void StopAndScanLocalizer::checkObject(
+    Label label, const mrpt::math::TPoint2D& target, ArrivalCheck& check) const
+{
+	const mrpt::poses::CPose2D at(check.estimate);
+	for (const auto& d : m_labeled.detections)
+	{
+		if (d.label != label) continue;
+		double x, y;
+		at.composePoint(d.centroid.x, d.centroid.y, x, y);
+		check.objectDistance = std::min(
+		    check.objectDistance, std::hypot(x - target.x, y - target.y));
+	}
+	const double tol = m_options.arrivalTolerance;
+	for (int r = 0; r < m_labeled.labels.rows; r++)
+		for (int c = 0; c < m_labeled.labels.cols; c++)
+		{
+			if (m_labeled.label(r, c) != label) continue;
+			const auto& p = m_labeled.points.at<cv::Vec3f>(r, c);
+			double x, y;
+			at.composePoint(p[0], p[1], x, y);
+			if (std::hypot(x - target.x, y - target.y) <= tol)
+				check.labelPoints++;
+		}
+	check.confirmed = check.objectDistance <= tol ||
+	                  check.labelPoints >= m_options.arrivalMinPoints;
+	if (!check.confirmed)
+		check.reason = mrpt::format(
+		    "no %s seen within %.2f m of (%.2f, %.2f) from the goal (%d "
+		    "labelled points)",
+		    labelName(label).c_str(), tol, target.x, target.y,
+		    check.labelPoints);
 }
 
 void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const

@@ -131,6 +131,7 @@ SimulatedNavigation::Result SimulatedNavigation::run(
 	r.medianStepMs = lr.medianStepMs;
 	r.rescans = lr.rescans;
 	r.recoveries = lr.recoveries;
+	r.arrivals = lr.arrivals;
 	evaluate(nav, robot, r);
 	r.navlog = navlog.finish();
 	r.wallSeconds =

@@ -15,7 +15,12 @@ namespace semnav
  * clock until the navigator stops or the deadline passes; with a localizer
  * whose rescan_distance_m > 0, every that much odometry travel the robot
  * stops and scans (StopAndScanLocalizer::rescan) and the navigator forgets
- * the obstacles placed with the old estimate. */
+ * the obstacles placed with the old estimate. With the localizer's
+ * arrival_check, an arrival is confirmed by a sweep at the goal
+ * (StopAndScanLocalizer::confirmArrival); an unconfirmed one navigates
+ * again after a global relocalization where it stands (arrival_attempts)
+ * and then fails with
+ * StopReason::ArrivalNotConfirmed. */
 class NavigationLoop
 {
 public:
@@ -28,6 +33,8 @@ public:
 		std::vector<StopAndScanLocalizer::SweepRecord> rescans;
 		/** Rescans that found the robot lost and relocalized it. */
 		int recoveries = 0;
+		/** The arrival checks at the goal (one per believed arrival). */
+		std::vector<StopAndScanLocalizer::ArrivalCheck> arrivals;
 	};
 
 	/** Called after every period with the clock's time; may change the map
@@ -45,6 +52,13 @@ public:
 	Result run(double deadline, const StepHook& hook = {});
 
 private:
+	/** A global start where the robot stands after an unconfirmed arrival;
+	 * false (navigator failed with the reason) when it does not converge. */
+	bool relocalize(Result& r, const std::string& why);
+	/** Steps until the navigator stops (or the deadline). */
+	void drive(double deadline, const StepHook& hook, Result& r);
+
+	std::vector<double> m_stepMs;
 	SemanticNavigator& m_nav;
 	RobotInterfaces m_robot;
 	StopAndScanLocalizer* m_localizer;

@@ -105,7 +105,10 @@ public:
 		TooManyReplans,
 		/** The caller gave up (time limit). */
 		Timeout,
-		Cancelled
+		Cancelled,
+		/** The navigator arrived by the robot's belief, but the sweep taken
+		 * there did not confirm it (refuseArrival()). */
+		ArrivalNotConfirmed
 	};
 
 	enum class ReplanReason
@@ -115,7 +118,9 @@ public:
 		TargetBlocked,
 		NavigatorError,
 		PathBlockedBySensedObstacle,
-		MapChanged
+		MapChanged,
+		/** The arrival was not confirmed: navigate again (retry()). */
+		ArrivalNotConfirmed
 	};
 
 	/** One plan of a run. */
@@ -166,6 +171,13 @@ public:
 		m_mapChanged = true;
 	}
 	void cancel(StopReason reason = StopReason::Cancelled);
+	/** After State::Reached: the arrival was not confirmed but the robot may
+	 * try again: replans from its (corrected) pose and navigates on.
+	 * Returns false when no path is left (state Failed). */
+	bool retry();
+	/** After State::Reached: the arrival was not confirmed and no retry is
+	 * left: State::Failed with StopReason::ArrivalNotConfirmed. */
+	void refuseArrival(const std::string& why);
 
 	State state() const { return m_state; }
 	StopReason stopReason() const { return m_reason; }

@@ -11,11 +11,13 @@
 #include <semnav/localization/SemanticEvidenceMap.h>
 #include <semnav/localization/SemanticExtractor.h>
 #include <semnav/localization/WallExtractor.h>
+#include <semnav/nav/NavCommand.h>
 #include <semnav/perception/LabeledSweep.h>
 #include <semnav/perception/PerceptionPipeline.h>
 #include <semnav/robot/RobotInterfaces.h>
 
 #include <chrono>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -109,6 +111,17 @@ public:
 		/** rescan_distance_m: during navigation, stop and scan after this
 		 * much odometry travel (0: never). */
 		double rescanDistance = 1.0;
+		/** arrival_check: at the goal the robot turns toward it, sweeps and
+		 * confirms the arrival (confirmArrival()); arrival_tolerance_m: an
+		 * object goal is confirmed by a detection (or labelled points) of
+		 * its label this close to the map's object; arrival_attempts:
+		 * unconfirmed arrivals navigate again this many times. */
+		bool arrivalCheck = true;
+		double arrivalTolerance = 0.6;
+		int arrivalAttempts = 2;
+		/** arrival_min_points: labelled points of the goal's label near it
+		 * that confirm an object goal without a detection. */
+		int arrivalMinPoints = 20;
 	};
 
 	/** One sweep and its filter update. */
@@ -196,6 +209,39 @@ public:
 	 * converged; else LocalizationFailedError ("lost while navigating"). */
 	Report rescan(const RobotInterfaces& robot);
 
+	/** What the sweep at the goal said. */
+	struct ArrivalCheck
+	{
+		bool confirmed = false;
+		/** Why not (one line); empty when confirmed. */
+		std::string reason;
+		/** The sweep found the robot lost and relocalized it. */
+		bool relocalized = false;
+		/** Object goals: the nearest detection of the goal's label to the
+		 * map's object (m; infinity: none) and labelled points of that
+		 * label within the tolerance. */
+		double objectDistance = std::numeric_limits<double>::infinity();
+		int labelPoints = 0;
+		/** False when the perception cannot see the goal's label (its
+		 * detector is off): then the sweep fitting the map confirms it. */
+		bool objectChecked = false;
+		/** The estimate after the sweep. */
+		mrpt::math::TPose2D estimate;
+		/** The sweeps taken (one, more after a relocalization). */
+		std::vector<SweepRecord> records;
+	};
+
+	/** At a goal the navigator believes reached: turns toward it, stops,
+	 * sweeps (a rescan: a robot found lost is relocalized) and checks that
+	 * the goal is where the map says: for an object (`objectId` of the map),
+	 * a detection of its label, or arrival_min_points labelled points of
+	 * it, within arrival_tolerance_m of the object; for a point, or an
+	 * object whose label the perception cannot see (no detector for it), a
+	 * sweep that fits the map (converged, not lost). Throws
+	 * LocalizationFailedError as rescan(). */
+	ArrivalCheck confirmArrival(
+	    const RobotInterfaces& robot, const NavCommand& command, int objectId);
+
 	/** Every sweep so far (start and rescans). */
 	const std::vector<SweepRecord>& records() const { return m_records; }
 	const TOptions& options() const { return m_options; }
@@ -224,6 +270,10 @@ private:
 	void checkUniqueness(SweepRecord& rec) const;
 	/** The scored wall map. */
 	const WallMap& scoredWalls() const;
+	/** Checks the last sweep's detections and labels against an object. */
+	void checkObject(
+	    Label label, const mrpt::math::TPoint2D& target,
+	    ArrivalCheck& check) const;
 	/** Drops the start's sweeps but the last `keep`. */
 	void keepStartSweeps(std::size_t keep);
 	/** Fraction of the particle weight within convergedRadius and

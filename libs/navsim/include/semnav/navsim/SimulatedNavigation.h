@@ -71,6 +71,9 @@ public:
 		/** Rescans that found the robot lost and relocalized it (turning
 		 * and sweeping). */
 		int recoveries = 0;
+		/** The sweeps at the goal that confirmed (or not) each believed
+		 * arrival. */
+		std::vector<StopAndScanLocalizer::ArrivalCheck> arrivals;
 		std::vector<mrpt::math::TPose2D> estimatedTrajectory;
 	};
 
