@@ -1,0 +1,431 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// The runtime against fake seams, no simulator linked: a recording
+// differential-drive base on a fake clock and a scripted tilting-laser
+// sweep source in a small asymmetric room (FakeRobot.h, FakeSweeps.h). The
+// known map is built by the runtime's own perception and mapping from fake
+// sweeps at known poses; then StopAndScanLocalizer localizes the robot from
+// an unknown pose and SemanticNavigator, driven by NavigationLoop over
+// RobotNavInterface, takes it to a point with stop-and-scan rescans.
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/math/wrap2pi.h>
+#include <semnav/common/ConfigChecks.h>
+#include <semnav/localization/WallMap.h>
+#include <semnav/map/SemanticMap.h>
+#include <semnav/nav/NavCommand.h>
+#include <semnav/nav/NavigationConfig.h>
+#include <semnav/nav/NavigationErrors.h>
+#include <semnav/nav/NavigationLoop.h>
+#include <semnav/nav/RobotNavInterface.h>
+#include <semnav/nav/SemanticNavigator.h>
+#include <semnav/nav/StopAndScanLocalizer.h>
+#include <semnav/perception/PerceptionPipeline.h>
+#include <semnav/robot/LocalizedPose.h>
+#include <semnav/robot/SweepObstacles.h>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+
+#include "FakeRobot.h"
+#include "FakeSweeps.h"
+
+using namespace semnav;
+using semnav::test::FakeBase;
+using semnav::test::ScriptedSweepSource;
+using Mode = StopAndScanLocalizer::Mode;
+using Call = FakeBase::Call;
+
+namespace
+{
+const std::string kSrc = SEMNAV_SOURCE_DIR;
+constexpr double kPeriod = 0.1;
+constexpr double kWatchdog = 1.0;
+constexpr double kRobotRadius = 0.25;
+
+const NavigationConfig& config()
+{
+	static const NavigationConfig c = NavigationConfig::load(
+	    kSrc + "/config/navigation.ini", kSrc + "/config/planning.ini");
+	return c;
+}
+
+const MappingLocalizer::TOptions& locOptions()
+{
+	static const MappingLocalizer::TOptions o = []
+	{
+		MappingLocalizer::TOptions t;
+		t.loadFromConfigFile(
+		    *openIniFile(
+		        kSrc + "/config/localization.ini",
+		        MappingLocalizer::TOptions::sections()),
+		    "");
+		return t;
+	}();
+	return o;
+}
+
+const PerceptionPipeline::TOptions& perceptionOptions()
+{
+	static const PerceptionPipeline::TOptions o = []
+	{
+		PerceptionPipeline::TOptions t;
+		t.loadFromConfigFile(
+		    *openIniFile(
+		        kSrc + "/config/perception.ini",
+		        PerceptionPipeline::sections()),
+		    "");
+		return t;
+	}();
+	return o;
+}
+
+const test::FakeRoom& room()
+{
+	static const test::FakeRoom r = test::asymmetricRoom();
+	return r;
+}
+
+/** The fake seams of one robot standing at `start` in the room. */
+struct FakeRobot
+{
+	FakeRobot(
+	    const mrpt::math::TPose2D& start,
+	    const ScriptedSweepSource::Script& script = {},
+	    double headingDriftPerM = 0)
+	    : base(start, kWatchdog, headingDriftPerM),
+	      clock(base, kPeriod),
+	      sweeps(base, clock, room(), script),
+	      pose(base),
+	      truth(base)
+	{
+	}
+
+	RobotInterfaces interfaces()
+	{
+		RobotInterfaces r;
+		r.base = &base;
+		r.sweeps = &sweeps;
+		r.clock = &clock;
+		r.pose = &pose;
+		r.truth = &truth;
+		return r;
+	}
+
+	FakeBase base;
+	test::FakeClock clock;
+	ScriptedSweepSource sweeps;
+	LocalizedPose pose;
+	test::FakeTruth truth;
+};
+
+/** The known map: one fake sweep at each of a few known poses, labelled by
+ * the runtime's perception and inserted at that pose (as semnav-map does
+ * with ground-truth poses). */
+const SemanticMap& knownMap()
+{
+	static const std::unique_ptr<SemanticMap> m = []
+	{
+		auto map = std::make_unique<SemanticMap>(config().map);
+		PerceptionPipeline perception(perceptionOptions());
+		perception.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+		const std::vector<mrpt::math::TPose2D> poses{
+		    {1.0, 1.2, 0.6},  {3.5, 2.6, 0.0},  {6.0, 2.6, -1.9},
+		    {5.6, 1.0, 1.9},  {3.3, 4.0, M_PI}, {1.2, 2.4, -1.4},
+		    {2.2, 4.3, -0.3}, {6.2, 4.4, -2.6}};
+		for (const auto& p : poses)
+		{
+			FakeRobot robot(p);
+			Sweep sweep;
+			EXPECT_TRUE(robot.sweeps.next(sweep));
+			LabeledSweep labeled;
+			perception.process(sweep, labeled);
+			map->insert(sweep, labeled, mrpt::poses::CPose2D(p));
+		}
+		return map;
+	}();
+	return *m;
+}
+
+double yawErr(double a, double b)
+{
+	return std::abs(mrpt::math::wrapToPi(a - b));
+}
+
+double distance(const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b)
+{
+	return std::hypot(a.x - b.x, a.y - b.y);
+}
+
+/** Length of the map's wall segments lying along the room wall from
+ * (x0, y0) to (x1, y1) (both ends within `tol` of it, parallel). */
+double wallLengthAlong(
+    const WallMap& walls, double x0, double y0, double x1, double y1,
+    double tol = 0.2)
+{
+	const mrpt::math::TPoint2D a{x0, y0}, b{x1, y1};
+	const auto ab = b - a;
+	const auto near = [&](const mrpt::math::TPoint2D& p)
+	{
+		const double t = std::clamp(
+		    ((p - a).x * ab.x + (p - a).y * ab.y) / ab.sqrNorm(), 0.0, 1.0);
+		return (p - (a + ab * t)).norm() < tol;
+	};
+	double len = 0;
+	for (const auto& s : walls.segments())
+		if (near(s.p0) && near(s.p1)) len += s.length();
+	return len;
+}
+
+/** What every test asks of the base's log: no command refused, none beyond
+ * MRPT's configured speeds, no watchdog or emergency stop. */
+void expectOrderlyCommands(const FakeBase& base)
+{
+	const auto& mrpt = *config().mrptSections;
+	const double vMax =
+	    mrpt.read_double("CAbstractPTGBasedReactive", "robotMax_V_mps", 0);
+	const double wMax = mrpt::DEG2RAD(
+	    mrpt.read_double("CAbstractPTGBasedReactive", "robotMax_W_degps", 0));
+	ASSERT_GT(vMax, 0);
+	ASSERT_GT(wMax, 0);
+	int commands = 0;
+	for (const auto& c : base.calls())
+	{
+		EXPECT_NE(c.kind, Call::Kind::WatchdogStop) << "at t = " << c.time;
+		EXPECT_NE(c.kind, Call::Kind::EmergencyStop) << "at t = " << c.time;
+		if (c.kind != Call::Kind::SetVelocity) continue;
+		commands++;
+		EXPECT_TRUE(c.accepted) << "at t = " << c.time;
+		EXPECT_LE(std::abs(c.v), vMax + 1e-6) << "at t = " << c.time;
+		EXPECT_LE(std::abs(c.w), wMax + 1e-6) << "at t = " << c.time;
+	}
+	EXPECT_GT(commands, 0);
+}
+
+/** Every sweep was taken with the base stopped and still, and begun when
+ * the localizer asked for it. */
+void expectStopAndScan(const ScriptedSweepSource& sweeps)
+{
+	for (std::size_t i = 0; i < sweeps.taken().size(); i++)
+	{
+		const auto& t = sweeps.taken()[i];
+		EXPECT_TRUE(t.stoppedBefore) << "sweep " << i << " at t = " << t.start;
+		EXPECT_TRUE(t.stillDuring) << "sweep " << i << " at t = " << t.start;
+		EXPECT_TRUE(t.notBeforeMet) << "sweep " << i << " at t = " << t.start;
+	}
+}
+
+StopAndScanLocalizer makeLocalizer()
+{
+	return StopAndScanLocalizer(
+	    knownMap(), config().stopAndScan, locOptions(), perceptionOptions());
+}
+}  // namespace
+
+TEST(FakeRobot, KnownMapHoldsTheWallsPerceptionFound)
+{
+	const SemanticMap& map = knownMap();
+	EXPECT_EQ(map.sweepsInserted(), 8u);
+	WallMap walls;
+	walls.buildFromSemanticMap(map);
+	std::cerr << walls.segments().size() << " wall segments in the map\n";
+	// The four walls (7 m and 5 m) and the 1.8 m partition were labelled
+	// wall by perception and are in the map where they stand.
+	EXPECT_GT(wallLengthAlong(walls, 0, 0, 0, 5), 3.0);
+	EXPECT_GT(wallLengthAlong(walls, 7, 0, 7, 5), 3.0);
+	EXPECT_GT(wallLengthAlong(walls, 0, 0, 7, 0), 4.0);
+	EXPECT_GT(wallLengthAlong(walls, 0, 5, 7, 5), 4.0);
+	EXPECT_GT(wallLengthAlong(walls, 4.57, 0, 4.57, 1.8), 1.0);
+	// Nothing runs across the open middle of the room.
+	EXPECT_LT(wallLengthAlong(walls, 1.0, 2.5, 6.0, 2.5, 0.5), 0.01);
+}
+
+TEST(FakeRobot, GlobalStartFromAnUnknownPoseConvergesNearTheTruth)
+{
+	const mrpt::math::TPose2D start(1.8, 2.6, 2.4);
+	FakeRobot robot(start);
+	// Still turning when the localizer starts: it must stop the base first.
+	ASSERT_TRUE(robot.base.setVelocity(0, 0.3));
+	StopAndScanLocalizer localizer = makeLocalizer();
+	const auto io = robot.interfaces();
+	const auto rep = localizer.start(io, Mode::Global);
+	std::cerr << "global start: " << rep.sweeps << " sweeps, error "
+	          << rep.errorXY << " m " << mrpt::RAD2DEG(rep.errorYaw) << " deg, "
+	          << rep.ms << " ms\n";
+
+	EXPECT_TRUE(rep.converged);
+	EXPECT_FALSE(rep.ambiguous);
+	EXPECT_LE(rep.sweeps, config().stopAndScan.maxSweeps);
+	EXPECT_EQ(robot.sweeps.taken().size(), std::size_t(rep.sweeps));
+	// Truth came only through RobotInterfaces::truth: the records hold the
+	// fake base's true pose at each sweep.
+	ASSERT_EQ(rep.records.size(), robot.sweeps.taken().size());
+	for (std::size_t i = 0; i < rep.records.size(); i++)
+		EXPECT_LT(
+		    distance(rep.records[i].truePose, robot.sweeps.taken()[i].truth),
+		    1e-9);
+	// The robot turned on the spot by turn_deg between sweeps.
+	const auto& truth = robot.base.truePose();
+	EXPECT_NEAR(truth.x, start.x, 1e-6);
+	EXPECT_NEAR(truth.y, start.y, 1e-6);
+	for (std::size_t i = 1; i < robot.sweeps.taken().size(); i++)
+		EXPECT_NEAR(
+		    mrpt::math::wrapToPi(
+		        robot.sweeps.taken()[i].truth.phi -
+		        robot.sweeps.taken()[i - 1].truth.phi),
+		    config().stopAndScan.turnAngle, mrpt::DEG2RAD(1.0));
+	// Near the truth; the robot reports the estimate, though its odometry
+	// frame is not the map's.
+	EXPECT_LT(rep.errorXY, 0.15);
+	EXPECT_LT(rep.errorYaw, mrpt::DEG2RAD(3));
+	EXPECT_NEAR(rep.errorXY, distance(rep.estimate, truth), 1e-9);
+	const auto reported = robot.pose.pose();
+	EXPECT_LT(distance(reported, truth), 0.15);
+	EXPECT_LT(yawErr(reported.phi, truth.phi), mrpt::DEG2RAD(3));
+	EXPECT_GT(distance(robot.base.odometry().pose, truth), 1.0);
+
+	expectStopAndScan(robot.sweeps);
+	expectOrderlyCommands(robot.base);
+	// The turn in progress was stopped before the first sweep.
+	ASSERT_FALSE(robot.base.calls().empty());
+	EXPECT_EQ(robot.base.calls()[1].kind, Call::Kind::Stop);
+}
+
+TEST(FakeRobot, NavigatesToAPointWithRescansOnTheWay)
+{
+	// The odometry drifts 3 deg per metre: the rescans keep the belief on
+	// the map.
+	const mrpt::math::TPose2D start(1.8, 2.6, 2.4);
+	const double drift = mrpt::DEG2RAD(3.0);
+	FakeRobot robot(start, {}, drift);
+	SweepObstacles obstacles(robot.base, config().sweepObstacles);
+	robot.sweeps.onSweep([&](const Sweep& s) { obstacles.update(s); });
+	StopAndScanLocalizer localizer = makeLocalizer();
+	const auto io = robot.interfaces();
+	const auto startRep = localizer.start(io, Mode::Global);
+	ASSERT_TRUE(startRep.converged);
+	EXPECT_GT(obstacles.size(), 0u);
+
+	RobotNavInterface robotInterface(
+	    robot.base, robot.pose, obstacles, robot.clock,
+	    config().robotInterface);
+	robotInterface.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+	SemanticNavigator nav(
+	    robotInterface, knownMap(), *config().mrptSections, config().cnn,
+	    config().traversability, config().navigator);
+	nav.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+	const NavCommand goal = NavCommand::parse("go to 5.6 1.0");
+	nav.start(goal);
+	NavigationLoop loop(nav, io, &localizer);
+	std::vector<mrpt::math::TPose2D> path{robot.base.truePose()};
+	const auto result = loop.run(
+	    robot.clock.now() + 240, [&](double, SemanticNavigator&)
+	    { path.push_back(robot.base.truePose()); });
+	const auto& truth = robot.base.truePose();
+	double driven = 0;
+	for (std::size_t i = 1; i < path.size(); i++)
+		driven += distance(path[i], path[i - 1]);
+	std::cerr << "navigation: "
+	          << SemanticNavigator::stopReasonName(nav.stopReason())
+	          << " after " << result.steps << " steps, " << driven
+	          << " m, t = " << robot.clock.now() << " s, "
+	          << result.rescans.size() << " rescans, " << nav.replans()
+	          << " replans, final (" << truth.x << ", " << truth.y << ")\n";
+
+	for (const auto& r : result.rescans)
+		std::cerr << "  rescan: truth (" << r.truePose.x << ", " << r.truePose.y
+		          << ", " << r.truePose.phi << ") estimate (" << r.estimate.x
+		          << ", " << r.estimate.y << ", " << r.estimate.phi
+		          << ") error " << r.errorXY << "\n";
+	const auto rp = robot.pose.pose();
+	std::cerr << "  reported (" << rp.x << ", " << rp.y << ", " << rp.phi
+	          << ") truth (" << truth.x << ", " << truth.y << ", " << truth.phi
+	          << ")\n";
+	for (const auto& p : nav.plans())
+		std::cerr << "  plan " << SemanticNavigator::replanReasonName(p.reason)
+		          << " t " << p.time << " from (" << p.from.x << ", "
+		          << p.from.y << ") " << p.waypoints.size()
+		          << " waypoints, last (" << p.waypoints.back().x << ", "
+		          << p.waypoints.back().y << ")\n";
+	EXPECT_EQ(nav.stopReason(), SemanticNavigator::StopReason::Reached)
+	    << nav.stopMessage();
+	// Reached in truth: the plan ends in the goal region (goal_reach_m
+	// around the point) and the robot stands at its end within the goal
+	// tolerance plus the localization error.
+	ASSERT_FALSE(nav.plans().empty());
+	const auto& end = nav.plans().back().waypoints.back();
+	const double reach = config().traversability.goalReach;
+	EXPECT_LT(std::hypot(end.x - goal.x, end.y - goal.y), reach + 0.05);
+	EXPECT_LT(
+	    std::hypot(truth.x - end.x, truth.y - end.y),
+	    config().navigator.goalAllowedDistance + 0.1);
+	// Around the partition's end: longer than the straight line.
+	EXPECT_GT(driven, std::hypot(goal.x - start.x, goal.y - start.y));
+	// One rescan per rescan_distance_m driven (the last metre may not
+	// have ended), each near the truth.
+	const double every = config().stopAndScan.rescanDistance;
+	ASSERT_GT(every, 0);
+	EXPECT_GE(result.rescans.size(), std::size_t(driven / every) - 1);
+	EXPECT_LE(result.rescans.size(), std::size_t(driven / every) + 1);
+	for (const auto& r : result.rescans)
+	{
+		EXPECT_LT(r.errorXY, 0.2) << "rescan at t";
+		EXPECT_LT(r.errorYaw, mrpt::DEG2RAD(4));
+	}
+	// The robot never touched the room.
+	for (const auto& p : path)
+		EXPECT_FALSE(room().blocks(p.x, p.y, kRobotRadius, 0.02, 1.0))
+		    << "(" << p.x << ", " << p.y << ")";
+
+	expectStopAndScan(robot.sweeps);
+	expectOrderlyCommands(robot.base);
+	EXPECT_GT(robot.sweeps.taken().size(), std::size_t(startRep.sweeps));
+}
+
+TEST(FakeRobot, LostSweepSourceFailsLocalizationNamingIt)
+{
+	{
+		// The laser never answers: the start fails and says why.
+		ScriptedSweepSource::Script script;
+		script.deviceLostAfter = 0;
+		FakeRobot robot({1.8, 2.6, 2.4}, script);
+		StopAndScanLocalizer localizer = makeLocalizer();
+		try
+		{
+			localizer.start(robot.interfaces(), Mode::Global);
+			ADD_FAILURE() << "no LocalizationFailedError";
+		}
+		catch (const LocalizationFailedError& e)
+		{
+			const std::string what = e.what();
+			EXPECT_NE(what.find("device lost"), std::string::npos) << what;
+			EXPECT_NE(what.find("/dev/fake-lms200"), std::string::npos) << what;
+		}
+		EXPECT_EQ(robot.sweeps.end(), SweepSource::End::DeviceLost);
+		EXPECT_TRUE(robot.sweeps.taken().empty());
+	}
+	{
+		// Lost after a tracking start: the next rescan fails.
+		const mrpt::math::TPose2D start(5.8, 2.8, -2.0);
+		FakeRobot robot(start);
+		StopAndScanLocalizer localizer = makeLocalizer();
+		const auto io = robot.interfaces();
+		const auto rep = localizer.start(io, Mode::Tracking, start);
+		EXPECT_TRUE(rep.converged);
+		EXPECT_LT(rep.errorXY, 0.15);
+		robot.sweeps.loseDevice();
+		try
+		{
+			localizer.rescan(io);
+			ADD_FAILURE() << "no LocalizationFailedError";
+		}
+		catch (const LocalizationFailedError& e)
+		{
+			const std::string what = e.what();
+			EXPECT_NE(what.find("device lost"), std::string::npos) << what;
+		}
+		EXPECT_EQ(robot.sweeps.end(), SweepSource::End::DeviceLost);
+		EXPECT_EQ(robot.sweeps.taken().size(), std::size_t(rep.sweeps));
+		expectStopAndScan(robot.sweeps);
+	}
+}
