@@ -7,9 +7,7 @@
 // an unknown pose and SemanticNavigator, driven by NavigationLoop over
 // RobotNavInterface, takes it to a point with stop-and-scan rescans.
 #include <gtest/gtest.h>
-#include <mrpt/config/CConfigFile.h>
 #include <mrpt/math/wrap2pi.h>
-#include <semnav/common/ConfigChecks.h>
 #include <semnav/localization/WallMap.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/nav/NavCommand.h>
@@ -29,6 +27,7 @@
 
 #include "FakeRobot.h"
 #include "FakeSweeps.h"
+#include "ShippedOptions.h"
 
 using namespace semnav;
 using semnav::test::FakeBase;
@@ -52,32 +51,12 @@ const NavigationConfig& config()
 
 const MappingLocalizer::TOptions& locOptions()
 {
-	static const MappingLocalizer::TOptions o = []
-	{
-		MappingLocalizer::TOptions t;
-		t.loadFromConfigFile(
-		    *openIniFile(
-		        kSrc + "/config/localization.ini",
-		        MappingLocalizer::TOptions::sections()),
-		    "");
-		return t;
-	}();
-	return o;
+	return test::shippedLocalizationOptions();
 }
 
 const PerceptionPipeline::TOptions& perceptionOptions()
 {
-	static const PerceptionPipeline::TOptions o = []
-	{
-		PerceptionPipeline::TOptions t;
-		t.loadFromConfigFile(
-		    *openIniFile(
-		        kSrc + "/config/perception.ini",
-		        PerceptionPipeline::sections()),
-		    "");
-		return t;
-	}();
-	return o;
+	return test::shippedPerceptionOptions();
 }
 
 const test::FakeRoom& room()
