@@ -136,24 +136,40 @@ double distance(const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b)
 	return std::hypot(a.x - b.x, a.y - b.y);
 }
 
-/** Length of the map's wall segments lying along the room wall from
- * (x0, y0) to (x1, y1) (both ends within `tol` of it, parallel). */
-double wallLengthAlong(
-    const WallMap& walls, double x0, double y0, double x1, double y1,
-    double tol = 0.2)
+/** Distance from p to the segment a-b. */
+double toSegment(
+    const mrpt::math::TPoint2D& p, const mrpt::math::TPoint2D& a,
+    const mrpt::math::TPoint2D& b)
 {
-	const mrpt::math::TPoint2D a{x0, y0}, b{x1, y1};
 	const auto ab = b - a;
-	const auto near = [&](const mrpt::math::TPoint2D& p)
-	{
-		const double t = std::clamp(
-		    ((p - a).x * ab.x + (p - a).y * ab.y) / ab.sqrNorm(), 0.0, 1.0);
-		return (p - (a + ab * t)).norm() < tol;
-	};
-	double len = 0;
+	const double t = std::clamp(
+	    ((p - a).x * ab.x + (p - a).y * ab.y) / ab.sqrNorm(), 0.0, 1.0);
+	return (p - (a + ab * t)).norm();
+}
+
+/** Share of the room wall from a to b (sampled every 5 cm) that the map's
+ * wall segments lying along it (both ends within `tol`) cover. */
+double wallCoverage(
+    const WallMap& walls, const mrpt::math::TPoint2D& a,
+    const mrpt::math::TPoint2D& b, double tol = 0.2)
+{
+	std::vector<WallSegment> along;
 	for (const auto& s : walls.segments())
-		if (near(s.p0) && near(s.p1)) len += s.length();
-	return len;
+		if (toSegment(s.p0, a, b) < tol && toSegment(s.p1, a, b) < tol)
+			along.push_back(s);
+	const int n = std::max(1, static_cast<int>((b - a).norm() / 0.05));
+	int covered = 0;
+	for (int i = 0; i <= n; i++)
+	{
+		const auto p = a + (b - a) * (double(i) / n);
+		for (const auto& s : along)
+			if (toSegment(p, s.p0, s.p1) < tol)
+			{
+				covered++;
+				break;
+			}
+	}
+	return covered / double(n + 1);
 }
 
 /** What every test asks of the base's log: no command refused, none beyond
@@ -210,13 +226,13 @@ TEST(FakeRobot, KnownMapHoldsTheWallsPerceptionFound)
 	std::cerr << walls.segments().size() << " wall segments in the map\n";
 	// The four walls (7 m and 5 m) and the 1.8 m partition were labelled
 	// wall by perception and are in the map where they stand.
-	EXPECT_GT(wallLengthAlong(walls, 0, 0, 0, 5), 3.0);
-	EXPECT_GT(wallLengthAlong(walls, 7, 0, 7, 5), 3.0);
-	EXPECT_GT(wallLengthAlong(walls, 0, 0, 7, 0), 4.0);
-	EXPECT_GT(wallLengthAlong(walls, 0, 5, 7, 5), 4.0);
-	EXPECT_GT(wallLengthAlong(walls, 4.57, 0, 4.57, 1.8), 1.0);
+	EXPECT_GT(wallCoverage(walls, {0, 0}, {0, 5}), 0.8);
+	EXPECT_GT(wallCoverage(walls, {7, 0}, {7, 5}), 0.8);
+	EXPECT_GT(wallCoverage(walls, {0, 0}, {7, 0}), 0.8);
+	EXPECT_GT(wallCoverage(walls, {0, 5}, {7, 5}), 0.8);
+	EXPECT_GT(wallCoverage(walls, {4.57, 0}, {4.57, 1.8}), 0.8);
 	// Nothing runs across the open middle of the room.
-	EXPECT_LT(wallLengthAlong(walls, 1.0, 2.5, 6.0, 2.5, 0.5), 0.01);
+	EXPECT_EQ(wallCoverage(walls, {1.0, 2.5}, {6.0, 2.5}, 0.5), 0.0);
 }
 
 TEST(FakeRobot, GlobalStartFromAnUnknownPoseConvergesNearTheTruth)
