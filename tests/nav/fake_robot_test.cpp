@@ -71,10 +71,10 @@ struct FakeRobot
 	FakeRobot(
 	    const mrpt::math::TPose2D& start,
 	    const ScriptedSweepSource::Script& script = {},
-	    double headingDriftPerM = 0)
+	    double headingDriftPerM = 0, const test::FakeRoom& world = room())
 	    : base(start, kWatchdog, headingDriftPerM),
 	      clock(base, kPeriod),
-	      sweeps(base, clock, room(), script),
+	      sweeps(base, clock, world, script),
 	      pose(base),
 	      truth(base)
 	{
@@ -215,6 +215,72 @@ StopAndScanLocalizer makeLocalizer()
 	return StopAndScanLocalizer(
 	    knownMap(), config().stopAndScan, locOptions(), perceptionOptions());
 }
+
+/** A run of navigate(). */
+struct Navigation
+{
+	StopAndScanLocalizer::Report start;
+	NavigationLoop::Result loop;
+	SemanticNavigator::StopReason reason = SemanticNavigator::StopReason::None;
+	std::string message;
+	std::vector<SemanticNavigator::PlanRecord> plans;
+	/** True pose after every control period, and the distance driven. */
+	std::vector<mrpt::math::TPose2D> path;
+	double driven = 0;
+};
+
+/** The runtime's navigation over the fake seams: a global start, then
+ * SemanticNavigator (over RobotNavInterface with the localized pose and
+ * the sweeps' obstacles) driven to `goal` by NavigationLoop, with
+ * stop-and-scan rescans. */
+Navigation navigate(FakeRobot& robot, const NavCommand& goal)
+{
+	Navigation n;
+	SweepObstacles obstacles(robot.base, config().sweepObstacles);
+	robot.sweeps.onSweep([&](const Sweep& s) { obstacles.update(s); });
+	StopAndScanLocalizer localizer = makeLocalizer();
+	const auto io = robot.interfaces();
+	n.start = localizer.start(io, Mode::Global);
+	EXPECT_GT(obstacles.size(), 0u);
+
+	RobotNavInterface robotInterface(
+	    robot.base, robot.pose, obstacles, robot.clock,
+	    config().robotInterface);
+	robotInterface.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+	SemanticNavigator nav(
+	    robotInterface, knownMap(), *config().mrptSections, config().cnn,
+	    config().traversability, config().navigator);
+	nav.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+	nav.start(goal);
+	NavigationLoop loop(nav, io, &localizer);
+	n.path.push_back(robot.base.truePose());
+	n.loop = loop.run(
+	    robot.clock.now() + 240, [&](double, SemanticNavigator&)
+	    { n.path.push_back(robot.base.truePose()); });
+	robot.sweeps.onSweep({});
+	n.reason = nav.stopReason();
+	n.message = nav.stopMessage();
+	n.plans = nav.plans();
+	for (std::size_t i = 1; i < n.path.size(); i++)
+		n.driven += distance(n.path[i], n.path[i - 1]);
+	const auto& truth = robot.base.truePose();
+	std::cerr << "navigation: " << SemanticNavigator::stopReasonName(n.reason)
+	          << " after " << n.loop.steps << " steps, " << n.driven
+	          << " m, t = " << robot.clock.now() << " s, "
+	          << n.loop.rescans.size() << " rescans, " << n.plans.size() - 1
+	          << " replans, final (" << truth.x << ", " << truth.y << ")\n";
+	return n;
+}
+
+/** No pose of the path brings the robot's disc into contact with `world`
+ * (between floor and robot height). */
+void expectNoContact(
+    const test::FakeRoom& world, const std::vector<mrpt::math::TPose2D>& path)
+{
+	for (const auto& p : path)
+		EXPECT_FALSE(world.blocks(p.x, p.y, kRobotRadius, 0.02, 1.0))
+		    << "(" << p.x << ", " << p.y << ")";
+}
 }  // namespace
 
 TEST(FakeRobot, FakeBaseMovesAsCommandedAndEnforcesItsWatchdog)
@@ -332,47 +398,17 @@ TEST(FakeRobot, NavigatesToAPointWithRescansOnTheWay)
 	const mrpt::math::TPose2D start(1.8, 2.6, 2.4);
 	const double drift = mrpt::DEG2RAD(3.0);
 	FakeRobot robot(start, {}, drift);
-	SweepObstacles obstacles(robot.base, config().sweepObstacles);
-	robot.sweeps.onSweep([&](const Sweep& s) { obstacles.update(s); });
-	StopAndScanLocalizer localizer = makeLocalizer();
-	const auto io = robot.interfaces();
-	const auto startRep = localizer.start(io, Mode::Global);
-	ASSERT_TRUE(startRep.converged);
-	EXPECT_GT(obstacles.size(), 0u);
-
-	RobotNavInterface robotInterface(
-	    robot.base, robot.pose, obstacles, robot.clock,
-	    config().robotInterface);
-	robotInterface.setMinLoggingLevel(mrpt::system::LVL_ERROR);
-	SemanticNavigator nav(
-	    robotInterface, knownMap(), *config().mrptSections, config().cnn,
-	    config().traversability, config().navigator);
-	nav.setMinLoggingLevel(mrpt::system::LVL_ERROR);
 	const NavCommand goal = NavCommand::parse("go to 5.6 1.0");
-	nav.start(goal);
-	NavigationLoop loop(nav, io, &localizer);
-	std::vector<mrpt::math::TPose2D> path{robot.base.truePose()};
-	const auto result = loop.run(
-	    robot.clock.now() + 240, [&](double, SemanticNavigator&)
-	    { path.push_back(robot.base.truePose()); });
+	const Navigation n = navigate(robot, goal);
+	ASSERT_TRUE(n.start.converged);
 	const auto& truth = robot.base.truePose();
-	double driven = 0;
-	for (std::size_t i = 1; i < path.size(); i++)
-		driven += distance(path[i], path[i - 1]);
-	std::cerr << "navigation: "
-	          << SemanticNavigator::stopReasonName(nav.stopReason())
-	          << " after " << result.steps << " steps, " << driven
-	          << " m, t = " << robot.clock.now() << " s, "
-	          << result.rescans.size() << " rescans, " << nav.replans()
-	          << " replans, final (" << truth.x << ", " << truth.y << ")\n";
 
-	EXPECT_EQ(nav.stopReason(), SemanticNavigator::StopReason::Reached)
-	    << nav.stopMessage();
+	EXPECT_EQ(n.reason, SemanticNavigator::StopReason::Reached) << n.message;
 	// Reached in truth: the plan ends in the goal region (goal_reach_m
 	// around the point) and the robot stands at its end within the goal
 	// tolerance plus the localization error.
-	ASSERT_FALSE(nav.plans().empty());
-	const auto& end = nav.plans().back().waypoints.back();
+	ASSERT_FALSE(n.plans.empty());
+	const auto& end = n.plans.back().waypoints.back();
 	const double reach = config().traversability.goalReach;
 	EXPECT_LT(std::hypot(end.x - goal.x, end.y - goal.y), reach + 0.05);
 	EXPECT_LT(
@@ -381,18 +417,24 @@ TEST(FakeRobot, NavigatesToAPointWithRescansOnTheWay)
 	// The partition stands on the straight line: the robot went round its
 	// end (y = 1.8).
 	bool roundTheEnd = false;
-	for (std::size_t i = 1; i < path.size(); i++)
-		if (path[i - 1].x < 4.575 && path[i].x >= 4.575)
-			roundTheEnd = path[i].y > 1.8 + kRobotRadius;
+	for (std::size_t i = 1; i < n.path.size(); i++)
+		if (n.path[i - 1].x < 4.575 && n.path[i].x >= 4.575)
+			roundTheEnd = n.path[i].y > 1.8 + kRobotRadius;
 	EXPECT_TRUE(roundTheEnd);
+	// The map is right: the only replans are those after each rescan.
+	for (std::size_t i = 1; i < n.plans.size(); i++)
+		EXPECT_EQ(
+		    n.plans[i].reason, SemanticNavigator::ReplanReason::MapChanged)
+		    << SemanticNavigator::replanReasonName(n.plans[i].reason);
+	EXPECT_EQ(n.plans.size(), n.loop.rescans.size() + 1);
 	// One rescan per rescan_distance_m driven (the last metre may not
 	// have ended), each near the truth.
 	const double every = config().stopAndScan.rescanDistance;
 	ASSERT_GT(every, 0);
-	const int rescans = static_cast<int>(result.rescans.size());
-	EXPECT_GE(rescans, static_cast<int>(driven / every) - 1);
-	EXPECT_LE(rescans, static_cast<int>(driven / every) + 1);
-	for (const auto& r : result.rescans)
+	const int rescans = static_cast<int>(n.loop.rescans.size());
+	EXPECT_GE(rescans, static_cast<int>(n.driven / every) - 1);
+	EXPECT_LE(rescans, static_cast<int>(n.driven / every) + 1);
+	for (const auto& r : n.loop.rescans)
 	{
 		EXPECT_LT(r.errorXY, 0.2);
 		EXPECT_LT(r.errorYaw, mrpt::DEG2RAD(4));
@@ -400,22 +442,44 @@ TEST(FakeRobot, NavigatesToAPointWithRescansOnTheWay)
 	// Without the rescans the belief would have drifted with the odometry:
 	// the start's estimate composed with the odometry since is off by the
 	// drift x distance in heading; the reported pose is not.
-	const mrpt::poses::CPose2D odoStart(startRep.records.back().odometry);
+	const mrpt::poses::CPose2D odoStart(n.start.records.back().odometry);
 	const auto deadReckoned =
-	    (mrpt::poses::CPose2D(startRep.estimate) +
+	    (mrpt::poses::CPose2D(n.start.estimate) +
 	     (mrpt::poses::CPose2D(robot.base.odometry().pose) - odoStart))
 	        .asTPose();
-	EXPECT_GT(yawErr(deadReckoned.phi, truth.phi), 0.5 * drift * driven);
+	EXPECT_GT(yawErr(deadReckoned.phi, truth.phi), 0.5 * drift * n.driven);
 	EXPECT_LT(yawErr(robot.pose.pose().phi, truth.phi), mrpt::DEG2RAD(3));
 	EXPECT_LT(distance(robot.pose.pose(), truth), 0.1);
-	// The robot never touched the room.
-	for (const auto& p : path)
-		EXPECT_FALSE(room().blocks(p.x, p.y, kRobotRadius, 0.02, 1.0))
-		    << "(" << p.x << ", " << p.y << ")";
 
+	expectNoContact(room(), n.path);
 	expectStopAndScan(robot.sweeps);
 	expectOrderlyCommands(robot.base);
-	EXPECT_GT(robot.sweeps.taken().size(), std::size_t(startRep.sweeps));
+	EXPECT_GT(robot.sweeps.taken().size(), std::size_t(n.start.sweeps));
+}
+
+TEST(FakeRobot, SweepObstaclesSteerAroundABoxTheMapLacks)
+{
+	// A box on the way that was not there when the map was made: only the
+	// sweeps' obstacles (SweepObstacles) tell the navigator about it.
+	test::FakeRoom world = room();
+	world.boxes.push_back({{3.05, 2.15, 0}, {3.55, 2.65, 0.8}});
+	// The robot starts facing it: the start's first sweep sees it, the
+	// later ones turn away (a stop's sweeps add up in SweepObstacles).
+	const mrpt::math::TPose2D start(1.8, 2.6, -0.2);
+	FakeRobot robot(start, {}, 0, world);
+	const Navigation n = navigate(robot, NavCommand::parse("go to 5.6 1.0"));
+	ASSERT_TRUE(n.start.converged);
+	EXPECT_EQ(n.reason, SemanticNavigator::StopReason::Reached) << n.message;
+	expectNoContact(world, n.path);
+	// The planner was told: the box blocked the path ahead and it replanned
+	// (the sensed obstacles are forgotten again at each rescan).
+	int blocked = 0;
+	for (const auto& p : n.plans)
+		blocked += p.reason ==
+		           SemanticNavigator::ReplanReason::PathBlockedBySensedObstacle;
+	EXPECT_GT(blocked, 0);
+	expectStopAndScan(robot.sweeps);
+	expectOrderlyCommands(robot.base);
 }
 
 TEST(FakeRobot, LostSweepSourceFailsLocalizationNamingIt)

@@ -1,7 +1,8 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-// SweepObstacles: the obstacles of the latest sweep (points between floor
-// and robot height, within range, thinned), handed over in the robot frame
-// of now through the odometry since the sweep; too old or none: blocked.
+// SweepObstacles: the obstacles of the latest stop's sweeps (points
+// between floor and robot height, within range, thinned), handed over in
+// the robot frame of now through the odometry since the sweep; too old or
+// none: blocked.
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/core/bits_math.h>
@@ -182,12 +183,43 @@ TEST(SweepObstacles, SensedAtTheSweepsTimeAndTooOldCountsAsBlocked)
 	base.at(0, 0, 0, 100 + 10.5);
 	EXPECT_FALSE(obs.sense(m, t));
 	EXPECT_EQ(m.size(), 0u);
-	// A new sweep is fresh again and replaces the old points.
-	obs.update(sweepOf(
-	    {{0.5, 0, 3.0}, {0.5, M_PI / 2, 3.0}}, mrpt::poses::CPose2D(), 110));
+	// A new sweep is fresh again.
+	obs.update(sweepOf({{0.5, 0, 3.0}}, mrpt::poses::CPose2D(), 110));
 	EXPECT_TRUE(obs.sense(m, t));
-	EXPECT_EQ(m.size(), 2u);
 	EXPECT_NEAR(mrpt::Clock::toDouble(t), 110, 1e-6);
+}
+
+TEST(SweepObstacles, SweepsOfOneStopAddUpAndTheNextStopReplacesThem)
+{
+	StubBase base;
+	SweepObstacles obs(base, options());
+	// A start: sweeps ahead, then after turning on the spot by 90 deg
+	// (what is now ahead was on the left).
+	obs.update(sweepOf({{0.5, 0, 2.0}}, mrpt::poses::CPose2D(1, 1, 0), 100));
+	obs.update(
+	    sweepOf({{0.5, 0, 3.0}}, mrpt::poses::CPose2D(1, 1, M_PI / 2), 103));
+	base.at(1, 1, M_PI / 2, 104);
+	bool ok = false;
+	auto pts = sensed(obs, ok);
+	EXPECT_TRUE(ok);
+	ASSERT_EQ(pts.size(), 2u);
+	// The first sweep's point is now on the right, the second's ahead.
+	EXPECT_NEAR(pts[0].x, 0.0, 1e-5);
+	EXPECT_NEAR(pts[0].y, -2.0, 1e-5);
+	EXPECT_NEAR(pts[1].x, 3.0, 1e-5);
+	EXPECT_NEAR(pts[1].y, 0.0, 1e-5);
+	// The same point seen twice is kept once.
+	obs.update(sweepOf(
+	    {{0.5, -M_PI / 2, 2.0}}, mrpt::poses::CPose2D(1, 1, M_PI / 2), 106));
+	EXPECT_EQ(obs.size(), 2u);
+	// A sweep one metre further on replaces them.
+	obs.update(
+	    sweepOf({{0.5, 0, 1.5}}, mrpt::poses::CPose2D(1, 2, M_PI / 2), 110));
+	base.at(1, 2, M_PI / 2, 110);
+	pts = sensed(obs, ok);
+	ASSERT_EQ(pts.size(), 1u);
+	EXPECT_NEAR(pts[0].x, 1.5, 1e-5);
+	EXPECT_NEAR(pts[0].y, 0.0, 1e-5);
 }
 
 TEST(SweepObstacles, OptionsRoundTripAndRejectOutOfRange)
