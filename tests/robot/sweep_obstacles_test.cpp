@@ -81,6 +81,12 @@ SweepObstacles::TOptions options()
 	return o;
 }
 
+void expectXY(const mrpt::math::TPoint3D& p, double x, double y)
+{
+	EXPECT_NEAR(p.x, x, 1e-5);
+	EXPECT_NEAR(p.y, y, 1e-5);
+}
+
 std::vector<mrpt::math::TPoint3D> sensed(SweepObstacles& obs, bool& ok)
 {
 	mrpt::maps::CSimplePointsMap m;
@@ -126,11 +132,9 @@ TEST(SweepObstacles, KeepsPointsBetweenFloorAndRobotHeightWithinRange)
 	const auto pts = sensed(obs, ok);
 	EXPECT_TRUE(ok);
 	ASSERT_EQ(pts.size(), 2u);
-	EXPECT_NEAR(pts[0].x, 2.0, 1e-5);
-	EXPECT_NEAR(pts[0].y, 0.0, 1e-5);
+	expectXY(pts[0], 2.0, 0.0);
 	EXPECT_NEAR(pts[0].z, 0.5, 1e-5);
-	EXPECT_NEAR(pts[1].x, 0.0, 1e-5);
-	EXPECT_NEAR(pts[1].y, 4.9, 1e-5);
+	expectXY(pts[1], 0.0, 4.9);
 	EXPECT_NEAR(pts[1].z, 0.9, 1e-5);
 }
 
@@ -158,15 +162,13 @@ TEST(SweepObstacles, MovesPointsIntoTheRobotFrameOfNowByOdometry)
 	auto pts = sensed(obs, ok);
 	EXPECT_TRUE(ok);
 	ASSERT_EQ(pts.size(), 1u);
-	EXPECT_NEAR(pts[0].x, 1.0, 1e-5);
-	EXPECT_NEAR(pts[0].y, 0.0, 1e-5);
+	expectXY(pts[0], 1.0, 0.0);
 	EXPECT_NEAR(pts[0].z, 0.5, 1e-5);
 	// ...and after turning left by 90 deg on the spot, 1 m to the right.
 	base.at(1, 3, M_PI, 102);
 	pts = sensed(obs, ok);
 	ASSERT_EQ(pts.size(), 1u);
-	EXPECT_NEAR(pts[0].x, 0.0, 1e-5);
-	EXPECT_NEAR(pts[0].y, -1.0, 1e-5);
+	expectXY(pts[0], 0.0, -1.0);
 }
 
 TEST(SweepObstacles, SensedAtTheSweepsTimeAndTooOldCountsAsBlocked)
@@ -204,10 +206,8 @@ TEST(SweepObstacles, SweepsOfOneStopAddUpAndTheNextStopReplacesThem)
 	EXPECT_TRUE(ok);
 	ASSERT_EQ(pts.size(), 2u);
 	// The first sweep's point is now on the right, the second's ahead.
-	EXPECT_NEAR(pts[0].x, 0.0, 1e-5);
-	EXPECT_NEAR(pts[0].y, -2.0, 1e-5);
-	EXPECT_NEAR(pts[1].x, 3.0, 1e-5);
-	EXPECT_NEAR(pts[1].y, 0.0, 1e-5);
+	expectXY(pts[0], 0.0, -2.0);
+	expectXY(pts[1], 3.0, 0.0);
 	// The same point seen twice is kept once.
 	obs.update(sweepOf(
 	    {{0.5, -M_PI / 2, 2.0}}, mrpt::poses::CPose2D(1, 1, M_PI / 2), 106));
@@ -218,8 +218,7 @@ TEST(SweepObstacles, SweepsOfOneStopAddUpAndTheNextStopReplacesThem)
 	base.at(1, 2, M_PI / 2, 110);
 	pts = sensed(obs, ok);
 	ASSERT_EQ(pts.size(), 1u);
-	EXPECT_NEAR(pts[0].x, 1.5, 1e-5);
-	EXPECT_NEAR(pts[0].y, 0.0, 1e-5);
+	expectXY(pts[0], 1.5, 0.0);
 }
 
 TEST(SweepObstacles, OptionsRoundTripAndRejectOutOfRange)
