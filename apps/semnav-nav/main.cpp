@@ -3,6 +3,7 @@
 // nearest wastebasket") through MRPT's reactive navigator on a semantic map
 // (docs/design.md, "Apps").
 #include <mrpt/math/wrap2pi.h>
+#include <semnav/common/CascadeArgs.h>
 #include <semnav/common/CommandLine.h>
 #include <semnav/common/IniSections.h>
 #include <semnav/common/ShippedConfig.h>
@@ -252,6 +253,7 @@ int main(int argc, char** argv)
 	TCLAP::ValueArg<std::string> argPerceptionConfig(
 	    "", "perception-config", "Perception INI for --localize", false,
 	    shipped("perception.ini"), "P.ini", cmd);
+	semnav::CascadeArgs cascades(cli);
 	semnav::NavigationRun::Settings s;
 	auto& c = s.config;
 	semnav::IniSections localizationSections, perceptionSections, all;
@@ -299,6 +301,9 @@ int main(int argc, char** argv)
 		            ? semnav::NavCommand::parse(argCommand.getValue())
 		            : semnav::NavCommand::nearest(
 		                  semnav::labelFromName(argGoal.getValue()));
+		    if (const auto file = cascades.file())
+			    s.cascades =
+			        semnav::CascadeDetector::TOptions::fromIniFile(*file);
 		    s.config = semnav::SimulationConfig::load(
 		        argConfig.getValue(), argPlanning.getValue(),
 		        argSimConfig.getValue());

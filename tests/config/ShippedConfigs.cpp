@@ -11,6 +11,8 @@
 #include <semnav/localization/WallMap.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/map/TravelCostModel.h>
+#include <semnav/localization/SemanticEvidenceMap.h>
+#include <semnav/localization/SemanticExtractor.h>
 #include <semnav/nav/RobotNavInterface.h>
 #include <semnav/nav/SemanticNavigator.h>
 #include <semnav/nav/StopAndScanLocalizer.h>
@@ -227,13 +229,16 @@ stats_file = ./semnav-capture-stats.json
 	}
 	all.push_back(
 	    {"localization.ini",
-	     "Localization (semnav-map --poses pf --loc-config "
-	     "config/localization.ini):\n"
-	     "particle filter on wall landmarks with main-direction heading "
-	     "correction\n(paper sec. 2.3).",
+	     "Localization (semnav-map --poses pf, semnav-nav --localize; "
+	     "--loc-config\nconfig/localization.ini): particle filter on wall "
+	     "landmarks with main-direction\nheading correction (paper sec. "
+	     "2.3) and, in a known map, the semantic evidence\nof each sweep "
+	     "(labels and detected objects against the map's).",
 	     {section<WallExtractor::TOptions>("WallExtractor"),
 	      section<WallMap::TOptions>("WallMap"),
-	      section<Localizer::TOptions>("Localizer")}});
+	      section<Localizer::TOptions>("Localizer"),
+	      section<SemanticExtractor::TOptions>("SemanticExtractor"),
+	      section<SemanticEvidenceMap::TOptions>("SemanticEvidence")}});
 	all.push_back(
 	    {"map.ini",
 	     "semnav-map options (semnav-map --config config/map.ini). The "

@@ -16,30 +16,13 @@
 #include <string>
 
 #include "AppRunner.h"
+#include "CaptureRuns.h"
 
 namespace
 {
 namespace fs = std::filesystem;
-
-struct ShellRun
-{
-	int code = -1;
-	std::string out;
-};
-
-ShellRun shell(const std::string& cmd)
-{
-	ShellRun r;
-	FILE* p = ::popen((cmd + " </dev/null").c_str(), "r");
-	if (!p) return r;
-	std::array<char, 4096> buf{};
-	std::size_t n;
-	while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0)
-		r.out.append(buf.data(), n);
-	const int st = ::pclose(p);
-	r.code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-	return r;
-}
+using semnav::test::CaptureRunLock;
+using semnav::test::shell;
 
 struct Capture
 {
@@ -48,33 +31,11 @@ struct Capture
 	std::string dir;
 };
 
-/** Holds an exclusive lock on a file while alive: the capture runs are
- * timing-sensitive, so two of them never run at once (ctest -j). */
-class RunLock
-{
-public:
-	RunLock()
-	    : m_fd(::open(
-	          (fs::temp_directory_path() / "semnav_capture_selftest.lock")
-	              .c_str(),
-	          O_CREAT | O_RDWR, 0666))
-	{
-		if (m_fd >= 0) ::flock(m_fd, LOCK_EX);
-	}
-	~RunLock()
-	{
-		if (m_fd >= 0) ::close(m_fd);
-	}
-
-private:
-	int m_fd;
-};
-
 /** Runs the self-test for `seconds` with extra arguments. */
 Capture runSelftest(
     const std::string& name, double seconds, const std::string& extra = "")
 {
-	const RunLock lock;
+	const CaptureRunLock lock;
 	Capture c;
 	c.dir = (fs::temp_directory_path() /
 	         ("semnav_capture_" + name + "_" + std::to_string(::getpid())))

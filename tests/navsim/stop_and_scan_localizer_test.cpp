@@ -7,6 +7,7 @@
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/math/wrap2pi.h>
 #include <semnav/common/ConfigChecks.h>
+#include <semnav/detection/CascadeDetector.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/nav/NavigationErrors.h>
 #include <semnav/nav/StopAndScanLocalizer.h>
@@ -369,6 +370,54 @@ trajectory:
 	}
 }
 
+TEST(StopAndScanLocalizer, SemanticEvidenceTellsTheSymmetricRoomFromItsTwin)
+{
+	// The symmetric room of the previous test, where the walls alone
+	// cannot decide: with the object detectors on, the wastebasket by the
+	// north wall (and the labels around it) tells the two poses apart.
+	const Scene room = SceneLoader::parse(
+	    R"(
+name: symroom
+bounds: [0, 0, 6, 4]
+ceiling_height: 2.7
+objects:
+  - {label: wall, box: {center: [3, 0.05, 1.35], size: [6, 0.1, 2.7]}}
+  - {label: wall, box: {center: [3, 3.95, 1.35], size: [6, 0.1, 2.7]}}
+  - {label: wall, box: {center: [0.05, 2, 1.35], size: [0.1, 3.8, 2.7]}}
+  - {label: wall, box: {center: [5.95, 2, 1.35], size: [0.1, 3.8, 2.7]}}
+  - {label: wastebasket, cylinder: {center: [3, 3.5, 0.2], radius: 0.15, height: 0.4}}
+trajectory:
+  - [1.5, 1.2, 0]
+)",
+	    "symroom");
+	SemanticMap map(config().map);
+	SceneMapBuilder::build(room, map);
+	const auto cascades =
+	    CascadeDetector::TOptions::fromIniFile(kSrc + "/config/cascade.ini");
+	for (const mrpt::math::TPose2D start :
+	     {mrpt::math::TPose2D(1.5, 1.2, 0.3),
+	      mrpt::math::TPose2D(4.5, 2.8, 0.3 + M_PI)})
+	{
+		StopAndScanLocalizer loc(
+		    map, config().stopAndScan, locOptions(), perceptionOptions(),
+		    cascades);
+		SimulatedRobot robot(room, config().robot, start);
+		robot.enableOdometryNoise(room.odometry);
+		const auto rep = loc.start(robot.interfaces(), Mode::Global);
+		std::cerr << "from (" << start.x << ", " << start.y
+		          << "): " << rep.sweeps << " sweeps, error " << rep.errorXY
+		          << " m " << mrpt::RAD2DEG(rep.errorYaw) << " deg\n";
+		EXPECT_TRUE(rep.converged);
+		EXPECT_LT(rep.errorXY, 0.15);
+		EXPECT_LT(rep.errorYaw, mrpt::DEG2RAD(3));
+		ASSERT_TRUE(rep.records.back().checked);
+		EXPECT_GT(
+		    rep.records.back().score,
+		    rep.records.back().rivalScore +
+		        config().stopAndScan.uniquenessMargin);
+	}
+}
+
 TEST(StopAndScanLocalizer, ACarriedRobotIsFoundAgainByTheNextRescan)
 {
 	// Localized at (2.2, 1.5), then carried to (6.2, 2.6) facing north while
@@ -400,7 +449,8 @@ TEST(StopAndScanLocalizer, ACarriedRobotIsFoundAgainByTheNextRescan)
 		          << r.errorXY << " m, converged " << r.converged << "\n";
 	EXPECT_TRUE(rep.recovery);
 	EXPECT_TRUE(rep.converged);
-	EXPECT_GE(rep.sweeps, 2);
+	// (The semantic evidence may settle it with the kidnapped sweep itself.)
+	EXPECT_GE(rep.sweeps, 1);
 	EXPECT_GE(loc.localizer().kidnappings(), 1);
 	EXPECT_LT(rep.errorXY, 0.15);
 	EXPECT_LT(rep.errorYaw, mrpt::DEG2RAD(3));

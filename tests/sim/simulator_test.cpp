@@ -588,7 +588,7 @@ TEST(SimulationRunner, RejectsUnusableScenes)
 TEST(SimulatorOptions, ShippedConfigHasAllKeysAtDefaults)
 {
 	const std::string path = std::string(SEMNAV_SOURCE_DIR) + "/config/sim.ini";
-	const auto cfg = openIniFile(path, {"Simulator"});
+	const auto cfg = openIniFile(path, {"Simulator", "SimulatedRobot"});
 	std::vector<std::string> keys;
 	cfg->getAllKeys("Simulator", keys);
 	EXPECT_EQ(keys.size(), SimulatorOptions::knownKeys().size());

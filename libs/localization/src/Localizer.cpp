@@ -273,7 +273,8 @@ void Localizer::initializeGlobal()
 }
 
 LocalizationUpdate Localizer::update(
-    const mrpt::poses::CPose2D& odometryIncrement, const WallObservation& obs)
+    const mrpt::poses::CPose2D& odometryIncrement, const WallObservation& obs,
+    const SemanticObservation* semantic)
 {
 	const auto t0 = std::chrono::steady_clock::now();
 	mrpt::obs::CActionRobotMovement2D act;
@@ -281,10 +282,16 @@ LocalizationUpdate Localizer::update(
 	mrpt::obs::CActionCollection acts;
 	acts.insert(act);
 	mrpt::obs::CSensoryFrame sf;  // the observation is set on m_pdf
-	const bool score = m_map && !m_map->empty() && !obs.empty();
-	const bool correct = score && m_options.mainDirections &&
+	const bool scoreWalls = m_map && !m_map->empty() && !obs.empty();
+	const bool scoreSemantic =
+	    m_semantic && !m_semantic->empty() && semantic && !semantic->empty();
+	const bool score = scoreWalls || scoreSemantic;
+	const bool correct = scoreWalls && m_options.mainDirections &&
 	                     m_map->mainDirection() && obs.dominantDirection;
 	m_pdf.setObservation(&obs);
+	m_pdf.setSemantic(
+	    scoreSemantic ? m_semantic : nullptr,
+	    scoreSemantic ? semantic : nullptr);
 	m_pdf.setEffectivePoints(
 	    m_global ? m_options.globalEffectivePoints : m_options.effectivePoints);
 	m_pdf.setHeadingCorrection(
@@ -294,6 +301,7 @@ LocalizationUpdate Localizer::update(
 	mrpt::bayes::CParticleFilter::TParticleFilterStats stats;
 	m_pf.executeOn(m_pdf, &acts, score ? &sf : nullptr, &stats);
 	m_pdf.setObservation(nullptr);
+	m_pdf.setSemantic(nullptr, nullptr);
 	LocalizationUpdate u = summarize(m_pdf, m_options);
 	if (m_global && score)
 	{
@@ -315,11 +323,13 @@ LocalizationUpdate Localizer::update(
 	u.ms = std::chrono::duration<double, std::milli>(
 	           std::chrono::steady_clock::now() - t0)
 	           .count();
-	if (score) u.inlierFraction = m_map->inlierFraction(u.pose, obs.samples);
+	if (scoreWalls)
+		u.inlierFraction = m_map->inlierFraction(u.pose, obs.samples);
 
 	// Likelihood collapse while tracking in a known map: spread the particles
 	// over the free space and score the same sweep again.
-	if (score && !m_freeCells.empty() && m_options.kidnapDetection && !m_global)
+	if (scoreWalls && !m_freeCells.empty() && m_options.kidnapDetection &&
+	    !m_global)
 	{
 		if (u.inlierFraction < m_options.kidnapInlierFraction)
 			m_lowInlierUpdates++;
@@ -337,7 +347,7 @@ LocalizationUpdate Localizer::update(
 			const double ms = u.ms;
 			const bool detect = m_options.kidnapDetection;
 			m_options.kidnapDetection = false;
-			u = update(mrpt::poses::CPose2D(), obs);
+			u = update(mrpt::poses::CPose2D(), obs, semantic);
 			m_options.kidnapDetection = detect;
 			u.ms += ms;
 			u.kidnapped = true;

@@ -9,7 +9,8 @@ namespace semnav
 const std::vector<std::string>& MappingLocalizer::TOptions::sections()
 {
 	static const std::vector<std::string> s = {
-	    "WallExtractor", "WallMap", "Localizer"};
+	    "WallExtractor", "WallMap", "Localizer", "SemanticExtractor",
+	    "SemanticEvidence"};
 	return s;
 }
 
@@ -19,6 +20,8 @@ void MappingLocalizer::TOptions::loadFromConfigFile(
 	walls.loadFromConfigFile(c, prefix + "WallExtractor");
 	wallMap.loadFromConfigFile(c, prefix + "WallMap");
 	localizer.loadFromConfigFile(c, prefix + "Localizer");
+	semanticExtractor.loadFromConfigFile(c, prefix + "SemanticExtractor");
+	semantic.loadFromConfigFile(c, prefix + "SemanticEvidence");
 }
 
 void MappingLocalizer::TOptions::saveToConfigFile(
@@ -27,6 +30,8 @@ void MappingLocalizer::TOptions::saveToConfigFile(
 	walls.saveToConfigFile(c, prefix + "WallExtractor");
 	wallMap.saveToConfigFile(c, prefix + "WallMap");
 	localizer.saveToConfigFile(c, prefix + "Localizer");
+	semanticExtractor.saveToConfigFile(c, prefix + "SemanticExtractor");
+	semantic.saveToConfigFile(c, prefix + "SemanticEvidence");
 }
 
 MappingLocalizer::MappingLocalizer(const TOptions& options, Method method)

@@ -9,6 +9,7 @@ using mrpt::bayes::INVALID_LIKELIHOOD_VALUE;
 }
 #include <mrpt/slam/PF_implementations.h>
 #include <semnav/localization/MainDirections.h>
+#include <semnav/localization/SemanticEvidenceMap.h>
 #include <semnav/localization/WallMap.h>
 #include <semnav/localization/WallMonteCarlo2D.h>
 
@@ -122,9 +123,14 @@ double WallMonteCarlo2D::PF_SLAM_computeObservationLikelihoodForParticle(
     const mrpt::bayes::CParticleFilter::TParticleFilterOptions&, const size_t,
     const mrpt::obs::CSensoryFrame&, const mrpt::poses::CPose3D& x) const
 {
-	if (!m_obs || m_obs->samples.empty()) return 0;
-	const double raw = observationLogLikelihood(x.x(), x.y(), x.yaw());
-	return raw * m_effectivePoints / double(m_obs->samples.size());
+	double ll = 0;
+	if (m_obs && !m_obs->samples.empty())
+		ll += observationLogLikelihood(x.x(), x.y(), x.yaw()) *
+		      m_effectivePoints / double(m_obs->samples.size());
+	if (m_semanticMap && m_semanticObs)
+		ll +=
+		    m_semanticMap->logLikelihood(x.x(), x.y(), x.yaw(), *m_semanticObs);
+	return ll;
 }
 
 void WallMonteCarlo2D::

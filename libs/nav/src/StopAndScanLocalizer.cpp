@@ -98,18 +98,22 @@ SEMNAV_OPTIONS_FROM_TABLE(StopAndScanLocalizer::TOptions, optionTable())
 StopAndScanLocalizer::StopAndScanLocalizer(
     const SemanticMap& map, const TOptions& options,
     const MappingLocalizer::TOptions& localization,
-    const PerceptionPipeline::TOptions& perception)
+    const PerceptionPipeline::TOptions& perception,
+    const std::optional<CascadeDetector::TOptions>& cascades)
     : mrpt::system::COutputLogger("StopAndScanLocalizer"),
       m_map(map),
       m_options(options),
       m_locOptions(localization),
-      m_perception(perception),
+      m_perception(perception, cascades),
+      m_semanticExtractor(localization.semanticExtractor),
+      m_semantic(localization.semantic),
       m_extractor(localization.walls)
 {
 	// Progress goes to the log only when asked (setMinLoggingLevel): apps
 	// print JSON on stdout.
 	setMinLoggingLevel(mrpt::system::LVL_WARN);
-	m_perception.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+	m_perception.pipeline().setMinLoggingLevel(mrpt::system::LVL_ERROR);
+	if (m_locOptions.semantic.enabled()) m_semantic.build(m_map);
 	makeLocalizer(m_locOptions.localizer);
 	const auto& g = m_map.geometry();
 	const int stride = std::max(
@@ -123,6 +127,15 @@ StopAndScanLocalizer::StopAndScanLocalizer(
 				m_places.push_back({g.centerX(cx), g.centerY(cy)});
 }
 
+void StopAndScanLocalizer::keepStartSweeps(std::size_t keep)
+{
+	const auto trim = [keep](auto& v)
+	{ v.erase(v.begin(), v.end() - std::min(keep, v.size())); };
+	trim(m_startObs);
+	trim(m_startSemantic);
+	trim(m_startOdo);
+}
+
 const WallMap& StopAndScanLocalizer::scoredWalls() const
 {
 	return m_options.unknownCells ? m_walls : m_localizer->knownWallMap();
@@ -133,6 +146,7 @@ void StopAndScanLocalizer::makeLocalizer(const Localizer::TOptions& o)
 	m_localizer = std::make_unique<Localizer>(o);
 	m_localizer->setMinLoggingLevel(mrpt::system::LVL_ERROR);
 	m_localizer->setKnownMap(m_map);
+	m_localizer->setSemanticMap(m_semantic.empty() ? nullptr : &m_semantic);
 	if (m_localizer->knownWallMap().segments().empty())
 		throw LocalizationFailedError(
 		    "localization: the map has no walls to localize against");
@@ -164,8 +178,7 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::start(
 
 	Report rep;
 	rep.mode = mode;
-	m_startObs.clear();
-	m_startOdo.clear();
+	keepStartSweeps(0);
 	m_inStart = true;
 	if (mode == Mode::Global)
 		m_localizer->initializeGlobal();
@@ -252,8 +265,7 @@ void StopAndScanLocalizer::sweepUntilConverged(
 			// start from this sweep on (earlier sweeps no longer relate to
 			// the pose by odometry).
 			global = true;
-			m_startObs.erase(m_startObs.begin(), m_startObs.end() - 1);
-			m_startOdo.erase(m_startOdo.begin(), m_startOdo.end() - 1);
+			keepStartSweeps(1);
 		}
 		if (!r.converged) continue;
 		if (m_options.uniquenessCheck && global)
@@ -314,8 +326,7 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::rescan(
 	Report rep;
 	rep.mode = Mode::Tracking;
 	rep.recovery = false;
-	m_startObs.clear();
-	m_startOdo.clear();
+	keepStartSweeps(0);
 	m_inStart = true;
 	const SweepRecord r = sweepAndUpdate(robot);
 	m_inStart = false;
@@ -345,8 +356,7 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::rescan(
 			// Keep only the sweep a global restart started from.
 			rep.records.clear();
 			rep.sweeps = 0;
-			m_startObs.clear();
-			m_startOdo.clear();
+			keepStartSweeps(0);
 		}
 		sweepUntilConverged(robot, r.kidnapped, true, rep, t0);
 	}
@@ -370,16 +380,20 @@ StopAndScanLocalizer::SweepRecord StopAndScanLocalizer::sweepAndUpdate(
 	const Sweep& sweep = m_sweep;
 	m_perception.process(sweep, m_labeled);
 	const WallObservation obs = m_extractor.extract(m_labeled);
+	const SemanticObservation semantic =
+	    m_semantic.empty() ? SemanticObservation()
+	                       : m_semanticExtractor.extract(m_labeled);
 	const mrpt::math::TPose2D odometry = sweep.odometry().asTPose();
 	if (m_inStart)
 	{
 		m_startObs.push_back(obs);
+		m_startSemantic.push_back(semantic);
 		m_startOdo.push_back(odometry);
 	}
 	const mrpt::poses::CPose2D incr =
 	    mrpt::poses::CPose2D(odometry) - mrpt::poses::CPose2D(m_lastOdometry);
 	m_lastOdometry = odometry;
-	const LocalizationUpdate u = m_localizer->update(incr, obs);
+	const LocalizationUpdate u = m_localizer->update(incr, obs, &semantic);
 	rec.estimate = u.pose.asTPose();
 	rec.estimate.phi = mrpt::math::wrapToPi(rec.estimate.phi);
 	rec.stdXY = u.stdXY;
@@ -429,8 +443,30 @@ void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const
 	if (pts.empty()) return;
 	const WallMap& walls = scoredWalls();
 	const double n = static_cast<double>(pts.size());
-	const auto score = [&](double x, double y, double yaw)
-	{ return walls.logLikelihood(x, y, yaw, pts) / n; };
+	// The semantic terms of every sweep at its pose, in units of one
+	// effective wall point per sweep (as the filter weighs them).
+	std::vector<mrpt::poses::CPose2D> rels;
+	for (const auto& o : m_startOdo)
+		rels.push_back(mrpt::poses::CPose2D(o) - last);
+	const double semanticScale =
+	    1.0 / (m_locOptions.localizer.effectivePoints * double(rels.size()));
+	const auto semanticScore = [&](double x, double y, double yaw)
+	{
+		if (m_semantic.empty()) return 0.0;
+		double sum = 0;
+		const mrpt::poses::CPose2D at(x, y, yaw);
+		for (std::size_t i = 0; i < rels.size(); i++)
+		{
+			const mrpt::poses::CPose2D p = at + rels[i];
+			sum += m_semantic.logLikelihood(
+			    p.x(), p.y(), p.phi(), m_startSemantic[i]);
+		}
+		return sum * semanticScale;
+	};
+	const auto score = [&](double x, double y, double yaw) {
+		return walls.logLikelihood(x, y, yaw, pts) / n +
+		       semanticScore(x, y, yaw);
+	};
 	// Best pose near `p` (local refinement: +-10 cm, +-1 deg).
 	const auto refine = [&](mrpt::math::TPose2D p)
 	{

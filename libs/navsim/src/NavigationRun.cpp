@@ -50,7 +50,7 @@ SimulatedNavigation::Result NavigationRun::run(
 	if (m_settings.localize)
 		sim.setLocalization(
 		    *m_settings.localize, m_settings.localization,
-		    m_settings.perception, m_settings.startGuess);
+		    m_settings.perception, m_settings.startGuess, m_settings.cascades);
 	const auto r = sim.run(command, start, m_navlog);
 	if (!m_png.empty())
 	{

@@ -78,10 +78,11 @@ void SimulatedNavigation::setLocalization(
     StopAndScanLocalizer::Mode mode,
     const MappingLocalizer::TOptions& localization,
     const PerceptionPipeline::TOptions& perception,
-    const std::optional<mrpt::math::TPose2D>& guess)
+    const std::optional<mrpt::math::TPose2D>& guess,
+    const std::optional<CascadeDetector::TOptions>& cascades)
 {
 	m_localizer = std::make_unique<StopAndScanLocalizer>(
-	    m_map, m_config.stopAndScan, localization, perception);
+	    m_map, m_config.stopAndScan, localization, perception, cascades);
 	m_mode = mode;
 	m_guess = guess;
 }

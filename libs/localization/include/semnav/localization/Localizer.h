@@ -8,6 +8,8 @@
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/system/COutputLogger.h>
+#include <semnav/localization/SemanticEvidenceMap.h>
+#include <semnav/localization/SemanticObservation.h>
 #include <semnav/localization/WallMap.h>
 #include <semnav/localization/WallMonteCarlo2D.h>
 #include <semnav/localization/WallObservation.h>
@@ -118,6 +120,9 @@ public:
 	/** A known map: walls from its wall cells, free space for global
 	 * starts and recovery; kidnap detection on (if configured). */
 	void setKnownMap(const SemanticMap& map);
+	/** Semantic evidence to score beside the walls (owned by the caller;
+	 * must outlive use; nullptr: walls only). */
+	void setSemanticMap(const SemanticEvidenceMap* map) { m_semantic = map; }
 
 	/** Pose tracking start: Gaussian around `pose`. */
 	void initialize(const mrpt::poses::CPose2D& pose);
@@ -126,10 +131,12 @@ public:
 	void initializeGlobal();
 
 	/** One step: motion by the odometry increment (robot frame), then the
-	 * sweep's walls. An empty observation only predicts. */
+	 * sweep's walls and (with setSemanticMap) its semantic evidence. An
+	 * empty observation only predicts. */
 	LocalizationUpdate update(
 	    const mrpt::poses::CPose2D& odometryIncrement,
-	    const WallObservation& obs);
+	    const WallObservation& obs,
+	    const SemanticObservation* semantic = nullptr);
 
 	mrpt::poses::CPose2D pose() const;
 	const WallMonteCarlo2D& pdf() const { return m_pdf; }
@@ -162,6 +169,7 @@ private:
 	WallMonteCarlo2D m_pdf;
 	mrpt::bayes::CParticleFilter m_pf;
 	const WallMap* m_map = nullptr;
+	const SemanticEvidenceMap* m_semantic = nullptr;
 	WallMap m_knownWalls;
 	/** Centres of the known map's free cells (global starts). */
 	std::vector<mrpt::math::TPoint2D> m_freeCells;

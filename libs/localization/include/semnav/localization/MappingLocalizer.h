@@ -6,6 +6,8 @@
 #include <mrpt/system/COutputLogger.h>
 #include <semnav/localization/Localizer.h>
 #include <semnav/localization/OccupancyMcl.h>
+#include <semnav/localization/SemanticEvidenceMap.h>
+#include <semnav/localization/SemanticExtractor.h>
 #include <semnav/localization/WallExtractor.h>
 #include <semnav/localization/WallMap.h>
 
@@ -37,7 +39,8 @@ public:
 	};
 
 	/** All localization options; sections [WallExtractor], [WallMap],
-	 * [Localizer]. */
+	 * [Localizer], and for localizing in a known map [SemanticExtractor],
+	 * [SemanticEvidence]. */
 	struct TOptions : public mrpt::config::CLoadableOptions
 	{
 		void loadFromConfigFile(
@@ -51,6 +54,8 @@ public:
 		WallExtractor::TOptions walls;
 		WallMap::TOptions wallMap;
 		Localizer::TOptions localizer;
+		SemanticExtractor::TOptions semanticExtractor;
+		SemanticEvidenceMap::TOptions semantic;
 	};
 
 	explicit MappingLocalizer(

@@ -3,6 +3,7 @@
 
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt/slam/CMonteCarloLocalization2D.h>
+#include <semnav/localization/SemanticObservation.h>
 #include <semnav/localization/WallObservation.h>
 
 #include <optional>
@@ -10,6 +11,7 @@
 namespace semnav
 {
 class WallMap;
+class SemanticEvidenceMap;
 
 /** MRPT's CMonteCarloLocalization2D scoring wall observations against a
  * WallMap, with the paper's main-direction heading correction in the
@@ -20,7 +22,8 @@ class WallMap;
  * (mrpt::bayes::CParticleFilter::executeOn). Two hooks are overridden:
  * - PF_SLAM_computeObservationLikelihoodForParticle: the sum of the wall
  *   map's log-likelihood field at the observation's samples, scaled by
- *   effectivePoints / samples (the samples are correlated);
+ *   effectivePoints / samples (the samples are correlated), plus, when
+ *   set, the semantic evidence (SemanticEvidenceMap) of the sweep;
  * - the new-pose hooks of the fixed and adaptive (KLD) proposals: each
  *   propagated heading is moved by MainDirections::correction() so that the
  *   sweep's dominant wall direction lines up with the map's, plus Gaussian
@@ -41,6 +44,14 @@ public:
 	/** The map to score against (kept by pointer: it must outlive use). */
 	void setWallMap(const WallMap* map) { m_map = map; }
 	void setObservation(const WallObservation* obs) { m_obs = obs; }
+	/** Semantic evidence scored beside the walls (both kept by pointer;
+	 * nullptr: walls only). */
+	void setSemantic(
+	    const SemanticEvidenceMap* map, const SemanticObservation* obs)
+	{
+		m_semanticMap = map;
+		m_semanticObs = obs;
+	}
 	/** Heading correction for the next propagation: the map's and the
 	 * sweep's dominant directions (rad), or nullopt for none. */
 	void setHeadingCorrection(
@@ -84,6 +95,8 @@ private:
 
 	const WallMap* m_map = nullptr;
 	const WallObservation* m_obs = nullptr;
+	const SemanticEvidenceMap* m_semanticMap = nullptr;
+	const SemanticObservation* m_semanticObs = nullptr;
 	std::optional<double> m_mapDirection, m_observedDirection;
 	double m_headingNoise = 0, m_maxCorrection = M_PI / 4;
 	double m_effectivePoints = 10;

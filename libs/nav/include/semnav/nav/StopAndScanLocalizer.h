@@ -5,8 +5,11 @@
 #include <mrpt/core/bits_math.h>
 #include <mrpt/math/TPose2D.h>
 #include <mrpt/system/COutputLogger.h>
+#include <semnav/detection/SweepPerception.h>
 #include <semnav/localization/Localizer.h>
 #include <semnav/localization/MappingLocalizer.h>
+#include <semnav/localization/SemanticEvidenceMap.h>
+#include <semnav/localization/SemanticExtractor.h>
 #include <semnav/localization/WallExtractor.h>
 #include <semnav/perception/LabeledSweep.h>
 #include <semnav/perception/PerceptionPipeline.h>
@@ -24,12 +27,13 @@ class SemanticMap;
 
 /** Localization of a robot in a known semantic map, the way the paper's
  * robot does it (sec. 2.3): stop the base, take the next sweep taken while
- * it stood still (the robot's SweepSource), run perception
- * (PerceptionPipeline) and the wall extractor, and update the wall-landmark
- * particle filter (Localizer on the map's walls) with the odometry since
- * the previous sweep. It sees the robot only through RobotInterfaces (base,
- * sweeps, clock, reported pose): the same code runs on a robot and in the
- * simulator.
+ * it stood still (the robot's SweepSource), run perception (SweepPerception:
+ * rules and, with cascades, the object detectors), the wall extractor and
+ * the semantic extractor, and update the particle filter (Localizer on the
+ * map's walls and, with [SemanticEvidence] on, its labels and objects) with
+ * the odometry since the previous sweep. It sees the robot only through
+ * RobotInterfaces (base, sweeps, clock, reported pose): the same code runs on a
+ * robot and in the simulator.
  *
  * - start(): global (particles over the map's free cells) or tracking
  *   (particles around a rough guess). While the filter has not converged
@@ -164,13 +168,17 @@ public:
 		std::vector<SweepRecord> records;
 	};
 
-	/** `map` is the known map (its walls and free cells); it must outlive
-	 * the localizer. Throws LocalizationFailedError when the map has no
-	 * walls. */
+	/** `map` is the known map (its walls, labels, objects and free cells);
+	 * it must outlive the localizer. Without `cascades` no objects are
+	 * detected (labels from the rules only). Throws LocalizationFailedError
+	 * when the map has no walls, ConfigError/CascadeError when a cascade
+	 * cannot be loaded. */
 	StopAndScanLocalizer(
 	    const SemanticMap& map, const TOptions& options,
 	    const MappingLocalizer::TOptions& localization,
-	    const PerceptionPipeline::TOptions& perception);
+	    const PerceptionPipeline::TOptions& perception,
+	    const std::optional<CascadeDetector::TOptions>& cascades =
+	        std::nullopt);
 	~StopAndScanLocalizer() override;
 
 	/** Localizes the robot where it stands (see the class comment). A
@@ -216,6 +224,8 @@ private:
 	void checkUniqueness(SweepRecord& rec) const;
 	/** The scored wall map. */
 	const WallMap& scoredWalls() const;
+	/** Drops the start's sweeps but the last `keep`. */
+	void keepStartSweeps(std::size_t keep);
 	/** Fraction of the particle weight within convergedRadius and
 	 * convergedYaw of `estimate`. */
 	double massNear(const mrpt::math::TPose2D& estimate) const;
@@ -223,7 +233,9 @@ private:
 	const SemanticMap& m_map;
 	TOptions m_options;
 	MappingLocalizer::TOptions m_locOptions;
-	PerceptionPipeline m_perception;
+	SweepPerception m_perception;
+	SemanticExtractor m_semanticExtractor;
+	SemanticEvidenceMap m_semantic;
 	WallExtractor m_extractor;
 	std::unique_ptr<Localizer> m_localizer;
 	/** Scored walls when unknownCells. */
@@ -234,6 +246,7 @@ private:
 	std::vector<SweepRecord> m_records;
 	/** The current start's observations and odometry at each. */
 	std::vector<WallObservation> m_startObs;
+	std::vector<SemanticObservation> m_startSemantic;
 	std::vector<mrpt::math::TPose2D> m_startOdo;
 	/** Free places of the map on the uniqueness grid. */
 	std::vector<mrpt::math::TPoint2D> m_places;

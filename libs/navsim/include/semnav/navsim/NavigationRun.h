@@ -39,6 +39,8 @@ public:
 		std::optional<mrpt::math::TPose2D> startGuess;
 		MappingLocalizer::TOptions localization;
 		PerceptionPipeline::TOptions perception;
+		/** Object detection in the localizer's sweeps (none without). */
+		std::optional<CascadeDetector::TOptions> cascades;
 		/** Output directory for navigation.reactivenavlog and
 		 * navigation.png ("" for none). */
 		std::string outDir;

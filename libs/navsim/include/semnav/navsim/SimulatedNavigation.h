@@ -86,7 +86,8 @@ public:
 	 * StopAndScanLocalizer (options from the config, `localization` and
 	 * `perception`) localizes it where it stands (`mode`; a tracking start
 	 * from `guess`), and the navigator sees that estimate composed with the
-	 * robot's odometry (which gets the scene's odometry errors); with
+	 * robot's odometry (which gets the scene's odometry errors); its
+	 * sweeps' objects are detected with `cascades` (none without); with
 	 * [StopAndScan] rescan_distance_m > 0 the robot stops and scans again on
 	 * the way. Without this call the navigator sees the true pose. The
 	 * localizer lives as long as this object (localizer()). Throws
@@ -95,7 +96,9 @@ public:
 	    StopAndScanLocalizer::Mode mode,
 	    const MappingLocalizer::TOptions& localization,
 	    const PerceptionPipeline::TOptions& perception,
-	    const std::optional<mrpt::math::TPose2D>& guess = std::nullopt);
+	    const std::optional<mrpt::math::TPose2D>& guess = std::nullopt,
+	    const std::optional<CascadeDetector::TOptions>& cascades =
+	        std::nullopt);
 
 	/** Runs one command from `start` (the true pose). With `navlogPath`, MRPT's
 	 * navigation log is written there (atomically, at the end). Throws the

@@ -1,0 +1,181 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/OptionTable.h>
+#include <semnav/localization/SemanticEvidenceMap.h>
+#include <semnav/localization/SemanticExtractor.h>
+#include <semnav/map/SemanticMap.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+
+namespace semnav
+{
+namespace
+{
+using O = SemanticEvidenceMap::TOptions;
+const OptionTable<O>& optionTable()
+{
+	static const auto t =
+	    OptionTable<O>()
+	        .real(
+	            "class_points", &O::classPoints, 0, 1000,
+	            "Weight of the class points (door, stairs, washbasin, ...) "
+	            "in effective points; 0: off.")
+	        .real(
+	            "ground_points", &O::groundPoints, 0, 1000,
+	            "Weight of the ground points (floor, sidewalk, grass, "
+	            "obstacle); 0: off.")
+	        .real(
+	            "object_points", &O::objectPoints, 0, 1000,
+	            "Weight of the detected objects against the map's "
+	            "instances; 0: off.")
+	        .real(
+	            "sigma_m", &O::sigma, 0.01, 10,
+	            "Class and ground points: std dev of the distance to the "
+	            "nearest map cell of their label...")
+	        .real(
+	            "max_distance_m", &O::maxDistance, 0.01, 100,
+	            "...clamped here.")
+	        .real(
+	            "object_sigma_m", &O::objectSigma, 0.01, 10,
+	            "Objects: std dev of the distance to the nearest instance of "
+	            "their label...")
+	        .real(
+	            "object_max_distance_m", &O::objectMaxDistance, 0.01, 100,
+	            "...clamped here.")
+	        .real(
+	            "hit_weight", &O::hitWeight, 0, 1,
+	            "Mixture weight of the Gaussian part...")
+	        .real(
+	            "random_weight", &O::randomWeight, 1e-6, 1,
+	            "...and of the uniform part.")
+	        .real(
+	            "unknown_weight", &O::unknownWeight, 1e-6, 1,
+	            "Likelihood of a point in a cell the map never observed.");
+	return t;
+}
+}  // namespace
+
+SEMNAV_OPTIONS_FROM_TABLE(SemanticEvidenceMap::TOptions, optionTable())
+
+float SemanticEvidenceMap::value(double d, double sigma, double maxD) const
+{
+	d = std::min(d, maxD);
+	return static_cast<float>(std::log(
+	    m_options.hitWeight * std::exp(-d * d / (2 * sigma * sigma)) +
+	    m_options.randomWeight));
+}
+
+void SemanticEvidenceMap::build(const SemanticMap& map)
+{
+	m_geometry = map.geometry();
+	const int nx = m_geometry.cols, ny = m_geometry.rows;
+	const float unknown = static_cast<float>(std::log(m_options.unknownWeight));
+	const float far = value(m_options.maxDistance, m_options.sigma, 1e9);
+	m_outside = std::max(far, unknown);
+	for (auto& f : m_fields) f.clear();
+	for (auto& o : m_objects) o.clear();
+	for (const Label l : allLabels())
+	{
+		if (!SemanticExtractor::isClassLabel(l) &&
+		    !SemanticExtractor::isGroundLabel(l))
+			continue;
+		cv::Mat src(ny, nx, CV_8U, cv::Scalar(255));
+		bool any = false;
+		for (int cy = 0; cy < ny; cy++)
+			for (int cx = 0; cx < nx; cx++)
+				if (map.labels(cx, cy).contains(l))
+				{
+					src.at<uint8_t>(cy, cx) = 0;
+					any = true;
+				}
+		if (!any) continue;
+		cv::Mat dist;
+		cv::distanceTransform(src, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+		auto& field = m_fields[static_cast<std::size_t>(l)];
+		field.resize(m_geometry.cellCount());
+		for (int cy = 0; cy < ny; cy++)
+			for (int cx = 0; cx < nx; cx++)
+			{
+				float v = value(
+				    dist.at<float>(cy, cx) * m_geometry.resolution,
+				    m_options.sigma, m_options.maxDistance);
+				if (!(map.at("observations", cx, cy) > 0))
+					v = std::max(v, unknown);
+				field[m_geometry.index(cy, cx)] = v;
+			}
+	}
+	for (const auto& o : map.instances())
+		m_objects[static_cast<std::size_t>(o.label)].push_back(
+		    {o.centroid.x, o.centroid.y});
+}
+
+double SemanticEvidenceMap::meanField(
+    double x, double y, double c, double s,
+    const std::vector<SemanticSample>& pts) const
+{
+	double sum = 0;
+	std::size_t n = 0;
+	const double inv = 1.0 / m_geometry.resolution;
+	for (const auto& p : pts)
+	{
+		const auto& f = m_fields[static_cast<std::size_t>(p.label)];
+		if (f.empty()) continue;
+		const double wx = x + c * p.x - s * p.y, wy = y + s * p.x + c * p.y;
+		const int cx =
+		    static_cast<int>(std::floor((wx - m_geometry.originX) * inv));
+		const int cy =
+		    static_cast<int>(std::floor((wy - m_geometry.originY) * inv));
+		sum += m_geometry.contains(cy, cx) ? f[m_geometry.index(cy, cx)]
+		                                   : m_outside;
+		n++;
+	}
+	return n ? sum / double(n) : 0.0;
+}
+
+double SemanticEvidenceMap::meanObjects(
+    double x, double y, double c, double s,
+    const std::vector<SemanticSample>& objects) const
+{
+	double sum = 0;
+	std::size_t n = 0;
+	for (const auto& o : objects)
+	{
+		const auto& inst = m_objects[static_cast<std::size_t>(o.label)];
+		if (inst.empty()) continue;
+		const double wx = x + c * o.x - s * o.y, wy = y + s * o.x + c * o.y;
+		double best = std::numeric_limits<double>::infinity();
+		for (const auto& q : inst)
+			best = std::min(best, std::hypot(q.x - wx, q.y - wy));
+		sum += value(best, m_options.objectSigma, m_options.objectMaxDistance);
+		n++;
+	}
+	return n ? sum / double(n) : 0.0;
+}
+
+SemanticEvidenceMap::Terms SemanticEvidenceMap::terms(
+    double x, double y, double yaw, const SemanticObservation& obs) const
+{
+	Terms t;
+	if (empty()) return t;
+	const double c = std::cos(yaw), s = std::sin(yaw);
+	if (m_options.classPoints > 0)
+		t.classes =
+		    m_options.classPoints * meanField(x, y, c, s, obs.classSamples);
+	if (m_options.groundPoints > 0)
+		t.ground =
+		    m_options.groundPoints * meanField(x, y, c, s, obs.groundSamples);
+	if (m_options.objectPoints > 0)
+		t.objects =
+		    m_options.objectPoints * meanObjects(x, y, c, s, obs.objects);
+	return t;
+}
+
+double SemanticEvidenceMap::logLikelihood(
+    double x, double y, double yaw, const SemanticObservation& obs) const
+{
+	return terms(x, y, yaw, obs).total();
+}
+
+}  // namespace semnav
