@@ -22,6 +22,7 @@
 #include <memory>
 
 #include "../common/SavedAndLoaded.h"
+#include "../nav/ShippedOptions.h"
 #include "NavTestUtils.h"
 
 using namespace semnav;
@@ -38,32 +39,12 @@ const SimulationConfig& config()
 
 const MappingLocalizer::TOptions& locOptions()
 {
-	static const MappingLocalizer::TOptions o = []
-	{
-		MappingLocalizer::TOptions t;
-		t.loadFromConfigFile(
-		    *openIniFile(
-		        kSrc + "/config/localization.ini",
-		        MappingLocalizer::TOptions::sections()),
-		    "");
-		return t;
-	}();
-	return o;
+	return test::shippedLocalizationOptions();
 }
 
 const PerceptionPipeline::TOptions& perceptionOptions()
 {
-	static const PerceptionPipeline::TOptions o = []
-	{
-		PerceptionPipeline::TOptions t;
-		t.loadFromConfigFile(
-		    *openIniFile(
-		        kSrc + "/config/perception.ini",
-		        PerceptionPipeline::sections()),
-		    "");
-		return t;
-	}();
-	return o;
+	return test::shippedPerceptionOptions();
 }
 
 const Scene& office()

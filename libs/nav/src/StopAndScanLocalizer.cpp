@@ -185,6 +185,8 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::start(
 		throw Error(
 		    "localization: the robot lacks a base, sweeps, clock or pose");
 	m_started = true;
+	// Sweeps are taken standing still: the first one too.
+	robot.base->stop();
 	m_lastOdometry = robot.base->odometry().pose;
 
 	Report rep;

@@ -5,8 +5,6 @@
 #include <semnav/scan/Sweep.h>
 
 #include <cmath>
-#include <set>
-#include <tuple>
 
 namespace semnav
 {
@@ -47,8 +45,17 @@ void SweepObstacles::update(const Sweep& sweep)
 {
 	const mrpt::poses::CPose2D at = sweep.odometry();
 	const double r2 = m_options.maxRange * m_options.maxRange;
-	std::set<std::tuple<long, long, long>> cells;
-	std::vector<mrpt::math::TPoint3Df> kept;
+	std::lock_guard<std::mutex> lock(m_mutex);
+	// Sweeps of one stop (the robot only turned on the spot between them,
+	// as at a stop-and-scan start) add up: each sees 180 deg of it.
+	const bool sameStop =
+	    m_hasSweep &&
+	    std::hypot(at.x() - m_at.x(), at.y() - m_at.y()) < m_options.cell;
+	if (!sameStop)
+	{
+		m_points.clear();
+		m_cells.clear();
+	}
 	for (const auto& p : sweep.points())
 	{
 		if (!std::isfinite(p.x) || p.z < m_options.minHeight ||
@@ -59,11 +66,11 @@ void SweepObstacles::update(const Sweep& sweep)
 		const auto key = std::make_tuple(
 		    std::lround(x / m_options.cell), std::lround(y / m_options.cell),
 		    std::lround(p.z / m_options.cell));
-		if (cells.insert(key).second)
-			kept.push_back({static_cast<float>(x), static_cast<float>(y), p.z});
+		if (m_cells.insert(key).second)
+			m_points.push_back(
+			    {static_cast<float>(x), static_cast<float>(y), p.z});
 	}
-	std::lock_guard<std::mutex> lock(m_mutex);
-	m_points = std::move(kept);
+	m_at = at;
 	m_time = sweep.timestamp();
 	m_hasSweep = true;
 }
