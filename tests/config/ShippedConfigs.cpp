@@ -7,12 +7,12 @@
 #include <semnav/detection/CascadeDetector.h>
 #include <semnav/hwdrivers/CTiltingLMS2xx.h>
 #include <semnav/localization/Localizer.h>
+#include <semnav/localization/SemanticEvidenceMap.h>
+#include <semnav/localization/SemanticExtractor.h>
 #include <semnav/localization/WallExtractor.h>
 #include <semnav/localization/WallMap.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/map/TravelCostModel.h>
-#include <semnav/localization/SemanticEvidenceMap.h>
-#include <semnav/localization/SemanticExtractor.h>
 #include <semnav/nav/RobotNavInterface.h>
 #include <semnav/nav/SemanticNavigator.h>
 #include <semnav/nav/StopAndScanLocalizer.h>
@@ -252,7 +252,8 @@ stats_file = ./semnav-capture-stats.json
 	     "semnav navigation (semnav-nav, scripts/demo): the CNN path "
 	     "handed to MRPT's\nreactive navigator as waypoints, stop-and-scan "
 	     "localization, the robot\ninterface MRPT drives (obstacles from "
-	     "the latest sweep) and MRPT's own\nreactive-navigation sections "
+	     "the latest stop's sweeps) and MRPT's own\nreactive-navigation "
+	     "sections "
 	     "(RobotModel_circular_shape_radius must match\nrobot_radius_m of "
 	     "config/planning.ini and of [SimulatedRobot] in config/sim.ini).",
 	     {section<SemanticNavigator::TOptions>("SemanticNavigator"),

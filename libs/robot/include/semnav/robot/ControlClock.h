@@ -5,7 +5,9 @@ namespace semnav
 {
 /** The time a control loop runs on: real time on a robot (RealTimeClock,
  * waitFor() sleeps) or a simulation's time (waitFor() advances the
- * simulated world). */
+ * simulated world). Timestamps (odometry, sweeps, MRPT's navigator) use
+ * mrpt::Clock: a clock that is not wall time must drive it (as
+ * SimulatedBase does with mrpt::Clock's Simulated source). */
 class ControlClock
 {
 public:

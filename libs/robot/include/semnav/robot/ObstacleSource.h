@@ -6,7 +6,7 @@
 
 namespace semnav
 {
-/** Where the navigator's obstacles come from: the latest sweep's points
+/** Where the navigator's obstacles come from: the latest stop's sweep points
  * (SweepObstacles) or, in a simulation, a horizontal ray cast in the
  * scene. */
 class ObstacleSource
