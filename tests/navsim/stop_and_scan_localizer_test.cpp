@@ -65,6 +65,28 @@ const SemanticMap& officeMap()
 	return *m;
 }
 
+/** A 6 m x 4 m empty room with one wastebasket by the north wall: after
+ * a half turn about its centre it looks the same to the walls. */
+const Scene& symmetricRoom()
+{
+	static const Scene s = SceneLoader::parse(
+	    R"(
+name: symroom
+bounds: [0, 0, 6, 4]
+ceiling_height: 2.7
+objects:
+  - {label: wall, box: {center: [3, 0.05, 1.35], size: [6, 0.1, 2.7]}}
+  - {label: wall, box: {center: [3, 3.95, 1.35], size: [6, 0.1, 2.7]}}
+  - {label: wall, box: {center: [0.05, 2, 1.35], size: [0.1, 3.8, 2.7]}}
+  - {label: wall, box: {center: [5.95, 2, 1.35], size: [0.1, 3.8, 2.7]}}
+  - {label: wastebasket, cylinder: {center: [3, 3.5, 0.2], radius: 0.15, height: 0.4}}
+trajectory:
+  - [1.5, 1.2, 0]
+)",
+	    "symroom");
+	return s;
+}
+
 double yawErr(double a, double b)
 {
 	return std::abs(mrpt::math::wrapToPi(a - b));
@@ -283,21 +305,7 @@ TEST(StopAndScanLocalizer, SymmetricRoomIsAmbiguousNotConverged)
 	// centre: walls alone cannot tell (1.5, 1.2) from (4.5, 2.8). The filter
 	// may still collapse onto one of the two (particle depletion); the
 	// uniqueness check must refuse it.
-	const Scene room = SceneLoader::parse(
-	    R"(
-name: symroom
-bounds: [0, 0, 6, 4]
-ceiling_height: 2.7
-objects:
-  - {label: wall, box: {center: [3, 0.05, 1.35], size: [6, 0.1, 2.7]}}
-  - {label: wall, box: {center: [3, 3.95, 1.35], size: [6, 0.1, 2.7]}}
-  - {label: wall, box: {center: [0.05, 2, 1.35], size: [0.1, 3.8, 2.7]}}
-  - {label: wall, box: {center: [5.95, 2, 1.35], size: [0.1, 3.8, 2.7]}}
-  - {label: wastebasket, cylinder: {center: [3, 3.5, 0.2], radius: 0.15, height: 0.4}}
-trajectory:
-  - [1.5, 1.2, 0]
-)",
-	    "symroom");
+	const Scene& room = symmetricRoom();
 	SemanticMap map(config().map);
 	SceneMapBuilder::build(room, map);
 	const mrpt::math::TPose2D start(1.5, 1.2, 0.3);
@@ -375,21 +383,7 @@ TEST(StopAndScanLocalizer, SemanticEvidenceTellsTheSymmetricRoomFromItsTwin)
 	// The symmetric room of the previous test, where the walls alone
 	// cannot decide: with the object detectors on, the wastebasket by the
 	// north wall (and the labels around it) tells the two poses apart.
-	const Scene room = SceneLoader::parse(
-	    R"(
-name: symroom
-bounds: [0, 0, 6, 4]
-ceiling_height: 2.7
-objects:
-  - {label: wall, box: {center: [3, 0.05, 1.35], size: [6, 0.1, 2.7]}}
-  - {label: wall, box: {center: [3, 3.95, 1.35], size: [6, 0.1, 2.7]}}
-  - {label: wall, box: {center: [0.05, 2, 1.35], size: [0.1, 3.8, 2.7]}}
-  - {label: wall, box: {center: [5.95, 2, 1.35], size: [0.1, 3.8, 2.7]}}
-  - {label: wastebasket, cylinder: {center: [3, 3.5, 0.2], radius: 0.15, height: 0.4}}
-trajectory:
-  - [1.5, 1.2, 0]
-)",
-	    "symroom");
+	const Scene& room = symmetricRoom();
 	SemanticMap map(config().map);
 	SceneMapBuilder::build(room, map);
 	const auto cascades =
@@ -428,21 +422,7 @@ TEST(StopAndScanLocalizer, AWrongBeliefIsNeverAnArrival)
 	// relocalizes globally, drives again and arrives; with walls only it
 	// cannot relocalize and stops with arrival_not_confirmed - never a
 	// false "reached".
-	const Scene room = SceneLoader::parse(
-	    R"(
-name: symroom
-bounds: [0, 0, 6, 4]
-ceiling_height: 2.7
-objects:
-  - {label: wall, box: {center: [3, 0.05, 1.35], size: [6, 0.1, 2.7]}}
-  - {label: wall, box: {center: [3, 3.95, 1.35], size: [6, 0.1, 2.7]}}
-  - {label: wall, box: {center: [0.05, 2, 1.35], size: [0.1, 3.8, 2.7]}}
-  - {label: wall, box: {center: [5.95, 2, 1.35], size: [0.1, 3.8, 2.7]}}
-  - {label: wastebasket, cylinder: {center: [3, 3.5, 0.2], radius: 0.15, height: 0.4}}
-trajectory:
-  - [1.5, 1.2, 0]
-)",
-	    "symroom");
+	const Scene& room = symmetricRoom();
 	SemanticMap map(config().map);
 	SceneMapBuilder::build(room, map);
 	const auto cascades =
