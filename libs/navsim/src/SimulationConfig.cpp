@@ -6,6 +6,20 @@
 
 namespace semnav
 {
+CostProfile SimulationConfig::navigationProfile() const
+{
+	return navigator.profile == "planning"
+	           ? traversability.profile
+	           : costProfileFromName(navigator.profile);
+}
+
+double SimulationConfig::arrivalTolerance() const
+{
+	return TraversabilityBuilder(traversability)
+	           .goalRegionRadius(navigationProfile()) +
+	       navigator.goalAllowedDistance + arrivalMargin;
+}
+
 SimulationConfig SimulationConfig::load(
     const std::string& navigationIni, const std::string& planningIni,
     const std::string& simIni)
