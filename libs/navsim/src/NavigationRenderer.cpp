@@ -90,7 +90,8 @@ cv::Mat NavigationRenderer::render(
 		cv::circle(
 		    img, P(r.objectXY.x, r.objectXY.y), 4 * k, red, 2, cv::LINE_AA);
 	// A false arrival: where the robot believed it stood (teal ring) and a
-	// red line from where it truly stands to the scene's object.
+	// red line from where it truly stands to the scene's object (red
+	// cross).
 	if (r.falseArrival)
 	{
 		const auto& b = r.believedFinalPose;
@@ -99,6 +100,7 @@ cv::Mat NavigationRenderer::render(
 		{
 			const cv::Point t = P(r.trueObjectXY.x, r.trueObjectXY.y);
 			cv::line(img, P(r.finalPose.x, r.finalPose.y), t, red, 2);
+			cv::drawMarker(img, t, red, cv::MARKER_TILTED_CROSS, 6 * k, 2);
 			cv::putText(
 			    img, "FALSE ARRIVAL", P(r.finalPose.x, r.finalPose.y),
 			    cv::FONT_HERSHEY_SIMPLEX, 0.5, red, 1, cv::LINE_AA);

@@ -87,16 +87,10 @@ std::string SimulatedNavigation::Result::outcome(
 		return "believed reached" + object +
 		       " but the scene has no such object: FALSE ARRIVAL";
 	char buf[160];
-	if (trueObjectId)
-		std::snprintf(
-		    buf, sizeof(buf),
-		    " but truly %.2f m from it (scene object %d at (%.2f, %.2f)): "
-		    "FALSE ARRIVAL",
-		    *trueDistance, trueObjectId, trueObjectXY.x, trueObjectXY.y);
-	else
-		std::snprintf(
-		    buf, sizeof(buf), " but truly %.2f m from it: FALSE ARRIVAL",
-		    *trueDistance);
+	std::snprintf(
+	    buf, sizeof(buf), " but truly %.2f m from the %s: FALSE ARRIVAL",
+	    *trueDistance,
+	    trueObjectId ? labelName(objectLabel).c_str() : "goal point");
 	return "believed reached" + object + buf;
 }
 
@@ -238,7 +232,7 @@ void SimulatedNavigation::judgeArrival(Result& r) const
 		r.trueObjectXY = r.objectXY;
 		r.trueDistance = r.distanceToGoal;
 	}
-	r.arrivalTolerance = m_config.arrivalTolerance();
+	r.arrivalTolerance = m_config.arrivalTolerance(r.objectId != 0);
 	const bool trulyThere =
 	    r.trueDistance && *r.trueDistance <= r.arrivalTolerance;
 	r.success = r.believedReached && trulyThere;

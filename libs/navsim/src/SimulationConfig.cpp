@@ -13,11 +13,12 @@ CostProfile SimulationConfig::navigationProfile() const
 	           : costProfileFromName(navigator.profile);
 }
 
-double SimulationConfig::arrivalTolerance() const
+double SimulationConfig::arrivalTolerance(bool objectGoal) const
 {
-	return TraversabilityBuilder(traversability)
-	           .goalRegionRadius(navigationProfile()) +
-	       navigator.goalAllowedDistance + arrivalMargin;
+	const double reach = objectGoal ? TraversabilityBuilder(traversability)
+	                                      .goalRegionRadius(navigationProfile())
+	                                : traversability.goalReach;
+	return reach + navigator.goalAllowedDistance + arrivalMargin;
 }
 
 SimulationConfig SimulationConfig::load(

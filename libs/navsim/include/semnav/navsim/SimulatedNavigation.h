@@ -97,10 +97,10 @@ public:
 		std::vector<mrpt::math::TPose2D> estimatedTrajectory;
 
 		/** The outcome in words, naming the goal `object` (e.g. "
-		 * wastebasket 6 at (11.31, 3.48)") after its verb:
+		 * wastebasket 6 at (11.16, 2.64)") after its verb:
 		 * "reached<object>", "believed reached<object> but truly 5.30 m
-		 * from it (scene object 19 at (11.20, 2.60)): FALSE ARRIVAL", or the
-		 * navigator's stop message followed by `object`. */
+		 * from the wastebasket: FALSE ARRIVAL", or the navigator's stop
+		 * message followed by `object`. */
 		std::string outcome(const std::string& object = "") const;
 	};
 

@@ -22,11 +22,12 @@ struct SimulationConfig : public NavigationConfig
 	/** The cost profile of the navigation plans ([SemanticNavigator]
 	 * profile; "planning": the [Traversability] one). */
 	CostProfile navigationProfile() const;
-	/** Farthest true distance (m) from the goal (an object's footprint or a
-	 * point) that counts as arrived: the goal region's radius of the
-	 * navigation profile (TraversabilityBuilder::goalRegionRadius()) + MRPT's
-	 * goal_allowed_distance_m + arrivalMargin. */
-	double arrivalTolerance() const;
+	/** Farthest true distance (m) from the goal that counts as arrived:
+	 * the goal region's reach (an object's footprint:
+	 * TraversabilityBuilder::goalRegionRadius() of the navigation profile;
+	 * a point: goal_reach_m) + MRPT's goal_allowed_distance_m +
+	 * arrivalMargin. */
+	double arrivalTolerance(bool objectGoal) const;
 
 	/** NavigationConfig::load(navigationIni, planningIni) and
 	 * [SimulatedRobot] of `simIni` (when not empty; its [Simulator] is
