@@ -14,10 +14,12 @@
 #include <semnav/sim/SceneLoader.h>
 #include <semnav/sim/SimulationRunner.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 
 #include "AppRunner.h"
 
@@ -249,6 +251,53 @@ TEST(SemnavNavCli, AFalseArrivalIsReportedAsSuchNeverAsSuccess)
 	EXPECT_EQ(wide.code, 0) << wide.err;
 	EXPECT_FALSE(nlohmann::json::parse(wide.out).at("false_arrival"));
 	EXPECT_EQ(runApp("semnav-nav", args + " --arrival-margin -1").code, 2);
+}
+
+TEST(SemnavNavCli, ALocalizedFalseArrivalKeepsBeliefAndTruthApart)
+{
+	// A room that is the same turned by 180 deg but for its door: tracking
+	// from the turned guess, with no rescan on the way, the robot believes
+	// the pose it was told, drives "to the wastebasket" and stops in the
+	// empty opposite corner.
+	const std::string scene = kSrc + "/datasets/nav-trials/rect_room.yaml";
+	const fs::path ini = tmpDir("norescan") / "nav.ini";
+	{
+		std::ifstream in(kSrc + "/config/navigation.ini");
+		std::stringstream ss;
+		ss << in.rdbuf();
+		std::string s = ss.str();
+		const std::string key = "rescan_distance_m = 1";
+		ASSERT_NE(s.find(key), std::string::npos);
+		s.replace(s.find(key), key.size(), "rescan_distance_m = 0");
+		std::ofstream(ini) << s;
+	}
+	const AppRun r = runApp(
+	    "semnav-nav", "--gt-map " + scene + " --scene " + scene +
+	                      " --start 2,1.5,0 --localize tracking --start-guess "
+	                      "6,3.5,180 --goal wastebasket --json --config " +
+	                      ini.string());
+	EXPECT_EQ(r.code, 1) << r.err;
+	EXPECT_NE(r.err.find("FALSE ARRIVAL"), std::string::npos) << r.err;
+	const auto j = nlohmann::json::parse(r.out);
+	EXPECT_TRUE(j.at("believed_reached").get<bool>());
+	EXPECT_TRUE(j.at("false_arrival").get<bool>());
+	EXPECT_FALSE(j.at("success").get<bool>());
+	EXPECT_GT(j.at("localization").at("error_xy_m").get<double>(), 3.0);
+	// The believed final pose is near the wastebasket, the true one is not.
+	const auto& b = j.at("believed_final_pose");
+	const auto& t = j.at("true_final_pose");
+	const auto& o = j.at("true_object");
+	EXPECT_LT(
+	    std::hypot(
+	        b[0].get<double>() - o.at("x").get<double>(),
+	        b[1].get<double>() - o.at("y").get<double>()),
+	    j.at("arrival_tolerance_m").get<double>() + 0.5);
+	EXPECT_GT(
+	    std::hypot(
+	        b[0].get<double>() - t[0].get<double>(),
+	        b[1].get<double>() - t[1].get<double>()),
+	    3.0);
+	EXPECT_GT(j.at("true_distance_m").get<double>(), 3.0);
 }
 
 TEST(SemnavNavCli, ErrorsAreOneLineWithExitCodes)
