@@ -213,7 +213,11 @@ void SimulatedNavigation::judgeArrival(Result& r) const
 		{
 			if (o.label != r.objectLabel) continue;
 			const double d = distanceToSceneObject(goalXY, o);
-			if (!truth || d < nearestToGoal) truth = &o, nearestToGoal = d;
+			if (!truth || d < nearestToGoal)
+			{
+				truth = &o;
+				nearestToGoal = d;
+			}
 			const double fromRobot = distanceToSceneObject(fin, o);
 			if (!r.trueNearestOfLabel || fromRobot < *r.trueNearestOfLabel)
 				r.trueNearestOfLabel = fromRobot;
