@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace
 {
@@ -122,6 +123,19 @@ nlohmann::json summaryJson(
 		j["reached_object"] = nullptr;
 	j["final_pose"] = poseJson(r.finalPose);
 	j["distance_to_object_m"] = r.distanceToGoal;
+	const auto orNull = [](const std::optional<double>& v)
+	{ return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+	j["believed_reached"] = r.believedReached;
+	j["believed_final_pose"] = poseJson(r.believedFinalPose);
+	j["true_final_pose"] = poseJson(r.finalPose);
+	j["true_object"] = r.trueObjectId ? nlohmann::json{{"id", r.trueObjectId},
+	                                                   {"x", r.trueObjectXY.x},
+	                                                   {"y", r.trueObjectXY.y}}
+	                                  : nlohmann::json(nullptr);
+	j["true_distance_m"] = orNull(r.trueDistance);
+	j["true_nearest_of_label_m"] = orNull(r.trueNearestOfLabel);
+	j["arrival_tolerance_m"] = r.arrivalTolerance;
+	j["false_arrival"] = r.falseArrival;
 	j["collisions"] = r.collisions;
 	j["sim_time_s"] = r.simTime;
 	j["replans"] = r.replans;
@@ -155,13 +169,15 @@ void printSummary(
 		    "semnav-nav: the map has no %s: the scene's (ground truth) stand "
 		    "in\n",
 		    a.c_str());
+	char object[160] = "";
+	if (r.objectId)
+		std::snprintf(
+		    object, sizeof(object), " %s %d at (%.2f, %.2f)",
+		    semnav::labelName(r.objectLabel).c_str(), r.objectId, r.objectXY.x,
+		    r.objectXY.y);
 	std::printf(
 	    "semnav-nav: %s: %s", r.command.text().c_str(),
-	    r.success ? "reached" : r.message.c_str());
-	if (r.objectId)
-		std::printf(
-		    " %s %d at (%.2f, %.2f)", semnav::labelName(r.objectLabel).c_str(),
-		    r.objectId, r.objectXY.x, r.objectXY.y);
+	    r.outcome(object).c_str());
 	std::printf(
 	    "\n  final pose (%.2f, %.2f, %.0f deg), %.2f m from it, %d "
 	    "collisions, %.1f s simulated (%.1f s wall), %d replans\n",
@@ -174,6 +190,12 @@ void printSummary(
 		    semnav::StopAndScanLocalizer::modeName(l->mode).c_str(), l->sweeps,
 		    l->estimate.x, l->estimate.y, deg(l->estimate.phi), l->errorXY,
 		    deg(l->errorYaw), l->ms);
+	if (r.localization)
+		std::printf(
+		    "  believed final pose (%.2f, %.2f, %.0f deg), %s\n",
+		    r.believedFinalPose.x, r.believedFinalPose.y,
+		    deg(r.believedFinalPose.phi),
+		    r.believedReached ? "believed reached" : "not believed reached");
 	if (!run.pngPath().empty())
 		std::printf(
 		    "  picture: %s\n  navlog (navlog-viewer): %s\n",
@@ -265,6 +287,12 @@ int main(int argc, char** argv)
 	TCLAP::ValueArg<std::string> argStartGuess(
 	    "", "start-guess", "Rough start pose for --localize tracking", false,
 	    "", "X,Y,YAW_DEG", cmd);
+	TCLAP::ValueArg<double> argArrivalMargin(
+	    "", "arrival-margin",
+	    "A believed arrival counts when the robot truly stands within the "
+	    "goal region's radius + goal_allowed_distance_m + this margin (m) of "
+	    "the scene's object (docs/navigation.md)",
+	    false, semnav::SimulationConfig().arrivalMargin, "M", cmd);
 	TCLAP::ValueArg<std::string> argLocConfig(
 	    "", "loc-config", "Localization INI", false,
 	    shipped("localization.ini"), "L.ini", cmd);
@@ -308,6 +336,8 @@ int main(int argc, char** argv)
 	if (const auto problem = readLocalization(
 	        argLocalize.getValue(), argStartGuess.getValue(), s))
 		return cli.usageError(*problem);
+	if (!(argArrivalMargin.getValue() >= 0))
+		return cli.usageError("--arrival-margin must be >= 0");
 	s.instancesFromScene = argSceneInstances.getValue();
 	s.outDir = argOut.getValue();
 
@@ -325,6 +355,7 @@ int main(int argc, char** argv)
 		    s.config = semnav::SimulationConfig::load(
 		        argConfig.getValue(), argPlanning.getValue(),
 		        argSimConfig.getValue());
+		    s.config.arrivalMargin = argArrivalMargin.getValue();
 		    if (s.localize)
 		    {
 			    localizationSections.load(argLocConfig.getValue());
@@ -341,7 +372,7 @@ int main(int argc, char** argv)
 			    printSummary(run, r);
 		    if (!r.success)
 		    {
-			    std::cerr << "semnav-nav: navigation failed: " << r.message
+			    std::cerr << "semnav-nav: navigation failed: " << r.outcome()
 			              << std::endl;
 			    return 1;
 		    }

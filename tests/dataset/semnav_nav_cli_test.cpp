@@ -14,9 +14,12 @@
 #include <semnav/sim/SceneLoader.h>
 #include <semnav/sim/SimulationRunner.h>
 
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 
 #include "AppRunner.h"
 
@@ -107,6 +110,16 @@ TEST(SemnavNavCli, JsonNavlogAndPictureOnAGroundTruthMap)
 	EXPECT_EQ(j.at("final_pose").size(), 3u);
 	EXPECT_LT(j.at("distance_to_object_m").get<double>(), 1.0);
 	EXPECT_EQ(j.at("collisions").get<int>(), 0);
+	// Believed and true arrival agree; without --localize the believed
+	// pose is the truth.
+	EXPECT_TRUE(j.at("believed_reached").get<bool>());
+	EXPECT_FALSE(j.at("false_arrival").get<bool>());
+	EXPECT_EQ(j.at("believed_final_pose"), j.at("true_final_pose"));
+	EXPECT_EQ(j.at("true_final_pose"), j.at("final_pose"));
+	EXPECT_LE(
+	    j.at("true_distance_m").get<double>(),
+	    j.at("arrival_tolerance_m").get<double>());
+	EXPECT_NEAR(j.at("true_object").at("x").get<double>(), 2.0, 1e-6);
 	EXPECT_GT(j.at("sim_time_s").get<double>(), 1.0);
 	EXPECT_GE(j.at("replans").get<int>(), 0);
 	const cv::Mat png = cv::imread((out / "navigation.png").string());
@@ -176,6 +189,115 @@ TEST(SemnavNavCli, LocalizesGloballyInThePipelinesMapThenNavigates)
 	                      " --start 6.2,2.6,0 --goal washbasin --json");
 	ASSERT_EQ(plain.code, 0) << plain.err;
 	EXPECT_TRUE(nlohmann::json::parse(plain.out).at("localization").is_null());
+}
+
+namespace
+{
+/** A 6 m x 4 m room (walls 2.6 m) with one wastebasket at (x, y). */
+std::string roomWithWastebasket(double x, double y)
+{
+	const std::string wall = "  - {label: wall, box: {center: ";
+	return "name: one_bin\nbounds: [0, 0, 6, 4]\nceiling_height: 2.6\n"
+	       "objects:\n" +
+	       wall + "[3, 0.05, 1.3], size: [6, 0.1, 2.6]}}\n" + wall +
+	       "[3, 3.95, 1.3], size: [6, 0.1, 2.6]}}\n" + wall +
+	       "[0.05, 2, 1.3], size: [0.1, 3.8, 2.6]}}\n" + wall +
+	       "[5.95, 2, 1.3], size: [0.1, 3.8, 2.6]}}\n" +
+	       "  - {label: wastebasket, cylinder: {center: [" + std::to_string(x) +
+	       ", " + std::to_string(y) +
+	       ", 0.2], radius: 0.15, height: 0.4}}\ntrajectory:\n  - [3, 2, "
+	       "0]\n";
+}
+}  // namespace
+
+TEST(SemnavNavCli, AFalseArrivalIsReportedAsSuchNeverAsSuccess)
+{
+	// The map (ground truth of the mirrored room) puts the wastebasket in
+	// the north-east corner; in the room the robot drives in it stands in
+	// the south-west one. The robot believes it reached it; it did not.
+	const fs::path dir = tmpDir("mirror");
+	const fs::path real = dir / "real.yaml", mirrored = dir / "mirrored.yaml";
+	std::ofstream(real) << roomWithWastebasket(0.5, 0.5);
+	std::ofstream(mirrored) << roomWithWastebasket(5.5, 3.5);
+	const std::string args = "--gt-map " + mirrored.string() + " --scene " +
+	                         real.string() +
+	                         " --start 3,2,0 --goal wastebasket";
+	const AppRun r = runApp("semnav-nav", args + " --json");
+	EXPECT_EQ(r.code, 1) << r.err;
+	EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+	EXPECT_NE(r.err.find("FALSE ARRIVAL"), std::string::npos) << r.err;
+	const auto j = nlohmann::json::parse(r.out);
+	EXPECT_TRUE(j.at("believed_reached").get<bool>());
+	EXPECT_FALSE(j.at("success").get<bool>());
+	EXPECT_TRUE(j.at("false_arrival").get<bool>());
+	EXPECT_EQ(j.at("reason"), "reached");
+	// Truly ~5 m from the scene's wastebasket, near the mirrored one.
+	const double trueDistance = j.at("true_distance_m").get<double>();
+	EXPECT_GT(trueDistance, 3.5);
+	EXPECT_GT(trueDistance, j.at("arrival_tolerance_m").get<double>());
+	EXPECT_LT(j.at("distance_to_object_m").get<double>(), 1.0);
+	EXPECT_NEAR(j.at("true_object").at("x").get<double>(), 0.5, 1e-6);
+	// The human-readable summary says it too.
+	const AppRun text = runApp("semnav-nav", args);
+	EXPECT_EQ(text.code, 1);
+	EXPECT_NE(
+	    text.out.find("believed reached wastebasket 1"), std::string::npos)
+	    << text.out;
+	EXPECT_NE(text.out.find("FALSE ARRIVAL"), std::string::npos) << text.out;
+	// A wider --arrival-margin accepts it, a negative one is refused.
+	const AppRun wide = runApp(
+	    "semnav-nav",
+	    args + " --json --arrival-margin " + std::to_string(trueDistance + 1));
+	EXPECT_EQ(wide.code, 0) << wide.err;
+	EXPECT_FALSE(nlohmann::json::parse(wide.out).at("false_arrival"));
+	EXPECT_EQ(runApp("semnav-nav", args + " --arrival-margin -1").code, 2);
+}
+
+TEST(SemnavNavCli, ALocalizedFalseArrivalKeepsBeliefAndTruthApart)
+{
+	// A room that is the same turned by 180 deg but for its door: tracking
+	// from the turned guess, with no rescan on the way, the robot believes
+	// the pose it was told, drives "to the wastebasket" and stops in the
+	// empty opposite corner.
+	const std::string scene = kSrc + "/datasets/nav-trials/rect_room.yaml";
+	const fs::path ini = tmpDir("norescan") / "nav.ini";
+	{
+		std::ifstream in(kSrc + "/config/navigation.ini");
+		std::stringstream ss;
+		ss << in.rdbuf();
+		std::string s = ss.str();
+		const std::string key = "rescan_distance_m = 1";
+		ASSERT_NE(s.find(key), std::string::npos);
+		s.replace(s.find(key), key.size(), "rescan_distance_m = 0");
+		std::ofstream(ini) << s;
+	}
+	const AppRun r = runApp(
+	    "semnav-nav", "--gt-map " + scene + " --scene " + scene +
+	                      " --start 2,1.5,0 --localize tracking --start-guess "
+	                      "6,3.5,180 --goal wastebasket --json --config " +
+	                      ini.string());
+	EXPECT_EQ(r.code, 1) << r.err;
+	EXPECT_NE(r.err.find("FALSE ARRIVAL"), std::string::npos) << r.err;
+	const auto j = nlohmann::json::parse(r.out);
+	EXPECT_TRUE(j.at("believed_reached").get<bool>());
+	EXPECT_TRUE(j.at("false_arrival").get<bool>());
+	EXPECT_FALSE(j.at("success").get<bool>());
+	EXPECT_GT(j.at("localization").at("error_xy_m").get<double>(), 3.0);
+	// The believed final pose is near the wastebasket, the true one is not.
+	const auto& b = j.at("believed_final_pose");
+	const auto& t = j.at("true_final_pose");
+	const auto& o = j.at("true_object");
+	EXPECT_LT(
+	    std::hypot(
+	        b[0].get<double>() - o.at("x").get<double>(),
+	        b[1].get<double>() - o.at("y").get<double>()),
+	    j.at("arrival_tolerance_m").get<double>() + 0.5);
+	EXPECT_GT(
+	    std::hypot(
+	        b[0].get<double>() - t[0].get<double>(),
+	        b[1].get<double>() - t[1].get<double>()),
+	    3.0);
+	EXPECT_GT(j.at("true_distance_m").get<double>(), 3.0);
 }
 
 TEST(SemnavNavCli, ErrorsAreOneLineWithExitCodes)

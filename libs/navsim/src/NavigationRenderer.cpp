@@ -89,6 +89,23 @@ cv::Mat NavigationRenderer::render(
 	if (r.objectId || r.command.kind == NavCommand::Kind::Point)
 		cv::circle(
 		    img, P(r.objectXY.x, r.objectXY.y), 4 * k, red, 2, cv::LINE_AA);
+	// A false arrival: where the robot believed it stood (teal ring) and a
+	// red line from where it truly stands to the scene's object (red
+	// cross).
+	if (r.falseArrival)
+	{
+		const auto& b = r.believedFinalPose;
+		cv::circle(img, P(b.x, b.y), 3 * k, teal, 2, cv::LINE_AA);
+		if (r.trueDistance)
+		{
+			const cv::Point t = P(r.trueObjectXY.x, r.trueObjectXY.y);
+			cv::line(img, P(r.finalPose.x, r.finalPose.y), t, red, 2);
+			cv::drawMarker(img, t, red, cv::MARKER_TILTED_CROSS, 6 * k, 2);
+			cv::putText(
+			    img, "FALSE ARRIVAL", P(r.finalPose.x, r.finalPose.y),
+			    cv::FONT_HERSHEY_SIMPLEX, 0.5, red, 1, cv::LINE_AA);
+		}
+	}
 	for (const auto& c : r.collisionPoses)
 	{
 		const cv::Point q = P(c.x, c.y);
@@ -103,8 +120,8 @@ cv::Mat NavigationRenderer::render(
 	char buf[300];
 	std::snprintf(
 	    buf, sizeof(buf), "%s: %s, %d replans, %d collisions, %.1f s",
-	    r.command.text().c_str(), r.success ? "reached" : r.message.c_str(),
-	    r.replans, r.collisions, r.simTime);
+	    r.command.text().c_str(), r.outcome().c_str(), r.replans, r.collisions,
+	    r.simTime);
 	std::string text = buf;
 	if (r.localization)
 	{

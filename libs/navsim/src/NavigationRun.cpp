@@ -68,10 +68,7 @@ std::vector<NavigationRun::InstanceCost> NavigationRun::instanceCosts(
 	if (command.kind != NavCommand::Kind::NearestLabel) return out;
 	const auto& config = m_settings.config;
 	const SemanticPlanner planner(m_map, config.cnn, config.traversability);
-	const CostProfile profile = costProfileFromName(
-	    config.navigator.profile == "planning"
-	        ? costProfileName(config.traversability.profile)
-	        : config.navigator.profile);
+	const CostProfile profile = config.navigationProfile();
 	for (const auto& o : m_map.instances(command.label))
 	{
 		InstanceCost c;

@@ -4,6 +4,7 @@
 #include <semnav/map/SemanticMap.h>
 #include <semnav/nav/NavigationErrors.h>
 #include <semnav/nav/RobotNavInterface.h>
+#include <semnav/navsim/SceneMapBuilder.h>
 #include <semnav/navsim/SimulatedNavigation.h>
 #include <semnav/sim/SimulatedRobot.h>
 #include <unistd.h>
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 
@@ -25,6 +27,14 @@ double distanceToBox(
 	const double dx = std::max({lo.x - p.x, 0.0, p.x - hi.x});
 	const double dy = std::max({lo.y - p.y, 0.0, p.y - hi.y});
 	return std::hypot(dx, dy);
+}
+
+double distanceToSceneObject(
+    const mrpt::math::TPoint2D& p, const SceneObject& o)
+{
+	mrpt::math::TPoint3D lo, hi;
+	SceneMapBuilder::bounds(o, lo, hi);
+	return distanceToBox(p, lo, hi);
 }
 }  // namespace
 
@@ -67,6 +77,22 @@ private:
 	SemanticNavigator& m_nav;
 	std::string m_path, m_dir;
 };
+
+std::string SimulatedNavigation::Result::outcome(
+    const std::string& object) const
+{
+	if (success) return "reached" + object;
+	if (!falseArrival) return message + object;
+	if (!trueDistance)
+		return "believed reached" + object +
+		       " but the scene has no such object: FALSE ARRIVAL";
+	char buf[160];
+	std::snprintf(
+	    buf, sizeof(buf), " but truly %.2f m from the %s: FALSE ARRIVAL",
+	    *trueDistance,
+	    trueObjectId ? labelName(objectLabel).c_str() : "goal point");
+	return "believed reached" + object + buf;
+}
 
 SimulatedNavigation::SimulatedNavigation(
     const SemanticMap& map, const Scene& scene, const SimulationConfig& config)
@@ -144,7 +170,7 @@ void SimulatedNavigation::evaluate(
     const SemanticNavigator& nav, const SimulatedRobot& robot, Result& r) const
 {
 	r.reason = nav.stopReason();
-	r.success = r.reason == SemanticNavigator::StopReason::Reached;
+	r.believedReached = r.reason == SemanticNavigator::StopReason::Reached;
 	r.message = nav.stopMessage();
 	r.objectId = nav.goalObjectId();
 	const SimulatedBase& base = robot.base();
@@ -168,8 +194,55 @@ void SimulatedNavigation::evaluate(
 	r.replans = nav.replans();
 	r.trajectory = base.trajectory();
 	r.estimatedTrajectory = robot.estimatedTrajectory();
+	r.believedFinalPose = r.estimatedTrajectory.empty()
+	                          ? r.finalPose
+	                          : r.estimatedTrajectory.back();
 	r.plans = nav.plans();
 	r.sensedObstacles = nav.planner().extraObstacles();
+	judgeArrival(r);
+}
+
+void SimulatedNavigation::judgeArrival(Result& r) const
+{
+	const mrpt::math::TPoint2D fin{r.finalPose.x, r.finalPose.y};
+	if (r.objectId)
+	{
+		const ObjectInstance& goal = m_map.instance(r.objectId);
+		const mrpt::math::TPoint2D goalXY{goal.centroid.x, goal.centroid.y};
+		const SceneObject* truth = nullptr;
+		double nearestToGoal = 0;
+		for (const auto& o : m_scene.objects)
+		{
+			if (o.label != r.objectLabel) continue;
+			const double d = distanceToSceneObject(goalXY, o);
+			if (!truth || d < nearestToGoal)
+			{
+				truth = &o;
+				nearestToGoal = d;
+			}
+			const double fromRobot = distanceToSceneObject(fin, o);
+			if (!r.trueNearestOfLabel || fromRobot < *r.trueNearestOfLabel)
+				r.trueNearestOfLabel = fromRobot;
+		}
+		if (truth)
+		{
+			mrpt::math::TPoint3D lo, hi;
+			SceneMapBuilder::bounds(*truth, lo, hi);
+			r.trueObjectId = truth->id;
+			r.trueObjectXY = {(lo.x + hi.x) / 2, (lo.y + hi.y) / 2};
+			r.trueDistance = distanceToBox(fin, lo, hi);
+		}
+	}
+	else if (r.command.kind == NavCommand::Kind::Point)
+	{
+		r.trueObjectXY = r.objectXY;
+		r.trueDistance = r.distanceToGoal;
+	}
+	r.arrivalTolerance = m_config.arrivalTolerance(r.objectId != 0);
+	const bool trulyThere =
+	    r.trueDistance && *r.trueDistance <= r.arrivalTolerance;
+	r.success = r.believedReached && trulyThere;
+	r.falseArrival = r.believedReached && !trulyThere;
 }
 
 }  // namespace semnav

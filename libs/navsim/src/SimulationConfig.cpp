@@ -6,6 +6,21 @@
 
 namespace semnav
 {
+CostProfile SimulationConfig::navigationProfile() const
+{
+	return navigator.profile == "planning"
+	           ? traversability.profile
+	           : costProfileFromName(navigator.profile);
+}
+
+double SimulationConfig::arrivalTolerance(bool objectGoal) const
+{
+	const double reach = objectGoal ? TraversabilityBuilder(traversability)
+	                                      .goalRegionRadius(navigationProfile())
+	                                : traversability.goalReach;
+	return reach + navigator.goalAllowedDistance + arrivalMargin;
+}
+
 SimulationConfig SimulationConfig::load(
     const std::string& navigationIni, const std::string& planningIni,
     const std::string& simIni)

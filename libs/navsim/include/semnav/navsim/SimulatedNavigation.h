@@ -36,7 +36,29 @@ class SimulatedNavigation
 public:
 	struct Result
 	{
+		/** True arrival: the robot believes it reached the goal
+		 * (believedReached) and truly stands within arrivalTolerance of
+		 * it (trueDistance). */
 		bool success = false;
+		/** What the robot believes: the navigator stopped with Reached,
+		 * at the pose it reported (its estimate; the truth without
+		 * localization). */
+		bool believedReached = false;
+		mrpt::math::TPose2D believedFinalPose;
+		/** Believed reached, but not truly within arrivalTolerance. */
+		bool falseArrival = false;
+		/** The scene's object the goal stands for: of the goal's label,
+		 * the one nearest the map instance (0: the scene has none, or a
+		 * point goal). */
+		int trueObjectId = 0;
+		mrpt::math::TPoint2D trueObjectXY{0, 0};
+		/** From the true final position to that object's footprint (to
+		 * the point of a point goal); nothing without a true object. */
+		std::optional<double> trueDistance;
+		/** From the true final position to the nearest footprint of the
+		 * scene's objects of the goal's label (nothing if none). */
+		std::optional<double> trueNearestOfLabel;
+		double arrivalTolerance = 0;
 		SemanticNavigator::StopReason reason =
 		    SemanticNavigator::StopReason::None;
 		std::string message;
@@ -45,9 +67,10 @@ public:
 		int objectId = 0;
 		Label objectLabel = Label::Unknown;
 		mrpt::math::TPoint2D objectXY{0, 0};
+		/** True poses. */
 		mrpt::math::TPose2D start, finalPose;
-		/** From the final position to the object's footprint (or to the
-		 * goal point). */
+		/** From the true final position to the map instance's footprint
+		 * (or to the goal point). */
 		double distanceToGoal = 0;
 		int collisions = 0;
 		std::vector<mrpt::math::TPose2D> collisionPoses;
@@ -75,6 +98,13 @@ public:
 		 * arrival. */
 		std::vector<StopAndScanLocalizer::ArrivalCheck> arrivals;
 		std::vector<mrpt::math::TPose2D> estimatedTrajectory;
+
+		/** The outcome in words, naming the goal `object` (e.g. "
+		 * wastebasket 6 at (11.16, 2.64)") after its verb:
+		 * "reached<object>", "believed reached<object> but truly 5.30 m
+		 * from the wastebasket: FALSE ARRIVAL", or the navigator's stop
+		 * message followed by `object`. */
+		std::string outcome(const std::string& object = "") const;
 	};
 
 	/** Called after every step with the simulated time; may change the
@@ -121,6 +151,8 @@ private:
 	void evaluate(
 	    const SemanticNavigator& nav, const SimulatedRobot& robot,
 	    Result& r) const;
+	/** Believed against true arrival (after evaluate()'s fields). */
+	void judgeArrival(Result& r) const;
 
 	const SemanticMap& m_map;
 	const Scene& m_scene;

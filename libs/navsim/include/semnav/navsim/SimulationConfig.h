@@ -2,6 +2,7 @@
 #pragma once
 
 #include <semnav/nav/NavigationConfig.h>
+#include <semnav/planning/TraversabilityBuilder.h>
 #include <semnav/sim/SimulatedRobot.h>
 
 #include <string>
@@ -13,6 +14,20 @@ namespace semnav
 struct SimulationConfig : public NavigationConfig
 {
 	SimulatedRobot::TOptions robot;
+	/** A believed arrival is true when the robot truly stands within
+	 * arrivalTolerance() of the goal; this margin (m) covers the map's
+	 * error in the object's footprint (semnav-nav --arrival-margin). */
+	double arrivalMargin = 0.3;
+
+	/** The cost profile of the navigation plans ([SemanticNavigator]
+	 * profile; "planning": the [Traversability] one). */
+	CostProfile navigationProfile() const;
+	/** Farthest true distance (m) from the goal that counts as arrived:
+	 * the goal region's reach (an object's footprint:
+	 * TraversabilityBuilder::goalRegionRadius() of the navigation profile;
+	 * a point: goal_reach_m) + MRPT's goal_allowed_distance_m +
+	 * arrivalMargin. */
+	double arrivalTolerance(bool objectGoal) const;
 
 	/** NavigationConfig::load(navigationIni, planningIni) and
 	 * [SimulatedRobot] of `simIni` (when not empty; its [Simulator] is
