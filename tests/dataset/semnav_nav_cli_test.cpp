@@ -256,9 +256,9 @@ TEST(SemnavNavCli, AFalseArrivalIsReportedAsSuchNeverAsSuccess)
 TEST(SemnavNavCli, ALocalizedFalseArrivalKeepsBeliefAndTruthApart)
 {
 	// A room that is the same turned by 180 deg but for its door: tracking
-	// from the turned guess, with no rescan on the way, the robot believes
-	// the pose it was told, drives "to the wastebasket" and stops in the
-	// empty opposite corner.
+	// from the turned guess, with no rescan on the way and no arrival check
+	// at the goal, the robot believes the pose it was told, drives "to the
+	// wastebasket" and stops in the empty opposite corner.
 	const std::string scene = kSrc + "/datasets/nav-trials/rect_room.yaml";
 	const fs::path ini = tmpDir("norescan") / "nav.ini";
 	{
@@ -269,6 +269,9 @@ TEST(SemnavNavCli, ALocalizedFalseArrivalKeepsBeliefAndTruthApart)
 		const std::string key = "rescan_distance_m = 1";
 		ASSERT_NE(s.find(key), std::string::npos);
 		s.replace(s.find(key), key.size(), "rescan_distance_m = 0");
+		const std::string check = "arrival_check = true";
+		ASSERT_NE(s.find(check), std::string::npos);
+		s.replace(s.find(check), check.size(), "arrival_check = false");
 		std::ofstream(ini) << s;
 	}
 	const AppRun r = runApp(

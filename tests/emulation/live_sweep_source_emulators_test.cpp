@@ -76,8 +76,8 @@ struct SweepComparison
 	/** Live rows whose tilt lies between two recorded rows with data
 	 * (or within half a step of the first / last one). */
 	std::size_t rowsMatched = 0;
-	/** To the nearest recorded row, where the recording has no missing
-	 * line. */
+	/** To the nearest recorded row, for live rows between two recorded
+	 * ones where the recording has no missing line. */
 	double maxTiltGapDeg = 0;
 	double tiltMinDiffDeg = 0, tiltMaxDiffDeg = 0;
 	/** Valid live pixels where a bracketing recorded row is valid, and
@@ -114,8 +114,12 @@ SweepComparison compare(
 		const double gap = std::min(
 		    std::abs(theta - recorded.theta(a)),
 		    std::abs(theta - recorded.theta(b)));
-		// Where the recording lacks a line the gap is up to a step.
-		if (std::abs(recorded.theta(b) - recorded.theta(a)) < 1.5 * step)
+		// Where the recording lacks a line the gap is up to a step; rows
+		// beyond the recording's first or last line are the ends' business
+		// (tiltMinDiffDeg, tiltMaxDiffDeg).
+		const bool inside = k != gr.begin() && k != gr.end();
+		if (inside &&
+		    std::abs(recorded.theta(b) - recorded.theta(a)) < 1.5 * step)
 			out.maxTiltGapDeg = std::max(out.maxTiltGapDeg, mrpt::RAD2DEG(gap));
 		if ((a == b && gap > 0.5 * step) || live.cols() != recorded.cols())
 			continue;

@@ -76,6 +76,11 @@ void SemanticEvidenceMap::build(const SemanticMap& map)
 	m_outside = std::max(far, unknown);
 	for (auto& f : m_fields) f.clear();
 	for (auto& o : m_objects) o.clear();
+	m_unknown.assign(m_geometry.cellCount(), 0);
+	for (int cy = 0; cy < ny; cy++)
+		for (int cx = 0; cx < nx; cx++)
+			m_unknown[m_geometry.index(cy, cx)] =
+			    map.at("observations", cx, cy) > 0 ? 0 : 1;
 	for (const Label l : allLabels())
 	{
 		if (!SemanticExtractor::isClassLabel(l) &&
@@ -113,7 +118,7 @@ void SemanticEvidenceMap::build(const SemanticMap& map)
 
 double SemanticEvidenceMap::meanField(
     double x, double y, double c, double s,
-    const std::vector<SemanticSample>& pts) const
+    const std::vector<SemanticSample>& pts, bool knownOnly) const
 {
 	double sum = 0;
 	std::size_t n = 0;
@@ -127,8 +132,10 @@ double SemanticEvidenceMap::meanField(
 		    static_cast<int>(std::floor((wx - m_geometry.originX) * inv));
 		const int cy =
 		    static_cast<int>(std::floor((wy - m_geometry.originY) * inv));
-		sum += m_geometry.contains(cy, cx) ? f[m_geometry.index(cy, cx)]
-		                                   : m_outside;
+		const bool inside = m_geometry.contains(cy, cx);
+		if (knownOnly && (!inside || m_unknown[m_geometry.index(cy, cx)]))
+			continue;
+		sum += inside ? f[m_geometry.index(cy, cx)] : m_outside;
 		n++;
 	}
 	return n ? sum / double(n) : 0.0;
@@ -157,15 +164,28 @@ double SemanticEvidenceMap::meanObjects(
 SemanticEvidenceMap::Terms SemanticEvidenceMap::terms(
     double x, double y, double yaw, const SemanticObservation& obs) const
 {
+	return termsOf(x, y, yaw, obs, false);
+}
+
+SemanticEvidenceMap::Terms SemanticEvidenceMap::knownTerms(
+    double x, double y, double yaw, const SemanticObservation& obs) const
+{
+	return termsOf(x, y, yaw, obs, true);
+}
+
+SemanticEvidenceMap::Terms SemanticEvidenceMap::termsOf(
+    double x, double y, double yaw, const SemanticObservation& obs,
+    bool knownOnly) const
+{
 	Terms t;
 	if (empty()) return t;
 	const double c = std::cos(yaw), s = std::sin(yaw);
 	if (m_options.classPoints > 0)
-		t.classes =
-		    m_options.classPoints * meanField(x, y, c, s, obs.classSamples);
+		t.classes = m_options.classPoints *
+		            meanField(x, y, c, s, obs.classSamples, knownOnly);
 	if (m_options.groundPoints > 0)
-		t.ground =
-		    m_options.groundPoints * meanField(x, y, c, s, obs.groundSamples);
+		t.ground = m_options.groundPoints *
+		           meanField(x, y, c, s, obs.groundSamples, knownOnly);
 	if (m_options.objectPoints > 0)
 		t.objects =
 		    m_options.objectPoints * meanObjects(x, y, c, s, obs.objects);

@@ -211,6 +211,7 @@ void WallMap::buildField(
 	m_ny = ny;
 	m_floor = value(m_options.maxDistance);
 	m_outside = unknownMask ? std::max(m_floor, m_unknown) : m_floor;
+	m_unknownMask = unknownMask ? *unknownMask : std::vector<uint8_t>();
 	m_ceiling = value(0);
 }
 
@@ -222,6 +223,27 @@ double WallMap::logLikelihood(
 	double sum = 0;
 	for (const auto& p : pts)
 		sum += logLikelihood(x + c * p.x - s * p.y, y + s * p.x + c * p.y);
+	return sum;
+}
+
+double WallMap::knownLogLikelihood(
+    double x, double y, double yaw,
+    const std::vector<mrpt::math::TPoint2D>& pts, std::size_t& known) const
+{
+	const double c = std::cos(yaw), s = std::sin(yaw);
+	double sum = 0;
+	known = 0;
+	for (const auto& p : pts)
+	{
+		const double wx = x + c * p.x - s * p.y, wy = y + s * p.x + c * p.y;
+		const int cx = static_cast<int>((wx - m_x0) * m_invRes);
+		const int cy = static_cast<int>((wy - m_y0) * m_invRes);
+		if (wx < m_x0 || wy < m_y0 || cx >= m_nx || cy >= m_ny) continue;
+		const std::size_t i = static_cast<std::size_t>(cy) * m_nx + cx;
+		if (!m_unknownMask.empty() && m_unknownMask[i]) continue;
+		sum += m_field[i];
+		known++;
+	}
 	return sum;
 }
 

@@ -69,6 +69,11 @@ const OptionTable<O>& optionTable()
 	        .real(
 	            "uniqueness_min_distance_m", &O::uniquenessMinDistance, 0.05,
 	            100, "...and farther than this makes a start ambiguous.")
+	        .real(
+	            "uniqueness_min_known_fraction", &O::uniquenessMinKnownFraction,
+	            0, 1,
+	            "Uniqueness check: places are scored on samples in observed "
+	            "cells; fewer than this share there: not scored.")
 	        .integer(
 	            "max_sweeps", &O::maxSweeps, 1, 100,
 	            "Sweeps of a start before it fails.")
@@ -531,6 +536,17 @@ void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const
 	if (pts.empty()) return;
 	const WallMap& walls = scoredWalls();
 	const double n = static_cast<double>(pts.size());
+	const std::size_t minKnown = static_cast<std::size_t>(
+	    std::ceil(m_options.uniquenessMinKnownFraction * n));
+	// Mean over the samples in observed cells.
+	const auto wallScore = [&](double x, double y, double yaw)
+	{
+		std::size_t known = 0;
+		const double sum = walls.knownLogLikelihood(x, y, yaw, pts, known);
+		return known >= std::max<std::size_t>(minKnown, 1)
+		           ? sum / double(known)
+		           : -std::numeric_limits<double>::infinity();
+	};
 	// The semantic terms of every sweep at its pose, in units of one
 	// effective wall point per sweep (as the filter weighs them).
 	std::vector<mrpt::poses::CPose2D> rels;
@@ -546,15 +562,14 @@ void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const
 		for (std::size_t i = 0; i < rels.size(); i++)
 		{
 			const mrpt::poses::CPose2D p = at + rels[i];
-			sum += m_semantic.logLikelihood(
-			    p.x(), p.y(), p.phi(), m_startSemantic[i]);
+			sum +=
+			    m_semantic.knownTerms(p.x(), p.y(), p.phi(), m_startSemantic[i])
+			        .total();
 		}
 		return sum * semanticScale;
 	};
-	const auto score = [&](double x, double y, double yaw) {
-		return walls.logLikelihood(x, y, yaw, pts) / n +
-		       semanticScore(x, y, yaw);
-	};
+	const auto score = [&](double x, double y, double yaw)
+	{ return wallScore(x, y, yaw) + semanticScore(x, y, yaw); };
 	// Best pose near `p` (local refinement: +-10 cm, +-1 deg).
 	const auto refine = [&](mrpt::math::TPose2D p)
 	{

@@ -88,6 +88,10 @@ public:
 	};
 	Terms terms(
 	    double x, double y, double yaw, const SemanticObservation& obs) const;
+	/** The same, class and ground points counted only where the map
+	 * observed the cell (what the map cannot tell is left out). */
+	Terms knownTerms(
+	    double x, double y, double yaw, const SemanticObservation& obs) const;
 
 	/** True when the map has cells of label l. */
 	bool hasField(Label l) const
@@ -99,7 +103,10 @@ public:
 private:
 	double meanField(
 	    double x, double y, double c, double s,
-	    const std::vector<SemanticSample>& pts) const;
+	    const std::vector<SemanticSample>& pts, bool knownOnly) const;
+	Terms termsOf(
+	    double x, double y, double yaw, const SemanticObservation& obs,
+	    bool knownOnly) const;
 	double meanObjects(
 	    double x, double y, double c, double s,
 	    const std::vector<SemanticSample>& objects) const;
@@ -110,6 +117,8 @@ private:
 	std::array<std::vector<float>, kMaxLabelCount> m_fields;
 	std::array<std::vector<mrpt::math::TPoint2D>, kMaxLabelCount> m_objects;
 	float m_outside = 0;
+	/** 1 where the map never observed the cell. */
+	std::vector<uint8_t> m_unknown;
 };
 
 }  // namespace semnav

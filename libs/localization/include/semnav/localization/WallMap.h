@@ -101,6 +101,12 @@ public:
 	double logLikelihood(
 	    double x, double y, double yaw,
 	    const std::vector<mrpt::math::TPoint2D>& robotPoints) const;
+	/** The sum over the points that fall in cells the map observed (all
+	 * of them when built without an observed area); `known` counts them. */
+	double knownLogLikelihood(
+	    double x, double y, double yaw,
+	    const std::vector<mrpt::math::TPoint2D>& robotPoints,
+	    std::size_t& known) const;
 	/** Fraction of the points within 2 sigma of a wall at the pose. */
 	double inlierFraction(
 	    const mrpt::poses::CPose2D& pose,
@@ -121,6 +127,8 @@ private:
 	std::optional<double> m_main;
 	GridGeometry m_geometry;
 	std::vector<float> m_field, m_distance;
+	/** 1 where the map never observed the cell (empty: all observed). */
+	std::vector<uint8_t> m_unknownMask;
 	double m_x0 = 0, m_y0 = 0, m_invRes = 20;
 	int m_nx = 0, m_ny = 0;
 	float m_floor = 0, m_ceiling = 0, m_unknown = 0, m_outside = 0;

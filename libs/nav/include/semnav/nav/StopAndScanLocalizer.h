@@ -97,6 +97,12 @@ public:
 		double uniquenessStep = 0.15;
 		double uniquenessMargin = 0.1;
 		double uniquenessMinDistance = 0.75;
+		/** uniqueness_min_known_fraction: the uniqueness check scores each
+		 * place on the samples that fall in cells the map observed (what
+		 * the map does not show cannot rule a place out: a robot in a
+		 * barely mapped twin room); a place where fewer than this fraction
+		 * of the wall samples do is not scored. */
+		double uniquenessMinKnownFraction = 0.25;
 		/** max_sweeps: sweeps of a start before giving up. */
 		int maxSweeps = 12;
 		/** turn_deg: turn on the spot between start sweeps (rad). */
