@@ -317,14 +317,20 @@ void StopAndScanLocalizer::sweepUntilConverged(
 	                         (rep.recovery ? ", lost while navigating" : "") +
 	                         "): ";
 	if (!rep.converged && rep.ambiguous)
+	{
+		// The last sweep that ran the uniqueness check names the twins.
+		const auto checked = std::find_if(
+		    rep.records.rbegin(), rep.records.rend(),
+		    [](const SweepRecord& r) { return r.checked; });
+		const SweepRecord& c = checked != rep.records.rend() ? *checked : last;
 		throw LocalizationFailedError(
 		    what + "ambiguous after " + std::to_string(rep.sweeps) +
 		    mrpt::format(
-		        " sweeps: the walls fit (%.2f, %.2f, %.0f deg) and (%.2f, "
+		        " sweeps: the sweeps fit (%.2f, %.2f, %.0f deg) and (%.2f, "
 		        "%.2f, %.0f deg) alike",
-		        last.estimate.x, last.estimate.y,
-		        mrpt::RAD2DEG(last.estimate.phi), last.rival.x, last.rival.y,
-		        mrpt::RAD2DEG(last.rival.phi)));
+		        c.estimate.x, c.estimate.y, mrpt::RAD2DEG(c.estimate.phi),
+		        c.rival.x, c.rival.y, mrpt::RAD2DEG(c.rival.phi)));
+	}
 	if (!rep.converged)
 		throw LocalizationFailedError(
 		    what + "not converged after " + std::to_string(rep.sweeps) +
