@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -203,6 +204,24 @@ void printSummary(
 }
 /** --localize MODE and --start-guess X,Y,YAW_DEG into `s`; the usage
  * problem, if any. */
+std::optional<std::string> readKidnapping(
+    const std::string& at, const std::string& to,
+    semnav::NavigationRun::Settings& s)
+{
+	if (at.empty() != to.empty())
+		return std::string("--kidnap-at and --kidnap-to go together");
+	if (at.empty()) return std::nullopt;
+	char* end = nullptr;
+	const double t = std::strtod(at.c_str(), &end);
+	if (end == at.c_str() || *end || !(t >= 0))
+		return "--kidnap-at must be a time >= 0 (s), got '" + at + "'";
+	const auto pose = semnav::CommandLine::parsePose(to);
+	if (!pose) return "--kidnap-to must be X,Y,YAW_DEG, got '" + to + "'";
+	s.kidnapAt = t;
+	s.kidnapTo = *pose;
+	return std::nullopt;
+}
+
 std::optional<std::string> readLocalization(
     const std::string& mode, const std::string& guess,
     semnav::NavigationRun::Settings& s)
@@ -284,6 +303,14 @@ int main(int argc, char** argv)
 	    "tracking: around --start-guess) and navigates on that estimate and "
 	    "its odometry; --start stays the true pose",
 	    false, "", "global|tracking", cmd);
+	TCLAP::ValueArg<std::string> argKidnapAt(
+	    "", "kidnap-at",
+	    "Carry the robot to --kidnap-to at this simulated time (s) while its "
+	    "odometry notices nothing",
+	    false, "", "T", cmd);
+	TCLAP::ValueArg<std::string> argKidnapTo(
+	    "", "kidnap-to", "Where --kidnap-at carries the robot", false, "",
+	    "X,Y,YAW_DEG", cmd);
 	TCLAP::ValueArg<std::string> argStartGuess(
 	    "", "start-guess", "Rough start pose for --localize tracking", false,
 	    "", "X,Y,YAW_DEG", cmd);
@@ -333,6 +360,9 @@ int main(int argc, char** argv)
 		    "--start must be X,Y,YAW_DEG, got '" + argStart.getValue() + "'");
 	if (argCommand.getValue().empty() == argGoal.getValue().empty())
 		return cli.usageError("give exactly one of --command, --goal");
+	if (const auto problem =
+	        readKidnapping(argKidnapAt.getValue(), argKidnapTo.getValue(), s))
+		return cli.usageError(*problem);
 	if (const auto problem = readLocalization(
 	        argLocalize.getValue(), argStartGuess.getValue(), s))
 		return cli.usageError(*problem);

@@ -21,6 +21,11 @@ NavigationLoop::Result NavigationLoop::run(
 	for (int attempt = 0;; attempt++)
 	{
 		drive(deadline, hook, r);
+		if (m_nav.state() == SemanticNavigator::State::Failed)
+		{
+			if (recoverFromFailure(r)) continue;
+			break;
+		}
 		if (m_nav.state() != SemanticNavigator::State::Reached ||
 		    !m_localizer || !m_localizer->options().arrivalCheck)
 			break;
@@ -42,6 +47,27 @@ NavigationLoop::Result NavigationLoop::run(
 	}
 	if (!m_stepMs.empty()) r.medianStepMs = median(m_stepMs);
 	return r;
+}
+
+bool NavigationLoop::recoverFromFailure(Result& r)
+{
+	// No path (or the start blocked, or too many replans) may come from a
+	// wrong belief: a carried robot plans from where it is not. One
+	// stop-and-scan: when it finds the robot lost it relocalizes it, and the
+	// navigator tries again from the corrected pose.
+	using R = SemanticNavigator::StopReason;
+	const R why = m_nav.stopReason();
+	if (!m_localizer || m_localizer->options().rescanDistance <= 0 ||
+	    m_failureRescans >= m_localizer->options().arrivalAttempts ||
+	    (why != R::NoPath && why != R::StartBlocked &&
+	     why != R::TooManyReplans))
+		return false;
+	m_failureRescans++;
+	const auto rep = m_localizer->rescan(m_robot);
+	r.rescans.insert(r.rescans.end(), rep.records.begin(), rep.records.end());
+	if (!rep.recovery) return false;
+	r.recoveries++;
+	return m_nav.retry(SemanticNavigator::ReplanReason::Relocalized);
 }
 
 bool NavigationLoop::relocalize(Result& r, const std::string& why)

@@ -257,6 +257,8 @@ const char* SemanticNavigator::replanReasonName(ReplanReason r)
 			return "map_changed";
 		case ReplanReason::ArrivalNotConfirmed:
 			return "arrival_not_confirmed";
+		case ReplanReason::Relocalized:
+			return "relocalized";
 	}
 	return "?";
 }
@@ -375,14 +377,15 @@ void SemanticNavigator::cancel(StopReason reason)
 		stopWith(reason, std::string("navigation ") + stopReasonName(reason));
 }
 
-bool SemanticNavigator::retry()
+bool SemanticNavigator::retry(ReplanReason reason)
 {
-	if (m_state != State::Reached) return m_state == State::Navigating;
+	if (m_state == State::Navigating || m_state == State::Idle)
+		return m_state == State::Navigating;
 	m_state = State::Navigating;
 	m_reason = StopReason::None;
 	m_message.clear();
 	m_planner.setExtraObstacles({});
-	return replan(ReplanReason::ArrivalNotConfirmed);
+	return replan(reason);
 }
 
 void SemanticNavigator::refuseArrival(const std::string& why)

@@ -94,6 +94,10 @@ const OptionTable<O>& optionTable()
 	        .real(
 	            "rescan_distance_m", &O::rescanDistance, 0, 1000,
 	            "Stop and scan again after this much travel (0: never).")
+	        .real(
+	            "rescan_min_inliers", &O::rescanMinInliers, 0, 1,
+	            "A rescan whose walls fit the map less than this finds the "
+	            "robot lost: global relocalization.")
 	        .flag(
 	            "arrival_check", &O::arrivalCheck,
 	            "At the goal: turn toward it, sweep and confirm the arrival.")
@@ -360,7 +364,11 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::rescan(
 	    "rescan: %zu walls, error %.3f m %.2f deg%s%s", r.segments, r.errorXY,
 	    mrpt::RAD2DEG(r.errorYaw), r.converged ? "" : ", not converged",
 	    r.kidnapped ? ", KIDNAPPED" : "");
-	if (r.converged && !r.kidnapped)
+	// Walls that do not fit the map at the estimate: the robot is not
+	// where it believes (carried away).
+	const bool disagrees =
+	    !r.kidnapped && r.inliers < m_options.rescanMinInliers;
+	if (r.converged && !r.kidnapped && !disagrees)
 	{
 		rep.converged = true;
 		rep.truth = r.truePose;
@@ -374,7 +382,7 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::rescan(
 		// Lost (kidnapped, or the spread grew): turn and sweep as at a
 		// start until converged again.
 		rep.recovery = true;
-		rep.mode = r.kidnapped ? Mode::Global : Mode::Tracking;
+		rep.mode = r.kidnapped || disagrees ? Mode::Global : Mode::Tracking;
 		if (!r.kidnapped)
 		{
 			// Keep only the sweep a global restart started from.
@@ -382,7 +390,17 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::rescan(
 			rep.sweeps = 0;
 			keepStartSweeps(0);
 		}
-		sweepUntilConverged(robot, r.kidnapped, true, rep, t0);
+		if (disagrees)
+		{
+			MRPT_LOG_INFO_FMT(
+			    "rescan: %.0f%% of the walls fit the map: relocalizing",
+			    100 * r.inliers);
+			m_localizer->initializeGlobal();
+			// Score the next sweep (here, no turn) over the whole map.
+			sweepUntilConverged(robot, true, false, rep, t0);
+		}
+		else
+			sweepUntilConverged(robot, r.kidnapped, true, rep, t0);
 	}
 	report(robot, rep.estimate);
 	return rep;

@@ -47,6 +47,8 @@ SimulatedNavigation::Result NavigationRun::run(
     const NavCommand& command, const mrpt::math::TPose2D& start)
 {
 	SimulatedNavigation sim(m_map, m_scene, m_settings.config);
+	if (m_settings.kidnapAt)
+		sim.setKidnapping(*m_settings.kidnapAt, m_settings.kidnapTo);
 	if (m_settings.localize)
 		sim.setLocalization(
 		    *m_settings.localize, m_settings.localization,

@@ -149,7 +149,17 @@ SimulatedNavigation::Result SimulatedNavigation::run(
 
 	nav.start(command);
 	NavigationLoop loop(nav, io, m_localizer.get());
-	const NavigationLoop::Result lr = loop.run(m_config.robot.maxTime, hook);
+	bool kidnapped = false;
+	const auto step = [&](double t, SemanticNavigator& n)
+	{
+		if (m_kidnapAt && !kidnapped && t >= *m_kidnapAt)
+		{
+			robot.base().carryTo(m_kidnapTo);
+			kidnapped = true;
+		}
+		if (hook) hook(t, n);
+	};
+	const NavigationLoop::Result lr = loop.run(m_config.robot.maxTime, step);
 	// Let the robot come to rest.
 	robot.tick();
 

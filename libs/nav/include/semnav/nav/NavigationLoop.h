@@ -20,7 +20,9 @@ namespace semnav
  * (StopAndScanLocalizer::confirmArrival); an unconfirmed one navigates
  * again after a global relocalization where it stands (arrival_attempts)
  * and then fails with
- * StopReason::ArrivalNotConfirmed. */
+ * StopReason::ArrivalNotConfirmed. With rescans on, a navigator that stops
+ * without a path first gets one stop-and-scan: a robot found lost (carried
+ * away) is relocalized and navigates on. */
 class NavigationLoop
 {
 public:
@@ -52,6 +54,10 @@ public:
 	Result run(double deadline, const StepHook& hook = {});
 
 private:
+	/** After the navigator failed (no path, start blocked, too many
+	 * replans): one stop-and-scan; true when it found the robot lost,
+	 * relocalized it and the navigator is under way again. */
+	bool recoverFromFailure(Result& r);
 	/** A global start where the robot stands after an unconfirmed arrival;
 	 * false (navigator failed with the reason) when it does not converge. */
 	bool relocalize(Result& r, const std::string& why);
@@ -59,6 +65,7 @@ private:
 	void drive(double deadline, const StepHook& hook, Result& r);
 
 	std::vector<double> m_stepMs;
+	int m_failureRescans = 0;
 	SemanticNavigator& m_nav;
 	RobotInterfaces m_robot;
 	StopAndScanLocalizer* m_localizer;

@@ -120,7 +120,10 @@ public:
 		PathBlockedBySensedObstacle,
 		MapChanged,
 		/** The arrival was not confirmed: navigate again (retry()). */
-		ArrivalNotConfirmed
+		ArrivalNotConfirmed,
+		/** The robot was relocalized after the navigator had stopped
+		 * (retry()). */
+		Relocalized
 	};
 
 	/** One plan of a run. */
@@ -171,10 +174,11 @@ public:
 		m_mapChanged = true;
 	}
 	void cancel(StopReason reason = StopReason::Cancelled);
-	/** After State::Reached: the arrival was not confirmed but the robot may
-	 * try again: replans from its (corrected) pose and navigates on.
-	 * Returns false when no path is left (state Failed). */
-	bool retry();
+	/** After State::Reached (the arrival was not confirmed) or State::Failed
+	 * (the pose was corrected since): replans from the robot's pose for
+	 * the same command and navigates on (`reason`: ArrivalNotConfirmed or
+	 * Relocalized). Returns false when no path is left (state Failed). */
+	bool retry(ReplanReason reason = ReplanReason::ArrivalNotConfirmed);
 	/** After State::Reached: the arrival was not confirmed and no retry is
 	 * left: State::Failed with StopReason::ArrivalNotConfirmed. */
 	void refuseArrival(const std::string& why);

@@ -117,6 +117,11 @@ public:
 		/** rescan_distance_m: during navigation, stop and scan after this
 		 * much odometry travel (0: never). */
 		double rescanDistance = 1.0;
+		/** rescan_min_inliers: a rescan whose wall samples fit the map at
+		 * the estimate less than this (fraction within 2 sigma of a map
+		 * wall) finds the robot lost: it localizes again from scratch
+		 * (global, turning and sweeping). */
+		double rescanMinInliers = 0.7;
 		/** arrival_check: at the goal the robot turns toward it, sweeps and
 		 * confirms the arrival (confirmArrival()); arrival_tolerance_m: an
 		 * object goal is confirmed by a detection (or labelled points) of

@@ -37,6 +37,9 @@ public:
 		/** The robot localizes itself (nothing: it knows its pose). */
 		std::optional<StopAndScanLocalizer::Mode> localize;
 		std::optional<mrpt::math::TPose2D> startGuess;
+		/** Carry the robot to `kidnapTo` at simulated time `kidnapAt`. */
+		std::optional<double> kidnapAt;
+		mrpt::math::TPose2D kidnapTo;
 		MappingLocalizer::TOptions localization;
 		PerceptionPipeline::TOptions perception;
 		/** Object detection in the localizer's sweeps (none without). */

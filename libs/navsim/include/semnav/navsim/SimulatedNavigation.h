@@ -141,6 +141,15 @@ public:
 	    const NavCommand& command, const mrpt::math::TPose2D& start,
 	    const std::string& navlogPath = "", const StepHook& hook = {});
 
+	/** A kidnapping: at simulated time `atTime` (s) the robot is carried
+	 * to `to` while its odometry notices nothing (the next stop-and-scan
+	 * must find it lost and relocalize it). */
+	void setKidnapping(double atTime, const mrpt::math::TPose2D& to)
+	{
+		m_kidnapAt = atTime;
+		m_kidnapTo = to;
+	}
+
 	/** The localizer of setLocalization() (nullptr without). */
 	const StopAndScanLocalizer* localizer() const { return m_localizer.get(); }
 
@@ -160,6 +169,8 @@ private:
 	std::unique_ptr<StopAndScanLocalizer> m_localizer;
 	StopAndScanLocalizer::Mode m_mode = StopAndScanLocalizer::Mode::Global;
 	std::optional<mrpt::math::TPose2D> m_guess;
+	std::optional<double> m_kidnapAt;
+	mrpt::math::TPose2D m_kidnapTo;
 };
 
 }  // namespace semnav
