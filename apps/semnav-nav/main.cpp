@@ -247,6 +247,131 @@ std::optional<std::string> readLocalization(
 }
 }  // namespace
 
+/** semnav-nav's arguments (the CLI's own: --write-config, --json, the
+ * cascade arguments are added by their classes). */
+struct Arguments
+{
+	explicit Arguments(TCLAP::CmdLine& c) : cmd(c) {}
+	static std::string shipped(const std::string& f)
+	{
+		return semnav::ShippedConfig::path(f);
+	}
+	TCLAP::CmdLine& cmd;
+	TCLAP::ValueArg<std::string> argMap{
+	    "",       "map", "Map directory (semnav-map); required", false, "",
+	    "MAPDIR", cmd};
+	TCLAP::ValueArg<std::string> argScene{
+	    "",    "scene", "Scene the robot drives in (YAML); required",
+	    false, "",      "S.yaml",
+	    cmd};
+	TCLAP::ValueArg<std::string> argStart{
+	    "",    "start", "Start pose X,Y,YAW_DEG; required",
+	    false, "",      "X,Y,YAW_DEG",
+	    cmd};
+	TCLAP::ValueArg<std::string> argCommand{
+	    "",
+	    "command",
+	    "\"go to the nearest <label>\", \"go to <label> <id>\" or "
+	    "\"go to <x> <y>\"",
+	    false,
+	    "",
+	    "TEXT",
+	    cmd};
+	TCLAP::ValueArg<std::string> argGoal{
+	    "",    "goal", "Same as --command \"go to the nearest LABEL\"",
+	    false, "",     "LABEL",
+	    cmd};
+	TCLAP::ValueArg<std::string> argOut{
+	    "",
+	    "out",
+	    "Write navigation.reactivenavlog (navlog-viewer) and navigation.png",
+	    false,
+	    "",
+	    "DIR",
+	    cmd};
+	TCLAP::ValueArg<std::string> argConfig{
+	    "",      "config", "Navigation INI", false, shipped("navigation.ini"),
+	    "N.ini", cmd};
+	TCLAP::ValueArg<std::string> argPlanning{
+	    "",    "planning-config",       "Planning INI",
+	    false, shipped("planning.ini"), "P.ini",
+	    cmd};
+	TCLAP::ValueArg<std::string> argSimConfig{
+	    "",    "sim-config",       "Simulator INI ([SimulatedRobot])",
+	    false, shipped("sim.ini"), "S.ini",
+	    cmd};
+	TCLAP::MultiArg<std::string> argSceneInstances{
+	    "",
+	    "instances-from-scene",
+	    "Add the scene's objects of LABEL to the map as instances (ground "
+	    "truth; for maps whose detector has not found them)",
+	    false,
+	    "LABEL",
+	    cmd};
+	TCLAP::ValueArg<std::string> argGtMap{
+	    "",
+	    "gt-map",
+	    "Instead of --map, the ground-truth map of this scene (usually the "
+	    "--scene file; another scene makes the map wrong on purpose)",
+	    false,
+	    "",
+	    "S.yaml",
+	    cmd};
+	TCLAP::ValueArg<std::string> argLocalize{
+	    "",
+	    "localize",
+	    "The robot does not know its pose: it localizes itself in the map "
+	    "by stop-and-scan sweeps (global: anywhere in the map's free space; "
+	    "tracking: around --start-guess) and navigates on that estimate and "
+	    "its odometry; --start stays the true pose",
+	    false,
+	    "",
+	    "global|tracking",
+	    cmd};
+	TCLAP::ValueArg<std::string> argKidnapAt{
+	    "",
+	    "kidnap-at",
+	    "Carry the robot to --kidnap-to at this simulated time (s) while its "
+	    "odometry notices nothing",
+	    false,
+	    "",
+	    "T",
+	    cmd};
+	TCLAP::ValueArg<std::string> argKidnapTo{
+	    "",    "kidnap-to", "Where --kidnap-at carries the robot",
+	    false, "",          "X,Y,YAW_DEG",
+	    cmd};
+	TCLAP::ValueArg<std::string> argStartGuess{
+	    "",
+	    "start-guess",
+	    "Rough start pose for --localize tracking",
+	    false,
+	    "",
+	    "X,Y,YAW_DEG",
+	    cmd};
+	TCLAP::ValueArg<double> argArrivalMargin{
+	    "",
+	    "arrival-margin",
+	    "A believed arrival counts when the robot truly stands within the "
+	    "goal region's radius + goal_allowed_distance_m + this margin (m) of "
+	    "the scene's object (docs/navigation.md)",
+	    false,
+	    semnav::SimulationConfig().arrivalMargin,
+	    "M",
+	    cmd};
+	TCLAP::ValueArg<std::string> argLocConfig{"",
+	                                          "loc-config",
+	                                          "Localization INI",
+	                                          false,
+	                                          shipped("localization.ini"),
+	                                          "L.ini",
+	                                          cmd};
+	TCLAP::ValueArg<std::string> argPerceptionConfig{
+	    "",    "perception-config",       "Perception INI for --localize",
+	    false, shipped("perception.ini"), "P.ini",
+	    cmd};
+};
+
 int main(int argc, char** argv)
 {
 	semnav::CommandLine cli(
@@ -255,77 +380,7 @@ int main(int argc, char** argv)
 	    "semantic map and drives a simulated differential-drive robot in the "
 	    "scene through MRPT's reactive navigator (replanning when blocked).");
 	auto& cmd = cli.cmd();
-	TCLAP::ValueArg<std::string> argMap(
-	    "", "map", "Map directory (semnav-map); required", false, "", "MAPDIR",
-	    cmd);
-	TCLAP::ValueArg<std::string> argScene(
-	    "", "scene", "Scene the robot drives in (YAML); required", false, "",
-	    "S.yaml", cmd);
-	TCLAP::ValueArg<std::string> argStart(
-	    "", "start", "Start pose X,Y,YAW_DEG; required", false, "",
-	    "X,Y,YAW_DEG", cmd);
-	TCLAP::ValueArg<std::string> argCommand(
-	    "", "command",
-	    "\"go to the nearest <label>\", \"go to <label> <id>\" or "
-	    "\"go to <x> <y>\"",
-	    false, "", "TEXT", cmd);
-	TCLAP::ValueArg<std::string> argGoal(
-	    "", "goal", "Same as --command \"go to the nearest LABEL\"", false, "",
-	    "LABEL", cmd);
-	TCLAP::ValueArg<std::string> argOut(
-	    "", "out",
-	    "Write navigation.reactivenavlog (navlog-viewer) and navigation.png",
-	    false, "", "DIR", cmd);
-	const auto shipped = semnav::ShippedConfig::path;
-	TCLAP::ValueArg<std::string> argConfig(
-	    "", "config", "Navigation INI", false, shipped("navigation.ini"),
-	    "N.ini", cmd);
-	TCLAP::ValueArg<std::string> argPlanning(
-	    "", "planning-config", "Planning INI", false, shipped("planning.ini"),
-	    "P.ini", cmd);
-	TCLAP::ValueArg<std::string> argSimConfig(
-	    "", "sim-config", "Simulator INI ([SimulatedRobot])", false,
-	    shipped("sim.ini"), "S.ini", cmd);
-	TCLAP::MultiArg<std::string> argSceneInstances(
-	    "", "instances-from-scene",
-	    "Add the scene's objects of LABEL to the map as instances (ground "
-	    "truth; for maps whose detector has not found them)",
-	    false, "LABEL", cmd);
-	TCLAP::ValueArg<std::string> argGtMap(
-	    "", "gt-map",
-	    "Instead of --map, the ground-truth map of this scene (usually the "
-	    "--scene file; another scene makes the map wrong on purpose)",
-	    false, "", "S.yaml", cmd);
-	TCLAP::ValueArg<std::string> argLocalize(
-	    "", "localize",
-	    "The robot does not know its pose: it localizes itself in the map "
-	    "by stop-and-scan sweeps (global: anywhere in the map's free space; "
-	    "tracking: around --start-guess) and navigates on that estimate and "
-	    "its odometry; --start stays the true pose",
-	    false, "", "global|tracking", cmd);
-	TCLAP::ValueArg<std::string> argKidnapAt(
-	    "", "kidnap-at",
-	    "Carry the robot to --kidnap-to at this simulated time (s) while its "
-	    "odometry notices nothing",
-	    false, "", "T", cmd);
-	TCLAP::ValueArg<std::string> argKidnapTo(
-	    "", "kidnap-to", "Where --kidnap-at carries the robot", false, "",
-	    "X,Y,YAW_DEG", cmd);
-	TCLAP::ValueArg<std::string> argStartGuess(
-	    "", "start-guess", "Rough start pose for --localize tracking", false,
-	    "", "X,Y,YAW_DEG", cmd);
-	TCLAP::ValueArg<double> argArrivalMargin(
-	    "", "arrival-margin",
-	    "A believed arrival counts when the robot truly stands within the "
-	    "goal region's radius + goal_allowed_distance_m + this margin (m) of "
-	    "the scene's object (docs/navigation.md)",
-	    false, semnav::SimulationConfig().arrivalMargin, "M", cmd);
-	TCLAP::ValueArg<std::string> argLocConfig(
-	    "", "loc-config", "Localization INI", false,
-	    shipped("localization.ini"), "L.ini", cmd);
-	TCLAP::ValueArg<std::string> argPerceptionConfig(
-	    "", "perception-config", "Perception INI for --localize", false,
-	    shipped("perception.ini"), "P.ini", cmd);
+	Arguments a(cmd);
 	semnav::CascadeArgs cascades(cli);
 	semnav::NavigationRun::Settings s;
 	auto& c = s.config;
@@ -348,48 +403,48 @@ int main(int argc, char** argv)
 	cli.addWriteConfig(all);
 	TCLAP::SwitchArg& argJson = cli.addJson();
 	if (const auto code = cli.parse(argc, argv)) return *code;
-	s.gtMapScene = argGtMap.getValue();
-	s.mapDir = argMap.getValue();
+	s.gtMapScene = a.argGtMap.getValue();
+	s.mapDir = a.argMap.getValue();
 	if (s.mapDir.empty() == s.gtMapScene.empty())
 		return cli.usageError("give exactly one of --map, --gt-map");
-	s.scene = argScene.getValue();
+	s.scene = a.argScene.getValue();
 	if (s.scene.empty()) return cli.usageError("missing --scene");
-	const auto start = semnav::CommandLine::parsePose(argStart.getValue());
+	const auto start = semnav::CommandLine::parsePose(a.argStart.getValue());
 	if (!start)
 		return cli.usageError(
-		    "--start must be X,Y,YAW_DEG, got '" + argStart.getValue() + "'");
-	if (argCommand.getValue().empty() == argGoal.getValue().empty())
+		    "--start must be X,Y,YAW_DEG, got '" + a.argStart.getValue() + "'");
+	if (a.argCommand.getValue().empty() == a.argGoal.getValue().empty())
 		return cli.usageError("give exactly one of --command, --goal");
-	if (const auto problem =
-	        readKidnapping(argKidnapAt.getValue(), argKidnapTo.getValue(), s))
+	if (const auto problem = readKidnapping(
+	        a.argKidnapAt.getValue(), a.argKidnapTo.getValue(), s))
 		return cli.usageError(*problem);
 	if (const auto problem = readLocalization(
-	        argLocalize.getValue(), argStartGuess.getValue(), s))
+	        a.argLocalize.getValue(), a.argStartGuess.getValue(), s))
 		return cli.usageError(*problem);
-	if (!(argArrivalMargin.getValue() >= 0))
+	if (!(a.argArrivalMargin.getValue() >= 0))
 		return cli.usageError("--arrival-margin must be >= 0");
-	s.instancesFromScene = argSceneInstances.getValue();
-	s.outDir = argOut.getValue();
+	s.instancesFromScene = a.argSceneInstances.getValue();
+	s.outDir = a.argOut.getValue();
 
 	return cli.run(
 	    [&]
 	    {
 		    const semnav::NavCommand command =
-		        argGoal.getValue().empty()
-		            ? semnav::NavCommand::parse(argCommand.getValue())
+		        a.argGoal.getValue().empty()
+		            ? semnav::NavCommand::parse(a.argCommand.getValue())
 		            : semnav::NavCommand::nearest(
-		                  semnav::labelFromName(argGoal.getValue()));
+		                  semnav::labelFromName(a.argGoal.getValue()));
 		    if (const auto file = cascades.file())
 			    s.cascades =
 			        semnav::CascadeDetector::TOptions::fromIniFile(*file);
 		    s.config = semnav::SimulationConfig::load(
-		        argConfig.getValue(), argPlanning.getValue(),
-		        argSimConfig.getValue());
-		    s.config.arrivalMargin = argArrivalMargin.getValue();
+		        a.argConfig.getValue(), a.argPlanning.getValue(),
+		        a.argSimConfig.getValue());
+		    s.config.arrivalMargin = a.argArrivalMargin.getValue();
 		    if (s.localize)
 		    {
-			    localizationSections.load(argLocConfig.getValue());
-			    perceptionSections.load(argPerceptionConfig.getValue());
+			    localizationSections.load(a.argLocConfig.getValue());
+			    perceptionSections.load(a.argPerceptionConfig.getValue());
 		    }
 		    semnav::NavigationRun run(s);
 		    const auto r = run.run(command, *start);
