@@ -3,11 +3,15 @@
 // filter (WallMonteCarlo2D: prediction, wall likelihood, main-direction
 // correction, resampling) against MRPT's stock CMonteCarloLocalization2D
 // with the occupancy likelihood field on the horizontal scan line, same
-// particle count, same map (office, true poses), in the same run. Prints
-// the medians and their ratio at the end.
+// particle count, same map (office, true poses), in the same run; and the
+// wall filter with the semantic evidence (SemanticEvidenceMap: labelled
+// points and objects against the map's) against walls only. Prints the
+// medians and their ratios at the end.
 #include <benchmark/benchmark.h>
 #include <semnav/localization/Localizer.h>
 #include <semnav/localization/OccupancyMcl.h>
+#include <semnav/localization/SemanticEvidenceMap.h>
+#include <semnav/localization/SemanticExtractor.h>
 #include <semnav/localization/WallExtractor.h>
 #include <semnav/map/SemanticMap.h>
 
@@ -79,6 +83,30 @@ void BM_WallFilterUpdate(benchmark::State& state)
 	state.counters["wall_samples"] = double(obs.samples.size());
 }
 
+void BM_SemanticFilterUpdate(benchmark::State& state)
+{
+	const Office& o = office();
+	const int n = static_cast<int>(state.range(0));
+	Localizer loc(fixedOptions(n));
+	loc.setKnownMap(*o.map);
+	SemanticEvidenceMap semantic;
+	semantic.build(*o.map);
+	loc.setSemanticMap(&semantic);
+	const auto obs = WallExtractor().extract(o.labeled[kSweep]);
+	const auto sem = SemanticExtractor().extract(o.labeled[kSweep]);
+	loc.initialize(o.truePoses[kSweep]);
+	auto& v = samples()["semantic/" + std::to_string(n)];
+	for (auto _ : state)
+	{
+		const auto u = loc.update(kStep, obs, &sem);
+		v.push_back(u.ms);
+		benchmark::DoNotOptimize(u);
+	}
+	state.counters["particles"] = n;
+	state.counters["semantic_points"] =
+	    double(sem.classSamples.size() + sem.groundSamples.size());
+}
+
 void BM_StockMclUpdate(benchmark::State& state)
 {
 	const Office& o = office();
@@ -121,6 +149,10 @@ BENCHMARK(BM_WallFilterUpdate)
     ->Arg(1000)
     ->Arg(10000)
     ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SemanticFilterUpdate)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StockMclUpdate)
     ->Arg(1000)
     ->Arg(10000)
@@ -149,6 +181,12 @@ int main(int argc, char** argv)
 		    "stock MCL %.3f "
 		    "ms (%.3f ms per 1000), stock / walls = %.1f\n",
 		    n, w, w * 1000 / std::stod(n), s, s * 1000 / std::stod(n), s / w);
+		const double m = median(samples()[std::string("semantic/") + n]);
+		if (m > 0)
+			std::printf(
+			    "%s particles: walls + semantic evidence %.3f ms (%.3f ms per "
+			    "1000), (walls + semantic) / walls = %.2f\n",
+			    n, m, m * 1000 / std::stod(n), m / w);
 	}
 	return 0;
 }
