@@ -2,6 +2,7 @@
 #include <semnav/common/OptionTable.h>
 #include <semnav/localization/SemanticEvidenceMap.h>
 #include <semnav/localization/SemanticExtractor.h>
+#include <semnav/localization/WallMap.h>
 #include <semnav/map/SemanticMap.h>
 
 #include <algorithm>
@@ -61,10 +62,8 @@ SEMNAV_OPTIONS_FROM_TABLE(SemanticEvidenceMap::TOptions, optionTable())
 
 float SemanticEvidenceMap::value(double d, double sigma, double maxD) const
 {
-	d = std::min(d, maxD);
-	return static_cast<float>(std::log(
-	    m_options.hitWeight * std::exp(-d * d / (2 * sigma * sigma)) +
-	    m_options.randomWeight));
+	return WallMap::mixtureLogLikelihood(
+	    d, sigma, maxD, m_options.hitWeight, m_options.randomWeight);
 }
 
 void SemanticEvidenceMap::build(const SemanticMap& map)
@@ -103,12 +102,11 @@ void SemanticEvidenceMap::build(const SemanticMap& map)
 		for (int cy = 0; cy < ny; cy++)
 			for (int cx = 0; cx < nx; cx++)
 			{
-				float v = value(
+				const std::size_t i = m_geometry.index(cy, cx);
+				const float v = value(
 				    dist.at<float>(cy, cx) * m_geometry.resolution,
 				    m_options.sigma, m_options.maxDistance);
-				if (!(map.at("observations", cx, cy) > 0))
-					v = std::max(v, unknown);
-				field[m_geometry.index(cy, cx)] = v;
+				field[i] = m_unknown[i] ? std::max(v, unknown) : v;
 			}
 	}
 	for (const auto& o : map.instances())

@@ -170,6 +170,14 @@ void WallMap::buildFromSemanticMap(
 	m_main = MainDirections::estimate(m_segments, m_options.directions);
 }
 
+float WallMap::mixtureLogLikelihood(
+    double d, double sigma, double maxDistance, double hit, double random)
+{
+	d = std::min(d, maxDistance);
+	return static_cast<float>(
+	    std::log(hit * std::exp(-d * d / (2 * sigma * sigma)) + random));
+}
+
 void WallMap::buildField(
     const std::vector<uint8_t>& wallMask,
     const std::vector<uint8_t>* unknownMask)
@@ -180,15 +188,13 @@ void WallMap::buildField(
 		src.data[i] = wallMask[i] ? 0 : 255;
 	cv::Mat dist;
 	cv::distanceTransform(src, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
-	const double res = m_geometry.resolution,
-	             s2 = 2 * m_options.sigma * m_options.sigma;
+	const double res = m_geometry.resolution;
 	m_unknown = static_cast<float>(std::log(m_options.unknownWeight));
 	const auto value = [&](double d)
 	{
-		d = std::min(d, m_options.maxDistance);
-		return static_cast<float>(std::log(
-		    m_options.hitWeight * std::exp(-d * d / s2) +
-		    m_options.randomWeight));
+		return mixtureLogLikelihood(
+		    d, m_options.sigma, m_options.maxDistance, m_options.hitWeight,
+		    m_options.randomWeight);
 	};
 	m_field.resize(static_cast<std::size_t>(nx) * ny);
 	m_distance.resize(m_field.size());

@@ -111,6 +111,11 @@ public:
 	double inlierFraction(
 	    const mrpt::poses::CPose2D& pose,
 	    const std::vector<mrpt::math::TPoint2D>& robotPoints) const;
+	/** The likelihood field's value at distance d from the nearest
+	 * landmark: log(hit exp(-d^2 / 2 sigma^2) + random), d clamped at
+	 * maxDistance (also the semantic evidence's fields). */
+	static float mixtureLogLikelihood(
+	    double d, double sigma, double maxDistance, double hit, double random);
 	/** Log-likelihood of a point on a wall / far from walls. */
 	float ceiling() const { return m_ceiling; }
 	float floorValue() const { return m_floor; }
