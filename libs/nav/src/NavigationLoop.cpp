@@ -18,6 +18,8 @@ NavigationLoop::Result NavigationLoop::run(
     double deadline, const StepHook& hook)
 {
 	Result r;
+	m_stepMs.clear();
+	m_failureRescans = 0;
 	for (int attempt = 0;; attempt++)
 	{
 		drive(deadline, hook, r);
