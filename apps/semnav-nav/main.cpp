@@ -328,6 +328,11 @@ struct Arguments
 	    "",
 	    "global|tracking",
 	    cmd};
+	TCLAP::SwitchArg argVerbose{
+	    "", "verbose",
+	    "Localization progress on stderr: each sweep, the uniqueness check, "
+	    "each drive to look",
+	    cmd};
 	TCLAP::ValueArg<std::string> argKidnapAt{
 	    "",
 	    "kidnap-at",
@@ -425,6 +430,7 @@ int main(int argc, char** argv)
 		return cli.usageError("--arrival-margin must be >= 0");
 	s.instancesFromScene = a.argSceneInstances.getValue();
 	s.outDir = a.argOut.getValue();
+	s.verbose = a.argVerbose.getValue();
 
 	return cli.run(
 	    [&]

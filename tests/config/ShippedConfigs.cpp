@@ -16,6 +16,7 @@
 #include <semnav/nav/RobotNavInterface.h>
 #include <semnav/nav/SemanticNavigator.h>
 #include <semnav/nav/StopAndScanLocalizer.h>
+#include <semnav/nav/ViewPlanner.h>
 #include <semnav/perception/NormalImage.h>
 #include <semnav/perception/RangeSegmentation.h>
 #include <semnav/perception/Roughness.h>
@@ -258,6 +259,7 @@ stats_file = ./semnav-capture-stats.json
 	     "config/planning.ini and of [SimulatedRobot] in config/sim.ini).",
 	     {section<SemanticNavigator::TOptions>("SemanticNavigator"),
 	      section<StopAndScanLocalizer::TOptions>("StopAndScan"),
+	      section<ViewPlanner::TOptions>("ViewPlanner"),
 	      section<RobotNavInterface::TOptions>("RobotNavInterface"),
 	      section<SweepObstacles::TOptions>("SweepObstacles")},
 	     "",

@@ -272,6 +272,24 @@ void Localizer::initializeGlobal()
 	m_convergedAfter = -1;
 }
 
+void Localizer::initializeAround(
+    const std::vector<mrpt::math::TPose2D>& poses, double stdXY, double stdYaw)
+{
+	if (poses.empty()) throw Error("Localizer: no poses to initialize around");
+	auto& rng = mrpt::random::getRandomGenerator();
+	const std::size_t n = static_cast<std::size_t>(m_options.globalParticles);
+	m_pdf.resetDeterministic(mrpt::math::TPose2D(0, 0, 0), n);
+	for (std::size_t i = 0; i < n; i++)
+	{
+		auto& p = m_pdf.m_particles[i].d;
+		const mrpt::math::TPose2D& c = poses[i % poses.size()];
+		p.x = c.x + rng.drawGaussian1D(0, stdXY);
+		p.y = c.y + rng.drawGaussian1D(0, stdXY);
+		p.phi = mrpt::math::wrapToPi(c.phi + rng.drawGaussian1D(0, stdYaw));
+	}
+	m_lowInlierUpdates = 0;
+}
+
 LocalizationUpdate Localizer::update(
     const mrpt::poses::CPose2D& odometryIncrement, const WallObservation& obs,
     const SemanticObservation* semantic)

@@ -96,6 +96,7 @@ NavigationConfig NavigationConfig::load(
 	std::vector<ExtraSection> semnavSections{
 	    {"SemanticNavigator", &c.navigator},
 	    {"StopAndScan", &c.stopAndScan},
+	    {"ViewPlanner", &c.viewPlanner},
 	    {"RobotNavInterface", &c.robotInterface},
 	    {"SweepObstacles", &c.sweepObstacles}};
 	semnavSections.insert(semnavSections.end(), extra.begin(), extra.end());

@@ -7,6 +7,7 @@
 #include <semnav/common/Timing.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/nav/NavigationErrors.h>
+#include <semnav/nav/OdometryMotion.h>
 #include <semnav/nav/StopAndScanLocalizer.h>
 #include <semnav/robot/ControlClock.h>
 #include <semnav/robot/LocalizedPose.h>
@@ -37,6 +38,16 @@ StopAndScanLocalizer::Mode StopAndScanLocalizer::modeFromName(
 
 namespace
 {
+/** Particles this close (m, rad) to a cluster's seed belong to it. */
+constexpr double kHypothesisRadius = 0.5;
+const double kHypothesisYaw = mrpt::DEG2RAD(20.0);
+/** Clusters lighter than this share of the weight are not hypotheses. */
+constexpr double kHypothesisMinWeight = 0.03;
+constexpr std::size_t kMaxHypotheses = 4;
+/** Spread of the particles put around each hypothesis before a drive. */
+constexpr double kHypothesisStdXY = 0.1;
+const double kHypothesisStdYaw = mrpt::DEG2RAD(2.0);
+
 using O = StopAndScanLocalizer::TOptions;
 const OptionTable<O>& optionTable()
 {
@@ -185,6 +196,98 @@ void StopAndScanLocalizer::makeLocalizer(const Localizer::TOptions& o)
 
 StopAndScanLocalizer::~StopAndScanLocalizer() = default;
 
+void StopAndScanLocalizer::enableViewPlanning(
+    const TraversabilityGrid& u, const ViewPlanner::TOptions& options)
+{
+	m_viewPlanner = std::make_unique<ViewPlanner>(m_map, u, options);
+}
+
+std::vector<ViewPlanner::Hypothesis> StopAndScanLocalizer::hypotheses(
+    const SweepRecord& rec) const
+{
+	// Greedy clusters of the particles, heaviest first.
+	const auto& ps = m_localizer->pdf().m_particles;
+	std::vector<std::size_t> order(ps.size());
+	for (std::size_t i = 0; i < ps.size(); i++) order[i] = i;
+	std::sort(
+	    order.begin(), order.end(),
+	    [&](std::size_t a, std::size_t b) { return ps[a].log_w > ps[b].log_w; });
+	const double maxLog = ps.empty() ? 0 : ps[order[0]].log_w;
+	double total = 0;
+	for (const auto& p : ps) total += std::exp(p.log_w - maxLog);
+	const auto near = [](const mrpt::math::TPose2D& a,
+	                     const mrpt::math::TPose2D& b)
+	{
+		return std::hypot(a.x - b.x, a.y - b.y) < kHypothesisRadius &&
+		       std::abs(mrpt::math::wrapToPi(a.phi - b.phi)) < kHypothesisYaw;
+	};
+	std::vector<ViewPlanner::Hypothesis> h{{rec.estimate, 0}};
+	std::vector<char> taken(ps.size(), 0);
+	for (int cluster = 0; cluster < 8; cluster++)
+	{
+		const auto seed = std::find_if(
+		    order.begin(), order.end(), [&](std::size_t i) { return !taken[i]; });
+		if (seed == order.end()) break;
+		const mrpt::math::TPose2D centre = ps[*seed].d;
+		double w = 0;
+		for (std::size_t i : order)
+			if (!taken[i] && near(ps[i].d, centre))
+				taken[i] = 1, w += std::exp(ps[i].log_w - maxLog);
+		w /= total;
+		if (near(centre, rec.estimate))
+			h[0].weight += w;
+		else if (w >= kHypothesisMinWeight)
+			h.push_back({centre, w});
+	}
+	if (rec.checked &&
+	    std::none_of(
+	        h.begin(), h.end(),
+	        [&](const ViewPlanner::Hypothesis& o) { return near(o.pose, rec.rival); }))
+		h.push_back({rec.rival, std::max(h[0].weight, kHypothesisMinWeight)});
+	if (h.size() > kMaxHypotheses) h.resize(kMaxHypotheses);
+	return h;
+}
+
+bool StopAndScanLocalizer::driveToLook(
+    const RobotInterfaces& robot, int spotSweeps, Report& rep)
+{
+	if (!m_viewPlanner) return false;
+	const ViewPlanner::TOptions& o = m_viewPlanner->options();
+	const int perTurn =
+	    static_cast<int>(std::ceil(2 * M_PI / m_options.turnAngle - 1e-6));
+	if (!o.enabled || spotSweeps < perTurn || rep.drives >= o.maxDrives ||
+	    rep.sweeps >= m_options.maxSweeps)
+		return false;
+	const std::vector<ViewPlanner::Hypothesis> h =
+	    hypotheses(rep.records.back());
+	const double left = std::min(o.maxDrive, o.budget - rep.driveLength);
+	const auto move = h.size() < 2 ? std::nullopt : m_viewPlanner->plan(h, left);
+	if (!move)
+	{
+		MRPT_LOG_INFO_FMT(
+		    "drive to look: %zu hypotheses, no place within %.1f m tells "
+		    "them apart",
+		    h.size(), left);
+		return false;
+	}
+	MRPT_LOG_INFO_FMT(
+	    "drive to look: %zu hypotheses; to (%.2f, %.2f, %.0f deg) if the "
+	    "first holds, %.1f m, %.0f%% of the view differs",
+	    h.size(), move->end.x, move->end.y, mrpt::RAD2DEG(move->end.phi),
+	    move->length, 100 * move->difference);
+	// The filter keeps every hypothesis through the drive.
+	std::vector<mrpt::math::TPose2D> poses;
+	for (const auto& x : h) poses.push_back(x.pose);
+	m_localizer->initializeAround(
+	    poses, kHypothesisStdXY, kHypothesisStdYaw);
+	rep.driveLength += OdometryMotion(robot, o.driveSpeed, o.turnSpeed)
+	                       .follow(move->path, move->heading);
+	rep.drives++;
+	// The uniqueness check scores the sweeps from the new place.
+	keepStartSweeps(0);
+	return true;
+}
+
 StopAndScanLocalizer::Report StopAndScanLocalizer::start(
     const RobotInterfaces& robot, Mode mode,
     const std::optional<mrpt::math::TPose2D>& guess)
@@ -238,23 +341,7 @@ void StopAndScanLocalizer::stopNow(const RobotInterfaces& robot)
 void StopAndScanLocalizer::turnInPlace(
     const RobotInterfaces& robot, double angle)
 {
-	const double dt = robot.clock->period();
-	const double speed = m_options.turnSpeed;
-	double turned = 0;
-	for (int guard = 0; guard < 100000; guard++)
-	{
-		const double left = std::abs(angle) - std::abs(turned);
-		if (left <= 1e-3) break;
-		const double before = robot.base->odometry().pose.phi;
-		if (!robot.base->setVelocity(
-		        0, (angle >= 0 ? 1 : -1) * std::min(speed, left / dt)))
-			throw LocalizationFailedError(
-			    "localization: the base refused to turn (emergency stop?)");
-		robot.clock->waitFor(dt);
-		turned +=
-		    mrpt::math::wrapToPi(robot.base->odometry().pose.phi - before);
-	}
-	stopNow(robot);
+	OdometryMotion(robot, 0, m_options.turnSpeed).turn(angle);
 }
 
 void StopAndScanLocalizer::sweepUntilConverged(
@@ -265,13 +352,18 @@ void StopAndScanLocalizer::sweepUntilConverged(
 	m_inStart = true;
 	std::size_t segments = 0;
 	for (const auto& r : rep.records) segments += r.segments;
+	int spotSweeps = 0;
+	bool drove = false;
 	for (int k = static_cast<int>(rep.records.size()); k < m_options.maxSweeps;
 	     k++)
 	{
-		if (k > 0 || turnFirst) turnInPlace(robot, m_options.turnAngle);
+		if ((k > 0 || turnFirst) && !drove)
+			turnInPlace(robot, m_options.turnAngle);
+		drove = false;
 		const SweepRecord r = sweepAndUpdate(robot);
 		rep.records.push_back(r);
 		rep.sweeps++;
+		spotSweeps++;
 		segments += r.segments;
 		MRPT_LOG_INFO_FMT(
 		    "sweep %d: %zu walls, spread %.3f m %.2f deg, error %.3f m "
@@ -289,8 +381,8 @@ void StopAndScanLocalizer::sweepUntilConverged(
 			global = true;
 			keepStartSweeps(1);
 		}
-		if (!r.converged) continue;
-		if (m_options.uniquenessCheck && global)
+		if (r.converged) rep.ambiguous = false;
+		if (r.converged && m_options.uniquenessCheck && global)
 		{
 			SweepRecord& rr = rep.records.back();
 			checkUniqueness(rr);
@@ -300,15 +392,27 @@ void StopAndScanLocalizer::sweepUntilConverged(
 			    "%.1f deg) %.3f",
 			    rr.score, rr.rival.x, rr.rival.y, mrpt::RAD2DEG(rr.rival.phi),
 			    rr.rivalScore);
-			if (rr.rivalScore > rr.score - m_options.uniquenessMargin)
+			rep.ambiguous =
+			    rr.rivalScore > rr.score - m_options.uniquenessMargin;
+			if (rr.rivalScore > rr.score + m_options.uniquenessMargin)
 			{
-				rep.ambiguous = true;
-				continue;
+				// Another place explains the sweeps clearly better than the
+				// filter's estimate: the filter starts again there.
+				MRPT_LOG_INFO("uniqueness: the other place fits better");
+				m_localizer->initializeAround(
+				    {rr.rival}, kHypothesisStdXY, kHypothesisStdYaw);
 			}
 		}
-		rep.converged = true;
-		rep.ambiguous = false;
-		break;
+		if (r.converged && !rep.ambiguous)
+		{
+			rep.converged = true;
+			break;
+		}
+		if (global && driveToLook(robot, spotSweeps, rep))
+		{
+			drove = true;
+			spotSweeps = 0;
+		}
 	}
 	m_inStart = false;
 	const SweepRecord& last = rep.records.back();

@@ -53,6 +53,8 @@ SimulatedNavigation::Result NavigationRun::run(
 		sim.setLocalization(
 		    *m_settings.localize, m_settings.localization,
 		    m_settings.perception, m_settings.startGuess, m_settings.cascades);
+	if (m_settings.verbose && sim.localizer())
+		sim.localizer()->setMinLoggingLevel(mrpt::system::LVL_INFO);
 	const auto r = sim.run(command, start, m_navlog);
 	if (!m_png.empty())
 	{

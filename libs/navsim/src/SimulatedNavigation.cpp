@@ -6,6 +6,7 @@
 #include <semnav/nav/RobotNavInterface.h>
 #include <semnav/navsim/SceneMapBuilder.h>
 #include <semnav/navsim/SimulatedNavigation.h>
+#include <semnav/planning/SemanticPlanner.h>
 #include <semnav/sim/SimulatedRobot.h>
 #include <unistd.h>
 
@@ -109,6 +110,11 @@ void SimulatedNavigation::setLocalization(
 {
 	m_localizer = std::make_unique<StopAndScanLocalizer>(
 	    m_map, m_config.stopAndScan, localization, perception, cascades);
+	if (m_config.viewPlanner.enabled)
+		m_localizer->enableViewPlanning(
+		    SemanticPlanner(m_map, m_config.cnn, m_config.traversability)
+		        .traversability(m_config.navigationProfile()),
+		    m_config.viewPlanner);
 	m_mode = mode;
 	m_guess = guess;
 }

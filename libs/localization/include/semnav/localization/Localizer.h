@@ -129,6 +129,12 @@ public:
 	/** Global start: `globalParticles` particles uniform over the known
 	 * map's free cells, yaw uniform. Needs setKnownMap(). */
 	void initializeGlobal();
+	/** Several hypotheses (an ambiguous start about to drive and look):
+	 * `globalParticles` particles split evenly into Gaussians of
+	 * (stdXY, stdYaw) around `poses`. */
+	void initializeAround(
+	    const std::vector<mrpt::math::TPose2D>& poses, double stdXY,
+	    double stdYaw);
 
 	/** One step: motion by the odometry increment (robot frame), then the
 	 * sweep's walls and (with setSemanticMap) its semantic evidence. An

@@ -6,6 +6,7 @@
 #include <semnav/nav/RobotNavInterface.h>
 #include <semnav/nav/SemanticNavigator.h>
 #include <semnav/nav/StopAndScanLocalizer.h>
+#include <semnav/nav/ViewPlanner.h>
 #include <semnav/planning/CnnPlanner.h>
 #include <semnav/planning/TraversabilityBuilder.h>
 #include <semnav/robot/SweepObstacles.h>
@@ -18,7 +19,7 @@ namespace semnav
 {
 /** Everything the runtime's navigation is configured with:
  * config/navigation.ini ([SemanticNavigator], [StopAndScan],
- * [RobotNavInterface], [SweepObstacles] and MRPT's reactive-navigation
+ * [ViewPlanner], [RobotNavInterface], [SweepObstacles] and MRPT's reactive-navigation
  * sections, based on MRPT's reactive2d_config.ini) and config/planning.ini
  * ([CnnPlanner], [Traversability], optionally [SemanticMap], [TravelCost]
  * for loading maps). The robot's own sections (e.g. the simulator's
@@ -33,6 +34,7 @@ struct NavigationConfig
 {
 	SemanticNavigator::TOptions navigator;
 	StopAndScanLocalizer::TOptions stopAndScan;
+	ViewPlanner::TOptions viewPlanner;
 	RobotNavInterface::TOptions robotInterface;
 	SweepObstacles::TOptions sweepObstacles;
 	CnnPlanner::TOptions cnn;

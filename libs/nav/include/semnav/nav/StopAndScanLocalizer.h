@@ -12,6 +12,7 @@
 #include <semnav/localization/SemanticExtractor.h>
 #include <semnav/localization/WallExtractor.h>
 #include <semnav/nav/NavCommand.h>
+#include <semnav/nav/ViewPlanner.h>
 #include <semnav/perception/LabeledSweep.h>
 #include <semnav/perception/PerceptionPipeline.h>
 #include <semnav/robot/RobotInterfaces.h>
@@ -189,6 +190,10 @@ public:
 		double errorXY = 0, errorYaw = 0;
 		/** Wall clock of the whole start, ms. */
 		double ms = 0;
+		/** Drives to look (enableViewPlanning) and their odometry length
+		 * (m). */
+		int drives = 0;
+		double driveLength = 0;
 		std::vector<SweepRecord> records;
 	};
 
@@ -253,6 +258,20 @@ public:
 	ArrivalCheck confirmArrival(
 	    const RobotInterfaces& robot, const NavCommand& command, int objectId);
 
+	/** Active disambiguation: a global start that stays ambiguous after
+	 * a full turn on the spot drives to a place whose view tells its
+	 * hypotheses apart (ViewPlanner; [ViewPlanner] budget), then sweeps
+	 * again. `u` is the traversability the navigator plans on. Without
+	 * this the robot only turns on the spot. */
+	void enableViewPlanning(
+	    const TraversabilityGrid& u, const ViewPlanner::TOptions& options);
+
+	/** Where the robot may be after the last sweep: the filter's particle
+	 * clusters (the estimate first) and the uniqueness check's rival of
+	 * `rec`. */
+	std::vector<ViewPlanner::Hypothesis> hypotheses(
+	    const SweepRecord& rec) const;
+
 	/** Every sweep so far (start and rescans). */
 	const std::vector<SweepRecord>& records() const { return m_records; }
 	const TOptions& options() const { return m_options; }
@@ -274,6 +293,9 @@ private:
 	void sweepUntilConverged(
 	    const RobotInterfaces& robot, bool global, bool turnFirst, Report& rep,
 	    std::chrono::steady_clock::time_point t0);
+	/** After `spotSweeps` sweeps where the robot stands: drives to look
+	 * when enabled and within budget. True when it drove. */
+	bool driveToLook(const RobotInterfaces& robot, int spotSweeps, Report& rep);
 	/** New Localizer with options `o` on the known map. */
 	void makeLocalizer(const Localizer::TOptions& o);
 	/** Best score of the start's sweeps over the free space, away from
@@ -299,6 +321,7 @@ private:
 	SemanticEvidenceMap m_semantic;
 	WallExtractor m_extractor;
 	std::unique_ptr<Localizer> m_localizer;
+	std::unique_ptr<ViewPlanner> m_viewPlanner;
 	/** Scored walls when unknownCells. */
 	WallMap m_walls;
 	bool m_started = false;

@@ -47,6 +47,9 @@ public:
 		/** Output directory for navigation.reactivenavlog and
 		 * navigation.png ("" for none). */
 		std::string outDir;
+		/** Localization progress (each sweep, each drive to look) on
+		 * stderr. */
+		bool verbose = false;
 	};
 
 	/** An instance of the commanded label with the planner's cost. */

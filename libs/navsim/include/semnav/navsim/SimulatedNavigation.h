@@ -152,6 +152,7 @@ public:
 
 	/** The localizer of setLocalization() (nullptr without). */
 	const StopAndScanLocalizer* localizer() const { return m_localizer.get(); }
+	StopAndScanLocalizer* localizer() { return m_localizer.get(); }
 
 private:
 	/** Writes MRPT's navigation log of `nav` to navlogPath at the end. */
