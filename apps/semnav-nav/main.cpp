@@ -80,6 +80,8 @@ nlohmann::json localizationJson(const semnav::SimulatedNavigation::Result& r)
 	nlohmann::json j = {
 	    {"mode", semnav::StopAndScanLocalizer::modeName(l.mode)},
 	    {"sweeps", l.sweeps},
+	    {"drives_to_look", l.drives},
+	    {"drive_to_look_m", l.driveLength},
 	    {"converged", l.converged},
 	    {"estimate", poseJson(l.estimate)},
 	    {"truth", poseJson(l.truth)},

@@ -85,6 +85,10 @@ const OptionTable<O>& optionTable()
 	            0, 1,
 	            "Uniqueness check: places are scored on samples in observed "
 	            "cells; fewer than this share there: not scored.")
+	        .real(
+	            "uniqueness_min_score", &O::uniquenessMinScore, -100, 0,
+	            "A start whose sweeps score less at the estimate is not "
+	            "accepted.")
 	        .integer(
 	            "max_sweeps", &O::maxSweeps, 1, 100,
 	            "Sweeps of a start before it fails.")
@@ -381,7 +385,7 @@ void StopAndScanLocalizer::sweepUntilConverged(
 			global = true;
 			keepStartSweeps(1);
 		}
-		if (r.converged) rep.ambiguous = false;
+		if (r.converged) rep.ambiguous = rep.poorFit = false;
 		if (r.converged && m_options.uniquenessCheck && global)
 		{
 			SweepRecord& rr = rep.records.back();
@@ -394,6 +398,7 @@ void StopAndScanLocalizer::sweepUntilConverged(
 			    rr.rivalScore);
 			rep.ambiguous =
 			    rr.rivalScore > rr.score - m_options.uniquenessMargin;
+			rep.poorFit = rr.score < m_options.uniquenessMinScore;
 			if (rr.rivalScore > rr.score + m_options.uniquenessMargin)
 			{
 				// Another place explains the sweeps clearly better than the
@@ -403,7 +408,7 @@ void StopAndScanLocalizer::sweepUntilConverged(
 				    {rr.rival}, kHypothesisStdXY, kHypothesisStdYaw);
 			}
 		}
-		if (r.converged && !rep.ambiguous)
+		if (r.converged && !rep.ambiguous && !rep.poorFit)
 		{
 			rep.converged = true;
 			break;
@@ -424,13 +429,12 @@ void StopAndScanLocalizer::sweepUntilConverged(
 	const std::string what = "localization (" + modeName(rep.mode) +
 	                         (rep.recovery ? ", lost while navigating" : "") +
 	                         "): ";
+	// The last sweep that ran the uniqueness check names the twins.
+	const auto checked = std::find_if(
+	    rep.records.rbegin(), rep.records.rend(),
+	    [](const SweepRecord& r) { return r.checked; });
+	const SweepRecord& c = checked != rep.records.rend() ? *checked : last;
 	if (!rep.converged && rep.ambiguous)
-	{
-		// The last sweep that ran the uniqueness check names the twins.
-		const auto checked = std::find_if(
-		    rep.records.rbegin(), rep.records.rend(),
-		    [](const SweepRecord& r) { return r.checked; });
-		const SweepRecord& c = checked != rep.records.rend() ? *checked : last;
 		throw LocalizationFailedError(
 		    what + "ambiguous after " + std::to_string(rep.sweeps) +
 		    mrpt::format(
@@ -438,7 +442,14 @@ void StopAndScanLocalizer::sweepUntilConverged(
 		        "%.2f, %.0f deg) alike",
 		        c.estimate.x, c.estimate.y, mrpt::RAD2DEG(c.estimate.phi),
 		        c.rival.x, c.rival.y, mrpt::RAD2DEG(c.rival.phi)));
-	}
+	if (!rep.converged && rep.poorFit)
+		throw LocalizationFailedError(
+		    what +
+		    mrpt::format(
+		        "the map explains the sweeps poorly after %d sweeps: %.2f "
+		        "at (%.2f, %.2f, %.0f deg), uniqueness_min_score %.2f",
+		        rep.sweeps, c.score, c.estimate.x, c.estimate.y,
+		        mrpt::RAD2DEG(c.estimate.phi), m_options.uniquenessMinScore));
 	if (!rep.converged)
 		throw LocalizationFailedError(
 		    what + "not converged after " + std::to_string(rep.sweeps) +

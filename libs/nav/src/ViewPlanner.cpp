@@ -34,6 +34,10 @@ const OptionTable<O>& optionTable()
 	        .real(
 	            "min_drive_m", &O::minDrive, 0, 100,
 	            "...at least this far from the robot.")
+	        .real(
+	            "end_clearance_m", &O::endClearance, 0, 5,
+	            "The drive ends where the robot could also stand this far "
+	            "off (odometry drifts while it drives).")
 	        .real("view_range_m", &O::viewRange, 0.5, 80, "Predicted view...")
 	        .angle("view_fov_deg", &O::viewFov, 10, 360, "...and its width.")
 	        .real(
@@ -87,6 +91,16 @@ bool ViewPlanner::freeAt(double x, double y) const
 		return false;
 	const auto c = m_u.geometry().cellOf(x, y);
 	return c && !m_u.blocked(*c);
+}
+
+bool ViewPlanner::clearAt(double x, double y) const
+{
+	if (!freeAt(x, y)) return false;
+	const double r = m_options.endClearance;
+	for (int k = 0; k < 8; k++)
+		if (!freeAt(x + r * std::cos(k * M_PI / 4), y + r * std::sin(k * M_PI / 4)))
+			return false;
+	return true;
 }
 
 ViewPlanner::View ViewPlanner::view(const mrpt::math::TPose2D& pose) const
@@ -221,7 +235,7 @@ std::optional<ViewPlanner::Move> ViewPlanner::plan(
 			for (std::size_t j = 0; j < h.size(); j++)
 			{
 				const mrpt::math::TPoint2D q = under(j, p);
-				if (!freeAt(q.x, q.y)) break;
+				if (!clearAt(q.x, q.y)) break;
 				views.push_back(view({q.x, q.y, h[j].pose.phi}));
 			}
 			if (views.size() < h.size()) continue;

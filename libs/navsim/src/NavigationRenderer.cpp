@@ -1,4 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <mrpt/core/format.h>
 #include <semnav/map/MapRenderer.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/navsim/NavigationRenderer.h>
@@ -132,6 +133,10 @@ cv::Mat NavigationRenderer::render(
 		    r.localization->sweeps, r.localization->errorXY,
 		    r.localization->errorYaw * 180 / M_PI);
 		text += buf;
+		if (r.localization->drives > 0)
+			text += mrpt::format(
+			    ", %d drives to look (%.1f m)", r.localization->drives,
+			    r.localization->driveLength);
 	}
 	cv::Mat out(img.rows + 28, img.cols, img.type(), cv::Scalar(255, 255, 255));
 	img.copyTo(out(cv::Rect(0, 28, img.cols, img.rows)));

@@ -96,7 +96,7 @@ public:
 		 * not converged. */
 		bool uniquenessCheck = true;
 		double uniquenessStep = 0.15;
-		double uniquenessMargin = 0.1;
+		double uniquenessMargin = 0.07;
 		double uniquenessMinDistance = 0.75;
 		/** uniqueness_min_known_fraction: the uniqueness check scores each
 		 * place on the samples that fall in cells the map observed (what
@@ -104,6 +104,12 @@ public:
 		 * barely mapped twin room); a place where fewer than this fraction
 		 * of the wall samples do is not scored. */
 		double uniquenessMinKnownFraction = 0.25;
+		/** uniqueness_min_score: a start is accepted only if its sweeps
+		 * score at least this (mean log-likelihood per wall sample, walls
+		 * and semantics) at the estimate: a place that explains them
+		 * poorly is not where the robot is, even with no better place in
+		 * the map (its true place may be one the map barely saw). */
+		double uniquenessMinScore = -0.15;
 		/** max_sweeps: sweeps of a start before giving up. */
 		int maxSweeps = 12;
 		/** turn_deg: turn on the spot between start sweeps (rad). */
@@ -182,6 +188,9 @@ public:
 		/** Not converged because another place explains the sweeps as
 		 * well (see uniqueness_check). */
 		bool ambiguous = false;
+		/** Not converged because the sweeps fit the map poorly at the
+		 * estimate (uniqueness_min_score). */
+		bool poorFit = false;
 		/** A rescan that found the robot lost and turned and swept until
 		 * converged again. */
 		bool recovery = false;

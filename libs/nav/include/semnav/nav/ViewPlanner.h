@@ -49,12 +49,15 @@ public:
 		int maxDrives = 3;
 		double budget = 12.0;
 		/** max_drive_m: path length of one drive. */
-		double maxDrive = 5.0;
+		double maxDrive = 3.0;
 		/** candidate_step_m: grid of the end points tried. */
 		double candidateStep = 0.3;
 		/** min_drive_m: end points closer than this are not tried (the
 		 * robot has looked around where it stands). */
 		double minDrive = 0.5;
+		/** end_clearance_m: the end point must be free this far around it
+		 * under every hypothesis (the odometry drifts on the way). */
+		double endClearance = 0.3;
 		/** view_range_m, view_fov_deg: the predicted view. */
 		double viewRange = 8.0;
 		double viewFov = mrpt::DEG2RAD(180.0);
@@ -127,6 +130,8 @@ public:
 private:
 	/** Not blocked and observed at (x, y). */
 	bool freeAt(double x, double y) const;
+	/** freeAt (x, y) and around it at end_clearance_m. */
+	bool clearAt(double x, double y) const;
 	/** Mean weighted pairwise difference of the views at the best heading
 	 * (returned in `heading`). */
 	double score(const std::vector<View>& views,
