@@ -284,6 +284,43 @@ SemanticPlanner::Plan SemanticNavigator::planFrom(double x, double y)
 	}
 }
 
+SemanticPlanner::Plan SemanticNavigator::planFromNearestFree(
+    const mrpt::math::TPose2D& pose)
+{
+	try
+	{
+		return planFrom(pose.x, pose.y);
+	}
+	catch (const StartBlockedError&)
+	{
+		// The robot brushed an inflated obstacle (or a sensed one), or was
+		// localized there: start from the nearest free cell within
+		// start_snap_m.
+		const TraversabilityGrid u = m_planner.traversability(m_profile);
+		const GridGeometry& g = u.geometry();
+		const int r =
+		    static_cast<int>(std::ceil(m_options.startSnap / g.resolution));
+		int cx, cy;
+		g.worldToCell(pose.x, pose.y, cx, cy);
+		double bestD = 1e300, bx = 0, by = 0;
+		for (int dy = -r; dy <= r; dy++)
+			for (int dx = -r; dx <= r; dx++)
+			{
+				const int row = cy + dy, col = cx + dx;
+				if (!g.contains(row, col) || u.blocked(row, col)) continue;
+				const double d = std::hypot(dx, dy) * g.resolution;
+				if (d < bestD && d <= m_options.startSnap)
+				{
+					bestD = d;
+					bx = g.centerX(col);
+					by = g.centerY(row);
+				}
+			}
+		if (bestD > 1e299) throw;
+		return planFrom(bx, by);
+	}
+}
+
 void SemanticNavigator::start(const NavCommand& command)
 {
 	m_command = command;
@@ -301,7 +338,7 @@ void SemanticNavigator::start(const NavCommand& command)
 	SemanticPlanner::Plan plan;
 	try
 	{
-		plan = planFrom(pose.x, pose.y);
+		plan = planFromNearestFree(pose);
 	}
 	catch (...)
 	{
@@ -490,37 +527,7 @@ bool SemanticNavigator::replan(ReplanReason reason)
 	SemanticPlanner::Plan plan;
 	try
 	{
-		try
-		{
-			plan = planFrom(pose.x, pose.y);
-		}
-		catch (const StartBlockedError&)
-		{
-			// The robot brushed an inflated obstacle (or a sensed one):
-			// start from the nearest free cell within start_snap_m.
-			const TraversabilityGrid u = m_planner.traversability(m_profile);
-			const GridGeometry& g = u.geometry();
-			const int r =
-			    static_cast<int>(std::ceil(m_options.startSnap / g.resolution));
-			int cx, cy;
-			g.worldToCell(pose.x, pose.y, cx, cy);
-			double bestD = 1e300, bx = 0, by = 0;
-			for (int dy = -r; dy <= r; dy++)
-				for (int dx = -r; dx <= r; dx++)
-				{
-					const int row = cy + dy, col = cx + dx;
-					if (!g.contains(row, col) || u.blocked(row, col)) continue;
-					const double d = std::hypot(dx, dy) * g.resolution;
-					if (d < bestD && d <= m_options.startSnap)
-					{
-						bestD = d;
-						bx = g.centerX(col);
-						by = g.centerY(row);
-					}
-				}
-			if (bestD > 1e299) throw;
-			plan = planFrom(bx, by);
-		}
+		plan = planFromNearestFree(pose);
 	}
 	catch (const NoPathError& e)
 	{

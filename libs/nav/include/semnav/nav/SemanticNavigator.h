@@ -212,6 +212,9 @@ public:
 	bool replan(ReplanReason reason);
 
 private:
+	/** planFrom the pose or, when it is blocked (inflated obstacle), from
+	 * the nearest free cell within start_snap_m. */
+	SemanticPlanner::Plan planFromNearestFree(const mrpt::math::TPose2D& pose);
 	SemanticPlanner::Plan planFrom(double x, double y);
 	bool pathBlocked();
 	/** Hands the last plan's waypoints to MRPT, after turning toward the
