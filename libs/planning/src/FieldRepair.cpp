@@ -1,0 +1,175 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include "FieldRepair.h"
+
+namespace semnav::detail
+{
+FieldRepairer::FieldRepairer(
+    std::vector<double>& x, const TraversabilityGrid& oldU,
+    const GoalLayer& oldGoals, const TraversabilityGrid& newU,
+    const GoalLayer& newGoals)
+    : m_x(x),
+      m_oldU(oldU.values()),
+      m_newU(newU.values()),
+      m_oldGoals(oldGoals),
+      m_newGoals(newGoals),
+      m_g(newU.geometry()),
+      m_L(newU.L()),
+      m_a(newU.geometry().resolution)
+{
+}
+
+template <class F>
+void FieldRepairer::forNeighbours(std::size_t i, const F& f) const
+{
+	const int r = static_cast<int>(i / m_g.cols);
+	const int c = static_cast<int>(i % m_g.cols);
+	for (int k = 0; k < 8; k++)
+	{
+		const int rr = r + kDr[k], cc = c + kDc[k];
+		if (m_g.contains(rr, cc)) f(m_g.index(rr, cc), k);
+	}
+}
+
+void FieldRepairer::collectChanges(const CellRect& rect)
+{
+	const CellRect r = rect.clipped(m_g);
+	if (r.empty()) return;
+	for (int row = r.row0; row < r.row1; row++)
+		for (std::size_t i = m_g.index(row, r.col0),
+		                 e = m_g.index(row, r.col1 - 1) + 1;
+		     i < e; i++)
+		{
+			const bool bo = m_oldU[i] >= m_L, bn = m_newU[i] >= m_L;
+			const bool so = sourceOld(i), sn = sourceNew(i);
+			if (m_oldGoals.isGoal(i) && !m_newGoals.isGoal(i)) m_removedGoals++;
+			if (so && !sn) m_lostSources++;
+			if (bo != bn || (!bo && m_oldU[i] != m_newU[i]) || so != sn)
+				m_changed.push_back(i);
+		}
+}
+
+void FieldRepairer::pushDependants(std::size_t i, double v, double u)
+{
+	forNeighbours(
+	    i,
+	    [&](std::size_t j, int k)
+	    {
+		    if (m_x[j] > -kInf && m_x[j] == v - (m_a[k] + u))
+			    m_queue.push({m_x[j], j});
+	    });
+}
+
+void FieldRepairer::invalidateCell(std::size_t i, double v, double u)
+{
+	m_x[i] = -kInf;
+	m_invalidated.push_back(i);
+	pushDependants(i, v, u);
+}
+
+bool FieldRepairer::supported(std::size_t i, double v) const
+{
+	if (sourceNew(i)) return true;
+	bool ok = false;
+	forNeighbours(
+	    i,
+	    [&](std::size_t j, int k)
+	    {
+		    if (!ok && !blockedNew(j)) ok = m_x[j] - (m_a[k] + m_newU[j]) >= v;
+	    });
+	return ok;
+}
+
+bool FieldRepairer::invalidate(std::size_t workLimit)
+{
+	for (const std::size_t c : m_changed)
+	{
+		const double v = m_x[c];
+		if (v == -kInf) continue;  // nothing came through c
+		if (blockedNew(c))
+		{
+			invalidateCell(c, v, m_oldU[c]);
+			continue;
+		}
+		if (m_newU[c] > m_oldU[c]) pushDependants(c, v, m_oldU[c]);
+		if (sourceOld(c) && !sourceNew(c)) m_queue.push({v, c});
+	}
+	// Highest old value first: a cell's supports (higher values) are final
+	// when it is examined.
+	while (!m_queue.empty())
+	{
+		const Entry e = m_queue.top();
+		m_queue.pop();
+		if (++m_work > workLimit) return false;
+		if (m_x[e.cell] != e.value || supported(e.cell, e.value)) continue;
+		invalidateCell(e.cell, e.value, m_oldU[e.cell]);
+	}
+	return true;
+}
+
+void FieldRepairer::raiseFromNeighbours(std::size_t i)
+{
+	if (blockedNew(i)) return;
+	double v = sourceNew(i) ? m_L : -kInf;
+	forNeighbours(
+	    i,
+	    [&](std::size_t j, int k)
+	    {
+		    if (blockedNew(j)) return;
+		    const double t = m_x[j] - (m_a[k] + m_newU[j]);
+		    if (t > v) v = t;
+	    });
+	if (v > m_x[i])
+	{
+		m_x[i] = v;
+		m_raised++;
+		m_queue.push({v, i});
+	}
+}
+
+bool FieldRepairer::propagate(std::size_t workLimit)
+{
+	for (const std::size_t i : m_invalidated) raiseFromNeighbours(i);
+	for (const std::size_t c : m_changed)
+	{
+		raiseFromNeighbours(c);
+		// A cheaper (or newly free) cell offers more to its neighbours.
+		if (!blockedNew(c) && (m_oldU[c] >= m_L || m_newU[c] < m_oldU[c]))
+			forNeighbours(
+			    c, [&](std::size_t j, int) { raiseFromNeighbours(j); });
+	}
+	// Highest value first: each cell leaves the queue once at its final
+	// value (stale entries are skipped).
+	while (!m_queue.empty())
+	{
+		const Entry e = m_queue.top();
+		m_queue.pop();
+		if (++m_work > workLimit) return false;
+		if (m_x[e.cell] != e.value) continue;
+		const double u = m_newU[e.cell];
+		forNeighbours(
+		    e.cell,
+		    [&](std::size_t j, int k)
+		    {
+			    if (blockedNew(j)) return;
+			    const double t = e.value - (m_a[k] + u);
+			    if (t > m_x[j])
+			    {
+				    m_x[j] = t;
+				    m_raised++;
+				    m_queue.push({t, j});
+			    }
+		    });
+	}
+	return true;
+}
+
+bool FieldRepairer::run(std::size_t workLimit, FieldRepairStats& stats)
+{
+	stats.changedCells = m_changed.size();
+	const bool done = invalidate(workLimit) && propagate(workLimit);
+	stats.invalidatedCells = m_invalidated.size();
+	stats.raisedCells = m_raised;
+	return done;
+}
+
+}  // namespace semnav::detail
