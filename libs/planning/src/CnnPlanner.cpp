@@ -207,6 +207,10 @@ FieldRepairStats CnnPlanner::repairField(
 	};
 	if (!(oldU.geometry() == g) || oldU.L() != newU.L())
 		return recompute("the grid's geometry or L changed");
+	if (!detail::FieldRepairer::applicable(g, newU.L()))
+		return recompute(
+		    "L is too large for the resolution (its rounding unit exceeds "
+		    "1/64 of a cell) or the grid exceeds 2^32 cells");
 
 	detail::FieldRepairer repairer(field.x, oldU, oldGoals, newU, newGoals);
 	repairer.collectChanges(changed ? *changed : CellRect::all(g));

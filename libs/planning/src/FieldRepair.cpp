@@ -1,6 +1,9 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include "FieldRepair.h"
 
+#include <cmath>
+#include <cstdint>
+
 namespace semnav::detail
 {
 FieldRepairer::FieldRepairer(
@@ -14,15 +17,24 @@ FieldRepairer::FieldRepairer(
       m_newGoals(newGoals),
       m_g(newU.geometry()),
       m_L(newU.L()),
-      m_a(newU.geometry().resolution)
+      m_a(newU.geometry().resolution),
+      m_queue(m_L, bucketWidth(newU.geometry().resolution))
 {
+}
+
+bool FieldRepairer::applicable(const GridGeometry& g, double L)
+{
+	const double ulp = std::nextafter(L, 2 * L) - L;
+	return 16 * ulp <= bucketWidth(g.resolution) && g.cellCount() <= UINT32_MAX;
 }
 
 template <class F>
 void FieldRepairer::forNeighbours(std::size_t i, const F& f) const
 {
-	const int r = static_cast<int>(i / m_g.cols);
-	const int c = static_cast<int>(i % m_g.cols);
+	const auto i32 = static_cast<std::uint32_t>(i);
+	const auto cols = static_cast<std::uint32_t>(m_g.cols);
+	const int r = static_cast<int>(i32 / cols);
+	const int c = static_cast<int>(i32 - static_cast<std::uint32_t>(r) * cols);
 	for (int k = 0; k < 8; k++)
 	{
 		const int rr = r + kDr[k], cc = c + kDc[k];
@@ -55,7 +67,7 @@ void FieldRepairer::pushDependants(std::size_t i, double v, double u)
 	    [&](std::size_t j, int k)
 	    {
 		    if (m_x[j] > -kInf && m_x[j] == v - (m_a[k] + u))
-			    m_queue.push({m_x[j], j});
+			    m_queue.push(m_x[j], j);
 	    });
 }
 
@@ -91,14 +103,13 @@ bool FieldRepairer::invalidate(std::size_t workLimit)
 			continue;
 		}
 		if (m_newU[c] > m_oldU[c]) pushDependants(c, v, m_oldU[c]);
-		if (sourceOld(c) && !sourceNew(c)) m_queue.push({v, c});
+		if (sourceOld(c) && !sourceNew(c)) m_queue.push(v, c);
 	}
 	// Highest old value first: a cell's supports (higher values) are final
 	// when it is examined.
-	while (!m_queue.empty())
+	BucketQueue::Entry e;
+	while (m_queue.pop(e))
 	{
-		const Entry e = m_queue.top();
-		m_queue.pop();
 		if (++m_work > workLimit) return false;
 		if (m_x[e.cell] != e.value || supported(e.cell, e.value)) continue;
 		invalidateCell(e.cell, e.value, m_oldU[e.cell]);
@@ -122,12 +133,13 @@ void FieldRepairer::raiseFromNeighbours(std::size_t i)
 	{
 		m_x[i] = v;
 		m_raised++;
-		m_queue.push({v, i});
+		m_queue.push(v, i);
 	}
 }
 
 bool FieldRepairer::propagate(std::size_t workLimit)
 {
+	m_queue = BucketQueue(m_L, bucketWidth(m_g.resolution));
 	for (const std::size_t i : m_invalidated) raiseFromNeighbours(i);
 	for (const std::size_t c : m_changed)
 	{
@@ -138,11 +150,10 @@ bool FieldRepairer::propagate(std::size_t workLimit)
 			    c, [&](std::size_t j, int) { raiseFromNeighbours(j); });
 	}
 	// Highest value first: each cell leaves the queue once at its final
-	// value (stale entries are skipped).
-	while (!m_queue.empty())
+	// value (stale entries are skipped); the order only saves work here.
+	BucketQueue::Entry e;
+	while (m_queue.pop(e))
 	{
-		const Entry e = m_queue.top();
-		m_queue.pop();
 		if (++m_work > workLimit) return false;
 		if (m_x[e.cell] != e.value) continue;
 		const double u = m_newU[e.cell];
@@ -156,7 +167,7 @@ bool FieldRepairer::propagate(std::size_t workLimit)
 			    {
 				    m_x[j] = t;
 				    m_raised++;
-				    m_queue.push({t, j});
+				    m_queue.push(t, j);
 			    }
 		    });
 	}

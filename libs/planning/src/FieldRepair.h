@@ -9,9 +9,9 @@
 #include <semnav/planning/TraversabilityGrid.h>
 
 #include <cstddef>
-#include <queue>
 #include <vector>
 
+#include "BucketQueue.h"
 #include "DiffusionKernels.h"
 
 namespace semnav::detail
@@ -26,11 +26,10 @@ namespace semnav::detail
  *   are examined in turn;
  * - propagate (overconsistent cells): the invalidated cells, the changed
  *   cells and their neighbours take eq. (10)'s value from their
- *   neighbours, then a Dijkstra-like front (highest value first) raises
- *   every cell whose eq. (10) term improved.
- * Every value is the same floating-point expression as in the full
- * diffusion, x_j - (a + u_j), so the result is the same fixed point, bit for
- * bit. */
+ *   neighbours, then a Dijkstra-like front (highest value first, in buckets)
+ * raises every cell whose eq. (10) term improved. Every value is the same
+ * floating-point expression as in the full diffusion, x_j - (a + u_j), so the
+ * result is the same fixed point, bit for bit. */
 class FieldRepairer
 {
 public:
@@ -47,19 +46,18 @@ public:
 	/** Cells that stopped being a traversable goal (a source of value L). */
 	std::size_t lostSources() const { return m_lostSources; }
 
+	/** Bucket width of the queues: a quarter of the least step cost. */
+	static double bucketWidth(double resolution) { return resolution / 4; }
+	/** True when the queues order the cells exactly enough: L's rounding
+	 * unit well below the bucket width (L <= ~1e12 at 5 cm), and cell
+	 * indices within 32 bits. */
+	static bool applicable(const GridGeometry& g, double L);
+
 	/** Both phases. Returns false, with x partly repaired, once more than
 	 * `workLimit` cells were taken from the queues. */
 	bool run(std::size_t workLimit, FieldRepairStats& stats);
 
 private:
-	struct Entry
-	{
-		double value;
-		std::size_t cell;
-		bool operator<(const Entry& o) const { return value < o.value; }
-	};
-	using MaxQueue = std::priority_queue<Entry>;
-
 	bool blockedNew(std::size_t i) const { return m_newU[i] >= m_L; }
 	bool sourceOld(std::size_t i) const
 	{
@@ -97,7 +95,7 @@ private:
 	std::vector<std::size_t> m_changed, m_invalidated;
 	std::size_t m_removedGoals = 0, m_lostSources = 0;
 	std::size_t m_work = 0, m_raised = 0;
-	MaxQueue m_queue;
+	BucketQueue m_queue;
 };
 
 }  // namespace semnav::detail
