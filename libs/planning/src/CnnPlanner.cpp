@@ -152,10 +152,18 @@ void CnnPlanner::checkInputs(
 DiffusionField CnnPlanner::computeField(
     const TraversabilityGrid& u, const GoalLayer& goals) const
 {
+	DiffusionField f;
+	computeFieldInto(u, goals, f);
+	return f;
+}
+
+void CnnPlanner::computeFieldInto(
+    const TraversabilityGrid& u, const GoalLayer& goals,
+    DiffusionField& f) const
+{
 	const auto& g = u.geometry();
 	checkSameGeometry(g, goals.geometry());
 	const auto t0 = std::chrono::steady_clock::now();
-	DiffusionField f;
 	f.geometry = g;
 	f.L = u.L();
 	if (detail::initialField(u, goals, f.x) == 0) throwEmptyGoals(goals);
@@ -177,7 +185,6 @@ DiffusionField CnnPlanner::computeField(
 	MRPT_LOG_DEBUG_FMT(
 	    "diffusion (%s): %d iterations, %.1f ms",
 	    cnnScheduleName(m_options.schedule), f.iterations, f.milliseconds);
-	return f;
 }
 
 FieldRepairStats CnnPlanner::repairField(
@@ -198,7 +205,7 @@ FieldRepairStats CnnPlanner::repairField(
 	FieldRepairStats stats;
 	const auto recompute = [&](const std::string& why)
 	{
-		field = computeField(newU, newGoals);
+		computeFieldInto(newU, newGoals, field);
 		stats.fullRecompute = true;
 		stats.fallbackReason = why;
 		stats.milliseconds = msSince(t0);

@@ -20,6 +20,8 @@ FieldRepairer::FieldRepairer(
       m_a(newU.geometry().resolution),
       m_queue(m_L, bucketWidth(newU.geometry().resolution))
 {
+	for (int k = 0; k < 8; k++)
+		m_offset[k] = static_cast<std::ptrdiff_t>(kDr[k]) * m_g.cols + kDc[k];
 }
 
 bool FieldRepairer::applicable(const GridGeometry& g, double L)
@@ -35,6 +37,14 @@ void FieldRepairer::forNeighbours(std::size_t i, const F& f) const
 	const auto cols = static_cast<std::uint32_t>(m_g.cols);
 	const int r = static_cast<int>(i32 / cols);
 	const int c = static_cast<int>(i32 - static_cast<std::uint32_t>(r) * cols);
+	if (r > 0 && c > 0 && r + 1 < m_g.rows && c + 1 < m_g.cols)
+	{
+		for (int k = 0; k < 8; k++)
+			f(static_cast<std::size_t>(
+			      static_cast<std::ptrdiff_t>(i) + m_offset[k]),
+			  k);
+		return;
+	}
 	for (int k = 0; k < 8; k++)
 	{
 		const int rr = r + kDr[k], cc = c + kDc[k];
@@ -46,16 +56,22 @@ void FieldRepairer::collectChanges(const CellRect& rect)
 {
 	const CellRect r = rect.clipped(m_g);
 	if (r.empty()) return;
+	const double* uo = m_oldU.data();
+	const double* un = m_newU.data();
+	const std::int32_t* go = m_oldGoals.ids().data();
+	const std::int32_t* gn = m_newGoals.ids().data();
+	const bool sameGoals = &m_oldGoals == &m_newGoals;
 	for (int row = r.row0; row < r.row1; row++)
 		for (std::size_t i = m_g.index(row, r.col0),
 		                 e = m_g.index(row, r.col1 - 1) + 1;
 		     i < e; i++)
 		{
-			const bool bo = m_oldU[i] >= m_L, bn = m_newU[i] >= m_L;
+			if (uo[i] == un[i] && (sameGoals || go[i] == gn[i])) continue;
+			const bool bo = uo[i] >= m_L, bn = un[i] >= m_L;
 			const bool so = sourceOld(i), sn = sourceNew(i);
-			if (m_oldGoals.isGoal(i) && !m_newGoals.isGoal(i)) m_removedGoals++;
+			if (go[i] != 0 && gn[i] == 0) m_removedGoals++;
 			if (so && !sn) m_lostSources++;
-			if (bo != bn || (!bo && m_oldU[i] != m_newU[i]) || so != sn)
+			if (bo != bn || (!bo && uo[i] != un[i]) || so != sn)
 				m_changed.push_back(i);
 		}
 }
@@ -180,6 +196,7 @@ bool FieldRepairer::run(std::size_t workLimit, FieldRepairStats& stats)
 	const bool done = invalidate(workLimit) && propagate(workLimit);
 	stats.invalidatedCells = m_invalidated.size();
 	stats.raisedCells = m_raised;
+	stats.poppedCells = m_work;
 	return done;
 }
 

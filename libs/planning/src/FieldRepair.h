@@ -92,6 +92,8 @@ private:
 	const GridGeometry m_g;
 	const double m_L;
 	const Steps m_a;
+	/** Index offsets of the 8 neighbours (kDr, kDc). */
+	std::ptrdiff_t m_offset[8];
 	std::vector<std::size_t> m_changed, m_invalidated;
 	std::size_t m_removedGoals = 0, m_lostSources = 0;
 	std::size_t m_work = 0, m_raised = 0;

@@ -102,6 +102,11 @@ public:
 	 * NotConvergedError, PlanningError. */
 	DiffusionField computeField(
 	    const TraversabilityGrid& u, const GoalLayer& goals) const;
+	/** As computeField, into `field`, reusing its storage (no 8 bytes per
+	 * cell allocated when the grid's size is unchanged). */
+	void computeFieldInto(
+	    const TraversabilityGrid& u, const GoalLayer& goals,
+	    DiffusionField& field) const;
 
 	/** Default work limit of repairField: the repair falls back to a full
 	 * recompute once it has taken more than this fraction of the grid's

@@ -22,6 +22,9 @@ struct FieldRepairStats
 	/** Cells whose value was raised by the propagation (counted once per
 	 * raise). */
 	std::size_t raisedCells = 0;
+	/** Cells taken from the repair's queues (its work, which the work
+	 * limit bounds). */
+	std::size_t poppedCells = 0;
 	/** Wall time of the repair (or of the full recompute) (ms). */
 	double milliseconds = 0;
 };
