@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <semnav/planning/CnnPlanner.h>
 #include <semnav/planning/PlanningErrors.h>
+#include <semnav/planning/TraversabilityBuilder.h>
 
 #include <algorithm>
 #include <cmath>
@@ -471,4 +472,111 @@ TEST(FieldRepair, BadInput)
 	EXPECT_TRUE(st.fullRecompute);
 	EXPECT_EQ(
 	    cellsDiffering(f, planner.computeField(other.u, other.goals)), 0u);
+}
+
+TEST(FieldRepair, OrderTooCoarseForLargeValuesFallsBack)
+{
+	const CnnPlanner planner;
+	// L's rounding unit (~0.016 at 1e14) exceeds 1/64 of a 5 cm cell.
+	{
+		const GridGeometry g(0.05, 0, 0, 30, 20);
+		TraversabilityGrid before(g, 1e14), after(g, 1e14);
+		after.block(10, 10);
+		GoalLayer goals(g);
+		goals.addCell({2, 2}, 1);
+		DiffusionField f = planner.computeField(before, goals);
+		const auto st = planner.repairField(f, before, goals, after, goals);
+		EXPECT_TRUE(st.fullRecompute);
+		EXPECT_NE(st.fallbackReason.find("L is too large"), std::string::npos)
+		    << st.fallbackReason;
+		EXPECT_EQ(cellsDiffering(f, planner.computeField(after, goals)), 0u);
+	}
+	// Costs of ~1e9 per cell at 1 mm: after ~70 cells a value's rounding
+	// unit exceeds 1/64 of a cell; the increase phase stops there.
+	{
+		const GridGeometry g(0.001, 0, 0, 300, 1);
+		TraversabilityGrid before(g, 1e9, 0.999e9);
+		GoalLayer goals(g);
+		goals.addCell({0, 0}, 1);
+		TraversabilityGrid after = before;
+		after.setU(0, 5, 0.9995e9);
+		DiffusionField f = planner.computeField(before, goals);
+		const auto st = planner.repairField(
+		    f, before, goals, after, goals, nullptr, kNoLimit);
+		EXPECT_TRUE(st.fullRecompute);
+		EXPECT_NE(st.fallbackReason.find("rounding unit"), std::string::npos)
+		    << st.fallbackReason;
+		EXPECT_EQ(cellsDiffering(f, planner.computeField(after, goals)), 0u);
+	}
+}
+
+TEST(FieldRepair, BoxesInsertedIntoAnOfficeWithTheSafeProfile)
+{
+	// 3 x 3 rooms of 2 m with 1 m doors at 5 cm; u from the builder (safe
+	// profile: C-space plus a cost ring); boxes of 0.3-1 m appear one by
+	// one, then disappear in the same order.
+	const int n = 120, room = 40;
+	const GridGeometry g(0.05, 0, 0, n, n);
+	std::vector<CellOccupancy> occ(g.cellCount(), CellOccupancy::Free);
+	const auto fill = [&](int r0, int c0, int r1, int c1, CellOccupancy v)
+	{
+		for (int r = std::max(0, r0); r < std::min(n, r1); r++)
+			for (int c = std::max(0, c0); c < std::min(n, c1); c++)
+				occ[g.index(r, c)] = v;
+	};
+	for (int k = 0; k <= 3; k++)
+	{
+		fill(k * room - 1, 0, k * room + 1, n, CellOccupancy::Occupied);
+		fill(0, k * room - 1, n, k * room + 1, CellOccupancy::Occupied);
+	}
+	for (int i = 0; i < 3; i++)
+		for (int k = 1; k < 3; k++)
+		{
+			fill(
+			    i * room + 10, k * room - 1, i * room + 30, k * room + 1,
+			    CellOccupancy::Free);
+			fill(
+			    k * room - 1, i * room + 10, k * room + 1, i * room + 30,
+			    CellOccupancy::Free);
+		}
+	TraversabilityBuilder::TOptions o;
+	o.robotRadius = 0.2;
+	const TraversabilityBuilder builder(o);
+	GoalLayer goals(g);
+	goals.addDisc(g.centerX(100), g.centerY(100), 0.1, 1);
+	const CnnPlanner planner;
+	auto u = builder.build(g, {}, occ, CostProfile::Safe);
+	DiffusionField f = planner.computeField(u, goals);
+	std::mt19937_64 rng(12);
+	std::vector<std::vector<CellOccupancy>> history{occ};
+	int repaired = 0;
+	const auto step = [&](const std::vector<CellOccupancy>& next)
+	{
+		auto nu = builder.build(g, {}, next, CostProfile::Safe);
+		CellRect changed;
+		for (std::size_t i = 0; i < g.cellCount(); i++)
+			if (nu.values()[i] != u.values()[i])
+				changed.add(g.cellAt(i).row, g.cellAt(i).col);
+		const auto st =
+		    planner.repairField(f, u, goals, nu, goals, &changed, kNoLimit);
+		repaired += !st.fullRecompute;
+		u = nu;
+		EXPECT_EQ(cellsDiffering(f, planner.computeField(u, goals)), 0u);
+		expectSamePaths(f, planner.computeField(u, goals), {u, goals}, rng, 3);
+	};
+	for (int k = 0; k < 12; k++)
+	{
+		const int h = 6 + static_cast<int>(rng() % 15);
+		const int w = 6 + static_cast<int>(rng() % 15);
+		const int r = static_cast<int>(rng() % (n - h));
+		const int c = static_cast<int>(rng() % (n - w));
+		occ = history.back();
+		fill(r, c, r + h, c + w, CellOccupancy::Occupied);
+		occ[g.index(100, 100)] = CellOccupancy::Free;
+		history.push_back(occ);
+		step(occ);
+	}
+	for (int k = static_cast<int>(history.size()) - 2; k >= 0; k--)
+		step(history[k]);
+	EXPECT_EQ(repaired, 24);
 }

@@ -42,9 +42,11 @@ private:
 		bool operator>(const Far& o) const { return key > o.key; }
 	};
 
+	/** Bucket of v, clamped to 2^62 (far values share the last one). */
 	std::int64_t key(double v) const
 	{
-		return static_cast<std::int64_t>((m_L - v) * m_invWidth);
+		const double k = (m_L - v) * m_invWidth;
+		return k < 0x1p62 ? static_cast<std::int64_t>(k) : INT64_C(1) << 62;
 	}
 	void place(std::int64_t k, const Entry& e);
 	/** Starts popping at the least key staged so far. */

@@ -235,8 +235,8 @@ FieldRepairStats CnnPlanner::repairField(
 	const auto workLimit = limit >= static_cast<double>(SIZE_MAX)
 	                           ? SIZE_MAX
 	                           : static_cast<std::size_t>(limit);
-	if (!repairer.run(workLimit, stats))
-		return recompute("the repair reached its work limit");
+	if (const char* stopped = repairer.run(workLimit, stats))
+		return recompute(stopped);
 	field.iterations = 0;
 	field.rowUpdates = 0;
 	field.milliseconds = stats.milliseconds = msSince(t0);

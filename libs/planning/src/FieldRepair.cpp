@@ -18,6 +18,7 @@ FieldRepairer::FieldRepairer(
       m_g(newU.geometry()),
       m_L(newU.L()),
       m_a(newU.geometry().resolution),
+      m_maxMagnitude(bucketWidth(m_g.resolution) / 16 * 0x1p52),
       m_queue(m_L, bucketWidth(newU.geometry().resolution))
 {
 	for (int k = 0; k < 8; k++)
@@ -107,7 +108,7 @@ bool FieldRepairer::supported(std::size_t i, double v) const
 	return ok;
 }
 
-bool FieldRepairer::invalidate(std::size_t workLimit)
+const char* FieldRepairer::invalidate(std::size_t workLimit)
 {
 	for (const std::size_t c : m_changed)
 	{
@@ -126,11 +127,12 @@ bool FieldRepairer::invalidate(std::size_t workLimit)
 	BucketQueue::Entry e;
 	while (m_queue.pop(e))
 	{
-		if (++m_work > workLimit) return false;
+		if (++m_work > workLimit) return kWorkLimitReached;
+		if (e.value < -m_maxMagnitude) return kValueTooLarge;
 		if (m_x[e.cell] != e.value || supported(e.cell, e.value)) continue;
 		invalidateCell(e.cell, e.value, m_oldU[e.cell]);
 	}
-	return true;
+	return nullptr;
 }
 
 void FieldRepairer::raiseFromNeighbours(std::size_t i)
@@ -153,7 +155,7 @@ void FieldRepairer::raiseFromNeighbours(std::size_t i)
 	}
 }
 
-bool FieldRepairer::propagate(std::size_t workLimit)
+const char* FieldRepairer::propagate(std::size_t workLimit)
 {
 	m_queue = BucketQueue(m_L, bucketWidth(m_g.resolution));
 	for (const std::size_t i : m_invalidated) raiseFromNeighbours(i);
@@ -170,7 +172,7 @@ bool FieldRepairer::propagate(std::size_t workLimit)
 	BucketQueue::Entry e;
 	while (m_queue.pop(e))
 	{
-		if (++m_work > workLimit) return false;
+		if (++m_work > workLimit) return kWorkLimitReached;
 		if (m_x[e.cell] != e.value) continue;
 		const double u = m_newU[e.cell];
 		forNeighbours(
@@ -187,17 +189,18 @@ bool FieldRepairer::propagate(std::size_t workLimit)
 			    }
 		    });
 	}
-	return true;
+	return nullptr;
 }
 
-bool FieldRepairer::run(std::size_t workLimit, FieldRepairStats& stats)
+const char* FieldRepairer::run(std::size_t workLimit, FieldRepairStats& stats)
 {
 	stats.changedCells = m_changed.size();
-	const bool done = invalidate(workLimit) && propagate(workLimit);
+	const char* stopped = invalidate(workLimit);
+	if (!stopped) stopped = propagate(workLimit);
 	stats.invalidatedCells = m_invalidated.size();
 	stats.raisedCells = m_raised;
 	stats.poppedCells = m_work;
-	return done;
+	return stopped;
 }
 
 }  // namespace semnav::detail

@@ -52,10 +52,16 @@ public:
 	 * unit well below the bucket width (L <= ~1e12 at 5 cm), and cell
 	 * indices within 32 bits. */
 	static bool applicable(const GridGeometry& g, double L);
+	static constexpr const char* kWorkLimitReached =
+	    "the repair reached its work limit";
+	static constexpr const char* kValueTooLarge =
+	    "a value's rounding unit exceeds 1/64 of a cell (costs over ~1e11 "
+	    "at 5 cm)";
 
-	/** Both phases. Returns false, with x partly repaired, once more than
-	 * `workLimit` cells were taken from the queues. */
-	bool run(std::size_t workLimit, FieldRepairStats& stats);
+	/** Both phases. Returns nullptr when done, else why it stopped (x then
+	 * partly repaired): more than `workLimit` cells taken from the queues,
+	 * or a value too far below L for the buckets to order it exactly. */
+	const char* run(std::size_t workLimit, FieldRepairStats& stats);
 
 private:
 	bool blockedNew(std::size_t i) const { return m_newU[i] >= m_L; }
@@ -79,10 +85,10 @@ private:
 	void invalidateCell(std::size_t i, double v, double u);
 	/** True when i may keep value v under the new costs. */
 	bool supported(std::size_t i, double v) const;
-	bool invalidate(std::size_t workLimit);
+	const char* invalidate(std::size_t workLimit);
 	/** Eq. (10) at i from its neighbours; raises x(i) and queues it. */
 	void raiseFromNeighbours(std::size_t i);
-	bool propagate(std::size_t workLimit);
+	const char* propagate(std::size_t workLimit);
 
 	std::vector<double>& m_x;
 	const std::vector<double>& m_oldU;
@@ -92,6 +98,8 @@ private:
 	const GridGeometry m_g;
 	const double m_L;
 	const Steps m_a;
+	/** Values below -m_maxMagnitude round by more than 1/16 of a bucket. */
+	const double m_maxMagnitude;
 	/** Index offsets of the 8 neighbours (kDr, kDc). */
 	std::ptrdiff_t m_offset[8];
 	std::vector<std::size_t> m_changed, m_invalidated;
