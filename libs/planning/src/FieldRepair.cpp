@@ -95,17 +95,30 @@ void FieldRepairer::invalidateCell(std::size_t i, double v, double u)
 	pushDependants(i, v, u);
 }
 
-bool FieldRepairer::supported(std::size_t i, double v) const
+void FieldRepairer::examine(std::size_t i, double v)
 {
-	if (sourceNew(i)) return true;
-	bool ok = false;
+	if (sourceNew(i)) return;
+	// One pass: a neighbour still offering v keeps it; otherwise the
+	// neighbours whose value came through i are examined in turn.
+	const double uOld = m_oldU[i];
+	std::size_t dependants[8];
+	int n = 0;
+	bool supported = false;
 	forNeighbours(
 	    i,
 	    [&](std::size_t j, int k)
 	    {
-		    if (!ok && !blockedNew(j)) ok = m_x[j] - (m_a[k] + m_newU[j]) >= v;
+		    if (supported) return;
+		    const double xj = m_x[j];
+		    if (!blockedNew(j) && xj - (m_a[k] + m_newU[j]) >= v)
+			    supported = true;
+		    else if (xj > -kInf && xj == v - (m_a[k] + uOld))
+			    dependants[n++] = j;
 	    });
-	return ok;
+	if (supported) return;
+	m_x[i] = -kInf;
+	m_invalidated.push_back(i);
+	for (int k = 0; k < n; k++) m_queue.push(m_x[dependants[k]], dependants[k]);
 }
 
 const char* FieldRepairer::invalidate(std::size_t workLimit)
@@ -129,8 +142,7 @@ const char* FieldRepairer::invalidate(std::size_t workLimit)
 	{
 		if (++m_work > workLimit) return kWorkLimitReached;
 		if (e.value < -m_maxMagnitude) return kValueTooLarge;
-		if (m_x[e.cell] != e.value || supported(e.cell, e.value)) continue;
-		invalidateCell(e.cell, e.value, m_oldU[e.cell]);
+		if (m_x[e.cell] == e.value) examine(e.cell, e.value);
 	}
 	return nullptr;
 }

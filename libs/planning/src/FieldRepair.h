@@ -83,8 +83,9 @@ private:
 	void pushDependants(std::size_t i, double v, double u);
 	/** Sets x(i) to -infinity and pushes its dependants. */
 	void invalidateCell(std::size_t i, double v, double u);
-	/** True when i may keep value v under the new costs. */
-	bool supported(std::size_t i, double v) const;
+	/** Keeps v at i when a neighbour still offers it under the new costs
+	 * (or i is a goal), else invalidates i. */
+	void examine(std::size_t i, double v);
 	const char* invalidate(std::size_t workLimit);
 	/** Eq. (10) at i from its neighbours; raises x(i) and queues it. */
 	void raiseFromNeighbours(std::size_t i);
