@@ -506,6 +506,12 @@ void BM_TraversabilitySafe_1000(benchmark::State& st)
 		    b.build(m.geometry, {}, m.occupancy, CostProfile::Safe));
 }
 
+/** Repairs: 64 iterations (4 or 8 per spot), timed by hand. */
+void repairSettings(benchmark::internal::Benchmark* b)
+{
+	b->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(64);
+}
+
 BENCHMARK(BM_CnnSweep_1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CnnSweep2Threads_1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CnnSweepInto_1000)->Unit(benchmark::kMillisecond);
@@ -520,26 +526,11 @@ BENCHMARK(BM_CnnJacobi_250)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CnnJacobi2Threads_250)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CnnSweep_250)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Dijkstra_250)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_CnnRepairBoxAdded_1000)
-    ->Unit(benchmark::kMillisecond)
-    ->UseManualTime()
-    ->Iterations(64);
-BENCHMARK(BM_CnnRepairBoxRemoved_1000)
-    ->Unit(benchmark::kMillisecond)
-    ->UseManualTime()
-    ->Iterations(64);
-BENCHMARK(BM_CnnRepairBoxAddedNoRect_1000)
-    ->Unit(benchmark::kMillisecond)
-    ->UseManualTime()
-    ->Iterations(64);
-BENCHMARK(BM_CnnRepairBoxOnPathAdded_1000)
-    ->Unit(benchmark::kMillisecond)
-    ->UseManualTime()
-    ->Iterations(64);
-BENCHMARK(BM_CnnRepairBoxOnPathRemoved_1000)
-    ->Unit(benchmark::kMillisecond)
-    ->UseManualTime()
-    ->Iterations(64);
+BENCHMARK(BM_CnnRepairBoxAdded_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxRemoved_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxAddedNoRect_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxOnPathAdded_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxOnPathRemoved_1000)->Apply(repairSettings);
 BENCHMARK(BM_TraversabilityShortest_1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TraversabilitySafe_1000)->Unit(benchmark::kMillisecond);
 
@@ -587,11 +578,12 @@ void printRatio(
 /** Median over the spots of each spot's median repair time, its 75th
  * percentile and maximum, and the full field's time over the median. */
 void printRepairs(
-    const char* what, const std::string& name, const BoxChanges& b,
+    const char* what, const std::string& name, const BoxChanges& (*spots)(),
     double fullMs)
 {
 	const auto it = g_spotMs.find(name);
 	if (it == g_spotMs.end()) return;
+	const BoxChanges& b = spots();
 	const auto median = [](std::vector<double> v)
 	{
 		std::sort(v.begin(), v.end());
@@ -653,21 +645,24 @@ int main(int argc, char** argv)
 		    "  repairs of a 1 m x 1 m box: per spot the median time, then over "
 		    "the spots (full field into a reused field, 1 thread: %.2f ms):\n",
 		    full->second);
-		printRepairs(
-		    "box added, 16 random spots", "BM_CnnRepairBoxAdded_1000",
-		    randomBoxes(), full->second);
-		printRepairs(
-		    "box removed, 16 random spots", "BM_CnnRepairBoxRemoved_1000",
-		    randomBoxes(), full->second);
-		printRepairs(
-		    "box added, no rectangle given", "BM_CnnRepairBoxAddedNoRect_1000",
-		    randomBoxes(), full->second);
-		printRepairs(
-		    "box added, 8 spots on the path", "BM_CnnRepairBoxOnPathAdded_1000",
-		    pathBoxes(), full->second);
-		printRepairs(
-		    "box removed, 8 spots on the path",
-		    "BM_CnnRepairBoxOnPathRemoved_1000", pathBoxes(), full->second);
+		const struct
+		{
+			const char* what;
+			const char* name;
+			const BoxChanges& (*spots)();
+		} repairs[] = {
+		    {"box added, 16 random spots", "BM_CnnRepairBoxAdded_1000",
+		     randomBoxes},
+		    {"box removed, 16 random spots", "BM_CnnRepairBoxRemoved_1000",
+		     randomBoxes},
+		    {"box added, no rectangle given", "BM_CnnRepairBoxAddedNoRect_1000",
+		     randomBoxes},
+		    {"box added, 8 spots on the path",
+		     "BM_CnnRepairBoxOnPathAdded_1000", pathBoxes},
+		    {"box removed, 8 spots on the path",
+		     "BM_CnnRepairBoxOnPathRemoved_1000", pathBoxes}};
+		for (const auto& r : repairs)
+			printRepairs(r.what, r.name, r.spots, full->second);
 	}
 	for (const auto& [k, v] : g_figures)
 		std::printf("  %-50s %.6f\n", k.c_str(), v);

@@ -11,6 +11,8 @@
 #include <limits>
 #include <random>
 
+#include "WallSegments.h"
+
 using namespace semnav;
 
 namespace
@@ -39,17 +41,7 @@ Problem randomProblem(int rows, int cols, double L, uint64_t seed, int nGoals)
 			else if (U(rng) < 0.5)
 				p.u.setU(r, c, 3.0 * U(rng));
 		}
-	for (int k = 0; k < rows / 8; k++)
-	{
-		const int r = static_cast<int>(U(rng) * rows);
-		const int c = static_cast<int>(U(rng) * cols);
-		const bool vertical = U(rng) < 0.5;
-		for (int s = 0; s < std::max(rows, cols) / 2; s++)
-		{
-			const int rr = vertical ? r + s : r, cc = vertical ? c : c + s;
-			if (g.contains(rr, cc)) p.u.block(rr, cc);
-		}
-	}
+	test::addWallSegments(p.u, rows / 8, rng);
 	for (int k = 1; k <= nGoals; k++)
 	{
 		const CellIndex c{
