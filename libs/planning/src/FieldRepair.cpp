@@ -73,7 +73,10 @@ void FieldRepairer::collectChanges(const CellRect& rect)
 			if (go[i] != 0 && gn[i] == 0) m_removedGoals++;
 			if (so && !sn) m_lostSources++;
 			if (bo != bn || (!bo && uo[i] != un[i]) || so != sn)
+			{
 				m_changed.push_back(i);
+				m_changedBox.add(row, static_cast<int>(i - m_g.index(row, 0)));
+			}
 		}
 }
 
@@ -95,12 +98,23 @@ void FieldRepairer::invalidateCell(std::size_t i, double v, double u)
 	pushDependants(i, v, u);
 }
 
+bool FieldRepairer::nearChange(std::size_t i) const
+{
+	const auto r = static_cast<int>(i / static_cast<std::size_t>(m_g.cols));
+	const auto c = static_cast<int>(i - m_g.index(r, 0));
+	return r >= m_changedBox.row0 - 1 && r <= m_changedBox.row1 &&
+	       c >= m_changedBox.col0 - 1 && c <= m_changedBox.col1;
+}
+
 void FieldRepairer::examine(std::size_t i, double v)
 {
-	if (sourceNew(i)) return;
+	// Away from the changes u and the goals are unchanged, and a goal
+	// cell holds L: the cold arrays (old u, goal ids) are read only near.
+	const bool near = nearChange(i);
+	if ((near || v == m_L) && sourceNew(i)) return;
 	// One pass: a neighbour still offering v keeps it; otherwise the
 	// neighbours whose value came through i are examined in turn.
-	const double uOld = m_oldU[i];
+	const double uOld = near ? m_oldU[i] : m_newU[i];
 	std::size_t dependants[8];
 	int n = 0;
 	bool supported = false;
@@ -150,7 +164,8 @@ const char* FieldRepairer::invalidate(std::size_t workLimit)
 void FieldRepairer::raiseFromNeighbours(std::size_t i)
 {
 	if (blockedNew(i)) return;
-	double v = sourceNew(i) ? m_L : -kInf;
+	// Away from the changes a goal cell already holds L.
+	double v = nearChange(i) && sourceNew(i) ? m_L : -kInf;
 	forNeighbours(
 	    i,
 	    [&](std::size_t j, int k)

@@ -83,6 +83,8 @@ private:
 	void pushDependants(std::size_t i, double v, double u);
 	/** Sets x(i) to -infinity and pushes its dependants. */
 	void invalidateCell(std::size_t i, double v, double u);
+	/** Within one cell of the changed cells' bounding box. */
+	bool nearChange(std::size_t i) const;
 	/** Keeps v at i when a neighbour still offers it under the new costs
 	 * (or i is a goal), else invalidates i. */
 	void examine(std::size_t i, double v);
@@ -104,6 +106,7 @@ private:
 	/** Index offsets of the 8 neighbours (kDr, kDc). */
 	std::ptrdiff_t m_offset[8];
 	std::vector<std::size_t> m_changed, m_invalidated;
+	CellRect m_changedBox;
 	std::size_t m_removedGoals = 0, m_lostSources = 0;
 	std::size_t m_work = 0, m_raised = 0;
 	BucketQueue m_queue;
