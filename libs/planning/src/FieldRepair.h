@@ -25,11 +25,12 @@ namespace semnav::detail
  *   -infinity and its dependants (neighbours whose value came through it)
  *   are examined in turn;
  * - propagate (overconsistent cells): the invalidated cells, the changed
- *   cells and their neighbours take eq. (10)'s value from their
- *   neighbours, then a Dijkstra-like front (highest value first, in buckets)
- * raises every cell whose eq. (10) term improved. Every value is the same
- * floating-point expression as in the full diffusion, x_j - (a + u_j), so the
- * result is the same fixed point, bit for bit. */
+ *   cells and the neighbours of cheaper or freed cells take eq. (10)'s
+ *   value from their neighbours, then a Dijkstra-like front (highest value
+ *   first, in buckets) raises every cell whose eq. (10) term improved.
+ * Every value is the same floating-point expression as in the full
+ * diffusion, x_j - (a + u_j), so the result is the same fixed point, bit for
+ * bit. */
 class FieldRepairer
 {
 public:

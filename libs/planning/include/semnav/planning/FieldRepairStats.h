@@ -6,7 +6,8 @@
 
 namespace semnav
 {
-/** What CnnPlanner::repairField did. */
+/** What CnnPlanner::repairField did. After a fallback the counts are those
+ * of the abandoned repair (0 when it did not start). */
 struct FieldRepairStats
 {
 	/** True when the field was recomputed from scratch instead (see
