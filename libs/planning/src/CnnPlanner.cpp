@@ -166,6 +166,7 @@ void CnnPlanner::computeFieldInto(
 	const auto t0 = std::chrono::steady_clock::now();
 	f.geometry = g;
 	f.L = u.L();
+	f.rowUpdates = 0;
 	if (detail::initialField(u, goals, f.x) == 0) throwEmptyGoals(goals);
 	const auto ue = detail::effectiveU(u);
 	const int threads = resolveThreads(m_options.threads);

@@ -103,7 +103,8 @@ public:
 	DiffusionField computeField(
 	    const TraversabilityGrid& u, const GoalLayer& goals) const;
 	/** As computeField, into `field`, reusing its storage (no 8 bytes per
-	 * cell allocated when the grid's size is unchanged). */
+	 * cell allocated when the grid's size is unchanged); on an exception
+	 * `field` is left invalid. */
 	void computeFieldInto(
 	    const TraversabilityGrid& u, const GoalLayer& goals,
 	    DiffusionField& field) const;
@@ -137,7 +138,8 @@ public:
 	 * more cells changed than the work limit, or when the work limit is
 	 * reached. Throws EmptyGoalError (field untouched) when no traversable
 	 * goal cell is left, PlanningError when newU and newGoals differ in
-	 * geometry or `field` does not match oldU. After a repair,
+	 * geometry or `field` does not match oldU, NotConvergedError from a
+	 * fallback as computeField (field then invalid). After a repair,
 	 * field.iterations and field.rowUpdates are 0 and field.milliseconds is
 	 * the repair's time. */
 	FieldRepairStats repairField(
