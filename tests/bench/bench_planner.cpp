@@ -4,7 +4,10 @@
 // x 50 m at 5 cm), 10 x 10 rooms with 1 m doors, 400 boxes; robot radius
 // 0.2 m, shortest profile; one goal cell in the far room. The synchronous
 // (Jacobi) reference runs once on it and on a 250 x 250 map of the same
-// kind. Run with
+// kind. The incremental repair (CnnPlanner::repairField) of a 1 m x 1 m box
+// added to (or removed from) the map runs against the full field in the
+// same run, on 16 random free spots and on 8 spots along the start-goal
+// path. Run with
 //   bench_planner --benchmark_repetitions=5
 //   --benchmark_report_aggregates_only=true
 // A summary (time ratios, path costs) is printed at the end.
@@ -16,6 +19,7 @@
 #include <semnav/planning/TraversabilityBuilder.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -205,6 +209,19 @@ void BM_CnnSweep2Threads_1000(benchmark::State& st)
 {
 	runCnn(st, office1000(), CnnSchedule::Sweep, 2, "BM_CnnSweep2Threads_1000");
 }
+/** The full field into a reused field (the reference of the repairs). */
+void BM_CnnSweepInto_1000(benchmark::State& st)
+{
+	const auto& m = office1000();
+	const CnnPlanner p = cnn(CnnSchedule::Sweep, 1);
+	DiffusionField f = p.computeField(m.u, m.goals);
+	for (auto _ : st)
+	{
+		p.computeFieldInto(m.u, m.goals, f);
+		benchmark::DoNotOptimize(f.x.data());
+	}
+	st.counters["iterations"] = f.iterations;
+}
 void BM_CnnPlan_1000(benchmark::State& st)
 {
 	const auto& m = office1000();
@@ -300,6 +317,174 @@ void BM_Dijkstra_250(benchmark::State& st)
 	for (auto _ : st)
 		benchmark::DoNotOptimize(DijkstraPlanner::costField(m.u, m.goals));
 }
+/** A 1 m x 1 m box on the office map: u with it, the changed rectangle
+ * and the converged fields without and with it. */
+struct BoxChange
+{
+	TraversabilityGrid u;
+	CellRect changed;
+	DiffusionField fieldWith;
+	/** Cells whose value differs between the two fields. */
+	std::size_t cellsChanging = 0;
+};
+
+struct BoxChanges
+{
+	DiffusionField fieldWithout;
+	std::vector<BoxChange> spots;
+};
+
+/** Boxes of 20 x 20 cells (1 m^2 at 5 cm) whose footprint is free in the
+ * occupancy: `n` random spots, or centred on `n` cells spread along the
+ * start-goal path (spots touching a wall, e.g. in a door, are skipped). */
+BoxChanges makeBoxChanges(const OfficeMap& m, int n, bool onPath)
+{
+	const auto& g = m.geometry;
+	const CnnPlanner planner = cnn(CnnSchedule::Sweep, 2);
+	BoxChanges b;
+	b.fieldWithout = planner.computeField(m.u, m.goals);
+	std::vector<CellIndex> centres;
+	std::mt19937_64 rng(77);
+	if (onPath)
+	{
+		const auto path =
+		    CnnPlanner::extractPath(b.fieldWithout, m.u, m.goals, m.start);
+		for (int k = 1; k < 4 * n; k++)
+			centres.push_back(path.cells[path.cells.size() * k / (4 * n)]);
+	}
+	else
+		for (int k = 0; k < 100 * n; k++)
+			centres.push_back(
+			    {static_cast<int>(rng() % (g.rows - 40)) + 20,
+			     static_cast<int>(rng() % (g.cols - 40)) + 20});
+	const int side = 20;
+	TraversabilityBuilder::TOptions o;
+	o.robotRadius = 0.2;
+	const TraversabilityBuilder builder(o);
+	for (const auto& c : centres)
+	{
+		if (static_cast<int>(b.spots.size()) == n) break;
+		const int r0 = c.row - side / 2, c0 = c.col - side / 2;
+		bool free = true;
+		for (int r = r0 - 2; r < r0 + side + 2; r++)
+			for (int cc = c0 - 2; cc < c0 + side + 2; cc++)
+				free =
+				    free && m.occupancy[g.index(r, cc)] == CellOccupancy::Free;
+		if (!free) continue;
+		auto occupancy = m.occupancy;
+		for (int r = r0; r < r0 + side; r++)
+			for (int cc = c0; cc < c0 + side; cc++)
+				occupancy[g.index(r, cc)] = CellOccupancy::Occupied;
+		BoxChange s;
+		s.u = builder.build(g, {}, occupancy, CostProfile::Shortest);
+		for (std::size_t i = 0; i < g.cellCount(); i++)
+			if (s.u.values()[i] != m.u.values()[i])
+			{
+				const auto ci = g.cellAt(i);
+				s.changed.add(ci.row, ci.col);
+			}
+		if (s.u.blocked(m.start)) continue;
+		s.fieldWith = planner.computeField(s.u, m.goals);
+		for (std::size_t i = 0; i < g.cellCount(); i++)
+			s.cellsChanging += s.fieldWith.x[i] != b.fieldWithout.x[i];
+		b.spots.push_back(std::move(s));
+	}
+	return b;
+}
+
+const BoxChanges& randomBoxes()
+{
+	static const BoxChanges b = makeBoxChanges(office1000(), 16, false);
+	return b;
+}
+const BoxChanges& pathBoxes()
+{
+	static const BoxChanges b = makeBoxChanges(office1000(), 8, true);
+	return b;
+}
+
+/** Per benchmark, per spot: the repair times (ms) of every iteration. */
+std::map<std::string, std::vector<std::vector<double>>> g_spotMs;
+
+/** Repairs the field after adding (or removing) the box of spot
+ * k = iteration % spots, the field copy outside the timing; every spot's
+ * result is checked bit for bit against its full recompute. */
+void runRepair(
+    benchmark::State& st, const BoxChanges& b, bool add, bool useRect,
+    const std::string& name)
+{
+	const auto& m = office1000();
+	const CnnPlanner p = cnn(CnnSchedule::Sweep, 1);
+	auto& spotMs = g_spotMs[name];
+	spotMs.resize(b.spots.size());
+	std::size_t k = 0, differ = 0, fallbacks = 0, overInvalidated = 0;
+	double invalidated = 0, raised = 0;
+	DiffusionField f;
+	for (auto _ : st)
+	{
+		const std::size_t spot = k++ % b.spots.size();
+		const BoxChange& s = b.spots[spot];
+		f = add ? b.fieldWithout : s.fieldWith;  // reuses f's storage
+		const auto& oldU = add ? m.u : s.u;
+		const auto& newU = add ? s.u : m.u;
+		const auto t0 = std::chrono::steady_clock::now();
+		const auto stats = p.repairField(
+		    f, oldU, m.goals, newU, m.goals, useRect ? &s.changed : nullptr);
+		const double sec =
+		    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+		        .count();
+		st.SetIterationTime(sec);
+		spotMs[spot].push_back(1e3 * sec);
+		if (k <= b.spots.size())
+		{
+			const auto& ref = add ? s.fieldWith : b.fieldWithout;
+			for (std::size_t i = 0; i < f.x.size(); i++)
+				differ += f.x[i] != ref.x[i];
+		}
+		fallbacks += stats.fullRecompute;
+		// Phase 1 invalidates exactly the cells whose value changes.
+		overInvalidated += add && !stats.fullRecompute &&
+		                   stats.invalidatedCells != s.cellsChanging;
+		invalidated += static_cast<double>(stats.invalidatedCells);
+		raised += static_cast<double>(stats.raisedCells);
+	}
+	const double n = static_cast<double>(std::max<std::size_t>(k, 1));
+	st.counters["spots"] = static_cast<double>(b.spots.size());
+	st.counters["invalidated"] = invalidated / n;
+	st.counters["raised"] = raised / n;
+	st.counters["full_recomputes"] = static_cast<double>(fallbacks);
+	st.counters["cells_differing_from_full"] = static_cast<double>(differ);
+	g_figures[name + " cells differing from full"] =
+	    static_cast<double>(differ);
+	g_figures[name + " repairs invalidating other cells than those changing"] =
+	    static_cast<double>(overInvalidated);
+	g_figures[name + " full recomputes / iterations"] =
+	    static_cast<double>(fallbacks) / n;
+}
+
+void BM_CnnRepairBoxAdded_1000(benchmark::State& st)
+{
+	runRepair(st, randomBoxes(), true, true, "BM_CnnRepairBoxAdded_1000");
+}
+void BM_CnnRepairBoxRemoved_1000(benchmark::State& st)
+{
+	runRepair(st, randomBoxes(), false, true, "BM_CnnRepairBoxRemoved_1000");
+}
+void BM_CnnRepairBoxAddedNoRect_1000(benchmark::State& st)
+{
+	runRepair(
+	    st, randomBoxes(), true, false, "BM_CnnRepairBoxAddedNoRect_1000");
+}
+void BM_CnnRepairBoxOnPathAdded_1000(benchmark::State& st)
+{
+	runRepair(st, pathBoxes(), true, true, "BM_CnnRepairBoxOnPathAdded_1000");
+}
+void BM_CnnRepairBoxOnPathRemoved_1000(benchmark::State& st)
+{
+	runRepair(
+	    st, pathBoxes(), false, true, "BM_CnnRepairBoxOnPathRemoved_1000");
+}
+
 void BM_TraversabilityShortest_1000(benchmark::State& st)
 {
 	const auto& m = office1000();
@@ -321,8 +506,15 @@ void BM_TraversabilitySafe_1000(benchmark::State& st)
 		    b.build(m.geometry, {}, m.occupancy, CostProfile::Safe));
 }
 
+/** Repairs: 64 iterations (4 or 8 per spot), timed by hand. */
+void repairSettings(benchmark::internal::Benchmark* b)
+{
+	b->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(64);
+}
+
 BENCHMARK(BM_CnnSweep_1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CnnSweep2Threads_1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CnnSweepInto_1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CnnPlan_1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Dijkstra_1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DijkstraToStart_1000)->Unit(benchmark::kMillisecond);
@@ -334,6 +526,11 @@ BENCHMARK(BM_CnnJacobi_250)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CnnJacobi2Threads_250)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CnnSweep_250)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Dijkstra_250)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CnnRepairBoxAdded_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxRemoved_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxAddedNoRect_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxOnPathAdded_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxOnPathRemoved_1000)->Apply(repairSettings);
 BENCHMARK(BM_TraversabilityShortest_1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TraversabilitySafe_1000)->Unit(benchmark::kMillisecond);
 
@@ -378,6 +575,33 @@ void printRatio(
 	    "  %-44s %9.2f ms / %9.2f ms = %.3f\n", what, ia->second, ib->second,
 	    ia->second / ib->second);
 }
+/** Median over the spots of each spot's median repair time, its 75th
+ * percentile and maximum, and the full field's time over the median. */
+void printRepairs(
+    const char* what, const std::string& name, const BoxChanges& (*spots)(),
+    double fullMs)
+{
+	const auto it = g_spotMs.find(name);
+	if (it == g_spotMs.end()) return;
+	const BoxChanges& b = spots();
+	const auto median = [](std::vector<double> v)
+	{
+		std::sort(v.begin(), v.end());
+		return v.empty() ? 0.0
+		                 : 0.5 * (v[(v.size() - 1) / 2] + v[v.size() / 2]);
+	};
+	std::vector<double> perSpot, changing;
+	for (const auto& t : it->second) perSpot.push_back(median(t));
+	for (const auto& s : b.spots)
+		changing.push_back(static_cast<double>(s.cellsChanging));
+	std::sort(perSpot.begin(), perSpot.end());
+	const double med = median(perSpot);
+	std::printf(
+	    "    %-34s median %7.3f ms, p75 %7.3f, max %7.2f; full / median = "
+	    "%6.1f (median %.0f cells change value)\n",
+	    what, med, perSpot[(perSpot.size() * 3) / 4], perSpot.back(),
+	    fullMs / med, median(changing));
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -414,6 +638,32 @@ int main(int argc, char** argv)
 	printRatio(
 	    rep, "CNN Jacobi 1 thread / Dijkstra field (250)", "BM_CnnJacobi_250",
 	    "BM_Dijkstra_250");
+	const auto full = rep.ms.find("BM_CnnSweepInto_1000");
+	if (full != rep.ms.end())
+	{
+		std::printf(
+		    "  repairs of a 1 m x 1 m box: per spot the median time, then over "
+		    "the spots (full field into a reused field, 1 thread: %.2f ms):\n",
+		    full->second);
+		const struct
+		{
+			const char* what;
+			const char* name;
+			const BoxChanges& (*spots)();
+		} repairs[] = {
+		    {"box added, 16 random spots", "BM_CnnRepairBoxAdded_1000",
+		     randomBoxes},
+		    {"box removed, 16 random spots", "BM_CnnRepairBoxRemoved_1000",
+		     randomBoxes},
+		    {"box added, no rectangle given", "BM_CnnRepairBoxAddedNoRect_1000",
+		     randomBoxes},
+		    {"box added, 8 spots on the path",
+		     "BM_CnnRepairBoxOnPathAdded_1000", pathBoxes},
+		    {"box removed, 8 spots on the path",
+		     "BM_CnnRepairBoxOnPathRemoved_1000", pathBoxes}};
+		for (const auto& r : repairs)
+			printRepairs(r.what, r.name, r.spots, full->second);
+	}
 	for (const auto& [k, v] : g_figures)
 		std::printf("  %-50s %.6f\n", k.c_str(), v);
 	const auto c = g_figures.find("BM_CnnSweep_1000 cost");

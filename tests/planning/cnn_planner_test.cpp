@@ -8,6 +8,8 @@
 #include <functional>
 #include <random>
 
+#include "WallSegments.h"
+
 using namespace semnav;
 
 namespace
@@ -35,17 +37,7 @@ Problem randomProblem(
 			else
 				p.u.setU(r, c, U(rng) < 0.5 ? 0.0 : uMax * U(rng));
 		}
-	for (int k = 0; k < rows / 4; k++)  // walls: long blocked segments
-	{
-		const int r = static_cast<int>(U(rng) * rows);
-		const int c = static_cast<int>(U(rng) * cols);
-		const bool vertical = U(rng) < 0.5;
-		for (int s = 0; s < std::max(rows, cols) / 2; s++)
-		{
-			const int rr = vertical ? r + s : r, cc = vertical ? c : c + s;
-			if (g.contains(rr, cc)) p.u.block(rr, cc);
-		}
-	}
+	test::addWallSegments(p.u, rows / 4, rng);  // walls: long blocked segments
 	for (int k = 1; k <= nGoals; k++)  // free goal cells, with their own u
 	{
 		const CellIndex c{

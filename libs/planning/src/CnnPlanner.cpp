@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "DiffusionKernels.h"
+#include "FieldRepair.h"
 
 namespace semnav
 {
@@ -96,6 +97,13 @@ std::size_t traversableGoals(const TraversabilityGrid& u, const GoalLayer& g)
 	return n;
 }
 
+double msSince(std::chrono::steady_clock::time_point t0)
+{
+	return std::chrono::duration<double, std::milli>(
+	           std::chrono::steady_clock::now() - t0)
+	    .count();
+}
+
 void throwEmptyGoals(const GoalLayer& goals)
 {
 	throw EmptyGoalError(
@@ -144,12 +152,21 @@ void CnnPlanner::checkInputs(
 DiffusionField CnnPlanner::computeField(
     const TraversabilityGrid& u, const GoalLayer& goals) const
 {
+	DiffusionField f;
+	computeFieldInto(u, goals, f);
+	return f;
+}
+
+void CnnPlanner::computeFieldInto(
+    const TraversabilityGrid& u, const GoalLayer& goals,
+    DiffusionField& f) const
+{
 	const auto& g = u.geometry();
 	checkSameGeometry(g, goals.geometry());
 	const auto t0 = std::chrono::steady_clock::now();
-	DiffusionField f;
 	f.geometry = g;
 	f.L = u.L();
+	f.rowUpdates = 0;
 	if (detail::initialField(u, goals, f.x) == 0) throwEmptyGoals(goals);
 	const auto ue = detail::effectiveU(u);
 	const int threads = resolveThreads(m_options.threads);
@@ -165,13 +182,70 @@ DiffusionField CnnPlanner::computeField(
 		    cnnScheduleName(m_options.schedule) +
 		    ") did not converge within max_iterations = " +
 		    std::to_string(m_options.maxIterations));
-	f.milliseconds = std::chrono::duration<double, std::milli>(
-	                     std::chrono::steady_clock::now() - t0)
-	                     .count();
+	f.milliseconds = msSince(t0);
 	MRPT_LOG_DEBUG_FMT(
 	    "diffusion (%s): %d iterations, %.1f ms",
 	    cnnScheduleName(m_options.schedule), f.iterations, f.milliseconds);
-	return f;
+}
+
+FieldRepairStats CnnPlanner::repairField(
+    DiffusionField& field, const TraversabilityGrid& oldU,
+    const GoalLayer& oldGoals, const TraversabilityGrid& newU,
+    const GoalLayer& newGoals, const CellRect* changed,
+    double maxWorkFraction) const
+{
+	const auto t0 = std::chrono::steady_clock::now();
+	const auto& g = newU.geometry();
+	checkSameGeometry(g, newGoals.geometry());
+	checkSameGeometry(oldU.geometry(), oldGoals.geometry());
+	if (!(field.geometry == oldU.geometry()) || field.L != oldU.L() ||
+	    field.x.size() != oldU.geometry().cellCount())
+		throw PlanningError(
+		    "field repair: the field was not computed on the old "
+		    "traversability grid (geometry or L differ)");
+	FieldRepairStats stats;
+	const auto recompute = [&](const std::string& why)
+	{
+		computeFieldInto(newU, newGoals, field);
+		stats.fullRecompute = true;
+		stats.fallbackReason = why;
+		stats.milliseconds = msSince(t0);
+		MRPT_LOG_DEBUG_FMT("field repair: full recompute (%s)", why.c_str());
+		return stats;
+	};
+	if (!(oldU.geometry() == g) || oldU.L() != newU.L())
+		return recompute("the grid's geometry or L changed");
+	if (!detail::FieldRepairer::applicable(g, newU.L()))
+		return recompute(
+		    "L is too large for the resolution (its rounding unit exceeds "
+		    "1/64 of a cell) or the grid exceeds 2^32 cells");
+
+	detail::FieldRepairer repairer(field.x, oldU, oldGoals, newU, newGoals);
+	repairer.collectChanges(changed ? *changed : CellRect::all(g));
+	stats.changedCells = repairer.changed().size();
+	if (repairer.lostSources() > 0 && traversableGoals(newU, newGoals) == 0)
+		throwEmptyGoals(newGoals);
+	if (oldGoals.count() > 0 && repairer.removedGoalCells() == oldGoals.count())
+		return recompute("every goal cell was removed (the goal moved)");
+	const double limit =
+	    std::max(0.0, maxWorkFraction) * static_cast<double>(g.cellCount());
+	if (static_cast<double>(stats.changedCells) > limit)
+		return recompute(
+		    std::to_string(stats.changedCells) +
+		    " changed cells, over the work limit");
+	const auto workLimit = limit >= static_cast<double>(SIZE_MAX)
+	                           ? SIZE_MAX
+	                           : static_cast<std::size_t>(limit);
+	if (const char* stopped = repairer.run(workLimit, stats))
+		return recompute(stopped);
+	field.iterations = 0;
+	field.rowUpdates = 0;
+	field.milliseconds = stats.milliseconds = msSince(t0);
+	MRPT_LOG_DEBUG_FMT(
+	    "field repair: %zu changed, %zu invalidated, %zu raised, %.2f ms",
+	    stats.changedCells, stats.invalidatedCells, stats.raisedCells,
+	    stats.milliseconds);
+	return stats;
 }
 
 PlannedPath CnnPlanner::extractPath(

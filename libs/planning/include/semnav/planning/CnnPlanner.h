@@ -3,7 +3,9 @@
 
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/system/COutputLogger.h>
+#include <semnav/planning/CellRect.h>
 #include <semnav/planning/DiffusionField.h>
+#include <semnav/planning/FieldRepairStats.h>
 #include <semnav/planning/GoalLayer.h>
 #include <semnav/planning/PlannedPath.h>
 #include <semnav/planning/TraversabilityGrid.h>
@@ -100,6 +102,51 @@ public:
 	 * NotConvergedError, PlanningError. */
 	DiffusionField computeField(
 	    const TraversabilityGrid& u, const GoalLayer& goals) const;
+	/** As computeField, into `field`, reusing its storage (no 8 bytes per
+	 * cell allocated when the grid's size is unchanged); on an exception
+	 * `field` is left invalid. */
+	void computeFieldInto(
+	    const TraversabilityGrid& u, const GoalLayer& goals,
+	    DiffusionField& field) const;
+
+	/** Default work limit of repairField: the repair falls back to a full
+	 * recompute once it has taken more than this fraction of the grid's
+	 * cells from its queues (past it the raster sweep is cheaper). */
+	static constexpr double kRepairMaxWorkFraction = 0.1;
+
+	/** Incremental replanning: turns `field`, the converged field of
+	 * (oldU, oldGoals), into the field of (newU, newGoals), in place,
+	 * repairing only the cells whose value may change: the same fixed
+	 * point as computeField(newU, newGoals), bit for bit (docs/navigation.md
+	 * "Incremental repair").
+	 *
+	 * Cost increases, new obstacles and lost goal cells first invalidate
+	 * the cells whose value came through them (highest value first, a cell
+	 * keeping its value while a neighbour still offers it), then the
+	 * invalidated cells, the changed cells and the neighbours of cheaper or
+	 * freed cells are re-propagated highest value first, as Dijkstra does.
+	 *
+	 * @param changed Cells that may differ between (oldU, oldGoals) and
+	 *   (newU, newGoals), clipped to the grid; nullptr = the whole grid is
+	 *   compared. The caller guarantees that no cell outside it differs.
+	 * @param maxWorkFraction Work limit, as a fraction of the grid's cells
+	 *   (<= 0: always recompute; infinity: never fall back on work).
+	 *
+	 * Falls back to computeField(newU, newGoals) (fullRecompute, with the
+	 * reason) when the grid's geometry or L changed, when every goal cell of
+	 * oldGoals was removed (the goal moved: every value came from it), when
+	 * more cells changed than the work limit, or when the work limit is
+	 * reached. Throws EmptyGoalError (field untouched) when no traversable
+	 * goal cell is left, PlanningError when newU and newGoals differ in
+	 * geometry or `field` does not match oldU, NotConvergedError from a
+	 * fallback as computeField (field then invalid). After a repair,
+	 * field.iterations and field.rowUpdates are 0 and field.milliseconds is
+	 * the repair's time. */
+	FieldRepairStats repairField(
+	    DiffusionField& field, const TraversabilityGrid& oldU,
+	    const GoalLayer& oldGoals, const TraversabilityGrid& newU,
+	    const GoalLayer& newGoals, const CellRect* changed = nullptr,
+	    double maxWorkFraction = kRepairMaxWorkFraction) const;
 
 	/** Path by eq. (12) from `start` over a converged field. Throws
 	 * StartOutsideMapError, StartBlockedError, NoPathError. */

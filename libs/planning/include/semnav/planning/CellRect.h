@@ -1,0 +1,45 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+
+#include <semnav/common/GridGeometry.h>
+
+#include <algorithm>
+
+namespace semnav
+{
+/** A rectangle of grid cells: rows [row0, row1) x columns [col0, col1);
+ * empty when row0 >= row1 or col0 >= col1. */
+struct CellRect
+{
+	int row0 = 0, col0 = 0, row1 = 0, col1 = 0;
+
+	/** The whole grid. */
+	static CellRect all(const GridGeometry& g)
+	{
+		return {0, 0, g.rows, g.cols};
+	}
+
+	bool empty() const { return row0 >= row1 || col0 >= col1; }
+	/** The part inside the grid. */
+	CellRect clipped(const GridGeometry& g) const
+	{
+		return {
+		    std::max(row0, 0), std::max(col0, 0), std::min(row1, g.rows),
+		    std::min(col1, g.cols)};
+	}
+	/** Grows the rectangle to hold cell (row, col). */
+	void add(int row, int col)
+	{
+		if (empty())
+		{
+			*this = {row, col, row + 1, col + 1};
+			return;
+		}
+		row0 = std::min(row0, row);
+		col0 = std::min(col0, col);
+		row1 = std::max(row1, row + 1);
+		col1 = std::max(col1, col + 1);
+	}
+};
+
+}  // namespace semnav
