@@ -158,4 +158,37 @@ TEST(ViewPlanner, AStartAtTheHallsCentreDrivesToLookAndIsRight)
 	    rep.driveLength,
 	    config().viewPlanner.budget + config().viewPlanner.maxDrive);
 	EXPECT_EQ(robot.base().collisions(), 0);
+	// Walls only (no semantic evidence): the hall and its twin fit alike.
+	// Turning on the spot, the start is refused; driving to look, it is
+	// never a wrong answer.
+	auto wallsOnly = test::shippedLocalizationOptions();
+	wallsOnly.semantic.classPoints = 0;
+	wallsOnly.semantic.groundPoints = 0;
+	wallsOnly.semantic.objectPoints = 0;
+	for (const bool drive : {false, true})
+	{
+		StopAndScanLocalizer loc2(
+		    hallMap(), config().stopAndScan, wallsOnly,
+		    test::shippedPerceptionOptions(), cascades);
+		if (drive)
+			loc2.enableViewPlanning(hallTraversability(), config().viewPlanner);
+		SimulatedRobot robot2(hall(), config().robot, start);
+		robot2.enableOdometryNoise(hall().odometry);
+		try
+		{
+			const auto r2 = loc2.start(
+			    robot2.interfaces(), StopAndScanLocalizer::Mode::Global);
+			std::cerr << "walls only, drive " << drive << ": " << r2.drives
+			          << " drives, error " << r2.errorXY << " m\n";
+			EXPECT_TRUE(drive) << "localized in the twin hall by turning only";
+			EXPECT_LT(r2.errorXY, 0.3);
+			EXPECT_LT(r2.errorYaw, mrpt::DEG2RAD(5));
+		}
+		catch (const LocalizationFailedError& e)
+		{
+			std::cerr << "walls only, drive " << drive << ": " << e.what()
+			          << "\n";
+		}
+		EXPECT_EQ(robot2.base().collisions(), 0);
+	}
 }

@@ -44,6 +44,10 @@ const double kHypothesisYaw = mrpt::DEG2RAD(20.0);
 /** Clusters lighter than this share of the weight are not hypotheses. */
 constexpr double kHypothesisMinWeight = 0.03;
 constexpr std::size_t kMaxHypotheses = 4;
+/** A hypothesis after a drive is the one before it carried by the drive's
+ * odometry when this close (m, rad): the odometry drifts on the way. */
+constexpr double kCarriedRadius = 0.75;
+const double kCarriedYaw = mrpt::DEG2RAD(20.0);
 /** Spread of the particles put around each hypothesis before a drive. */
 constexpr double kHypothesisStdXY = 0.1;
 const double kHypothesisStdYaw = mrpt::DEG2RAD(2.0);
@@ -279,6 +283,15 @@ bool StopAndScanLocalizer::driveToLook(
 	    "first holds, %.1f m, %.0f%% of the view differs",
 	    h.size(), move->end.x, move->end.y, mrpt::RAD2DEG(move->end.phi),
 	    move->length, 100 * move->difference);
+	// What this place said of the estimate and its rival goes with them.
+	const auto checked = std::find_if(
+	    rep.records.rbegin(), rep.records.rend(),
+	    [](const SweepRecord& r) { return r.checked; });
+	m_carried = CarriedEvidence();
+	if (checked != rep.records.rend())
+		m_carried = {
+		    true, checked->estimate, checked->rival, robot.base->odometry().pose,
+		    checked->evidence};
 	// The filter keeps every hypothesis through the drive.
 	std::vector<mrpt::math::TPose2D> poses;
 	for (const auto& x : h) poses.push_back(x.pose);
@@ -308,6 +321,7 @@ StopAndScanLocalizer::Report StopAndScanLocalizer::start(
 	Report rep;
 	rep.mode = mode;
 	keepStartSweeps(0);
+	m_carried = CarriedEvidence();
 	m_inStart = true;
 	if (mode == Mode::Global)
 		m_localizer->initializeGlobal();
@@ -393,11 +407,12 @@ void StopAndScanLocalizer::sweepUntilConverged(
 			m_records.back() = rr;
 			MRPT_LOG_INFO_FMT(
 			    "uniqueness: estimate %.3f, best other place (%.2f, %.2f, "
-			    "%.1f deg) %.3f",
+			    "%.1f deg) %.3f, evidence %.3f",
 			    rr.score, rr.rival.x, rr.rival.y, mrpt::RAD2DEG(rr.rival.phi),
-			    rr.rivalScore);
-			rep.ambiguous =
-			    rr.rivalScore > rr.score - m_options.uniquenessMargin;
+			    rr.rivalScore, evidenceOf(rr));
+			rr.evidence = evidenceOf(rr);
+			m_records.back() = rr;
+			rep.ambiguous = rr.evidence < m_options.uniquenessMargin;
 			rep.poorFit = rr.score < m_options.uniquenessMinScore;
 			if (rr.rivalScore > rr.score + m_options.uniquenessMargin)
 			{
@@ -727,7 +742,13 @@ void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const
 		return std::make_pair(best, arg);
 	};
 	const mrpt::math::TPose2D e = rec.estimate;
-	rec.score = refine(e).first;
+	{
+		const auto [v, at] = refine(e);
+		rec.score = v;
+		MRPT_LOG_INFO_FMT(
+		    "uniqueness: at the estimate walls %.3f, semantics %.3f",
+		    wallScore(at.x, at.y, at.phi), semanticScore(at.x, at.y, at.phi));
+	}
 	// Coarse search away from the estimate.
 	const double minD2 =
 	    m_options.uniquenessMinDistance * m_options.uniquenessMinDistance;
@@ -761,6 +782,30 @@ void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const
 	rec.rival.phi = mrpt::math::wrapToPi(rec.rival.phi);
 	rec.checked = true;
 	rec.checkMs = msSince(t0);
+}
+
+double StopAndScanLocalizer::evidenceOf(const SweepRecord& rec) const
+{
+	double e = rec.score - rec.rivalScore;
+	if (!m_carried.valid) return e;
+	// The carried hypotheses, moved by the odometry since.
+	const mrpt::poses::CPose2D drive =
+	    mrpt::poses::CPose2D(rec.odometry) -
+	    mrpt::poses::CPose2D(m_carried.odometry);
+	const auto moved = [&](const mrpt::math::TPose2D& p)
+	{ return (mrpt::poses::CPose2D(p) + drive).asTPose(); };
+	const auto near = [](const mrpt::math::TPose2D& a,
+	                     const mrpt::math::TPose2D& b)
+	{
+		return std::hypot(a.x - b.x, a.y - b.y) < kCarriedRadius &&
+		       std::abs(mrpt::math::wrapToPi(a.phi - b.phi)) < kCarriedYaw;
+	};
+	const auto est = moved(m_carried.estimate), riv = moved(m_carried.rival);
+	if (near(rec.estimate, est) && near(rec.rival, riv))
+		e += m_carried.evidence;
+	else if (near(rec.estimate, riv) && near(rec.rival, est))
+		e -= m_carried.evidence;
+	return e;
 }
 
 double StopAndScanLocalizer::massNear(const mrpt::math::TPose2D& e) const

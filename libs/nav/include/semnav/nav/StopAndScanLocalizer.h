@@ -109,7 +109,7 @@ public:
 		 * and semantics) at the estimate: a place that explains them
 		 * poorly is not where the robot is, even with no better place in
 		 * the map (its true place may be one the map barely saw). */
-		double uniquenessMinScore = -0.15;
+		double uniquenessMinScore = -0.25;
 		/** max_sweeps: sweeps of a start before giving up. */
 		int maxSweeps = 12;
 		/** turn_deg: turn on the spot between start sweeps (rad). */
@@ -167,6 +167,11 @@ public:
 		 * other place, and that place. */
 		bool checked = false;
 		double score = 0, rivalScore = 0;
+		/** score - rivalScore, plus what the places seen before the last
+		 * drive to look said of the same two hypotheses (carried by the
+		 * drive's odometry): evidence from several places adds up. A start
+		 * is ambiguous while this is below uniqueness_margin. */
+		double evidence = 0;
 		/** Wall clock of the check, ms. */
 		double checkMs = 0;
 		mrpt::math::TPose2D rival;
@@ -345,6 +350,19 @@ private:
 	std::vector<mrpt::math::TPoint2D> m_places;
 	mrpt::math::TPose2D m_lastOdometry;
 	bool m_inStart = false;
+	/** What the uniqueness check said before the last drive to look: the
+	 * estimate and its rival, the evidence between them and the odometry
+	 * there (valid while a start drives). */
+	struct CarriedEvidence
+	{
+		bool valid = false;
+		mrpt::math::TPose2D estimate, rival, odometry;
+		double evidence = 0;
+	};
+	CarriedEvidence m_carried;
+	/** rec.score - rec.rivalScore plus m_carried's evidence when rec's
+	 * estimate and rival are the carried ones (or swapped: minus). */
+	double evidenceOf(const SweepRecord& rec) const;
 };
 
 }  // namespace semnav
