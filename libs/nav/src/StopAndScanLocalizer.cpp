@@ -219,12 +219,13 @@ std::vector<ViewPlanner::Hypothesis> StopAndScanLocalizer::hypotheses(
 	for (std::size_t i = 0; i < ps.size(); i++) order[i] = i;
 	std::sort(
 	    order.begin(), order.end(),
-	    [&](std::size_t a, std::size_t b) { return ps[a].log_w > ps[b].log_w; });
+	    [&](std::size_t a, std::size_t b)
+	    { return ps[a].log_w > ps[b].log_w; });
 	const double maxLog = ps.empty() ? 0 : ps[order[0]].log_w;
 	double total = 0;
 	for (const auto& p : ps) total += std::exp(p.log_w - maxLog);
-	const auto near = [](const mrpt::math::TPose2D& a,
-	                     const mrpt::math::TPose2D& b)
+	const auto near =
+	    [](const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b)
 	{
 		return std::hypot(a.x - b.x, a.y - b.y) < kHypothesisRadius &&
 		       std::abs(mrpt::math::wrapToPi(a.phi - b.phi)) < kHypothesisYaw;
@@ -234,7 +235,8 @@ std::vector<ViewPlanner::Hypothesis> StopAndScanLocalizer::hypotheses(
 	for (int cluster = 0; cluster < 8; cluster++)
 	{
 		const auto seed = std::find_if(
-		    order.begin(), order.end(), [&](std::size_t i) { return !taken[i]; });
+		    order.begin(), order.end(),
+		    [&](std::size_t i) { return !taken[i]; });
 		if (seed == order.end()) break;
 		const mrpt::math::TPose2D centre = ps[*seed].d;
 		double w = 0;
@@ -247,10 +249,10 @@ std::vector<ViewPlanner::Hypothesis> StopAndScanLocalizer::hypotheses(
 		else if (w >= kHypothesisMinWeight)
 			h.push_back({centre, w});
 	}
-	if (rec.checked &&
-	    std::none_of(
-	        h.begin(), h.end(),
-	        [&](const ViewPlanner::Hypothesis& o) { return near(o.pose, rec.rival); }))
+	if (rec.checked && std::none_of(
+	                       h.begin(), h.end(),
+	                       [&](const ViewPlanner::Hypothesis& o)
+	                       { return near(o.pose, rec.rival); }))
 		h.push_back({rec.rival, std::max(h[0].weight, kHypothesisMinWeight)});
 	if (h.size() > kMaxHypotheses) h.resize(kMaxHypotheses);
 	return h;
@@ -269,7 +271,8 @@ bool StopAndScanLocalizer::driveToLook(
 	const std::vector<ViewPlanner::Hypothesis> h =
 	    hypotheses(rep.records.back());
 	const double left = std::min(o.maxDrive, o.budget - rep.driveLength);
-	const auto move = h.size() < 2 ? std::nullopt : m_viewPlanner->plan(h, left);
+	const auto move =
+	    h.size() < 2 ? std::nullopt : m_viewPlanner->plan(h, left);
 	if (!move)
 	{
 		MRPT_LOG_INFO_FMT(
@@ -290,13 +293,12 @@ bool StopAndScanLocalizer::driveToLook(
 	m_carried = CarriedEvidence();
 	if (checked != rep.records.rend())
 		m_carried = {
-		    true, checked->estimate, checked->rival, robot.base->odometry().pose,
-		    checked->evidence};
+		    true, checked->estimate, checked->rival,
+		    robot.base->odometry().pose, checked->evidence};
 	// The filter keeps every hypothesis through the drive.
 	std::vector<mrpt::math::TPose2D> poses;
 	for (const auto& x : h) poses.push_back(x.pose);
-	m_localizer->initializeAround(
-	    poses, kHypothesisStdXY, kHypothesisStdYaw);
+	m_localizer->initializeAround(poses, kHypothesisStdXY, kHypothesisStdYaw);
 	rep.driveLength += OdometryMotion(robot, o.driveSpeed, o.turnSpeed)
 	                       .follow(move->path, move->heading);
 	rep.drives++;
@@ -789,13 +791,12 @@ double StopAndScanLocalizer::evidenceOf(const SweepRecord& rec) const
 	double e = rec.score - rec.rivalScore;
 	if (!m_carried.valid) return e;
 	// The carried hypotheses, moved by the odometry since.
-	const mrpt::poses::CPose2D drive =
-	    mrpt::poses::CPose2D(rec.odometry) -
-	    mrpt::poses::CPose2D(m_carried.odometry);
+	const mrpt::poses::CPose2D drive = mrpt::poses::CPose2D(rec.odometry) -
+	                                   mrpt::poses::CPose2D(m_carried.odometry);
 	const auto moved = [&](const mrpt::math::TPose2D& p)
 	{ return (mrpt::poses::CPose2D(p) + drive).asTPose(); };
-	const auto near = [](const mrpt::math::TPose2D& a,
-	                     const mrpt::math::TPose2D& b)
+	const auto near =
+	    [](const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b)
 	{
 		return std::hypot(a.x - b.x, a.y - b.y) < kCarriedRadius &&
 		       std::abs(mrpt::math::wrapToPi(a.phi - b.phi)) < kCarriedYaw;

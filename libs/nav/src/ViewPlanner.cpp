@@ -98,7 +98,8 @@ bool ViewPlanner::clearAt(double x, double y) const
 	if (!freeAt(x, y)) return false;
 	const double r = m_options.endClearance;
 	for (int k = 0; k < 8; k++)
-		if (!freeAt(x + r * std::cos(k * M_PI / 4), y + r * std::sin(k * M_PI / 4)))
+		if (!freeAt(
+		        x + r * std::cos(k * M_PI / 4), y + r * std::sin(k * M_PI / 4)))
 			return false;
 	return true;
 }
@@ -109,7 +110,8 @@ ViewPlanner::View ViewPlanner::view(const mrpt::math::TPose2D& pose) const
 	scan.aperture = static_cast<float>(2 * M_PI);
 	scan.rightToLeft = true;
 	scan.maxRange = static_cast<float>(m_options.viewRange);
-	m_grid.laserScanSimulator(scan, mrpt::poses::CPose2D(pose), 0.5f, kRays + 1);
+	m_grid.laserScanSimulator(
+	    scan, mrpt::poses::CPose2D(pose), 0.5f, kRays + 1);
 	View v;
 	v.range.resize(kRays);
 	v.what.assign(kRays, 0);
@@ -222,7 +224,8 @@ std::optional<ViewPlanner::Move> ViewPlanner::plan(
 	std::vector<Candidate> candidates;
 	const auto& g = m_u.geometry();
 	const int stride = std::max(
-	    1, static_cast<int>(std::lround(m_options.candidateStep / g.resolution)));
+	    1,
+	    static_cast<int>(std::lround(m_options.candidateStep / g.resolution)));
 	for (int row = 0; row < g.rows; row += stride)
 		for (int col = 0; col < g.cols; col += stride)
 		{

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
 
@@ -54,7 +55,17 @@ SimulatedNavigation::Result NavigationRun::run(
 		    *m_settings.localize, m_settings.localization,
 		    m_settings.perception, m_settings.startGuess, m_settings.cascades);
 	if (m_settings.verbose && sim.localizer())
-		sim.localizer()->setMinLoggingLevel(mrpt::system::LVL_INFO);
+	{
+		// Progress on stderr (MRPT's console output is stdout, which may
+		// carry JSON).
+		auto& log = *sim.localizer();
+		log.setMinLoggingLevel(mrpt::system::LVL_INFO);
+		log.logging_enable_console_output = false;
+		log.logRegisterCallback(
+		    [](std::string_view msg, mrpt::system::VerbosityLevel,
+		       std::string_view loggerName, mrpt::Clock::time_point)
+		    { std::cerr << loggerName << ": " << msg << std::endl; });
+	}
 	const auto r = sim.run(command, start, m_navlog);
 	if (!m_png.empty())
 	{

@@ -19,8 +19,9 @@ namespace semnav
 {
 /** Everything the runtime's navigation is configured with:
  * config/navigation.ini ([SemanticNavigator], [StopAndScan],
- * [ViewPlanner], [RobotNavInterface], [SweepObstacles] and MRPT's reactive-navigation
- * sections, based on MRPT's reactive2d_config.ini) and config/planning.ini
+ * [ViewPlanner], [RobotNavInterface], [SweepObstacles] and MRPT's
+ * reactive-navigation sections, based on MRPT's reactive2d_config.ini) and
+ * config/planning.ini
  * ([CnnPlanner], [Traversability], optionally [SemanticMap], [TravelCost]
  * for loading maps). The robot's own sections (e.g. the simulator's
  * [SimulatedRobot], see SimulationConfig) are loaded by whoever owns them

@@ -29,7 +29,8 @@ public:
 	/** Drives along `path` (points in the robot's frame now, the first
 	 * one where it stands), then turns to face `heading` (rad, same
 	 * frame). Returns the odometry length driven (m). */
-	double follow(const std::vector<mrpt::math::TPoint2D>& path, double heading);
+	double follow(
+	    const std::vector<mrpt::math::TPoint2D>& path, double heading);
 
 private:
 	void command(double v, double w);

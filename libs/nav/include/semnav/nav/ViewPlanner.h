@@ -134,8 +134,9 @@ private:
 	bool clearAt(double x, double y) const;
 	/** Mean weighted pairwise difference of the views at the best heading
 	 * (returned in `heading`). */
-	double score(const std::vector<View>& views,
-	             const std::vector<Hypothesis>& h, double& heading) const;
+	double score(
+	    const std::vector<View>& views, const std::vector<Hypothesis>& h,
+	    double& heading) const;
 
 	const SemanticMap& m_map;
 	TraversabilityGrid m_u;
