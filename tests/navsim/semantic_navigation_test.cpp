@@ -322,9 +322,19 @@ TEST(SemanticNavigation, BadOrdersAreErrors)
 	EXPECT_THROW(
 	    sim.run(NavCommand::nearest(Label::Wastebasket), {5.5, 1.95, 0}),
 	    Error);
-	EXPECT_THROW(
-	    sim.run(NavCommand::nearest(Label::Wastebasket), {0.45, 3.0, 0}),
-	    StartBlockedError);
+	// Too close to a wall (in the planner's inflated obstacle, not in
+	// contact): the plan starts from the nearest free cell.
+	{
+		const auto close =
+		    sim.run(NavCommand::nearest(Label::Wastebasket), {0.45, 3.0, 0});
+		EXPECT_TRUE(close.success) << close.message;
+		ASSERT_FALSE(close.plans.empty());
+		const auto& from = close.plans.front().path.front();
+		EXPECT_GT(std::hypot(from.x - 0.45, from.y - 3.0), 0.01);
+		EXPECT_LE(
+		    std::hypot(from.x - 0.45, from.y - 3.0),
+		    config().navigator.startSnap + 0.05);
+	}
 	EXPECT_THROW(
 	    sim.run(NavCommand::nearest(Label::Wastebasket), {50, 3.0, 0}), Error);
 	// A point goal inside an obstacle has no reachable goal cell.

@@ -48,6 +48,8 @@ constexpr std::size_t kMaxHypotheses = 4;
  * odometry when this close (m, rad): the odometry drifts on the way. */
 constexpr double kCarriedRadius = 0.75;
 const double kCarriedYaw = mrpt::DEG2RAD(20.0);
+/** Detections of one label this close (m) in two sweeps are one object. */
+constexpr double kSameObject = 0.5;
 /** Spread of the particles put around each hypothesis before a drive. */
 constexpr double kHypothesisStdXY = 0.1;
 const double kHypothesisStdYaw = mrpt::DEG2RAD(2.0);
@@ -90,9 +92,9 @@ const OptionTable<O>& optionTable()
 	            "Uniqueness check: places are scored on samples in observed "
 	            "cells; fewer than this share there: not scored.")
 	        .real(
-	            "uniqueness_min_score", &O::uniquenessMinScore, -100, 0,
-	            "A start whose sweeps score less at the estimate is not "
-	            "accepted.")
+	            "contradiction_distance_m", &O::contradictionDistance, 0, 100,
+	            "A start is refused while an object seen twice lies where the "
+	            "map observed none of its label within this (0: off).")
 	        .integer(
 	            "max_sweeps", &O::maxSweeps, 1, 100,
 	            "Sweeps of a start before it fails.")
@@ -401,7 +403,7 @@ void StopAndScanLocalizer::sweepUntilConverged(
 			global = true;
 			keepStartSweeps(1);
 		}
-		if (r.converged) rep.ambiguous = rep.poorFit = false;
+		if (r.converged) rep.ambiguous = rep.contradicted = false;
 		if (r.converged && m_options.uniquenessCheck && global)
 		{
 			SweepRecord& rr = rep.records.back();
@@ -415,7 +417,10 @@ void StopAndScanLocalizer::sweepUntilConverged(
 			rr.evidence = evidenceOf(rr);
 			m_records.back() = rr;
 			rep.ambiguous = rr.evidence < m_options.uniquenessMargin;
-			rep.poorFit = rr.score < m_options.uniquenessMinScore;
+			rep.contradiction = contradiction(rr.estimate);
+			rep.contradicted = !rep.contradiction.empty();
+			if (rep.contradicted)
+				MRPT_LOG_INFO_FMT("uniqueness: %s", rep.contradiction.c_str());
 			if (rr.rivalScore > rr.score + m_options.uniquenessMargin)
 			{
 				// Another place explains the sweeps clearly better than the
@@ -425,7 +430,7 @@ void StopAndScanLocalizer::sweepUntilConverged(
 				    {rr.rival}, kHypothesisStdXY, kHypothesisStdYaw);
 			}
 		}
-		if (r.converged && !rep.ambiguous && !rep.poorFit)
+		if (r.converged && !rep.ambiguous && !rep.contradicted)
 		{
 			rep.converged = true;
 			break;
@@ -459,14 +464,10 @@ void StopAndScanLocalizer::sweepUntilConverged(
 		        "%.2f, %.0f deg) alike",
 		        c.estimate.x, c.estimate.y, mrpt::RAD2DEG(c.estimate.phi),
 		        c.rival.x, c.rival.y, mrpt::RAD2DEG(c.rival.phi)));
-	if (!rep.converged && rep.poorFit)
+	if (!rep.converged && rep.contradicted)
 		throw LocalizationFailedError(
-		    what +
-		    mrpt::format(
-		        "the map explains the sweeps poorly after %d sweeps: %.2f "
-		        "at (%.2f, %.2f, %.0f deg), uniqueness_min_score %.2f",
-		        rep.sweeps, c.score, c.estimate.x, c.estimate.y,
-		        mrpt::RAD2DEG(c.estimate.phi), m_options.uniquenessMinScore));
+		    what + "the sweeps contradict the map after " +
+		    std::to_string(rep.sweeps) + " sweeps: " + rep.contradiction);
 	if (!rep.converged)
 		throw LocalizationFailedError(
 		    what + "not converged after " + std::to_string(rep.sweeps) +
@@ -784,6 +785,65 @@ void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const
 	rec.rival.phi = mrpt::math::wrapToPi(rec.rival.phi);
 	rec.checked = true;
 	rec.checkMs = msSince(t0);
+}
+
+std::string StopAndScanLocalizer::contradiction(
+    const mrpt::math::TPose2D& estimate) const
+{
+	if (m_options.contradictionDistance <= 0 || m_startSemantic.empty())
+		return {};
+	// Every start sweep's detections in the world at the estimate.
+	const mrpt::poses::CPose2D last(m_startOdo.back());
+	struct Seen
+	{
+		std::size_t sweep;
+		Label label;
+		mrpt::math::TPoint2D at;
+	};
+	std::vector<Seen> seen;
+	for (std::size_t i = 0; i < m_startSemantic.size(); i++)
+	{
+		const mrpt::poses::CPose2D at =
+		    mrpt::poses::CPose2D(estimate) +
+		    (mrpt::poses::CPose2D(m_startOdo[i]) - last);
+		for (const auto& o : m_startSemantic[i].objects)
+		{
+			double x, y;
+			at.composePoint(o.x, o.y, x, y);
+			seen.push_back({i, o.label, {x, y}});
+		}
+	}
+	const auto& g = m_map.geometry();
+	for (const Seen& a : seen)
+	{
+		// Seen again by another sweep at the same place, or by the last
+		// sweep (no later one could check it yet): not a one-off.
+		const bool twice = std::any_of(
+		    seen.begin(), seen.end(),
+		    [&](const Seen& b)
+		    {
+			    return b.sweep != a.sweep && b.label == a.label &&
+			           std::hypot(b.at.x - a.at.x, b.at.y - a.at.y) <
+			               kSameObject;
+		    });
+		const bool latest = a.sweep + 1 == m_startSemantic.size();
+		int cx, cy;
+		if (!(twice || latest) || !g.worldToCell(a.at.x, a.at.y, cx, cy) ||
+		    m_map.at("observations", cx, cy) <= 0)
+			continue;
+		const ObjectInstance* o = m_map.nearestInstance(a.label, a.at);
+		const double d =
+		    o ? std::hypot(o->centroid.x - a.at.x, o->centroid.y - a.at.y)
+		      : std::numeric_limits<double>::infinity();
+		if (d > m_options.contradictionDistance)
+			return mrpt::format(
+			    "a %s seen%s at (%.2f, %.2f) if the robot stands at (%.2f, "
+			    "%.2f, %.0f deg), where the map observed no %s within %.1f m",
+			    labelName(a.label).c_str(), twice ? " twice" : "", a.at.x,
+			    a.at.y, estimate.x, estimate.y, mrpt::RAD2DEG(estimate.phi),
+			    labelName(a.label).c_str(), m_options.contradictionDistance);
+	}
+	return {};
 }
 
 double StopAndScanLocalizer::evidenceOf(const SweepRecord& rec) const

@@ -104,12 +104,14 @@ public:
 		 * barely mapped twin room); a place where fewer than this fraction
 		 * of the wall samples do is not scored. */
 		double uniquenessMinKnownFraction = 0.25;
-		/** uniqueness_min_score: a start is accepted only if its sweeps
-		 * score at least this (mean log-likelihood per wall sample, walls
-		 * and semantics) at the estimate: a place that explains them
-		 * poorly is not where the robot is, even with no better place in
-		 * the map (its true place may be one the map barely saw). */
-		double uniquenessMinScore = -0.25;
+		/** contradiction_distance_m: a start is not accepted while an object
+		 * the detectors found in two of its sweeps at the same place (or in
+		 * its last sweep, until the next one checks it) lies,
+		 * at the estimate, in a cell the map observed and farther than this
+		 * from every object of its label in the map (the robot is not
+		 * where it believes, even when no better place is found: its true
+		 * place may be one the map barely saw); 0: off. */
+		double contradictionDistance = 1.0;
 		/** max_sweeps: sweeps of a start before giving up. */
 		int maxSweeps = 12;
 		/** turn_deg: turn on the spot between start sweeps (rad). */
@@ -193,9 +195,10 @@ public:
 		/** Not converged because another place explains the sweeps as
 		 * well (see uniqueness_check). */
 		bool ambiguous = false;
-		/** Not converged because the sweeps fit the map poorly at the
-		 * estimate (uniqueness_min_score). */
-		bool poorFit = false;
+		/** Not converged because the sweeps contradict the map at the
+		 * estimate (contradiction_distance_m); what was seen where. */
+		bool contradicted = false;
+		std::string contradiction;
 		/** A rescan that found the robot lost and turned and swept until
 		 * converged again. */
 		bool recovery = false;
@@ -363,6 +366,10 @@ private:
 	/** rec.score - rec.rivalScore plus m_carried's evidence when rec's
 	 * estimate and rival are the carried ones (or swapped: minus). */
 	double evidenceOf(const SweepRecord& rec) const;
+	/** The first object the start's sweeps saw twice that contradicts the
+	 * map at `estimate` (see contradiction_distance_m), one line; empty
+	 * when none. */
+	std::string contradiction(const mrpt::math::TPose2D& estimate) const;
 };
 
 }  // namespace semnav
