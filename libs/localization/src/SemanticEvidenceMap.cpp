@@ -1,4 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/LabelSet.h>
 #include <semnav/common/OptionTable.h>
 #include <semnav/localization/SemanticEvidenceMap.h>
 #include <semnav/localization/SemanticExtractor.h>
@@ -75,43 +76,75 @@ void SemanticEvidenceMap::build(const SemanticMap& map)
 	m_outside = std::max(far, unknown);
 	for (auto& f : m_fields) f.clear();
 	for (auto& o : m_objects) o.clear();
+	const std::vector<float>& observations = map.get("observations");
+	const std::vector<float>& labels = map.get("labels");
 	m_unknown.assign(m_geometry.cellCount(), 0);
-	for (int cy = 0; cy < ny; cy++)
-		for (int cx = 0; cx < nx; cx++)
-			m_unknown[m_geometry.index(cy, cx)] =
-			    map.at("observations", cx, cy) > 0 ? 0 : 1;
+	LabelSet::mask_t present = 0;
+	for (std::size_t i = 0; i < m_unknown.size(); i++)
+	{
+		m_unknown[i] = observations[i] > 0 ? 0 : 1;
+		present |= static_cast<LabelSet::mask_t>(labels[i]);
+	}
+	// Distance field (m) -> log-likelihood, one table for all labels.
+	const int steps = 256;
+	const double step = m_options.maxDistance / (steps - 1);
+	std::vector<float> table(steps);
+	for (int k = 0; k < steps; k++)
+		table[k] = value(k * step, m_options.sigma, m_options.maxDistance);
 	for (const Label l : allLabels())
 	{
-		if (!SemanticExtractor::isClassLabel(l) &&
-		    !SemanticExtractor::isGroundLabel(l))
+		if ((!SemanticExtractor::isClassLabel(l) &&
+		     !SemanticExtractor::isGroundLabel(l)) ||
+		    !LabelSet(present).contains(l))
 			continue;
 		cv::Mat src(ny, nx, CV_8U, cv::Scalar(255));
-		bool any = false;
-		for (int cy = 0; cy < ny; cy++)
-			for (int cx = 0; cx < nx; cx++)
-				if (map.labels(cx, cy).contains(l))
-				{
-					src.at<uint8_t>(cy, cx) = 0;
-					any = true;
-				}
-		if (!any) continue;
+		for (std::size_t i = 0; i < m_unknown.size(); i++)
+			if (LabelSet(static_cast<LabelSet::mask_t>(labels[i])).contains(l))
+				src.data[i] = 0;
 		cv::Mat dist;
 		cv::distanceTransform(src, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
 		auto& field = m_fields[static_cast<std::size_t>(l)];
 		field.resize(m_geometry.cellCount());
-		for (int cy = 0; cy < ny; cy++)
-			for (int cx = 0; cx < nx; cx++)
-			{
-				const std::size_t i = m_geometry.index(cy, cx);
-				const float v = value(
-				    dist.at<float>(cy, cx) * m_geometry.resolution,
-				    m_options.sigma, m_options.maxDistance);
-				field[i] = m_unknown[i] ? std::max(v, unknown) : v;
-			}
+		const float* d = dist.ptr<float>();
+		for (std::size_t i = 0; i < field.size(); i++)
+		{
+			const double m = std::min<double>(
+			    d[i] * m_geometry.resolution, m_options.maxDistance);
+			const float v = table[static_cast<int>(std::lround(m / step))];
+			field[i] = m_unknown[i] ? std::max(v, unknown) : v;
+		}
 	}
 	for (const auto& o : map.instances())
 		m_objects[static_cast<std::size_t>(o.label)].push_back(
 		    {o.centroid.x, o.centroid.y});
+}
+
+SemanticObservation SemanticEvidenceMap::observedPart(
+    double x, double y, double yaw, const SemanticObservation& obs) const
+{
+	SemanticObservation out;
+	if (empty()) return out;
+	const double c = std::cos(yaw), s = std::sin(yaw);
+	const auto keep = [&](const std::vector<SemanticSample>& in,
+	                      std::vector<SemanticSample>& dst)
+	{
+		for (const auto& p : in)
+		{
+			int cx = 0, cy = 0;
+			if (!hasField(p.label) ||
+			    !m_geometry.worldToCell(
+			        x + c * p.x - s * p.y, y + s * p.x + c * p.y, cx, cy) ||
+			    m_unknown[m_geometry.index(cy, cx)])
+				continue;
+			dst.push_back(p);
+		}
+	};
+	keep(obs.classSamples, out.classSamples);
+	keep(obs.groundSamples, out.groundSamples);
+	for (const auto& o : obs.objects)
+		if (!m_objects[static_cast<std::size_t>(o.label)].empty())
+			out.objects.push_back(o);
+	return out;
 }
 
 double SemanticEvidenceMap::meanField(

@@ -93,6 +93,15 @@ public:
 	Terms knownTerms(
 	    double x, double y, double yaw, const SemanticObservation& obs) const;
 
+	/** The part of the observation the map can judge when seen from
+	 * (x, y, yaw): class and ground points in cells the map observed and
+	 * holding a field of their label, detections of labels with
+	 * instances. Mapping scores this fixed subset at every particle, so
+	 * that no particle gains by pushing points into unseen cells (nor
+	 * loses: the frontier bias). */
+	SemanticObservation observedPart(
+	    double x, double y, double yaw, const SemanticObservation& obs) const;
+
 	/** True when the map has cells of label l. */
 	bool hasField(Label l) const
 	{
