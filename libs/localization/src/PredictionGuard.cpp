@@ -59,32 +59,46 @@ PredictionGuard::Result PredictionGuard::apply(
 	r.pose = posteriorMean;
 	const Eigen::Matrix3d S = regularized(predicted.cov);
 	const Eigen::Matrix3d P = regularized(posteriorCov);
-	// P v = lambda S v; V^T S V = I, so the correction's coordinates in the
-	// eigenvector basis are V^T S delta.
-	const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d> es(P, S);
-	if (es.info() != Eigen::Success) return r;
-	const Eigen::Matrix3d V = es.eigenvectors();
-	const Eigen::Vector3d lambda = es.eigenvalues();
-	r.maxVarianceRatio = lambda.maxCoeff();
-	if (!m_options.enabled) return r;
 	const auto& m = predicted.mean;
-	const Eigen::Vector3d delta(
-	    posteriorMean.x() - m.x(), posteriorMean.y() - m.y(),
-	    mrpt::math::wrapToPi(posteriorMean.phi() - m.phi()));
-	Eigen::Vector3d c = V.transpose() * S * delta;
-	for (int i = 0; i < 3; i++)
+	// Heading first, alone: the main directions fix it or nothing does.
+	const double yawRatio = P(2, 2) / S(2, 2);
+	double yaw = posteriorMean.phi();
+	const bool yawFree = yawRatio > m_options.unconstrainedVarianceRatio;
+	if (m_options.enabled && yawFree)
+	{
+		yaw = m.phi();
+		r.unconstrained++;
+	}
+	// Position: the prediction given that heading (Gaussian conditioning),
+	// against the posterior, by generalised eigen-direction: P v = l S v,
+	// V^T S V = I, so the correction's coordinates are V^T S delta.
+	const Eigen::Vector2d sxy = S.block<2, 1>(0, 2);
+	const Eigen::Matrix2d Sc =
+	    S.topLeftCorner<2, 2>() - sxy * sxy.transpose() / S(2, 2);
+	const Eigen::Vector2d mc =
+	    Eigen::Vector2d(m.x(), m.y()) +
+	    sxy / S(2, 2) * mrpt::math::wrapToPi(yaw - m.phi());
+	const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> es(
+	    P.topLeftCorner<2, 2>(), Sc);
+	if (es.info() != Eigen::Success) return r;
+	const Eigen::Matrix2d V = es.eigenvectors();
+	const Eigen::Vector2d lambda = es.eigenvalues();
+	r.maxVarianceRatio = std::max(yawRatio, lambda.maxCoeff());
+	if (!m_options.enabled) return r;
+	const Eigen::Vector2d delta =
+	    Eigen::Vector2d(posteriorMean.x(), posteriorMean.y()) - mc;
+	Eigen::Vector2d c = V.transpose() * Sc * delta;
+	for (int i = 0; i < 2; i++)
 		if (lambda(i) > m_options.unconstrainedVarianceRatio)
 		{
 			c(i) = 0;
 			r.unconstrained++;
 		}
-	const Eigen::Vector3d kept = V * c;
-	r.shiftX = kept(0) - delta(0);
-	r.shiftY = kept(1) - delta(1);
-	r.shiftYaw = kept(2) - delta(2);
-	r.pose = mrpt::poses::CPose2D(
-	    m.x() + kept(0), m.y() + kept(1),
-	    mrpt::math::wrapToPi(m.phi() + kept(2)));
+	const Eigen::Vector2d xy = mc + V * c;
+	r.shiftX = xy(0) - posteriorMean.x();
+	r.shiftY = xy(1) - posteriorMean.y();
+	r.shiftYaw = mrpt::math::wrapToPi(yaw - posteriorMean.phi());
+	r.pose = mrpt::poses::CPose2D(xy(0), xy(1), yaw);
 	return r;
 }
 
