@@ -24,7 +24,12 @@ const OptionTable<O>& optionTable()
 	            "unconstrained_variance_ratio", &O::unconstrainedVarianceRatio,
 	            0.01, 1,
 	            "A direction whose posterior variance is above this fraction "
-	            "of the predicted one is unconstrained.");
+	            "of the predicted one is unconstrained...")
+	        .real(
+	            "conflict_variance_ratio", &O::conflictVarianceRatio,
+	            &O::unconstrainedVarianceRatio, 100,
+	            "...unless above this: a posterior wider than the prediction "
+	            "means the sweep disagrees with it (the filter decides).");
 	return t;
 }
 
@@ -63,7 +68,7 @@ PredictionGuard::Result PredictionGuard::apply(
 	// Heading first, alone: the main directions fix it or nothing does.
 	const double yawRatio = P(2, 2) / S(2, 2);
 	double yaw = posteriorMean.phi();
-	const bool yawFree = yawRatio > m_options.unconstrainedVarianceRatio;
+	const bool yawFree = unconstrained(yawRatio);
 	if (m_options.enabled && yawFree)
 	{
 		yaw = m.phi();
@@ -89,7 +94,7 @@ PredictionGuard::Result PredictionGuard::apply(
 	    Eigen::Vector2d(posteriorMean.x(), posteriorMean.y()) - mc;
 	Eigen::Vector2d c = V.transpose() * Sc * delta;
 	for (int i = 0; i < 2; i++)
-		if (lambda(i) > m_options.unconstrainedVarianceRatio)
+		if (unconstrained(lambda(i)))
 		{
 			c(i) = 0;
 			r.unconstrained++;
@@ -100,6 +105,12 @@ PredictionGuard::Result PredictionGuard::apply(
 	r.shiftYaw = mrpt::math::wrapToPi(yaw - posteriorMean.phi());
 	r.pose = mrpt::poses::CPose2D(xy(0), xy(1), yaw);
 	return r;
+}
+
+bool PredictionGuard::unconstrained(double varianceRatio) const
+{
+	return varianceRatio > m_options.unconstrainedVarianceRatio &&
+	       varianceRatio <= m_options.conflictVarianceRatio;
 }
 
 void PredictionGuard::largestStd(

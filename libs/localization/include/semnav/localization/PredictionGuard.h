@@ -24,7 +24,9 @@ namespace semnav
  * along v; lambda near 1 means the sweep brought no information there. The
  * correction (posterior mean minus predicted mean), whitened, loses its
  * components along the eigenvectors with lambda above
- * `unconstrained_variance_ratio`; what remains is the estimate, and the
+ * `unconstrained_variance_ratio` (and not above `conflict_variance_ratio`:
+ * a posterior wider than the prediction is no lack of information but a
+ * disagreement, left to the filter); what remains is the estimate, and the
  * particles are moved by the dropped part so that the filter agrees with it.
  * The spread along those directions is left as it is: the reported
  * covariance says the direction is unknown.
@@ -48,6 +50,11 @@ public:
 		 * variance is above this fraction of the predicted one follows
 		 * the prediction. */
 		double unconstrainedVarianceRatio = 0.5;
+		/** conflict_variance_ratio: ...unless the posterior is wider than
+		 * this fraction of the prediction: then the sweep disagrees with
+		 * the prediction (two modes, a wrong prediction) and the filter's
+		 * estimate stands. */
+		double conflictVarianceRatio = 1.25;
 	};
 
 	/** What the guard decided for one update. */
@@ -85,6 +92,9 @@ public:
 	    double& direction);
 
 	const TOptions& options() const { return m_options; }
+	/** True for a fraction of the predicted variance that marks an
+	 * unconstrained direction. */
+	bool unconstrained(double varianceRatio) const;
 
 private:
 	TOptions m_options;
