@@ -7,7 +7,7 @@
 //   bench_localization_table [--config C.ini] [--out DIR] [--short]
 //                            SCENE:SEED ...
 // (default: datasets/localization/*.yaml and the office, seeds 1 and 3;
-// --short: the configured filter, walls only without guard, odometry).
+// --short: without the main-directions-off and stock MCL rows).
 #include <mrpt/config/CConfigFile.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/localization/MappingLocalizer.h>

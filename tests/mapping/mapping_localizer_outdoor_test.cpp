@@ -6,15 +6,16 @@
 // estimate follows the odometry and the reported covariance is long along
 // the wall.
 #include <gtest/gtest.h>
+#include <mrpt/config/CConfigFile.h>
 #include <mrpt/core/bits_math.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/mapping/MapBuilder.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 
 using namespace semnav;
 namespace fs = std::filesystem;
@@ -27,8 +28,8 @@ const std::string kSrc = SEMNAV_SOURCE_DIR;
 fs::path simulate(const std::string& scene, int seed)
 {
 	const fs::path dir = fs::temp_directory_path() /
-	                     ("semnav_outdoor_" + std::to_string(::getpid()) +
-	                      "_" + scene + std::to_string(seed));
+	                     ("semnav_outdoor_" + std::to_string(::getpid()) + "_" +
+	                      scene + std::to_string(seed));
 	fs::remove_all(dir);
 	const std::string cmd = std::string(SEMNAV_BINARY_DIR) +
 	                        "/apps/semnav-sim/semnav-sim --scene " + kSrc +
