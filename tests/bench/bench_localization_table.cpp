@@ -95,8 +95,8 @@ int main(int argc, char** argv)
 	const auto walls = MappingLocalizer::Method::Walls;
 	const Mode modes[] = {
 	    {"PF as configured", walls, [](Opt&) {}, true},
-	    {"PF, no guard", walls, [](Opt& o) { o.guard.enabled = false; }, false},
-	    {"PF walls only", walls, noSemantic, false},
+	    {"PF, no guard", walls, [](Opt& o) { o.guard.enabled = false; }, true},
+	    {"PF walls only", walls, noSemantic, true},
 	    {"PF walls only, no guard (before)", walls,
 	     [](Opt& o)
 	     {
