@@ -54,7 +54,13 @@ const OptionTable<O>& optionTable()
 	            "...and of the uniform part.")
 	        .real(
 	            "unknown_weight", &O::unknownWeight, 1e-6, 1,
-	            "Likelihood of a point in a cell the map never observed.");
+	            "Likelihood of a point in a cell the map never observed.")
+	        .integer(
+	            "mapping_min_class_points", &O::mappingMinClassPoints, 1,
+	            100000,
+	            "Mapping: a sweep's class points are scored only when at "
+	            "least this many fall in observed cells (one door point "
+	            "would weigh class_points alone).");
 	return t;
 }
 }  // namespace
@@ -140,6 +146,9 @@ SemanticObservation SemanticEvidenceMap::observedPart(
 		}
 	};
 	keep(obs.classSamples, out.classSamples);
+	if (static_cast<int>(out.classSamples.size()) <
+	    m_options.mappingMinClassPoints)
+		out.classSamples.clear();
 	keep(obs.groundSamples, out.groundSamples);
 	for (const auto& o : obs.objects)
 		if (!m_objects[static_cast<std::size_t>(o.label)].empty())

@@ -62,6 +62,11 @@ public:
 		/** unknown_weight: likelihood of a point in a never-observed
 		 * cell. */
 		double unknownWeight = 0.3;
+		/** mapping_min_class_points: while mapping (observedPart), the
+		 * class points are kept only when at least this many fall in
+		 * observed cells: the term is a mean, so a lone door point would
+		 * carry the whole class_points weight. */
+		int mappingMinClassPoints = 5;
 
 		bool enabled() const
 		{
@@ -96,9 +101,10 @@ public:
 	/** The part of the observation the map can judge when seen from
 	 * (x, y, yaw): class and ground points in cells the map observed and
 	 * holding a field of their label, detections of labels with
-	 * instances. Mapping scores this fixed subset at every particle, so
-	 * that no particle gains by pushing points into unseen cells (nor
-	 * loses: the frontier bias). */
+	 * instances; the class points only when there are at least
+	 * `mapping_min_class_points` of them. Mapping scores this fixed subset
+	 * at every particle, so that no particle gains by pushing points into
+	 * unseen cells (nor loses: the frontier bias). */
 	SemanticObservation observedPart(
 	    double x, double y, double yaw, const SemanticObservation& obs) const;
 
