@@ -49,7 +49,7 @@ public:
 		/** unconstrained_variance_ratio: a direction whose posterior
 		 * variance is above this fraction of the predicted one follows
 		 * the prediction. */
-		double unconstrainedVarianceRatio = 0.5;
+		double unconstrainedVarianceRatio = 0.65;
 		/** conflict_variance_ratio: ...unless the posterior is wider than
 		 * this fraction of the prediction: then the sweep disagrees with
 		 * the prediction (two modes, a wrong prediction) and the filter's
