@@ -91,12 +91,6 @@ void SemanticEvidenceMap::build(const SemanticMap& map)
 		m_unknown[i] = observations[i] > 0 ? 0 : 1;
 		present |= static_cast<LabelSet::mask_t>(labels[i]);
 	}
-	// Distance field (m) -> log-likelihood, one table for all labels.
-	const int steps = 256;
-	const double step = m_options.maxDistance / (steps - 1);
-	std::vector<float> table(steps);
-	for (int k = 0; k < steps; k++)
-		table[k] = value(k * step, m_options.sigma, m_options.maxDistance);
 	for (const Label l : allLabels())
 	{
 		if ((!SemanticExtractor::isClassLabel(l) &&
@@ -114,9 +108,9 @@ void SemanticEvidenceMap::build(const SemanticMap& map)
 		const float* d = dist.ptr<float>();
 		for (std::size_t i = 0; i < field.size(); i++)
 		{
-			const double m = std::min<double>(
-			    d[i] * m_geometry.resolution, m_options.maxDistance);
-			const float v = table[static_cast<int>(std::lround(m / step))];
+			const float v = value(
+			    d[i] * m_geometry.resolution, m_options.sigma,
+			    m_options.maxDistance);
 			field[i] = m_unknown[i] ? std::max(v, unknown) : v;
 		}
 	}
