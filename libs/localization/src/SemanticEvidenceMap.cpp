@@ -55,12 +55,11 @@ const OptionTable<O>& optionTable()
 	        .real(
 	            "unknown_weight", &O::unknownWeight, 1e-6, 1,
 	            "Likelihood of a point in a cell the map never observed.")
-	        .integer(
-	            "mapping_min_class_points", &O::mappingMinClassPoints, 1,
-	            100000,
-	            "Mapping: a sweep's class points are scored only when at "
-	            "least this many fall in observed cells (one door point "
-	            "would weigh class_points alone).");
+	        .flag(
+	            "mapping_flat_labels_only", &O::mappingFlatLabelsOnly,
+	            "Mapping: score only the flat labels (floor, sidewalk, "
+	            "grass); obstacle and class points are surfaces seen from one "
+	            "side and pull each estimate back toward earlier views.");
 	return t;
 }
 }  // namespace
@@ -125,13 +124,16 @@ SemanticObservation SemanticEvidenceMap::observedPart(
 	SemanticObservation out;
 	if (empty()) return out;
 	const double c = std::cos(yaw), s = std::sin(yaw);
+	const bool flatOnly = m_options.mappingFlatLabelsOnly;
+	const auto isFlat = [](Label l)
+	{ return SemanticExtractor::isGroundLabel(l) && l != Label::Obstacle; };
 	const auto keep = [&](const std::vector<SemanticSample>& in,
 	                      std::vector<SemanticSample>& dst)
 	{
 		for (const auto& p : in)
 		{
 			int cx = 0, cy = 0;
-			if (!hasField(p.label) ||
+			if (!hasField(p.label) || (flatOnly && !isFlat(p.label)) ||
 			    !m_geometry.worldToCell(
 			        x + c * p.x - s * p.y, y + s * p.x + c * p.y, cx, cy) ||
 			    m_unknown[m_geometry.index(cy, cx)])
@@ -139,10 +141,7 @@ SemanticObservation SemanticEvidenceMap::observedPart(
 			dst.push_back(p);
 		}
 	};
-	keep(obs.classSamples, out.classSamples);
-	if (static_cast<int>(out.classSamples.size()) <
-	    m_options.mappingMinClassPoints)
-		out.classSamples.clear();
+	if (!flatOnly) keep(obs.classSamples, out.classSamples);
 	keep(obs.groundSamples, out.groundSamples);
 	for (const auto& o : obs.objects)
 		if (!m_objects[static_cast<std::size_t>(o.label)].empty())

@@ -62,11 +62,13 @@ public:
 		/** unknown_weight: likelihood of a point in a never-observed
 		 * cell. */
 		double unknownWeight = 0.3;
-		/** mapping_min_class_points: while mapping (observedPart), the
-		 * class points are kept only when at least this many fall in
-		 * observed cells: the term is a mean, so a lone door point would
-		 * carry the whole class_points weight. */
-		int mappingMinClassPoints = 5;
+		/** mapping_flat_labels_only: while mapping (observedPart), only
+		 * the flat ground labels (floor, sidewalk, grass) are scored. The
+		 * points of an obstacle, a door or a bin lie on the faces the
+		 * sweep sees; the map so far holds the faces seen from earlier
+		 * poses, so matching them pulls each estimate back toward those
+		 * poses (by up to the object's depth), sweep after sweep. */
+		bool mappingFlatLabelsOnly = true;
 
 		bool enabled() const
 		{
@@ -101,10 +103,10 @@ public:
 	/** The part of the observation the map can judge when seen from
 	 * (x, y, yaw): class and ground points in cells the map observed and
 	 * holding a field of their label, detections of labels with
-	 * instances; the class points only when there are at least
-	 * `mapping_min_class_points` of them. Mapping scores this fixed subset
-	 * at every particle, so that no particle gains by pushing points into
-	 * unseen cells (nor loses: the frontier bias). */
+	 * instances; with `mapping_flat_labels_only`, only floor, sidewalk
+	 * and grass points. Mapping scores this fixed subset at every
+	 * particle, so that no particle gains by pushing points into unseen
+	 * cells (nor loses: the frontier bias). */
 	SemanticObservation observedPart(
 	    double x, double y, double yaw, const SemanticObservation& obs) const;
 
