@@ -1,10 +1,11 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // Mapping with localization outdoors (MapBuilder, --poses pf, shipped
 // config/localization.ini) on semnav-sim runs of datasets/outdoor: the
-// filter beats the odometry and stays within 0.15 m where posts, a door,
-// bins and the paths fix the position (campus_heldout was written after
-// the method was fixed); along a single long wall the estimate follows the
-// odometry and the reported covariance is long along the wall.
+// filter beats the odometry on every run and stays within 0.15 m where a
+// door gap, a second wall or a path's edge fixes the position
+// (campus_heldout was written after the method was built); along a single
+// long wall the estimate follows the odometry and the reported covariance
+// is long along the wall.
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/core/bits_math.h>
