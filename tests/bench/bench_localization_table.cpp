@@ -189,7 +189,7 @@ int main(int argc, char** argv)
 					    "%.2f) std %.3f m %.2f deg, %zu particles, ess %.2f, "
 					    "%zu walls, corrected %d; largest std %.3f m at %.0f "
 					    "deg, guarded %d (variance ratio %.2f), semantic %zu + "
-					    "%zu + %zu\n",
+					    "%zu + %zu (map rebuilt in %.1f ms)\n",
 					    m.name, i, pose.x(), pose.y(),
 					    mrpt::RAD2DEG(pose.phi()), g.x(), g.y(),
 					    mrpt::RAD2DEG(g.phi()), u.stdXY,
@@ -199,7 +199,8 @@ int main(int argc, char** argv)
 					    mrpt::RAD2DEG(u.largestStdDirection), u.unconstrained,
 					    u.varianceRatio, loc.lastSemantic().classSamples.size(),
 					    loc.lastSemantic().groundSamples.size(),
-					    loc.lastSemantic().objects.size());
+					    loc.lastSemantic().objects.size(),
+					    loc.semanticBuildMs());
 					std::fputs(diag.c_str(), stderr);
 				}
 				if (i > 0)

@@ -72,7 +72,7 @@ float SemanticEvidenceMap::value(double d, double sigma, double maxD) const
 	    d, sigma, maxD, m_options.hitWeight, m_options.randomWeight);
 }
 
-void SemanticEvidenceMap::build(const SemanticMap& map)
+void SemanticEvidenceMap::build(const SemanticMap& map, bool flatOnly)
 {
 	m_geometry = map.geometry();
 	const int nx = m_geometry.cols, ny = m_geometry.rows;
@@ -92,9 +92,11 @@ void SemanticEvidenceMap::build(const SemanticMap& map)
 	}
 	for (const Label l : allLabels())
 	{
+		const bool flat =
+		    SemanticExtractor::isGroundLabel(l) && l != Label::Obstacle;
 		if ((!SemanticExtractor::isClassLabel(l) &&
 		     !SemanticExtractor::isGroundLabel(l)) ||
-		    !LabelSet(present).contains(l))
+		    (flatOnly && !flat) || !LabelSet(present).contains(l))
 			continue;
 		cv::Mat src(ny, nx, CV_8U, cv::Scalar(255));
 		for (std::size_t i = 0; i < m_unknown.size(); i++)

@@ -79,8 +79,9 @@ public:
 	SemanticEvidenceMap() = default;
 	explicit SemanticEvidenceMap(const TOptions& o) : m_options(o) {}
 
-	/** Fields and object instances of a known map. */
-	void build(const SemanticMap& map);
+	/** Fields and object instances of a known map; `flatOnly`: the fields
+	 * of the flat labels only (what mapping scores, see observedPart). */
+	void build(const SemanticMap& map, bool flatOnly = false);
 	bool empty() const { return m_geometry.cellCount() == 0; }
 
 	/** Log-likelihood of the observation seen from (x, y, yaw): the
