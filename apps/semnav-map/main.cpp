@@ -15,6 +15,24 @@
 
 namespace
 {
+/** Per update: the estimate's covariance, its largest xy std dev and that
+ * direction, and the directions that followed the odometry. */
+nlohmann::json covarianceJson(const semnav::MapBuilder& b)
+{
+	nlohmann::json j = nlohmann::json::array();
+	for (const auto& u : b.localizationUpdates())
+		j.push_back(
+		    {{"x", u.pose.x()},
+		     {"y", u.pose.y()},
+		     {"yaw_deg", mrpt::RAD2DEG(u.pose.phi())},
+		     {"largest_std_m", u.largestStd},
+		     {"largest_std_direction_deg",
+		      mrpt::RAD2DEG(u.largestStdDirection)},
+		     {"std_yaw_deg", mrpt::RAD2DEG(u.stdYaw)},
+		     {"directions_following_odometry", u.unconstrained}});
+	return j;
+}
+
 nlohmann::json summary(
     const semnav::MapBuilder& b, const std::string& poses,
     const std::string& out)
@@ -42,6 +60,19 @@ nlohmann::json summary(
 		     mrpt::RAD2DEG(b.odometryError().finalYaw())},
 		    {"odometry_rmse_xy_m", b.odometryError().rmseXY()},
 		    {"ms_per_update_median", semnav::median(b.msPerLocalization())}};
+	if (!b.localizationUpdates().empty())
+	{
+		const auto& last = b.localizationUpdates().back();
+		double maxStd = 0;
+		for (const auto& u : b.localizationUpdates())
+			maxStd = std::max(maxStd, u.largestStd);
+		auto& l = j["localization"];
+		l["final_largest_std_m"] = last.largestStd;
+		l["final_largest_std_direction_deg"] =
+		    mrpt::RAD2DEG(last.largestStdDirection);
+		l["max_largest_std_m"] = maxStd;
+		l["updates"] = covarianceJson(b);
+	}
 	j["map"] = out;
 	return j;
 }
@@ -57,7 +88,7 @@ void printSummary(const nlohmann::json& j, const std::string& poses)
 		          << " at (" << o["x"].get<double>() << ", "
 		          << o["y"].get<double>() << "), seen " << o["observations"]
 		          << "x\n";
-	if (j.contains("localization"))
+	if (j.contains("localization") && j["localization"].contains("rmse_xy_m"))
 	{
 		const auto& l = j["localization"];
 		std::cout << "  localization (" << poses << "): RMSE xy "
@@ -66,6 +97,16 @@ void printSummary(const nlohmann::json& j, const std::string& poses)
 		          << " deg (odometry: " << l["odometry_rmse_xy_m"].get<double>()
 		          << " m, " << l["odometry_final_yaw_err_deg"].get<double>()
 		          << " deg)\n";
+	}
+	if (j.contains("localization") &&
+	    j["localization"].contains("final_largest_std_m"))
+	{
+		const auto& l = j["localization"];
+		std::cout << "  covariance: largest std "
+		          << l["final_largest_std_m"].get<double>() << " m along "
+		          << l["final_largest_std_direction_deg"].get<double>()
+		          << " deg at the end (max "
+		          << l["max_largest_std_m"].get<double>() << " m)\n";
 	}
 	const std::string out = j["map"];
 	std::cout << "  map: " << out << "/map.yaml, rendering " << out

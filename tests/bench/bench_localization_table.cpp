@@ -1,10 +1,13 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-// Mapping with localization on simulated drift runs: wall particle filter
-// with main directions on / off, odometry alone and MRPT's stock
-// CMonteCarloLocalization2D (likelihood field, horizontal scan line), one
-// table. Usage:
-//   bench_localization_table [--config C.ini] [--out DIR] SCENE:SEED ...
-// (default: datasets/localization/*.yaml and the office, seeds 1 and 3).
+// Mapping with localization on simulated drift runs: the particle filter as
+// configured (walls, semantic evidence, prediction guard), with the
+// semantic evidence and / or the guard off, with main directions off,
+// odometry alone and MRPT's stock CMonteCarloLocalization2D (likelihood
+// field, horizontal scan line), one table. Usage:
+//   bench_localization_table [--config C.ini] [--out DIR] [--short]
+//                            SCENE:SEED ...
+// (default: datasets/localization/*.yaml and the office, seeds 1 and 3;
+// --short: without the main-directions-off and stock MCL rows).
 #include <mrpt/config/CConfigFile.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/localization/MappingLocalizer.h>
@@ -20,6 +23,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -32,8 +36,15 @@ struct Mode
 {
 	const char* name;
 	MappingLocalizer::Method method;
-	bool mainDirections;
+	std::function<void(MappingLocalizer::TOptions&)> change;
+	bool inShort;
 };
+
+void noSemantic(MappingLocalizer::TOptions& o)
+{
+	o.semantic.classPoints = o.semantic.groundPoints = o.semantic.objectPoints =
+	    0;
+}
 
 double median(std::vector<double> v)
 {
@@ -48,12 +59,14 @@ int main(int argc, char** argv)
 	std::string config,
 	    outDir = (fs::temp_directory_path() / "semnav_loc_table").string();
 	std::vector<std::string> runs;
-	bool verbose = false;
+	bool verbose = false, shortTable = false;
 	for (int i = 1; i < argc; i++)
 	{
 		const std::string a = argv[i];
 		if (a == "--verbose")
 			verbose = true;
+		else if (a == "--short")
+			shortTable = true;
 		else if (a == "--config" && i + 1 < argc)
 			config = argv[++i];
 		else if (a == "--out" && i + 1 < argc)
@@ -78,19 +91,31 @@ int main(int argc, char** argv)
 	if (!config.empty())
 		opts.loadFromConfigFile(
 		    *openIniFile(config, MappingLocalizer::TOptions::sections()), "");
+	using Opt = MappingLocalizer::TOptions;
+	const auto walls = MappingLocalizer::Method::Walls;
 	const Mode modes[] = {
-	    {"walls PF, main directions on", MappingLocalizer::Method::Walls, true},
-	    {"walls PF, main directions off", MappingLocalizer::Method::Walls,
-	     false},
-	    {"odometry only", MappingLocalizer::Method::Odometry, false},
+	    {"PF as configured", walls, [](Opt&) {}, true},
+	    {"PF, no guard", walls, [](Opt& o) { o.guard.enabled = false; }, true},
+	    {"PF walls only", walls, noSemantic, true},
+	    {"PF walls only, no guard (before)", walls,
+	     [](Opt& o)
+	     {
+		     noSemantic(o);
+		     o.guard.enabled = false;
+	     },
+	     true},
+	    {"PF, main directions off", walls,
+	     [](Opt& o) { o.localizer.mainDirections = false; }, false},
+	    {"odometry only", MappingLocalizer::Method::Odometry, [](Opt&) {},
+	     true},
 	    {"MRPT stock MCL (likelihood field, horizontal line)",
-	     MappingLocalizer::Method::OccupancyMcl, false}};
+	     MappingLocalizer::Method::OccupancyMcl, [](Opt&) {}, false}};
 
 	std::printf(
 	    "| run | method | final yaw err (deg) | max yaw err (deg) | RMSE xy "
-	    "(m) "
+	    "(m) | largest std (m, final / max) | guarded updates "
 	    "| ms / update (median) | particles (median) "
-	    "|\n|---|---|---|---|---|---|---|\n");
+	    "|\n|---|---|---|---|---|---|---|---|---|\n");
 	for (const auto& run : runs)
 	{
 		const auto colon = run.rfind(':');
@@ -110,12 +135,15 @@ int main(int argc, char** argv)
 		const std::string runName = scene.name + " s" + std::to_string(seed);
 		for (const auto& m : modes)
 		{
+			if (shortTable && !m.inShort) continue;
 			MappingLocalizer::TOptions o = opts;
-			o.localizer.mainDirections = m.mainDirections;
+			m.change(o);
 			MappingLocalizer loc(o, m.method);
 			SemanticMap map;
 			TrajectoryError err;
 			std::vector<double> ms, parts;
+			double maxStd = 0;
+			int guarded = 0;
 			for (std::size_t i = 0; i < sweeps.size(); i++)
 			{
 				// Verbose: the wall map before this sweep, scored at the true
@@ -159,26 +187,38 @@ int main(int argc, char** argv)
 					    stderr,
 					    "  %s sweep %zu: est (%.3f %.3f %.2f) gt (%.3f %.3f "
 					    "%.2f) std %.3f m %.2f deg, %zu particles, ess %.2f, "
-					    "%zu walls, corrected %d\n",
+					    "%zu walls, corrected %d; largest std %.3f m at %.0f "
+					    "deg, guarded %d (variance ratio %.2f), semantic %zu + "
+					    "%zu + %zu (map rebuilt in %.1f ms)\n",
 					    m.name, i, pose.x(), pose.y(),
 					    mrpt::RAD2DEG(pose.phi()), g.x(), g.y(),
 					    mrpt::RAD2DEG(g.phi()), u.stdXY,
 					    mrpt::RAD2DEG(u.stdYaw), u.particles, u.ess,
 					    loc.lastObservation().segments.size(),
-					    int(u.headingCorrected));
+					    int(u.headingCorrected), u.largestStd,
+					    mrpt::RAD2DEG(u.largestStdDirection), u.unconstrained,
+					    u.varianceRatio, loc.lastSemantic().classSamples.size(),
+					    loc.lastSemantic().groundSamples.size(),
+					    loc.lastSemantic().objects.size(),
+					    loc.semanticBuildMs());
 					std::fputs(diag.c_str(), stderr);
 				}
 				if (i > 0)
 				{
-					ms.push_back(loc.lastUpdate().ms);
-					parts.push_back(loc.lastUpdate().particles);
+					const auto& u = loc.lastUpdate();
+					ms.push_back(u.ms);
+					parts.push_back(u.particles);
+					maxStd = std::max(maxStd, u.largestStd);
+					guarded += u.unconstrained > 0;
 				}
 			}
-			char timing[64] = "- | -";
+			char timing[128] = "- | - | - | -";
 			if (m.method != MappingLocalizer::Method::Odometry)
 				std::snprintf(
-				    timing, sizeof(timing), "%.2f | %.0f", median(ms),
-				    median(parts));
+				    timing, sizeof(timing),
+				    "%.3f / %.3f | %d / %zu | %.2f | %.0f",
+				    loc.lastUpdate().largestStd, maxStd, guarded,
+				    sweeps.size() - 1, median(ms), median(parts));
 			std::printf(
 			    "| %s | %s | %.2f | %.2f | %.3f | %s |\n", runName.c_str(),
 			    m.name, mrpt::RAD2DEG(err.finalYaw()),

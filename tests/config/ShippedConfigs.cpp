@@ -7,6 +7,7 @@
 #include <semnav/detection/CascadeDetector.h>
 #include <semnav/hwdrivers/CTiltingLMS2xx.h>
 #include <semnav/localization/Localizer.h>
+#include <semnav/localization/PredictionGuard.h>
 #include <semnav/localization/SemanticEvidenceMap.h>
 #include <semnav/localization/SemanticExtractor.h>
 #include <semnav/localization/WallExtractor.h>
@@ -233,13 +234,16 @@ stats_file = ./semnav-capture-stats.json
 	     "Localization (semnav-map --poses pf, semnav-nav --localize; "
 	     "--loc-config\nconfig/localization.ini): particle filter on wall "
 	     "landmarks with main-direction\nheading correction (paper sec. "
-	     "2.3) and, in a known map, the semantic evidence\nof each sweep "
-	     "(labels and detected objects against the map's).",
+	     "2.3), the semantic evidence of each sweep\n(labels and detected "
+	     "objects against the map's) and, while mapping, the\nprediction "
+	     "guard (directions the sweep does not constrain follow the\n"
+	     "odometry).",
 	     {section<WallExtractor::TOptions>("WallExtractor"),
 	      section<WallMap::TOptions>("WallMap"),
 	      section<Localizer::TOptions>("Localizer"),
 	      section<SemanticExtractor::TOptions>("SemanticExtractor"),
-	      section<SemanticEvidenceMap::TOptions>("SemanticEvidence")}});
+	      section<SemanticEvidenceMap::TOptions>("SemanticEvidence"),
+	      section<PredictionGuard::TOptions>("PredictionGuard")}});
 	all.push_back(
 	    {"map.ini",
 	     "semnav-map options (semnav-map --config config/map.ini). The "

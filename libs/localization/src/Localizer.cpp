@@ -6,6 +6,7 @@
 #include <semnav/common/Error.h>
 #include <semnav/common/OptionTable.h>
 #include <semnav/localization/Localizer.h>
+#include <semnav/localization/PredictionGuard.h>
 #include <semnav/map/SemanticMap.h>
 
 #include <chrono>
@@ -156,6 +157,8 @@ LocalizationUpdate Localizer::summarize(
 	const auto [cov, mean] = pdf.getCovarianceAndMean();
 	u.stdXY = std::sqrt(std::max(0.0, cov(0, 0) + cov(1, 1)));
 	u.stdYaw = std::sqrt(std::max(0.0, cov(2, 2)));
+	u.cov = cov;
+	PredictionGuard::largestStd(cov, u.largestStd, u.largestStdDirection);
 	u.particles = pdf.size();
 	u.ess = pdf.ESS();
 	u.converged = u.stdXY <= o.convergedStdXY && u.stdYaw <= o.convergedStdYaw;
@@ -372,6 +375,16 @@ LocalizationUpdate Localizer::update(
 		}
 	}
 	return u;
+}
+
+void Localizer::translate(double dx, double dy, double dyaw)
+{
+	for (auto& p : m_pdf.m_particles)
+	{
+		p.d.x += dx;
+		p.d.y += dy;
+		p.d.phi = mrpt::math::wrapToPi(p.d.phi + dyaw);
+	}
 }
 
 mrpt::poses::CPose2D Localizer::pose() const

@@ -1,16 +1,19 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <mrpt/obs/CActionRobotMovement2D.h>
 #include <semnav/localization/MappingLocalizer.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/perception/LabeledSweep.h>
 #include <semnav/scan/Sweep.h>
+
+#include <chrono>
 
 namespace semnav
 {
 const std::vector<std::string>& MappingLocalizer::TOptions::sections()
 {
 	static const std::vector<std::string> s = {
-	    "WallExtractor", "WallMap", "Localizer", "SemanticExtractor",
-	    "SemanticEvidence"};
+	    "WallExtractor",     "WallMap",          "Localizer",
+	    "SemanticExtractor", "SemanticEvidence", "PredictionGuard"};
 	return s;
 }
 
@@ -22,6 +25,7 @@ void MappingLocalizer::TOptions::loadFromConfigFile(
 	localizer.loadFromConfigFile(c, prefix + "Localizer");
 	semanticExtractor.loadFromConfigFile(c, prefix + "SemanticExtractor");
 	semantic.loadFromConfigFile(c, prefix + "SemanticEvidence");
+	guard.loadFromConfigFile(c, prefix + "PredictionGuard");
 }
 
 void MappingLocalizer::TOptions::saveToConfigFile(
@@ -32,6 +36,7 @@ void MappingLocalizer::TOptions::saveToConfigFile(
 	localizer.saveToConfigFile(c, prefix + "Localizer");
 	semanticExtractor.saveToConfigFile(c, prefix + "SemanticExtractor");
 	semantic.saveToConfigFile(c, prefix + "SemanticEvidence");
+	guard.saveToConfigFile(c, prefix + "PredictionGuard");
 }
 
 MappingLocalizer::MappingLocalizer(const TOptions& options, Method method)
@@ -41,9 +46,56 @@ MappingLocalizer::MappingLocalizer(const TOptions& options, Method method)
       m_extractor(options.walls),
       m_walls(options.wallMap),
       m_localizer(options.localizer),
-      m_stock(options.localizer)
+      m_stock(options.localizer),
+      m_semanticExtractor(options.semanticExtractor),
+      m_semantic(options.semantic),
+      m_guard(options.guard)
 {
 	m_localizer.setWallMap(&m_walls);
+	m_localizer.setSemanticMap(&m_semantic);
+}
+
+LocalizationUpdate MappingLocalizer::localizeWalls(
+    const mrpt::poses::CPose2D& incr, const LabeledSweep& labeled)
+{
+	// The prediction: the last estimate moved by the increment, with the
+	// particles' spread and the motion model's noise.
+	mrpt::obs::CActionRobotMovement2D act;
+	act.computeFromOdometry(
+	    incr, Localizer::motionOptions(m_options.localizer));
+	mrpt::poses::CPosePDFGaussian step;
+	step.copyFrom(*act.poseChange);
+	const auto prior = m_localizer.pdf().getCovarianceAndMean();
+	const mrpt::poses::CPosePDFGaussian predicted = PredictionGuard::predict(
+	    mrpt::poses::CPosePDFGaussian(m_pose, std::get<0>(prior)), step);
+	m_semanticObs = SemanticObservation();
+	if (!m_semantic.empty())
+	{
+		const auto& p = predicted.mean;
+		m_semanticObs = m_semantic.observedPart(
+		    p.x(), p.y(), p.phi(), m_semanticExtractor.extract(labeled));
+	}
+	LocalizationUpdate u = m_localizer.update(incr, m_obs, &m_semanticObs);
+	const auto [cov, mean] = m_localizer.pdf().getCovarianceAndMean();
+	const PredictionGuard::Result g = m_guard.apply(predicted, mean, cov);
+	u.unconstrained = g.unconstrained;
+	u.varianceRatio = g.maxVarianceRatio;
+	if (m_options.guard.enabled)
+	{
+		m_localizer.translate(g.shiftX, g.shiftY, g.shiftYaw);
+		u.pose = g.pose;
+	}
+	return u;
+}
+
+void MappingLocalizer::updateSemanticMap(const SemanticMap& map)
+{
+	if (!m_options.semantic.enabled()) return;
+	const auto t0 = std::chrono::steady_clock::now();
+	m_semantic.build(map, m_options.semantic.mappingFlatLabelsOnly);
+	m_semanticMs = std::chrono::duration<double, std::milli>(
+	                   std::chrono::steady_clock::now() - t0)
+	                   .count();
 }
 
 mrpt::poses::CPose2D MappingLocalizer::process(
@@ -70,7 +122,7 @@ mrpt::poses::CPose2D MappingLocalizer::process(
 				m_last.pose = pose;
 				break;
 			case Method::Walls:
-				m_last = m_localizer.update(incr, m_obs);
+				m_last = localizeWalls(incr, labeled);
 				pose = m_last.pose;
 				break;
 			case Method::OccupancyMcl:
@@ -86,6 +138,7 @@ mrpt::poses::CPose2D MappingLocalizer::process(
 	{
 		m_walls.addObservation(m_obs.segments, pose);
 		m_walls.rebuild(&map);
+		updateSemanticMap(map);
 	}
 	m_lastOdometry = odo;
 	m_pose = pose;

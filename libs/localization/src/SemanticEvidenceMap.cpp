@@ -1,4 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/LabelSet.h>
 #include <semnav/common/OptionTable.h>
 #include <semnav/localization/SemanticEvidenceMap.h>
 #include <semnav/localization/SemanticExtractor.h>
@@ -53,7 +54,12 @@ const OptionTable<O>& optionTable()
 	            "...and of the uniform part.")
 	        .real(
 	            "unknown_weight", &O::unknownWeight, 1e-6, 1,
-	            "Likelihood of a point in a cell the map never observed.");
+	            "Likelihood of a point in a cell the map never observed.")
+	        .flag(
+	            "mapping_flat_labels_only", &O::mappingFlatLabelsOnly,
+	            "Mapping: score only the flat labels (floor, sidewalk, "
+	            "grass); obstacle and class points are surfaces seen from one "
+	            "side and pull each estimate back toward earlier views.");
 	return t;
 }
 }  // namespace
@@ -66,7 +72,7 @@ float SemanticEvidenceMap::value(double d, double sigma, double maxD) const
 	    d, sigma, maxD, m_options.hitWeight, m_options.randomWeight);
 }
 
-void SemanticEvidenceMap::build(const SemanticMap& map)
+void SemanticEvidenceMap::build(const SemanticMap& map, bool flatOnly)
 {
 	m_geometry = map.geometry();
 	const int nx = m_geometry.cols, ny = m_geometry.rows;
@@ -75,43 +81,74 @@ void SemanticEvidenceMap::build(const SemanticMap& map)
 	m_outside = std::max(far, unknown);
 	for (auto& f : m_fields) f.clear();
 	for (auto& o : m_objects) o.clear();
+	const std::vector<float>& observations = map.get("observations");
+	const std::vector<float>& labels = map.get("labels");
 	m_unknown.assign(m_geometry.cellCount(), 0);
-	for (int cy = 0; cy < ny; cy++)
-		for (int cx = 0; cx < nx; cx++)
-			m_unknown[m_geometry.index(cy, cx)] =
-			    map.at("observations", cx, cy) > 0 ? 0 : 1;
+	LabelSet::mask_t present = 0;
+	for (std::size_t i = 0; i < m_unknown.size(); i++)
+	{
+		m_unknown[i] = observations[i] > 0 ? 0 : 1;
+		present |= static_cast<LabelSet::mask_t>(labels[i]);
+	}
 	for (const Label l : allLabels())
 	{
-		if (!SemanticExtractor::isClassLabel(l) &&
-		    !SemanticExtractor::isGroundLabel(l))
+		const bool flat =
+		    SemanticExtractor::isGroundLabel(l) && l != Label::Obstacle;
+		if ((!SemanticExtractor::isClassLabel(l) &&
+		     !SemanticExtractor::isGroundLabel(l)) ||
+		    (flatOnly && !flat) || !LabelSet(present).contains(l))
 			continue;
 		cv::Mat src(ny, nx, CV_8U, cv::Scalar(255));
-		bool any = false;
-		for (int cy = 0; cy < ny; cy++)
-			for (int cx = 0; cx < nx; cx++)
-				if (map.labels(cx, cy).contains(l))
-				{
-					src.at<uint8_t>(cy, cx) = 0;
-					any = true;
-				}
-		if (!any) continue;
+		for (std::size_t i = 0; i < m_unknown.size(); i++)
+			if (LabelSet(static_cast<LabelSet::mask_t>(labels[i])).contains(l))
+				src.data[i] = 0;
 		cv::Mat dist;
 		cv::distanceTransform(src, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
 		auto& field = m_fields[static_cast<std::size_t>(l)];
 		field.resize(m_geometry.cellCount());
-		for (int cy = 0; cy < ny; cy++)
-			for (int cx = 0; cx < nx; cx++)
-			{
-				const std::size_t i = m_geometry.index(cy, cx);
-				const float v = value(
-				    dist.at<float>(cy, cx) * m_geometry.resolution,
-				    m_options.sigma, m_options.maxDistance);
-				field[i] = m_unknown[i] ? std::max(v, unknown) : v;
-			}
+		const float* d = dist.ptr<float>();
+		for (std::size_t i = 0; i < field.size(); i++)
+		{
+			const float v = value(
+			    d[i] * m_geometry.resolution, m_options.sigma,
+			    m_options.maxDistance);
+			field[i] = m_unknown[i] ? std::max(v, unknown) : v;
+		}
 	}
 	for (const auto& o : map.instances())
 		m_objects[static_cast<std::size_t>(o.label)].push_back(
 		    {o.centroid.x, o.centroid.y});
+}
+
+SemanticObservation SemanticEvidenceMap::observedPart(
+    double x, double y, double yaw, const SemanticObservation& obs) const
+{
+	SemanticObservation out;
+	if (empty()) return out;
+	const double c = std::cos(yaw), s = std::sin(yaw);
+	const bool flatOnly = m_options.mappingFlatLabelsOnly;
+	const auto isFlat = [](Label l)
+	{ return SemanticExtractor::isGroundLabel(l) && l != Label::Obstacle; };
+	const auto keep = [&](const std::vector<SemanticSample>& in,
+	                      std::vector<SemanticSample>& dst)
+	{
+		for (const auto& p : in)
+		{
+			int cx = 0, cy = 0;
+			if (!hasField(p.label) || (flatOnly && !isFlat(p.label)) ||
+			    !m_geometry.worldToCell(
+			        x + c * p.x - s * p.y, y + s * p.x + c * p.y, cx, cy) ||
+			    m_unknown[m_geometry.index(cy, cx)])
+				continue;
+			dst.push_back(p);
+		}
+	};
+	if (!flatOnly) keep(obs.classSamples, out.classSamples);
+	keep(obs.groundSamples, out.groundSamples);
+	for (const auto& o : obs.objects)
+		if (!m_objects[static_cast<std::size_t>(o.label)].empty())
+			out.objects.push_back(o);
+	return out;
 }
 
 double SemanticEvidenceMap::meanField(

@@ -80,7 +80,10 @@ mrpt::poses::CPose2D MapBuilder::insert(
 	{
 		pose = m_localizer->process(sweep, ls, m_map);
 		if (m_map.sweepsInserted() > 1)
+		{
 			m_locMs.push_back(m_localizer->lastUpdate().ms);
+			m_updates.push_back(m_localizer->lastUpdate());
+		}
 	}
 	else
 		m_map.insert(sweep, ls, pose);

@@ -29,6 +29,15 @@ struct LocalizationUpdate
 	 * spread of all particles. */
 	mrpt::poses::CPose2D pose;
 	double stdXY = 0, stdYaw = 0;
+	/** Covariance of all particles (x, y, yaw); its largest xy std dev (m)
+	 * and that direction (rad, world frame, in (-pi/2, pi/2]). */
+	mrpt::math::CMatrixDouble33 cov;
+	double largestStd = 0, largestStdDirection = 0;
+	/** Mapping (PredictionGuard): directions that followed the motion
+	 * prediction, and the largest fraction of the predicted variance the
+	 * sweep left. */
+	int unconstrained = 0;
+	double varianceRatio = 0;
 	std::size_t particles = 0;
 	double ess = 0;
 	/** Wall-clock time of the update (prediction, weights, resampling),
@@ -145,6 +154,8 @@ public:
 	    const SemanticObservation* semantic = nullptr);
 
 	mrpt::poses::CPose2D pose() const;
+	/** Moves every particle by (dx, dy, dyaw) (world frame). */
+	void translate(double dx, double dy, double dyaw);
 	const WallMonteCarlo2D& pdf() const { return m_pdf; }
 	const TOptions& options() const { return m_options; }
 	const WallMap& knownWallMap() const { return m_knownWalls; }

@@ -6,6 +6,7 @@
 #include <mrpt/system/COutputLogger.h>
 #include <semnav/localization/Localizer.h>
 #include <semnav/localization/OccupancyMcl.h>
+#include <semnav/localization/PredictionGuard.h>
 #include <semnav/localization/SemanticEvidenceMap.h>
 #include <semnav/localization/SemanticExtractor.h>
 #include <semnav/localization/WallExtractor.h>
@@ -25,7 +26,11 @@ class SemanticMap;
  * localized against the map built so far, then inserted at that pose. The
  * first sweep goes in at its odometry pose (the initial pose).
  *
- * Methods: Walls (Localizer on the walls of the sweeps inserted so far),
+ * Methods: Walls (Localizer on the walls of the sweeps inserted so far and,
+ * with the [SemanticEvidence] weights, the sweep's semantic evidence
+ * against the labels and objects of the map so far; then the
+ * PredictionGuard: along directions the sweep did not constrain the
+ * estimate follows the motion prediction),
  * OccupancyMcl (MRPT's stock likelihood field on the map's occupancy grid
  * with the horizontal scan line: the baseline) and Odometry. */
 class MappingLocalizer : public mrpt::system::COutputLogger
@@ -39,8 +44,8 @@ public:
 	};
 
 	/** All localization options; sections [WallExtractor], [WallMap],
-	 * [Localizer], and for localizing in a known map [SemanticExtractor],
-	 * [SemanticEvidence]. */
+	 * [Localizer], [SemanticExtractor], [SemanticEvidence] and
+	 * [PredictionGuard]. */
 	struct TOptions : public mrpt::config::CLoadableOptions
 	{
 		void loadFromConfigFile(
@@ -56,10 +61,13 @@ public:
 		Localizer::TOptions localizer;
 		SemanticExtractor::TOptions semanticExtractor;
 		SemanticEvidenceMap::TOptions semantic;
+		PredictionGuard::TOptions guard;
 	};
 
 	explicit MappingLocalizer(
 	    const TOptions& options, Method method = Method::Walls);
+	MappingLocalizer(const MappingLocalizer&) = delete;
+	MappingLocalizer& operator=(const MappingLocalizer&) = delete;
 
 	/** Localizes the sweep, inserts it into `map` at the estimated pose and
 	 * returns that pose. */
@@ -71,15 +79,30 @@ public:
 	const LocalizationUpdate& lastUpdate() const { return m_last; }
 	const WallMap& wallMap() const { return m_walls; }
 	const WallObservation& lastObservation() const { return m_obs; }
+	/** The semantic evidence scored in the last update (the part of the
+	 * sweep's that the map so far can judge). */
+	const SemanticObservation& lastSemantic() const { return m_semanticObs; }
+	const SemanticEvidenceMap& semanticMap() const { return m_semantic; }
+	/** Time of the last semantic-evidence rebuild (ms). */
+	double semanticBuildMs() const { return m_semanticMs; }
 
 private:
+	LocalizationUpdate localizeWalls(
+	    const mrpt::poses::CPose2D& incr, const LabeledSweep& labeled);
+	void updateSemanticMap(const SemanticMap& map);
+
 	TOptions m_options;
 	Method m_method;
 	WallExtractor m_extractor;
 	WallMap m_walls;
 	Localizer m_localizer;
 	OccupancyMcl m_stock;
+	SemanticExtractor m_semanticExtractor;
+	SemanticEvidenceMap m_semantic;
+	PredictionGuard m_guard;
 	WallObservation m_obs;
+	SemanticObservation m_semanticObs;
+	double m_semanticMs = 0;
 	LocalizationUpdate m_last;
 	bool m_started = false;
 	mrpt::poses::CPose2D m_lastOdometry, m_pose;

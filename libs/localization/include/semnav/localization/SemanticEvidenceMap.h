@@ -62,6 +62,13 @@ public:
 		/** unknown_weight: likelihood of a point in a never-observed
 		 * cell. */
 		double unknownWeight = 0.3;
+		/** mapping_flat_labels_only: while mapping (observedPart), only
+		 * the flat ground labels (floor, sidewalk, grass) are scored. The
+		 * points of an obstacle, a door or a bin lie on the faces the
+		 * sweep sees; the map so far holds the faces seen from earlier
+		 * poses, so matching them pulls each estimate back toward those
+		 * poses (by up to the object's depth), sweep after sweep. */
+		bool mappingFlatLabelsOnly = true;
 
 		bool enabled() const
 		{
@@ -72,8 +79,9 @@ public:
 	SemanticEvidenceMap() = default;
 	explicit SemanticEvidenceMap(const TOptions& o) : m_options(o) {}
 
-	/** Fields and object instances of a known map. */
-	void build(const SemanticMap& map);
+	/** Fields and object instances of a known map; `flatOnly`: the fields
+	 * of the flat labels only (what mapping scores, see observedPart). */
+	void build(const SemanticMap& map, bool flatOnly = false);
 	bool empty() const { return m_geometry.cellCount() == 0; }
 
 	/** Log-likelihood of the observation seen from (x, y, yaw): the
@@ -91,6 +99,16 @@ public:
 	/** The same, class and ground points counted only where the map
 	 * observed the cell (what the map cannot tell is left out). */
 	Terms knownTerms(
+	    double x, double y, double yaw, const SemanticObservation& obs) const;
+
+	/** The part of the observation the map can judge when seen from
+	 * (x, y, yaw): class and ground points in cells the map observed and
+	 * holding a field of their label, detections of labels with
+	 * instances; with `mapping_flat_labels_only`, only floor, sidewalk
+	 * and grass points. Mapping scores this fixed subset at every
+	 * particle, so that no particle gains by pushing points into unseen
+	 * cells (nor loses: the frontier bias). */
+	SemanticObservation observedPart(
 	    double x, double y, double yaw, const SemanticObservation& obs) const;
 
 	/** True when the map has cells of label l. */

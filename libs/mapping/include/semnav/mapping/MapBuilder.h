@@ -74,6 +74,12 @@ public:
 	const std::vector<double>& msPerSweep() const { return m_ms; }
 	/** Time of each localization update after the first sweep, ms. */
 	const std::vector<double>& msPerLocalization() const { return m_locMs; }
+	/** Each localization update after the first sweep (pose, covariance,
+	 * directions that followed the prediction). */
+	const std::vector<LocalizationUpdate>& localizationUpdates() const
+	{
+		return m_updates;
+	}
 	/** Whether the run was scored against ground truth (gtDir given). */
 	bool scored() const { return !m_settings.gtDir.empty(); }
 	const GroundTruthScorer& labelScores() const { return m_scorer; }
@@ -95,6 +101,7 @@ private:
 	SemanticMap m_map;
 	std::unique_ptr<MappingLocalizer> m_localizer;
 	std::vector<double> m_ms, m_locMs;
+	std::vector<LocalizationUpdate> m_updates;
 	GroundTruthScorer m_scorer;
 	TrajectoryError m_poseError, m_odometryError;
 	std::string m_readError;
