@@ -108,7 +108,8 @@ public:
 		 * the detectors found in two of its sweeps at the same place (or in
 		 * its last sweep, until the next one checks it) lies,
 		 * at the estimate, in a cell the map observed and farther than this
-		 * from every object of its label in the map (the robot is not
+		 * from every object of its label in the map, reported or a
+		 * candidate (the robot is not
 		 * where it believes, even when no better place is found: its true
 		 * place may be one the map barely saw); 0: off. */
 		double contradictionDistance = 1.0;
