@@ -54,6 +54,95 @@ double median(std::vector<double> v)
 }
 }  // namespace
 
+/** One row of the table: mapping with localization by mode `m`. */
+void tableRow(
+    const Mode& m, const MappingLocalizer::TOptions& opts,
+    const std::vector<Sweep>& sweeps, const std::vector<LabeledSweep>& labeled,
+    const GroundTruthLog& gt, const std::string& runName, bool verbose)
+{
+	MappingLocalizer::TOptions o = opts;
+	m.change(o);
+	MappingLocalizer loc(o, m.method);
+	SemanticMap map;
+	TrajectoryError err;
+	std::vector<double> ms, parts;
+	double maxStd = 0;
+	int guarded = 0;
+	for (std::size_t i = 0; i < sweeps.size(); i++)
+	{
+		// Verbose: the wall map before this sweep, scored at the true
+		// pose and at the estimate.
+		std::string diag;
+		const auto& wm = loc.wallMap();
+		WallObservation ob;
+		if (verbose) ob = WallExtractor(o.walls).extract(labeled[i]);
+		const auto& og = gt.pose(sweeps[i].index());
+		const double llGt =
+		    wm.empty() ? 0
+		               : wm.logLikelihood(og.x(), og.y(), og.phi(), ob.samples);
+		const auto md = wm.mainDirection();
+		const auto pose = loc.process(sweeps[i], labeled[i], map);
+		if (verbose)
+		{
+			char buf[256];
+			std::snprintf(
+			    buf, sizeof(buf),
+			    "    map dir %.2f, sweep dir %.2f, ll at truth %.1f, "
+			    "at "
+			    "estimate %.1f\n",
+			    md ? mrpt::RAD2DEG(*md) : 99.0,
+			    ob.dominantDirection ? mrpt::RAD2DEG(*ob.dominantDirection)
+			                         : 99.0,
+			    llGt,
+			    wm.empty() ? 0.0
+			               : wm.logLikelihood(
+			                     pose.x(), pose.y(), pose.phi(), ob.samples));
+			diag = buf;
+		}
+		const auto& g = gt.pose(sweeps[i].index());
+		err.add(pose, g);
+		if (verbose)
+		{
+			const auto& u = loc.lastUpdate();
+			std::fprintf(
+			    stderr,
+			    "  %s sweep %zu: est (%.3f %.3f %.2f) gt (%.3f %.3f "
+			    "%.2f) std %.3f m %.2f deg, %zu particles, ess %.2f, "
+			    "%zu walls, corrected %d; largest std %.3f m at %.0f "
+			    "deg, guarded %d (variance ratio %.2f), semantic %zu + "
+			    "%zu + %zu (map rebuilt in %.1f ms)\n",
+			    m.name, i, pose.x(), pose.y(), mrpt::RAD2DEG(pose.phi()), g.x(),
+			    g.y(), mrpt::RAD2DEG(g.phi()), u.stdXY, mrpt::RAD2DEG(u.stdYaw),
+			    u.particles, u.ess, loc.lastObservation().segments.size(),
+			    int(u.headingCorrected), u.largestStd,
+			    mrpt::RAD2DEG(u.largestStdDirection), u.unconstrained,
+			    u.varianceRatio, loc.lastSemantic().classSamples.size(),
+			    loc.lastSemantic().groundSamples.size(),
+			    loc.lastSemantic().objects.size(), loc.semanticBuildMs());
+			std::fputs(diag.c_str(), stderr);
+		}
+		if (i > 0)
+		{
+			const auto& u = loc.lastUpdate();
+			ms.push_back(u.ms);
+			parts.push_back(u.particles);
+			maxStd = std::max(maxStd, u.largestStd);
+			guarded += u.unconstrained > 0;
+		}
+	}
+	char timing[128] = "- | - | - | -";
+	if (m.method != MappingLocalizer::Method::Odometry)
+		std::snprintf(
+		    timing, sizeof(timing), "%.3f / %.3f | %d / %zu | %.2f | %.0f",
+		    loc.lastUpdate().largestStd, maxStd, guarded, sweeps.size() - 1,
+		    median(ms), median(parts));
+	std::printf(
+	    "| %s | %s | %.2f | %.2f | %.3f | %s |\n", runName.c_str(), m.name,
+	    mrpt::RAD2DEG(err.finalYaw()), mrpt::RAD2DEG(err.maxYaw()),
+	    err.rmseXY(), timing);
+	std::fflush(stdout);
+}
+
 int main(int argc, char** argv)
 {
 	std::string config,
@@ -136,94 +225,7 @@ int main(int argc, char** argv)
 		for (const auto& m : modes)
 		{
 			if (shortTable && !m.inShort) continue;
-			MappingLocalizer::TOptions o = opts;
-			m.change(o);
-			MappingLocalizer loc(o, m.method);
-			SemanticMap map;
-			TrajectoryError err;
-			std::vector<double> ms, parts;
-			double maxStd = 0;
-			int guarded = 0;
-			for (std::size_t i = 0; i < sweeps.size(); i++)
-			{
-				// Verbose: the wall map before this sweep, scored at the true
-				// pose and at the estimate.
-				std::string diag;
-				const auto& wm = loc.wallMap();
-				WallObservation ob;
-				if (verbose) ob = WallExtractor(o.walls).extract(labeled[i]);
-				const auto& og = gt.pose(sweeps[i].index());
-				const double llGt =
-				    wm.empty() ? 0
-				               : wm.logLikelihood(
-				                     og.x(), og.y(), og.phi(), ob.samples);
-				const auto md = wm.mainDirection();
-				const auto pose = loc.process(sweeps[i], labeled[i], map);
-				if (verbose)
-				{
-					char buf[256];
-					std::snprintf(
-					    buf, sizeof(buf),
-					    "    map dir %.2f, sweep dir %.2f, ll at truth %.1f, "
-					    "at "
-					    "estimate %.1f\n",
-					    md ? mrpt::RAD2DEG(*md) : 99.0,
-					    ob.dominantDirection
-					        ? mrpt::RAD2DEG(*ob.dominantDirection)
-					        : 99.0,
-					    llGt,
-					    wm.empty()
-					        ? 0.0
-					        : wm.logLikelihood(
-					              pose.x(), pose.y(), pose.phi(), ob.samples));
-					diag = buf;
-				}
-				const auto& g = gt.pose(sweeps[i].index());
-				err.add(pose, g);
-				if (verbose)
-				{
-					const auto& u = loc.lastUpdate();
-					std::fprintf(
-					    stderr,
-					    "  %s sweep %zu: est (%.3f %.3f %.2f) gt (%.3f %.3f "
-					    "%.2f) std %.3f m %.2f deg, %zu particles, ess %.2f, "
-					    "%zu walls, corrected %d; largest std %.3f m at %.0f "
-					    "deg, guarded %d (variance ratio %.2f), semantic %zu + "
-					    "%zu + %zu (map rebuilt in %.1f ms)\n",
-					    m.name, i, pose.x(), pose.y(),
-					    mrpt::RAD2DEG(pose.phi()), g.x(), g.y(),
-					    mrpt::RAD2DEG(g.phi()), u.stdXY,
-					    mrpt::RAD2DEG(u.stdYaw), u.particles, u.ess,
-					    loc.lastObservation().segments.size(),
-					    int(u.headingCorrected), u.largestStd,
-					    mrpt::RAD2DEG(u.largestStdDirection), u.unconstrained,
-					    u.varianceRatio, loc.lastSemantic().classSamples.size(),
-					    loc.lastSemantic().groundSamples.size(),
-					    loc.lastSemantic().objects.size(),
-					    loc.semanticBuildMs());
-					std::fputs(diag.c_str(), stderr);
-				}
-				if (i > 0)
-				{
-					const auto& u = loc.lastUpdate();
-					ms.push_back(u.ms);
-					parts.push_back(u.particles);
-					maxStd = std::max(maxStd, u.largestStd);
-					guarded += u.unconstrained > 0;
-				}
-			}
-			char timing[128] = "- | - | - | -";
-			if (m.method != MappingLocalizer::Method::Odometry)
-				std::snprintf(
-				    timing, sizeof(timing),
-				    "%.3f / %.3f | %d / %zu | %.2f | %.0f",
-				    loc.lastUpdate().largestStd, maxStd, guarded,
-				    sweeps.size() - 1, median(ms), median(parts));
-			std::printf(
-			    "| %s | %s | %.2f | %.2f | %.3f | %s |\n", runName.c_str(),
-			    m.name, mrpt::RAD2DEG(err.finalYaw()),
-			    mrpt::RAD2DEG(err.maxYaw()), err.rmseXY(), timing);
-			std::fflush(stdout);
+			tableRow(m, opts, sweeps, labeled, gt, runName, verbose);
 		}
 	}
 	return 0;
