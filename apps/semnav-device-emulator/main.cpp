@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -124,6 +125,8 @@ struct BaseServer
 #ifdef SEMNAV_HAVE_ROS1
 	std::unique_ptr<semnav::Ros1BaseEmulator> ros;
 #endif
+	/** Its topics and master (null without a base). */
+	nlohmann::json topics;
 	BaseServer(
 	    semnav::EmulatedDiffDriveBase* base, double odomRate,
 	    const std::string& nodeName)
@@ -134,6 +137,12 @@ struct BaseServer
 		o.odomRate = odomRate;
 		o.nodeName = nodeName;
 		ros = std::make_unique<semnav::Ros1BaseEmulator>(*base, o);
+		const char* master = std::getenv("ROS_MASTER_URI");
+		topics = {
+		    {"cmd_vel", o.cmdVelTopic},
+		    {"odom", o.odomTopic},
+		    {"ground_truth", o.truthTopic},
+		    {"master", master ? master : ""}};
 #else
 		(void)odomRate;
 		(void)nodeName;
@@ -160,15 +169,20 @@ void emulate(
 	devices.start();
 	const auto& l = devices.lms();
 	const auto& p = devices.ptu();
+	nlohmann::json paths{
+	    {"lms", l.devicePath()},
+	    {"ptu", p.devicePath()},
+	    {"lms_pts", l.slavePath()},
+	    {"ptu_pts", p.slavePath()}};
+	if (base) paths["base"] = server.topics;
 	if (json)
-		std::cout
-		    << nlohmann::
-		           json{{"lms", l.devicePath()}, {"ptu", p.devicePath()}, {"lms_pts", l.slavePath()}, {"ptu_pts", p.slavePath()}}
-		               .dump()
-		    << std::endl;
+		std::cout << paths.dump() << std::endl;
 	else
+	{
 		std::cout << "LMS200 " << l.devicePath() << "\nPTU " << p.devicePath()
 		          << std::endl;
+		if (base) std::cout << "base " << server.topics.dump() << std::endl;
+	}
 	std::signal(SIGINT, onSignal);
 	std::signal(SIGTERM, onSignal);
 	const auto t0 = std::chrono::steady_clock::now();

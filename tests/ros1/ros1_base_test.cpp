@@ -5,6 +5,7 @@
 // (gtest_discover_tests), as roscpp starts once per process.
 #include <geometry_msgs/Twist.h>
 #include <gtest/gtest.h>
+#include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/hwdrivers/CSickLaserSerial.h>
@@ -170,10 +171,13 @@ protected:
 		m_master.reset();
 		if (!HasFailure()) std::system(("rm -rf '" + m_dir + "'").c_str());
 	}
+	/** The shipped [Ros1Base] of config/robot.ini. */
 	Ros1Base::TOptions options() const
 	{
 		Ros1Base::TOptions o;
-		o.nodeName = "unused";  // this process's node is already started
+		mrpt::config::CConfigFile ini(
+		    std::string(SEMNAV_SOURCE_DIR) + "/config/robot.ini");
+		o.loadFromConfigFile(ini, "Ros1Base");
 		return o;
 	}
 	/** Waits until `base` has fresh odometry. */
