@@ -119,6 +119,14 @@ nlohmann::json baseJson(const semnav::EmulatedDiffDriveBase& base)
 	        {"base_commands", s.commands}};
 }
 
+/** How the base speaks ROS (--odom-rate, --node-name, --odom-silent-*). */
+struct BaseLink
+{
+	double odomRate = 50;
+	std::string nodeName;
+	double silentAt = -1, silentFor = 0;
+};
+
 /** The emulated ROS base around `base` when asked (and built with ROS). */
 struct BaseServer
 {
@@ -127,15 +135,15 @@ struct BaseServer
 #endif
 	/** Its topics and master (null without a base). */
 	nlohmann::json topics;
-	BaseServer(
-	    semnav::EmulatedDiffDriveBase* base, double odomRate,
-	    const std::string& nodeName)
+	BaseServer(semnav::EmulatedDiffDriveBase* base, const BaseLink& link)
 	{
 		if (!base) return;
 #ifdef SEMNAV_HAVE_ROS1
 		semnav::Ros1BaseEmulator::Options o;
-		o.odomRate = odomRate;
-		o.nodeName = nodeName;
+		o.odomRate = link.odomRate;
+		o.nodeName = link.nodeName;
+		o.odomSilentAt = link.silentAt;
+		o.odomSilentFor = link.silentFor;
 		ros = std::make_unique<semnav::Ros1BaseEmulator>(*base, o);
 		const char* master = std::getenv("ROS_MASTER_URI");
 		topics = {
@@ -144,8 +152,7 @@ struct BaseServer
 		    {"ground_truth", o.truthTopic},
 		    {"master", master ? master : ""}};
 #else
-		(void)odomRate;
-		(void)nodeName;
+		(void)link;
 		throw semnav::Error("--base needs ROS 1: this build has none");
 #endif
 	}
@@ -156,15 +163,14 @@ struct BaseServer
 void emulate(
     const semnav::Scene& scene, semnav::LmsEmulator::Options lms,
     const std::string& ptuLink, double duration, bool json,
-    semnav::EmulatedDiffDriveBase* base, double odomRate,
-    const std::string& nodeName)
+    semnav::EmulatedDiffDriveBase* base, const BaseLink& link)
 {
 	if (base)
 	{
 		lms.poseSource = [base] { return base->truePose(); };
 		base->start();
 	}
-	BaseServer server(base, odomRate, nodeName);
+	BaseServer server(base, link);
 	semnav::TiltingScannerEmulator devices(scene, lms, ptuLink);
 	devices.start();
 	const auto& l = devices.lms();
@@ -283,6 +289,12 @@ int main(int argc, char** argv)
 	TCLAP::ValueArg<std::string> argOdomRate(
 	    "", "odom-rate", "Odometry messages per second", false, "50", "HZ",
 	    cmd);
+	TCLAP::ValueArg<std::string> argOdomSilentAt(
+	    "", "odom-silent-at",
+	    "The base's odometry goes silent S s after the first cmd_vel", false,
+	    "-1", "S", cmd);
+	TCLAP::ValueArg<std::string> argOdomSilentFor(
+	    "", "odom-silent-for", "... for D seconds", false, "2", "D", cmd);
 	TCLAP::ValueArg<std::string> argTrajectory(
 	    "", "trajectory",
 	    "The base's true trajectory: one line per step (time x y phi v w)",
@@ -304,7 +316,8 @@ int main(int argc, char** argv)
 	std::map<std::string, double> num;
 	for (auto* a :
 	     {&argSeed, &argCrc, &argDrop, &argStallAt, &argStallFor, &argDiscAt,
-	      &argDiscFor, &argDuration, &argWatchdog, &argOdomRate})
+	      &argDiscFor, &argDuration, &argWatchdog, &argOdomRate,
+	      &argOdomSilentAt, &argOdomSilentFor})
 	{
 		const auto v = parseNumber(a->getValue());
 		if (!v)
@@ -318,6 +331,8 @@ int main(int argc, char** argv)
 			return cli.usageError(std::string("--") + p + " must be in [0, 1]");
 	if (num["base-watchdog"] < 0.02 || num["base-watchdog"] > 10)
 		return cli.usageError("--base-watchdog must be in [0.02, 10]");
+	if (num["odom-silent-for"] < 0)
+		return cli.usageError("--odom-silent-for must be >= 0");
 	if (num["odom-rate"] < 1 || num["odom-rate"] > 1000)
 		return cli.usageError("--odom-rate must be in [1, 1000]");
 	const int baud = argBaud.getValue();
@@ -384,7 +399,9 @@ int main(int argc, char** argv)
 		    }
 		    emulate(
 		        scene, lo, argPtuLink.getValue(), num["duration"], json,
-		        base.get(), num["odom-rate"], argNode.getValue());
+		        base.get(),
+		        {num["odom-rate"], argNode.getValue(), num["odom-silent-at"],
+		         num["odom-silent-for"]});
 		    return 0;
 	    });
 }

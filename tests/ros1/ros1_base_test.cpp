@@ -411,6 +411,55 @@ TEST_F(Ros1BaseTest, StaleOdometryStopsTheBaseAndRefusesMotionUntilItReturns)
 	          << " s)" << std::endl;
 }
 
+TEST_F(Ros1BaseTest, SilentOdometryStopsTheMovingBaseWithinHalfASecond)
+{
+	// The emulator's odometry stops 1 s after the first cmd_vel, for 1.5 s;
+	// the base itself goes on (its ground truth too).
+	EmulatedRobot robot(
+	    m_dir, kScene, kStart,
+	    {"--odom-silent-at", "1", "--odom-silent-for", "1.5"});
+	Ros1Base base(options());
+	waitForOdometry(base);
+	const auto t0 = SteadyClock::now();
+	SteadyClock::time_point silence{}, staleSeen{}, resumedAt{};
+	while (since(t0) < 5)
+	{
+		const bool accepted = base.setVelocity(0.3, 0);
+		if (!accepted && silence == SteadyClock::time_point{})
+		{
+			staleSeen = SteadyClock::now();
+			silence = staleSeen -
+			          std::chrono::duration_cast<SteadyClock::duration>(
+			              std::chrono::duration<double>(base.odometryAge()));
+		}
+		if (accepted && silence != SteadyClock::time_point{} &&
+		    resumedAt == SteadyClock::time_point{})
+			resumedAt = SteadyClock::now();
+		std::this_thread::sleep_for(50ms);
+	}
+	base.stop();
+	ASSERT_NE(silence, SteadyClock::time_point{})
+	    << "odometry never went stale";
+	const double staleAfter =
+	    std::chrono::duration<double>(staleSeen - silence).count();
+	const double stopAfter = stoppedAfter(m_truth->samples(), silence);
+	EXPECT_LT(staleAfter, base.options().odometryTimeout + 0.1);
+	ASSERT_GE(stopAfter, 0) << "the base kept moving";
+	EXPECT_LT(stopAfter, 0.5);
+	EXPECT_GE(base.stats().staleStops, 1u);
+	// Odometry came back: motion accepted again, about 1.5 s later.
+	ASSERT_NE(resumedAt, SteadyClock::time_point{})
+	    << "motion never accepted again";
+	EXPECT_NEAR(
+	    std::chrono::duration<double>(resumedAt - silence).count(), 1.5, 0.3);
+	const auto counters = robot.finish();
+	EXPECT_EQ(counters.value("watchdog_stops", -1), 0);  // Ros1Base stopped it
+	std::cout << "[ figures ] odometry silent: stale after " << staleAfter
+	          << " s, base speed 0 after " << stopAfter
+	          << " s (odometry_timeout_s " << base.options().odometryTimeout
+	          << ")" << std::endl;
+}
+
 namespace
 {
 /** A fresh scan from MRPT's driver: the first after `after`. */

@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <optional>
 #include <thread>
 
 namespace semnav
@@ -39,7 +40,19 @@ struct Ros1BaseEmulator::Impl
 
 	void onCommand(const geometry_msgs::Twist::ConstPtr& msg)
 	{
+		if (!firstCommand) firstCommand = std::chrono::steady_clock::now();
 		base.command(msg->linear.x, msg->angular.z);
+	}
+
+	/** True inside the odometry-silence fault. */
+	bool silent() const
+	{
+		if (options.odomSilentAt < 0 || !firstCommand) return false;
+		const double t = std::chrono::duration<double>(
+		                     std::chrono::steady_clock::now() - *firstCommand)
+		                     .count();
+		return t >= options.odomSilentAt &&
+		       t < options.odomSilentAt + options.odomSilentFor;
 	}
 
 	nav_msgs::Odometry message(
@@ -70,8 +83,9 @@ struct Ros1BaseEmulator::Impl
 			next += period;
 			const auto s = base.state();
 			const ros::Time now = ros::Time::now();
-			odom.publish(message(s.odometry.pose, s.velocity, now));
 			truth.publish(message(s.truePose, s.velocity, now));
+			if (silent()) continue;
+			odom.publish(message(s.odometry.pose, s.velocity, now));
 			sent++;
 		}
 	}
@@ -85,6 +99,8 @@ struct Ros1BaseEmulator::Impl
 	std::thread thread;
 	std::atomic<bool> running{true};
 	std::atomic<std::size_t> sent{0};
+	/** When the first cmd_vel came (the callback thread's only). */
+	std::optional<std::chrono::steady_clock::time_point> firstCommand;
 };
 
 Ros1BaseEmulator::Ros1BaseEmulator(

@@ -27,6 +27,10 @@ public:
 		std::string odomFrame = "odom";
 		std::string baseFrame = "base_link";
 		double odomRate = 50;
+		/** Fault: odometry goes silent odomSilentAt s after the first
+		 * cmd_vel, for odomSilentFor s (< 0: never); the base and the
+		 * ground truth go on. */
+		double odomSilentAt = -1, odomSilentFor = 0;
 		/** Waiting for the ROS master at start (s). */
 		double masterTimeout = 5;
 	};

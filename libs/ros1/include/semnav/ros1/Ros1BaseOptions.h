@@ -34,8 +34,10 @@ struct Ros1BaseOptions : public mrpt::config::CLoadableOptions
 	 * command is sent and re-sending stops. */
 	double watchdog = 0.5;
 	/** odometry_timeout_s: older odometry is stale: the base stops and
-	 * refuses motion until it is fresh again. */
-	double odometryTimeout = 0.5;
+	 * refuses motion until it is fresh again. 0.3 s stops the robot within
+	 * 0.5 s of its odometry's last message; a base publishing odometry
+	 * slower than ~10 Hz needs more. */
+	double odometryTimeout = 0.3;
 	/** master_timeout_s: how long to wait for the ROS master at start. */
 	double masterTimeout = 5;
 };
