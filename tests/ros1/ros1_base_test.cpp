@@ -225,6 +225,63 @@ TEST(Ros1BaseOptions, UnknownKeysAndOutOfRangeValuesAreErrors)
 	EXPECT_EQ(o.commandRate, 20);  // unchanged by the failed loads
 }
 
+TEST(Ros1Base, AMasterThatDoesNotAnswerIsAnErrorNamingIt)
+{
+	const std::string uri = "http://127.0.0.1:" + std::to_string(freePort());
+	::setenv("ROS_MASTER_URI", uri.c_str(), 1);
+	::setenv("ROS_IP", "127.0.0.1", 1);
+	Ros1Base::TOptions o;
+	o.nodeName = "semnav_no_master_" + std::to_string(::getpid());
+	o.masterTimeout = 0.3;
+	try
+	{
+		Ros1Base base(o);
+		FAIL() << "no error without a master";
+	}
+	catch (const IoError& e)
+	{
+		EXPECT_NE(std::string(e.what()).find(uri), std::string::npos)
+		    << e.what();
+	}
+}
+
+TEST_F(Ros1BaseTest, OdometryInOtherFramesIsIgnored)
+{
+	EmulatedRobot robot(m_dir, kScene, kStart);
+	auto o = options();
+	o.odomFrame = "map";  // the emulator publishes odom -> base_link
+	Ros1Base base(o);
+	const auto t0 = SteadyClock::now();
+	while (base.stats().odometryRejected < 10 && since(t0) < 10)
+		std::this_thread::sleep_for(10ms);
+	EXPECT_GE(base.stats().odometryRejected, 10u);
+	EXPECT_EQ(base.stats().odometryReceived, 0u);
+	EXPECT_TRUE(base.odometryStale());
+	EXPECT_FALSE(base.setVelocity(0.2, 0));
+}
+
+TEST_F(Ros1BaseTest, EmergencyStopStopsTheBaseAndLatches)
+{
+	EmulatedRobot robot(m_dir, kScene, kStart, {"--base-watchdog", "5"});
+	Ros1Base base(options());
+	waitForOdometry(base);
+	ASSERT_TRUE(base.setVelocity(0.3, 0.2));
+	std::this_thread::sleep_for(400ms);
+	ASSERT_NEAR(m_truth->latest().v, 0.3, 1e-6);
+	const auto stopped = SteadyClock::now();
+	EXPECT_TRUE(base.emergencyStop());
+	EXPECT_TRUE(base.emergencyStopped());
+	EXPECT_FALSE(base.setVelocity(0.3, 0));
+	std::this_thread::sleep_for(300ms);
+	const double after = stoppedAfter(m_truth->samples(), stopped);
+	ASSERT_GE(after, 0) << "the base kept moving";
+	EXPECT_LT(after, 0.1);
+	EXPECT_EQ(m_truth->latest().v, 0);
+	base.resetEmergencyStop();
+	EXPECT_TRUE(base.setVelocity(0.3, 0));
+	base.stop();
+}
+
 TEST_F(Ros1BaseTest, DrivesTheEmulatedBaseAndOdometryFollowsWithinTheSceneDrift)
 {
 	const Scene scene = SceneLoader::loadFile(kScene);
