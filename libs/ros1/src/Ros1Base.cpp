@@ -244,6 +244,11 @@ double Ros1Base::odometryAge() const
 	                           : std::numeric_limits<double>::infinity();
 }
 
+std::size_t Ros1Base::commandSubscribers() const
+{
+	return m_impl->publisher.getNumSubscribers();
+}
+
 Ros1Base::Stats Ros1Base::stats() const
 {
 	std::lock_guard<std::mutex> lock(m_impl->mutex);

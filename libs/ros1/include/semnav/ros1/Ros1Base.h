@@ -67,6 +67,9 @@ public:
 	/** Seconds since the last odometry arrived; infinity before the
 	 * first. */
 	double odometryAge() const;
+	/** Subscribers of cmd_vel now (the base's driver, once connected:
+	 * commands sent before are lost, a start may wait for it). */
+	std::size_t commandSubscribers() const;
 	Stats stats() const;
 	const TOptions& options() const { return m_options; }
 
