@@ -248,6 +248,38 @@ TEST(Ros1Base, AMasterThatDoesNotAnswerIsAnErrorNamingIt)
 	}
 }
 
+TEST(DeviceEmulatorBaseCli, BadInputIsOneLineAndNonZeroExit)
+{
+	const std::string dir = testDir("cli");
+	const std::string uri = "http://127.0.0.1:" + std::to_string(freePort());
+	::setenv("ROS_MASTER_URI", uri.c_str(), 1);
+	const auto run = [&](const std::string& args, std::string& err)
+	{
+		const int status = std::system(
+		    (std::string(SEMNAV_BINARY_DIR) +
+		     "/apps/semnav-device-emulator/semnav-device-emulator --scene " +
+		     kScene + " --base " + args + " >/dev/null 2>" + dir + "/err")
+		        .c_str());
+		std::ifstream f(dir + "/err");
+		err.assign(std::istreambuf_iterator<char>(f), {});
+		return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+	};
+	const auto lines = [](const std::string& t)
+	{ return std::count(t.begin(), t.end(), '\n'); };
+	std::string err;
+	EXPECT_EQ(run("--base-watchdog 0", err), 2);
+	EXPECT_EQ(lines(err), 1) << err;
+	EXPECT_EQ(run("--odom-rate fast", err), 2);
+	EXPECT_EQ(lines(err), 1) << err;
+	EXPECT_EQ(run("--odom-silent-for -1", err), 2);
+	EXPECT_EQ(lines(err), 1) << err;
+	// No master: one line naming it (after the 5 s wait).
+	EXPECT_EQ(run("--duration 1", err), 1);
+	EXPECT_EQ(lines(err), 1) << err;
+	EXPECT_NE(err.find(uri), std::string::npos) << err;
+	std::system(("rm -rf '" + dir + "'").c_str());
+}
+
 TEST_F(Ros1BaseTest, OdometryInOtherFramesIsIgnored)
 {
 	EmulatedRobot robot(m_dir, kScene, kStart);
