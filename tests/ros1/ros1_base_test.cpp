@@ -304,6 +304,7 @@ TEST_F(Ros1BaseTest, EmergencyStopStopsTheBaseAndLatches)
 	std::this_thread::sleep_for(400ms);
 	ASSERT_NEAR(m_truth->latest().v, 0.3, 1e-6);
 	const auto stopped = SteadyClock::now();
+	EXPECT_FALSE(base.setVelocity(std::nan(""), 0));  // refused, still moving
 	EXPECT_TRUE(base.emergencyStop());
 	EXPECT_TRUE(base.emergencyStopped());
 	EXPECT_FALSE(base.setVelocity(0.3, 0));

@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <thread>
 
@@ -40,6 +41,8 @@ struct Ros1BaseEmulator::Impl
 
 	void onCommand(const geometry_msgs::Twist::ConstPtr& msg)
 	{
+		if (!std::isfinite(msg->linear.x) || !std::isfinite(msg->angular.z))
+			return;  // as a base driver ignores a garbled command
 		if (!firstCommand) firstCommand = std::chrono::steady_clock::now();
 		base.command(msg->linear.x, msg->angular.z);
 	}

@@ -174,6 +174,7 @@ Ros1Base::~Ros1Base() = default;
 
 bool Ros1Base::setVelocity(double v, double w)
 {
+	if (!std::isfinite(v) || !std::isfinite(w)) return false;
 	if (v == 0 && w == 0) return stop();
 	std::lock_guard<std::mutex> lock(m_impl->mutex);
 	if (m_impl->emergency) return false;

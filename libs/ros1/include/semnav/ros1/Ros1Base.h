@@ -23,7 +23,8 @@ namespace semnav
  * - Odometry (pose, the base's real velocities, its stamp) is cached as it
  *   arrives; odometry() never blocks. Odometry older than
  *   odometry_timeout_s (or none yet) is stale: a moving base is stopped
- *   and setVelocity() refused until fresh odometry arrives.
+ *   and setVelocity() refused until fresh odometry arrives. Non-finite
+ *   commands are refused too.
  *
  * Starts roscpp when needed (startRosNode) and throws IoError when the
  * master does not answer. Its own thread serves the subscription and the
