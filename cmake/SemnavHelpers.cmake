@@ -20,13 +20,20 @@ function(semnav_add_app name)
   target_compile_options(${name} PRIVATE -Wall -Wextra)
 endfunction()
 
-# semnav_add_test(<name> [SERIAL] SOURCES ... DEPENDS ...): a GoogleTest executable registered
-# with ctest; SERIAL tests run alone (ctest RUN_SERIAL: timing against real-time devices).
+# semnav_add_test(<name> [SERIAL] [LABELS l] SOURCES ... DEPENDS ...): a GoogleTest executable
+# registered with ctest; SERIAL tests run alone (ctest RUN_SERIAL: timing against real-time
+# devices); LABELS for ctest -L.
 function(semnav_add_test name)
-  cmake_parse_arguments(ARG "SERIAL" "" "SOURCES;DEPENDS" ${ARGN})
+  cmake_parse_arguments(ARG "SERIAL" "LABELS" "SOURCES;DEPENDS" ${ARGN})
   set(props "")
+  if(ARG_SERIAL OR ARG_LABELS)
+    set(props PROPERTIES)
+  endif()
   if(ARG_SERIAL)
-    set(props PROPERTIES RUN_SERIAL TRUE)
+    list(APPEND props RUN_SERIAL TRUE)
+  endif()
+  if(ARG_LABELS)
+    list(APPEND props LABELS ${ARG_LABELS} TIMEOUT 120)
   endif()
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} GTest::gtest GTest::gtest_main)

@@ -1,23 +1,30 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // semnav-device-emulator: a SICK LMS200 and a Directed Perception PTU on
-// pseudo-terminals, scanning a scene (emulate mode); or the check of a
-// rawlog captured from them against the scene (--check).
+// pseudo-terminals, scanning a scene (emulate mode), optionally carried by
+// an emulated differential-drive base speaking ROS 1 (--base); or the check
+// of a rawlog captured from them against the scene (--check).
 #include <mrpt/core/bits_math.h>
 #include <semnav/common/CommandLine.h>
 #include <semnav/common/Error.h>
 #include <semnav/emulation/CaptureCheck.h>
+#include <semnav/emulation/EmulatedDiffDriveBase.h>
 #include <semnav/emulation/SceneLineCaster.h>
 #include <semnav/emulation/TiltingScannerEmulator.h>
 #include <semnav/sim/SceneLoader.h>
 #include <sys/resource.h>
+#ifdef SEMNAV_HAVE_ROS1
+#include <semnav/emulation/Ros1BaseEmulator.h>
+#endif
 
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <thread>
@@ -97,25 +104,91 @@ nlohmann::json checkJson(
 	if (!j.contains("crc_errors")) j["crc_errors"] = nullptr;
 	return j;
 }
-/** Serves the emulated devices until a signal or `duration` s (> 0),
- * printing their terminals, then their counters. */
-void emulate(
-    const semnav::Scene& scene, const semnav::LmsEmulator::Options& lms,
-    const std::string& ptuLink, double duration, bool json)
+/** The emulated base's summary. */
+nlohmann::json baseJson(const semnav::EmulatedDiffDriveBase& base)
 {
+	const auto s = base.state();
+	const auto pose = [](const mrpt::math::TPose2D& p) {
+		return nlohmann::json{p.x, p.y, mrpt::RAD2DEG(p.phi)};
+	};
+	return {{"true_pose", pose(s.truePose)},
+	        {"odometry_pose", pose(s.odometry.pose)},
+	        {"distance_m", s.odometry.distance},
+	        {"collisions", s.collisions},
+	        {"watchdog_stops", s.watchdogStops},
+	        {"base_commands", s.commands}};
+}
+
+/** How the base speaks ROS (--odom-rate, --node-name, --odom-silent-*). */
+struct BaseLink
+{
+	double odomRate = 50;
+	std::string nodeName;
+	double silentAt = -1, silentFor = 0;
+};
+
+/** The emulated ROS base around `base` when asked (and built with ROS). */
+struct BaseServer
+{
+#ifdef SEMNAV_HAVE_ROS1
+	std::unique_ptr<semnav::Ros1BaseEmulator> ros;
+#endif
+	/** Its topics and master (null without a base). */
+	nlohmann::json topics;
+	BaseServer(semnav::EmulatedDiffDriveBase* base, const BaseLink& link)
+	{
+		if (!base) return;
+#ifdef SEMNAV_HAVE_ROS1
+		semnav::Ros1BaseEmulator::Options o;
+		o.odomRate = link.odomRate;
+		o.nodeName = link.nodeName;
+		o.odomSilentAt = link.silentAt;
+		o.odomSilentFor = link.silentFor;
+		ros = std::make_unique<semnav::Ros1BaseEmulator>(*base, o);
+		const char* master = std::getenv("ROS_MASTER_URI");
+		topics = {
+		    {"cmd_vel", o.cmdVelTopic},
+		    {"odom", o.odomTopic},
+		    {"ground_truth", o.truthTopic},
+		    {"master", master ? master : ""}};
+#else
+		(void)link;
+		throw semnav::Error("--base needs ROS 1: this build has none");
+#endif
+	}
+};
+
+/** Serves the emulated devices (and the base when given) until a signal or
+ * `duration` s (> 0), printing their terminals, then their counters. */
+void emulate(
+    const semnav::Scene& scene, semnav::LmsEmulator::Options lms,
+    const std::string& ptuLink, double duration, bool json,
+    semnav::EmulatedDiffDriveBase* base, const BaseLink& link)
+{
+	if (base)
+	{
+		lms.poseSource = [base] { return base->truePose(); };
+		base->start();
+	}
+	BaseServer server(base, link);
 	semnav::TiltingScannerEmulator devices(scene, lms, ptuLink);
 	devices.start();
 	const auto& l = devices.lms();
 	const auto& p = devices.ptu();
+	nlohmann::json paths{
+	    {"lms", l.devicePath()},
+	    {"ptu", p.devicePath()},
+	    {"lms_pts", l.slavePath()},
+	    {"ptu_pts", p.slavePath()}};
+	if (base) paths["base"] = server.topics;
 	if (json)
-		std::cout
-		    << nlohmann::
-		           json{{"lms", l.devicePath()}, {"ptu", p.devicePath()}, {"lms_pts", l.slavePath()}, {"ptu_pts", p.slavePath()}}
-		               .dump()
-		    << std::endl;
+		std::cout << paths.dump() << std::endl;
 	else
+	{
 		std::cout << "LMS200 " << l.devicePath() << "\nPTU " << p.devicePath()
 		          << std::endl;
+		if (base) std::cout << "base " << server.topics.dump() << std::endl;
+	}
 	std::signal(SIGINT, onSignal);
 	std::signal(SIGTERM, onSignal);
 	const auto t0 = std::chrono::steady_clock::now();
@@ -128,8 +201,9 @@ void emulate(
 			break;
 	}
 	devices.stop();
+	if (base) base->stop();
 	const auto c = l.counters();
-	const nlohmann::json j{
+	nlohmann::json j{
 	    {"scans_sent", c.scansSent},
 	    {"crc_injected", c.crcInjected},
 	    {"bytes_dropped", c.bytesDropped},
@@ -138,6 +212,7 @@ void emulate(
 	    {"stalls", c.stalls},
 	    {"disconnects", c.disconnects},
 	    {"ptu_commands", p.commands()}};
+	if (base) j.update(baseJson(*base));
 	if (json)
 		std::cout << j.dump() << std::endl;
 	else
@@ -202,6 +277,31 @@ int main(int argc, char** argv)
 	    "Emulate: write each scan's time and true tilt here; check: compare "
 	    "the lines' tilts with it",
 	    false, "", "F.txt", cmd);
+	TCLAP::SwitchArg argBase(
+	    "", "base",
+	    "Emulate: the devices ride a differential-drive base from --pose, "
+	    "speaking ROS 1 (cmd_vel in; odom and base_pose_ground_truth out) "
+	    "on ROS_MASTER_URI",
+	    cmd);
+	TCLAP::ValueArg<std::string> argWatchdog(
+	    "", "base-watchdog", "The base stops after S s without cmd_vel", false,
+	    "0.3", "S", cmd);
+	TCLAP::ValueArg<std::string> argOdomRate(
+	    "", "odom-rate", "Odometry messages per second", false, "50", "HZ",
+	    cmd);
+	TCLAP::ValueArg<std::string> argOdomSilentAt(
+	    "", "odom-silent-at",
+	    "The base's odometry goes silent S s after the first cmd_vel", false,
+	    "-1", "S", cmd);
+	TCLAP::ValueArg<std::string> argOdomSilentFor(
+	    "", "odom-silent-for", "... for D seconds", false, "2", "D", cmd);
+	TCLAP::ValueArg<std::string> argTrajectory(
+	    "", "trajectory",
+	    "The base's true trajectory: one line per step (time x y phi v w)",
+	    false, "", "F.txt", cmd);
+	TCLAP::ValueArg<std::string> argNode(
+	    "", "node-name", "ROS node name of the base", false,
+	    "semnav_emulated_base", "NAME", cmd);
 	TCLAP::SwitchArg& argJson = cli.addJson();
 	if (const auto code = cli.parse(argc, argv)) return *code;
 	if (argScene.getValue().empty()) return cli.usageError("missing --scene");
@@ -216,7 +316,8 @@ int main(int argc, char** argv)
 	std::map<std::string, double> num;
 	for (auto* a :
 	     {&argSeed, &argCrc, &argDrop, &argStallAt, &argStallFor, &argDiscAt,
-	      &argDiscFor, &argDuration})
+	      &argDiscFor, &argDuration, &argWatchdog, &argOdomRate,
+	      &argOdomSilentAt, &argOdomSilentFor})
 	{
 		const auto v = parseNumber(a->getValue());
 		if (!v)
@@ -228,6 +329,12 @@ int main(int argc, char** argv)
 	for (const char* p : {"crc-error-rate", "drop-byte-rate"})
 		if (num[p] < 0 || num[p] > 1)
 			return cli.usageError(std::string("--") + p + " must be in [0, 1]");
+	if (num["base-watchdog"] < 0.02 || num["base-watchdog"] > 10)
+		return cli.usageError("--base-watchdog must be in [0.02, 10]");
+	if (num["odom-silent-for"] < 0)
+		return cli.usageError("--odom-silent-for must be >= 0");
+	if (num["odom-rate"] < 1 || num["odom-rate"] > 1000)
+		return cli.usageError("--odom-rate must be in [1, 1000]");
 	const int baud = argBaud.getValue();
 	if (baud != 9600 && baud != 38400 && baud != 500000)
 		return cli.usageError("--lms-baud must be 9600, 38400 or 500000");
@@ -280,7 +387,21 @@ int main(int argc, char** argv)
 		    lo.disconnectAt = num["disconnect-at"];
 		    lo.disconnectFor = num["disconnect-for"];
 		    lo.truthLog = argTruth.getValue();
-		    emulate(scene, lo, argPtuLink.getValue(), num["duration"], json);
+		    std::unique_ptr<semnav::EmulatedDiffDriveBase> base;
+		    if (argBase.getValue())
+		    {
+			    semnav::EmulatedDiffDriveBase::Options bo;
+			    bo.watchdog = num["base-watchdog"];
+			    bo.seed = lo.seed;
+			    bo.trajectoryFile = argTrajectory.getValue();
+			    base = std::make_unique<semnav::EmulatedDiffDriveBase>(
+			        scene, *pose, bo);
+		    }
+		    emulate(
+		        scene, lo, argPtuLink.getValue(), num["duration"], json,
+		        base.get(),
+		        {num["odom-rate"], argNode.getValue(), num["odom-silent-at"],
+		         num["odom-silent-for"]});
 		    return 0;
 	    });
 }

@@ -25,6 +25,7 @@
 #include <semnav/planning/CnnPlanner.h>
 #include <semnav/planning/TraversabilityBuilder.h>
 #include <semnav/robot/SweepObstacles.h>
+#include <semnav/ros1/Ros1BaseOptions.h>
 #include <semnav/scan/SweepAssembler.h>
 #include <semnav/sim/SimulatedRobot.h>
 #include <semnav/sim/SimulatorOptions.h>
@@ -287,6 +288,14 @@ stats_file = ./semnav-capture-stats.json
 	     "(step length + u of\nthe cell entered).",
 	     {section<CnnPlanner::TOptions>("CnnPlanner"),
 	      section<TraversabilityBuilder::TOptions>("Traversability")}});
+	all.push_back(
+	    {"robot.ini",
+	     "semnav on a real robot (issue 37's semnav-robot): the robot base "
+	     "over ROS 1\n(libs/ros1, docs/hardware.md). The laser + tilt "
+	     "head, map and navigation\nsections join it with semnav-robot. "
+	     "Built with ROS 1 only (ros-core-dev,\nlibmrpt-ros1bridge-dev; "
+	     "scripts/install-deps installs them).",
+	     {section<Ros1BaseOptions>("Ros1Base")}});
 	all.push_back(
 	    {"sim.ini",
 	     "The simulator: [Simulator] for semnav-sim (--config "

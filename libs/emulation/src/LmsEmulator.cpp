@@ -207,8 +207,9 @@ void LmsEmulator::sendScan()
 	for (std::size_t i = 0; i < n; i++)
 		bearings[i] = mrpt::DEG2RAD(-0.5 * m_fov + i * m_res / 100.0);
 	const auto truth = m_caster.cast(
-	    m_opt.robotPose, tiltedSensorPose(m_caster.spec().mount, theta),
-	    bearings, m_opt.maxRange);
+	    m_opt.poseSource ? m_opt.poseSource() : m_opt.robotPose,
+	    tiltedSensorPose(m_caster.spec().mount, theta), bearings,
+	    m_opt.maxRange);
 	std::normal_distribution<double> nd(0.0, 1.0);
 	const double unit = m_mm ? 0.001 : 0.01;
 	std::vector<uint16_t> codes(n);

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstdint>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <string>
 #include <thread>
@@ -42,6 +43,9 @@ public:
 		std::string linkPath;  ///< symlink to the terminal; empty = none
 		int powerOnBaud = 9600;
 		mrpt::math::TPose2D robotPose;
+		/** When set, the robot's true pose at each scan (a moving base,
+		 * e.g. EmulatedDiffDriveBase::truePose); robotPose otherwise. */
+		std::function<mrpt::math::TPose2D()> poseSource;
 		double rangeNoise = 0.005;  ///< m
 		double maxRange = 8.0;      ///< m; beyond: no return
 		uint64_t seed = 1;

@@ -15,8 +15,8 @@ struct Scene;
 /** The emulated tilting scanner of semnav-device-emulator: a SICK LMS200
  * and a Directed Perception PTU on pseudo-terminals sharing one tilt head
  * (the PTU's resolution, +-100 deg), the LMS scanning `scene` from the
- * robot pose of its options with the scene's range noise and maximum
- * range. */
+ * robot pose of its options (fixed, or the moving base's through
+ * poseSource) with the scene's range noise and maximum range. */
 class TiltingScannerEmulator
 {
 public:
