@@ -42,6 +42,16 @@ namespace
 constexpr double kHypothesisStdXY = 0.1;
 const double kHypothesisStdYaw = mrpt::DEG2RAD(2.0);
 
+/** The last record that ran the uniqueness check, or nullptr. */
+const StopAndScanLocalizer::SweepRecord* lastChecked(
+    const std::vector<StopAndScanLocalizer::SweepRecord>& records)
+{
+	const auto it = std::find_if(
+	    records.rbegin(), records.rend(),
+	    [](const StopAndScanLocalizer::SweepRecord& r) { return r.checked; });
+	return it == records.rend() ? nullptr : &*it;
+}
+
 using O = StopAndScanLocalizer::TOptions;
 const OptionTable<O>& optionTable()
 {
@@ -229,11 +239,8 @@ bool StopAndScanLocalizer::driveToLook(
 	    h.size(), move->end.x, move->end.y, mrpt::RAD2DEG(move->end.phi),
 	    move->length, 100 * move->difference);
 	// What this place said of the estimate and its rival goes with them.
-	const auto checked = std::find_if(
-	    rep.records.rbegin(), rep.records.rend(),
-	    [](const SweepRecord& r) { return r.checked; });
 	m_carried = CarriedEvidence();
-	if (checked != rep.records.rend())
+	if (const SweepRecord* checked = lastChecked(rep.records))
 		m_carried = {
 		    true, checked->estimate, checked->rival,
 		    robot.base->odometry().pose, checked->evidence};
@@ -348,14 +355,13 @@ void StopAndScanLocalizer::sweepUntilConverged(
 		{
 			SweepRecord& rr = rep.records.back();
 			checkUniqueness(rr);
+			rr.evidence = evidenceOf(rr);
 			m_records.back() = rr;
 			MRPT_LOG_INFO_FMT(
 			    "uniqueness: estimate %.3f, best other place (%.2f, %.2f, "
 			    "%.1f deg) %.3f, evidence %.3f",
 			    rr.score, rr.rival.x, rr.rival.y, mrpt::RAD2DEG(rr.rival.phi),
-			    rr.rivalScore, evidenceOf(rr));
-			rr.evidence = evidenceOf(rr);
-			m_records.back() = rr;
+			    rr.rivalScore, rr.evidence);
 			rep.ambiguous = rr.evidence < m_options.uniquenessMargin;
 			rep.contradiction = contradiction(rr.estimate);
 			rep.contradicted = !rep.contradiction.empty();
@@ -392,10 +398,8 @@ void StopAndScanLocalizer::sweepUntilConverged(
 	                         (rep.recovery ? ", lost while navigating" : "") +
 	                         "): ";
 	// The last sweep that ran the uniqueness check names the twins.
-	const auto checked = std::find_if(
-	    rep.records.rbegin(), rep.records.rend(),
-	    [](const SweepRecord& r) { return r.checked; });
-	const SweepRecord& c = checked != rep.records.rend() ? *checked : last;
+	const SweepRecord* checked = lastChecked(rep.records);
+	const SweepRecord& c = checked ? *checked : last;
 	if (!rep.converged && rep.ambiguous)
 		throw LocalizationFailedError(
 		    what + "ambiguous after " + std::to_string(rep.sweeps) +

@@ -39,6 +39,15 @@ constexpr double kCarriedRadius = 0.75;
 const double kCarriedYaw = mrpt::DEG2RAD(20.0);
 /** Detections of one label this close (m) in two sweeps are one object. */
 constexpr double kSameObject = 0.5;
+
+/** Closer than `radius` (m) and `yaw` (rad). */
+bool closeTo(
+    const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b, double radius,
+    double yaw)
+{
+	return std::hypot(a.x - b.x, a.y - b.y) < radius &&
+	       std::abs(mrpt::math::wrapToPi(a.phi - b.phi)) < yaw;
+}
 }  // namespace
 
 std::vector<ViewPlanner::Hypothesis> StopAndScanLocalizer::hypotheses(
@@ -57,10 +66,7 @@ std::vector<ViewPlanner::Hypothesis> StopAndScanLocalizer::hypotheses(
 	for (const auto& p : ps) total += std::exp(p.log_w - maxLog);
 	const auto near =
 	    [](const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b)
-	{
-		return std::hypot(a.x - b.x, a.y - b.y) < kHypothesisRadius &&
-		       std::abs(mrpt::math::wrapToPi(a.phi - b.phi)) < kHypothesisYaw;
-	};
+	{ return closeTo(a, b, kHypothesisRadius, kHypothesisYaw); };
 	std::vector<ViewPlanner::Hypothesis> h{{rec.estimate, 0}};
 	std::vector<char> taken(ps.size(), 0);
 	for (int cluster = 0; cluster < 8; cluster++)
@@ -165,9 +171,11 @@ void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const
 	{
 		const auto [v, at] = refine(e);
 		rec.score = v;
-		MRPT_LOG_INFO_FMT(
-		    "uniqueness: at the estimate walls %.3f, semantics %.3f",
-		    wallScore(at.x, at.y, at.phi), semanticScore(at.x, at.y, at.phi));
+		if (isLoggingLevelVisible(mrpt::system::LVL_INFO))
+			MRPT_LOG_INFO_FMT(
+			    "uniqueness: at the estimate walls %.3f, semantics %.3f",
+			    wallScore(at.x, at.y, at.phi),
+			    semanticScore(at.x, at.y, at.phi));
 	}
 	// Coarse search away from the estimate.
 	const double minD2 =
@@ -278,10 +286,7 @@ double StopAndScanLocalizer::evidenceOf(const SweepRecord& rec) const
 	{ return (mrpt::poses::CPose2D(p) + drive).asTPose(); };
 	const auto near =
 	    [](const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b)
-	{
-		return std::hypot(a.x - b.x, a.y - b.y) < kCarriedRadius &&
-		       std::abs(mrpt::math::wrapToPi(a.phi - b.phi)) < kCarriedYaw;
-	};
+	{ return closeTo(a, b, kCarriedRadius, kCarriedYaw); };
 	const auto est = moved(m_carried.estimate), riv = moved(m_carried.rival);
 	if (near(rec.estimate, est) && near(rec.rival, riv))
 		e += m_carried.evidence;
