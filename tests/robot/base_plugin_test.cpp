@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <iostream>
 #include <memory>
 #include <string>
 #include <thread>
@@ -112,8 +113,11 @@ TEST(RobotBasePlugin, CommandsMoveTheExampleOdometry)
 	sleepFor(0.3);
 	auto odo = base->odometry();
 	const double driven = 0.4 * secondsSince(start);
-	// Within two control periods of v times the time driven.
-	EXPECT_NEAR(odo.pose.x, driven, 0.4 * 0.02 + 0.01);
+	std::cout << "odometry " << odo.pose.x << " m after " << driven
+	          << " m commanded\n";
+	// Within 50 ms of driving (odometry lags by one control period, more
+	// when a loaded machine delays the base's thread).
+	EXPECT_NEAR(odo.pose.x, driven, 0.4 * 0.05);
 	EXPECT_NEAR(odo.pose.y, 0, 1e-9);
 	EXPECT_NEAR(odo.distance, odo.pose.x, 1e-9);
 	EXPECT_DOUBLE_EQ(odo.velocity.vx, 0.4);
@@ -149,11 +153,14 @@ TEST(RobotBasePlugin, TheExampleWatchdogStopsItWithinItsPeriod)
 		base->keepAlive();
 	}
 	ASSERT_DOUBLE_EQ(base->odometry().velocity.vx, 0.3) << "stopped early";
-	// Then silence: stopped after the period, within one control period.
+	// Then silence: stopped after the period, within one control period
+	// (10 ms) and what a loaded machine adds.
 	const double stoppedAfter = secondsUntilStopped(*base, 1.0);
 	ASSERT_GE(stoppedAfter, 0) << "the watchdog did not stop the base";
+	std::cout << "watchdog " << watchdog << " s: stopped after " << stoppedAfter
+	          << " s of silence\n";
 	EXPECT_GT(stoppedAfter, watchdog - 0.01);
-	EXPECT_LT(stoppedAfter, watchdog + 0.03);
+	EXPECT_LT(stoppedAfter, watchdog + 0.05);
 	const double x = base->odometry().pose.x;
 	sleepFor(0.1);
 	EXPECT_DOUBLE_EQ(base->odometry().pose.x, x) << "moves after the stop";
