@@ -91,6 +91,9 @@ LiveSweepSource::LiveSweepSource(
 	if (m_assemblerOptions.sensorLabel.empty())
 		m_assemblerOptions.sensorLabel = m_sensor->getSensorLabel();
 	m_assembler.emplace(m_assemblerOptions);
+	// Routine losses (a few lines, sweeps cut by motion) stay out of the
+	// robot's console.
+	m_assembler->setMinLoggingLevel(mrpt::system::LVL_WARN);
 	// A line can leave the sensor up to max_tilt_wait_s after it was taken
 	// (waiting for the head's position), plus its telegram and a cycle.
 	m_odometryHold = so.maxTiltWait + 1.0 / m_sensor->lineRateLimit() +

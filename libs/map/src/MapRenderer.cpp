@@ -2,6 +2,7 @@
 #include <semnav/common/ClassRegistry.h>
 #include <semnav/map/MapRenderer.h>
 
+#include <cmath>
 #include <opencv2/imgproc.hpp>
 
 namespace semnav
@@ -98,6 +99,25 @@ cv::Mat MapRenderer::render(const SemanticMap& map, int k)
 	    img, "1 m", {x0 + bar + 5, y + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4,
 	    {0, 0, 0}, 1, cv::LINE_AA);
 	return img;
+}
+
+cv::Point MapRenderer::pixel(const GridGeometry& g, int k, double x, double y)
+{
+	const double col = (x - g.originX) / g.resolution;
+	const double row = (y - g.originY) / g.resolution;
+	return {
+	    static_cast<int>(std::lround(col * k)),
+	    static_cast<int>(std::lround((g.rows - row) * k))};
+}
+
+void MapRenderer::polyline(
+    cv::Mat& img, const GridGeometry& g, int k,
+    const std::vector<mrpt::math::TPoint2D>& pts, const cv::Scalar& c, int w)
+{
+	for (std::size_t i = 1; i < pts.size(); i++)
+		cv::line(
+		    img, pixel(g, k, pts[i - 1].x, pts[i - 1].y),
+		    pixel(g, k, pts[i].x, pts[i].y), c, w, cv::LINE_AA);
 }
 
 }  // namespace semnav

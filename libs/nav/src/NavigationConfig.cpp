@@ -6,6 +6,7 @@
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
 #include <semnav/nav/NavigationConfig.h>
+#include <semnav/planning/SemanticPlanner.h>
 
 #include <algorithm>
 #include <cctype>
@@ -178,6 +179,20 @@ NavigationConfig NavigationConfig::load(
 		}
 	}
 	return c;
+}
+
+CostProfile NavigationConfig::navigationProfile() const
+{
+	return navigator.profile == "planning"
+	           ? traversability.profile
+	           : costProfileFromName(navigator.profile);
+}
+
+TraversabilityGrid NavigationConfig::navigationTraversability(
+    const SemanticMap& m) const
+{
+	return SemanticPlanner(m, cnn, traversability)
+	    .traversability(navigationProfile());
 }
 
 }  // namespace semnav

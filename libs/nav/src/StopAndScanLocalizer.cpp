@@ -156,6 +156,12 @@ StopAndScanLocalizer::StopAndScanLocalizer(
 	m_perception.pipeline().setMinLoggingLevel(mrpt::system::LVL_ERROR);
 	if (m_locOptions.semantic.enabled()) m_semantic.build(m_map);
 	makeLocalizer(m_locOptions.localizer);
+	findPlaces();
+}
+
+void StopAndScanLocalizer::findPlaces()
+{
+	m_places.clear();
 	const auto& g = m_map.geometry();
 	const int stride = std::max(
 	    1,
@@ -166,6 +172,33 @@ StopAndScanLocalizer::StopAndScanLocalizer(
 			if (m_map.at("observations", cx, cy) > 0 &&
 			    m_map.occupancy(cx, cy) < freeBelow)
 				m_places.push_back({g.centerX(cx), g.centerY(cy)});
+}
+
+void StopAndScanLocalizer::mapChanged()
+{
+	if (m_locOptions.semantic.enabled()) m_semantic.build(m_map);
+	m_localizer->setKnownMap(m_map);
+	m_localizer->setSemanticMap(m_semantic.empty() ? nullptr : &m_semantic);
+	if (m_localizer->knownWallMap().segments().empty())
+		throw LocalizationFailedError(
+		    "localization: the map has no walls to localize against");
+	if (m_options.unknownCells)
+	{
+		m_walls = WallMap(m_locOptions.wallMap);
+		m_walls.buildFromSemanticMap(m_map, true);
+		m_localizer->setWallMap(&m_walls);
+	}
+	findPlaces();
+	// The view planner's traversability is the old map's.
+	m_viewPlanner.reset();
+}
+
+std::vector<StopAndScanLocalizer::LocalizedSweep>
+StopAndScanLocalizer::takeSweeps()
+{
+	std::vector<LocalizedSweep> out;
+	out.swap(m_kept);
+	return out;
 }
 
 void StopAndScanLocalizer::keepStartSweeps(std::size_t keep)
@@ -538,6 +571,7 @@ StopAndScanLocalizer::SweepRecord StopAndScanLocalizer::sweepAndUpdate(
 	}
 	rec.ms = msSince(t0);
 	m_records.push_back(rec);
+	if (m_keepSweeps) m_kept.push_back({m_sweep, m_labeled, rec});
 	return rec;
 }
 

@@ -19,11 +19,7 @@ struct Projector
 	int k;
 	cv::Point operator()(double x, double y) const
 	{
-		const double col = (x - g.originX) / g.resolution;
-		const double row = (y - g.originY) / g.resolution;
-		return {
-		    static_cast<int>(std::lround(col * k)),
-		    static_cast<int>(std::lround((g.rows - row) * k))};
+		return MapRenderer::pixel(g, k, x, y);
 	}
 };
 
@@ -31,10 +27,7 @@ void polyline(
     cv::Mat& img, const Projector& P,
     const std::vector<mrpt::math::TPoint2D>& pts, const cv::Scalar& c, int w)
 {
-	for (std::size_t i = 1; i < pts.size(); i++)
-		cv::line(
-		    img, P(pts[i - 1].x, pts[i - 1].y), P(pts[i].x, pts[i].y), c, w,
-		    cv::LINE_AA);
+	MapRenderer::polyline(img, P.g, P.k, pts, c, w);
 }
 }  // namespace
 

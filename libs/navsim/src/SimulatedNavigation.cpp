@@ -112,9 +112,7 @@ void SimulatedNavigation::setLocalization(
 	    m_map, m_config.stopAndScan, localization, perception, cascades);
 	if (m_config.viewPlanner.enabled)
 		m_localizer->enableViewPlanning(
-		    SemanticPlanner(m_map, m_config.cnn, m_config.traversability)
-		        .traversability(m_config.navigationProfile()),
-		    m_config.viewPlanner);
+		    m_config.navigationTraversability(m_map), m_config.viewPlanner);
 	m_mode = mode;
 	m_guess = guess;
 }

@@ -6,13 +6,6 @@
 
 namespace semnav
 {
-CostProfile SimulationConfig::navigationProfile() const
-{
-	return navigator.profile == "planning"
-	           ? traversability.profile
-	           : costProfileFromName(navigator.profile);
-}
-
 double SimulationConfig::arrivalTolerance(bool objectGoal) const
 {
 	const double reach = objectGoal ? TraversabilityBuilder(traversability)

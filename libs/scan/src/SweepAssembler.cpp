@@ -262,16 +262,22 @@ Sweep SweepAssembler::build(const std::vector<Line>& lines, EndReason why)
 	q.missingLines = missing;
 	q.repeatedLines = repeated;
 	q.complete = span >= m_options.completeSpanFraction * reference - 1e-9;
+	// A sweep cut because the robot moved is expected while it drives.
 	if (!q.complete)
-		MRPT_LOG_WARN_FMT(
+		INTERNAL_MRPT_LOG_FMT(
+		    why == EndReason::Motion ? mrpt::system::LVL_DEBUG
+		                             : mrpt::system::LVL_WARN,
 		    "sweep %u incomplete: tilt span %.1f deg of %.1f deg (%s)",
 		    static_cast<unsigned>(m_emitted), mrpt::RAD2DEG(span),
 		    mrpt::RAD2DEG(reference),
 		    why == EndReason::Motion     ? "robot moved"
 		    : why == EndReason::Reversal ? "head reversed early"
 		                                 : "stream ended");
+	// A few lines lost to a busy link are routine; many are not.
 	if (missing > 0)
-		MRPT_LOG_WARN_FMT(
+		INTERNAL_MRPT_LOG_FMT(
+		    missing * 20 > lines.size() ? mrpt::system::LVL_WARN
+		                                : mrpt::system::LVL_INFO,
 		    "sweep %u: %u missing scan lines", static_cast<unsigned>(m_emitted),
 		    static_cast<unsigned>(missing));
 	m_emitted++;

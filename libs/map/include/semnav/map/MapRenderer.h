@@ -1,10 +1,13 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #pragma once
 
+#include <mrpt/math/TPoint2D.h>
+#include <semnav/common/GridGeometry.h>
 #include <semnav/common/Label.h>
 #include <semnav/map/SemanticMap.h>
 
 #include <opencv2/core/mat.hpp>
+#include <vector>
 
 namespace semnav
 {
@@ -21,6 +24,15 @@ public:
 	/** BGR colour of a label in renderings (its registry mapColour; white
 	 * for an id that is not registered). */
 	static cv::Scalar labelColor(Label l);
+	/** The pixel of world point (x, y) in a render() of a map of geometry
+	 * `g` at `pixelsPerCell`. */
+	static cv::Point pixel(
+	    const GridGeometry& g, int pixelsPerCell, double x, double y);
+	/** Draws a world-frame polyline over such a rendering. */
+	static void polyline(
+	    cv::Mat& img, const GridGeometry& g, int pixelsPerCell,
+	    const std::vector<mrpt::math::TPoint2D>& pts, const cv::Scalar& color,
+	    int width);
 };
 
 }  // namespace semnav

@@ -45,6 +45,11 @@ struct NavigationConfig
 	 * be copied). */
 	std::shared_ptr<const mrpt::config::CConfigFileMemory> mrptSections;
 
+	/** The cost profile of the navigation plans ([SemanticNavigator]
+	 * profile; "planning": the [Traversability] one). */
+	CostProfile navigationProfile() const;
+	/** The traversability the navigator plans on, for `map`. */
+	TraversabilityGrid navigationTraversability(const SemanticMap& map) const;
 	/** Sections of navigation.ini that belong to MRPT. */
 	static const std::vector<std::string>& mrptSectionNames();
 

@@ -290,6 +290,26 @@ public:
 	std::vector<ViewPlanner::Hypothesis> hypotheses(
 	    const SweepRecord& rec) const;
 
+	/** A sweep kept for the map (keepSweeps()): the sweep, its labels and
+	 * its filter update (the estimate is the pose at the sweep). */
+	struct LocalizedSweep
+	{
+		Sweep sweep;
+		LabeledSweep labeled;
+		SweepRecord record;
+	};
+	/** Keep every sweep with its labels and update until takeSweeps(), so
+	 * the owner can insert them into the map (a map that grows as the
+	 * robot drives). Off by default. */
+	void keepSweeps(bool keep) { m_keepSweeps = keep; }
+	/** The sweeps kept since the last call (oldest first). */
+	std::vector<LocalizedSweep> takeSweeps();
+	/** The map changed (sweeps inserted, the grid grown): rebuilds the
+	 * walls, free places and semantic evidence the filter scores against;
+	 * the particles are kept. Throws LocalizationFailedError when the map
+	 * has no walls. */
+	void mapChanged();
+
 	/** Every sweep so far (start and rescans). */
 	const std::vector<SweepRecord>& records() const { return m_records; }
 	const TOptions& options() const { return m_options; }
@@ -352,6 +372,10 @@ private:
 	std::vector<mrpt::math::TPose2D> m_startOdo;
 	/** Free places of the map on the uniqueness grid. */
 	std::vector<mrpt::math::TPoint2D> m_places;
+	/** Fills m_places from the map. */
+	void findPlaces();
+	bool m_keepSweeps = false;
+	std::vector<LocalizedSweep> m_kept;
 	mrpt::math::TPose2D m_lastOdometry;
 	bool m_inStart = false;
 	/** What the uniqueness check said before the last drive to look: the

@@ -19,9 +19,6 @@ struct SimulationConfig : public NavigationConfig
 	 * error in the object's footprint (semnav-nav --arrival-margin). */
 	double arrivalMargin = 0.3;
 
-	/** The cost profile of the navigation plans ([SemanticNavigator]
-	 * profile; "planning": the [Traversability] one). */
-	CostProfile navigationProfile() const;
 	/** Farthest true distance (m) from the goal that counts as arrived:
 	 * the goal region's reach (an object's footprint:
 	 * TraversabilityBuilder::goalRegionRadius() of the navigation profile;

@@ -1,0 +1,202 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// semnav-robot: the headless navigation app on the robot. Live sweeps from
+// the tilting LMS2xx, a real robot base (ROS 1), the map growing as it
+// drives, operator commands one per line on stdin, progress as JSON lines
+// on stdout (human lines on stderr).
+#include <semnav/common/AtomicFile.h>
+#include <semnav/common/CommandLine.h>
+#include <semnav/common/Error.h>
+#include <semnav/common/ShippedConfig.h>
+#include <semnav/hwdrivers/LiveSweepSource.h>
+#include <semnav/map/MapIO.h>
+#include <semnav/map/SemanticMap.h>
+#include <semnav/robot/ControlClock.h>
+#include <semnav/robot/LocalizedPose.h>
+#include <semnav/robot/RobotBasePlugin.h>
+#include <semnav/robot/SweepObstacles.h>
+#include <semnav/runtime/CommandQueue.h>
+#include <semnav/runtime/RobotRunRenderer.h>
+#include <semnav/runtime/RobotSession.h>
+#include <semnav/runtime/RobotSetup.h>
+#ifdef SEMNAV_HAVE_ROS1
+#include <semnav/ros1/Ros1Base.h>
+#endif
+
+#include <atomic>
+#include <csignal>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+namespace
+{
+std::atomic<bool> g_stop{false};
+void onSignal(int)
+{
+	g_stop = true;
+}
+
+std::mutex g_outMutex;
+/** One JSON line on stdout; the human line on stderr. */
+void printEvent(const nlohmann::json& e)
+{
+	std::lock_guard<std::mutex> lk(g_outMutex);
+	std::cout << e.dump() << std::endl;
+	const std::string ev = e.value("event", "");
+	if (ev == "error")
+		std::cerr << "semnav-robot: " << e.value("command", "") << ": "
+		          << e.value("error", "") << std::endl;
+	else if (ev != "status")
+		std::cerr << "semnav-robot: " << ev
+		          << (e.contains("reason")
+		                  ? ": " + e["reason"].get<std::string>()
+		                  : std::string())
+		          << std::endl;
+}
+
+std::shared_ptr<semnav::RobotBase> makeBase(
+    const semnav::RobotSetup& s, semnav::RobotBasePlugin* plugin)
+{
+	if (plugin)
+	{
+		try
+		{
+			return plugin->create(*s.ini);
+		}
+		catch (const semnav::ConfigError& e)
+		{
+			throw semnav::ConfigError(s.iniPath + ": " + e.what());
+		}
+	}
+#ifdef SEMNAV_HAVE_ROS1
+	semnav::Ros1Base::TOptions o;
+	try
+	{
+		o.loadFromConfigFile(*s.ini, s.files.baseSection);
+	}
+	catch (const semnav::ConfigError& e)
+	{
+		throw semnav::ConfigError(s.iniPath + ": " + e.what());
+	}
+	return std::make_shared<semnav::Ros1Base>(o);
+#else
+	throw semnav::ConfigError(
+	    s.iniPath + ": base = ros1 but this build has no ROS 1");
+#endif
+}
+
+/** Lines of stdin into the queue; closes it at the end of input. */
+void readStdin(semnav::CommandQueue& q)
+{
+	for (std::string line; std::getline(std::cin, line);) q.push(line);
+	q.close();
+}
+
+int runRobot(
+    semnav::RobotSetup& setup, semnav::RobotBasePlugin* plugin,
+    const std::string& outDir)
+{
+	semnav::createDirectories(outDir);
+	auto base = makeBase(setup, plugin);
+	semnav::LiveSweepSource::TOptions live;
+	live.loadFromConfigFile(*setup.ini, "LiveSweepSource");
+	if (live.recordPath.empty()) live.recordPath = outDir + "/robot.rawlog";
+	semnav::RobotBase* b = base.get();
+	semnav::LiveSweepSource sweeps(
+	    *setup.ini, setup.files.laserSection, live,
+	    [b]
+	    {
+		    const auto o = b->odometry();
+		    return semnav::LiveSweepSource::OdometryReading{
+		        mrpt::poses::CPose2D(o.pose), o.time};
+	    });
+	semnav::RealTimeClock clock(setup.files.controlPeriod);
+	semnav::LocalizedPose pose(*base);
+	semnav::SweepObstacles obstacles(*base, setup.navigation.sweepObstacles);
+	semnav::SemanticMap map(setup.navigation.map);
+	if (!setup.files.mapDir.empty())
+		semnav::MapIO::load(setup.resolve(setup.files.mapDir), map);
+	semnav::RobotInterfaces io;
+	io.base = base.get();
+	io.sweeps = &sweeps;
+	io.clock = &clock;
+	io.pose = &pose;
+	semnav::RobotSession session(
+	    map, io, obstacles, setup.navigation, setup.localization,
+	    setup.perception, setup.cascades, setup.session, printEvent);
+	session.monitorLaser([&sweeps] { return sweeps.linesReceived(); });
+	const auto save = [&]
+	{
+		semnav::MapIO::save(map, outDir + "/map");
+		semnav::RobotRunRenderer::write(map, session, outDir + "/robot.png");
+	};
+	session.onSaveMap(save);
+
+	semnav::CommandQueue queue;
+	std::thread(readStdin, std::ref(queue)).detach();
+	printEvent(
+	    {{"event", "started"},
+	     {"map_sweeps", map.sweepsInserted()},
+	     {"objects", map.instances().size()},
+	     {"out", outDir}});
+	if (session.localize()) session.run(queue, g_stop);
+	base->stop();
+	sweeps.stop();
+	save();
+	nlohmann::json end = session.status();
+	end["event"] = "end";
+	end["rawlog"] = live.recordPath;
+	end["signal"] = g_stop.load();
+	printEvent(end);
+	return session.commandErrors() == 0 ? 0 : 3;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+	semnav::CommandLine cli(
+	    "semnav-robot",
+	    "The headless navigation app on the robot: live sweeps from the "
+	    "tilting LMS2xx, the robot base (ROS 1), the map growing as it "
+	    "drives. Commands one per line on stdin (\"go to the nearest "
+	    "<label>\", \"go to <label> <id>\", \"go to <x> <y>\", \"stop\", "
+	    "\"status\", \"save map\"); JSON progress on stdout; the end of "
+	    "stdin, SIGINT or SIGTERM ends the run (base stopped, map saved).");
+	auto& cmd = cli.cmd();
+	TCLAP::ValueArg<std::string> argConfig(
+	    "", "config", "The robot INI", false,
+	    semnav::ShippedConfig::path("robot.ini"), "robot.ini", cmd);
+	TCLAP::ValueArg<std::string> argMap(
+	    "", "map", "Starting map directory (overrides map_dir)", false, "",
+	    "DIR", cmd);
+	TCLAP::ValueArg<std::string> argPlugin(
+	    "", "plugin",
+	    "Robot base driver from a shared library (base = plugin; its INI "
+	    "section is the plugin's name)",
+	    false, "", "libX.so", cmd);
+	TCLAP::ValueArg<std::string> argOut(
+	    "", "out", "Output directory (overrides out_dir)", false, "", "DIR",
+	    cmd);
+	if (const auto code = cli.parse(argc, argv)) return *code;
+	std::signal(SIGINT, onSignal);
+	std::signal(SIGTERM, onSignal);
+	return cli.run(
+	    [&]
+	    {
+		    std::unique_ptr<semnav::RobotBasePlugin> plugin;
+		    if (!argPlugin.getValue().empty())
+			    plugin = std::make_unique<semnav::RobotBasePlugin>(
+			        argPlugin.getValue());
+		    semnav::RobotSetup setup = semnav::RobotSetup::load(
+		        argConfig.getValue(), plugin ? plugin->name() : "");
+		    if (!argMap.getValue().empty())
+			    setup.files.mapDir =
+			        std::filesystem::absolute(argMap.getValue()).string();
+		    const std::string out = argOut.getValue().empty()
+		                                ? setup.resolve(setup.files.outDir)
+		                                : argOut.getValue();
+		    return runRobot(setup, plugin.get(), out);
+	    });
+}

@@ -1,0 +1,191 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#pragma once
+
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/math/TPose2D.h>
+#include <mrpt/system/COutputLogger.h>
+#include <semnav/nav/NavigationConfig.h>
+#include <semnav/nav/NavigationLoop.h>
+#include <semnav/nav/SemanticNavigator.h>
+#include <semnav/nav/StopAndScanLocalizer.h>
+#include <semnav/robot/RobotInterfaces.h>
+#include <semnav/robot/SweepObstacles.h>
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace semnav
+{
+class CommandQueue;
+class SemanticMap;
+
+/** One run of semnav on a robot (semnav-robot): it localizes the robot in
+ * its map, then takes operator commands one line at a time ("go to the
+ * nearest <label>", "go to <label> <id>", "go to <x> <y>", "stop",
+ * "status", "save map") and drives them with the runtime's NavigationLoop
+ * (SemanticNavigator + StopAndScanLocalizer), exactly as in the simulator.
+ *
+ * - **The map grows**: every sweep the localizer takes with a converged,
+ *   consistent estimate is inserted into the map at that estimate (walls,
+ *   labels, objects first seen become instances, as semnav-map does); the
+ *   localizer and the navigator then work on the new map.
+ * - **Safety**: while driving, a laser that has sent no scan line for
+ *   laser_silence_s, or odometry older than odometry_timeout_s, stops the
+ *   base and pauses the navigation until they return (odometry gone for
+ *   odometry_lost_s fails the command). A stop request (SIGINT/SIGTERM)
+ *   stops the base first.
+ * - **Progress**: every event is one JSON object for the event sink (state,
+ *   pose, goal, sweeps, objects, replans); bad commands get a one-line
+ *   error and the robot keeps doing what it was doing.
+ *
+ * Options: INI section [SemnavRobot] (config/robot.ini). */
+class RobotSession : public mrpt::system::COutputLogger
+{
+public:
+	struct TOptions : public mrpt::config::CLoadableOptions
+	{
+		void loadFromConfigFile(
+		    const mrpt::config::CConfigFileBase& c,
+		    const std::string& section) override;
+		void saveToConfigFile(
+		    mrpt::config::CConfigFileBase& c,
+		    const std::string& section) const override;
+
+		/** localize: how the robot finds itself in a map at the start:
+		 * global (anywhere) or tracking (around start_pose). */
+		StopAndScanLocalizer::Mode localize =
+		    StopAndScanLocalizer::Mode::Global;
+		/** start_pose: "x y yaw_deg" for a tracking start. */
+		std::vector<double> startPose;
+		/** grow_map: insert the localized sweeps into the map. */
+		bool growMap = true;
+		/** laser_silence_s: no scan line for this long while driving
+		 * stops the base until lines return. */
+		double laserSilence = 0.3;
+		/** odometry_timeout_s, odometry_lost_s: odometry older than the
+		 * first pauses the navigation; older than the second fails the
+		 * command. */
+		double odometryTimeout = 0.3;
+		double odometryLost = 5.0;
+		/** command_time_limit_s: a command still running after this long
+		 * is cancelled. */
+		double commandTimeLimit = 900;
+		/** status_period_s: a status event this often while driving (0:
+		 * only on request). */
+		double statusPeriod = 0;
+	};
+
+	/** What the session reports (one JSON object per event). */
+	using EventSink = std::function<void(const nlohmann::json&)>;
+	/** Scan lines received so far (a live sensor's counter): the laser's
+	 * pulse. Empty: not monitored. */
+	using LineCounter = std::function<std::size_t()>;
+
+	/** `robot` gives base, sweeps, clock and the pose to report (a
+	 * LocalizedPose); `obstacles` takes every sweep. All must outlive the
+	 * session. */
+	RobotSession(
+	    SemanticMap& map, const RobotInterfaces& robot,
+	    SweepObstacles& obstacles, const NavigationConfig& navigation,
+	    const MappingLocalizer::TOptions& localization,
+	    const PerceptionPipeline::TOptions& perception,
+	    const std::optional<CascadeDetector::TOptions>& cascades,
+	    const TOptions& options, EventSink events);
+	~RobotSession() override;
+
+	/** Watches the laser's scan lines (laser_silence_s). */
+	void monitorLaser(LineCounter lines) { m_lines = std::move(lines); }
+	/** Called on "save map" and by finish(). */
+	void onSaveMap(std::function<void()> save) { m_save = std::move(save); }
+
+	/** Localizes the robot (start of the run). False (an event says why)
+	 * when it could not; commands are refused until a later start works. */
+	bool localize();
+	/** Takes commands from `queue` until it is closed and empty or `stop`
+	 * is set; then stops the base. */
+	void run(CommandQueue& queue, const std::atomic<bool>& stop);
+
+	/** One command line (also used by run()); false for a bad one (an
+	 * error event names it). A "go to" drives until done. */
+	bool handle(const std::string& line, const std::atomic<bool>& stop);
+
+	/** The state as a JSON object (the "status" event). */
+	nlohmann::json status() const;
+	/** Counters. */
+	int sweepsInserted() const { return m_inserted; }
+	int commandsDone() const { return m_done; }
+	int commandErrors() const { return m_errors; }
+	/** Every plan of every command (map frame), for the run's picture. */
+	const std::vector<SemanticNavigator::PlanRecord>& plans() const
+	{
+		return m_plans;
+	}
+	/** The believed trajectory (one pose per control period). */
+	const std::vector<mrpt::math::TPose2D>& trajectory() const
+	{
+		return m_trajectory;
+	}
+	/** The last command's navigator (nullptr before the first). */
+	const SemanticNavigator* navigator() const { return m_nav.get(); }
+
+private:
+	struct Driving;
+	void emit(nlohmann::json e) const;
+	void error(const std::string& line, const std::string& why);
+	/** Parses and checks a "go to" command against the map from the
+	 * current pose; throws NavigationError/PlanningError naming it. */
+	NavCommand checkedGoal(const std::string& line) const;
+	/** Drives `command` until it ends (or is replaced or stopped). */
+	void drive(const NavCommand& command, const std::atomic<bool>& stop);
+	/** Every control period while driving: sweeps into the map, safety,
+	 * commands. */
+	void whileDriving(
+	    SemanticNavigator& nav, Driving& d, const std::atomic<bool>& stop);
+	/** Inserts the localizer's kept sweeps; true when the map changed. */
+	bool insertSweeps();
+	/** A "new_object" event for every reported instance not known yet. */
+	void reportNewObjects();
+	/** Blocks with the base stopped while the laser is silent or the
+	 * odometry stale; false when the odometry is lost. */
+	bool waitForSensors(const std::atomic<bool>& stop);
+	double laserSilence();
+	double odometryAge() const;
+	/** A localizer on the map (the map must have walls). */
+	void makeLocalizer();
+	/** An empty map: the first sweep goes in at the odometry pose, which
+	 * makes the odometry frame the map frame. */
+	void seedMap();
+	CommandQueue* m_queue = nullptr;
+
+	SemanticMap& m_map;
+	RobotInterfaces m_robot;
+	SweepObstacles& m_obstacles;
+	const NavigationConfig& m_config;
+	TOptions m_options;
+	EventSink m_events;
+	MappingLocalizer::TOptions m_localization;
+	PerceptionPipeline::TOptions m_perception;
+	std::optional<CascadeDetector::TOptions> m_cascades;
+	LineCounter m_lines;
+	std::function<void()> m_save;
+	std::unique_ptr<StopAndScanLocalizer> m_localizer;
+	std::unique_ptr<class RobotNavInterface> m_interface;
+	std::unique_ptr<SemanticNavigator> m_nav;
+	bool m_localized = false;
+	int m_inserted = 0, m_done = 0, m_errors = 0, m_sweeps = 0;
+	std::size_t m_lastLines = 0;
+	double m_lastLineTime = 0;
+	std::optional<NavCommand> m_current, m_next;
+	/** Reported instances already announced. */
+	std::set<int> m_known;
+	std::vector<SemanticNavigator::PlanRecord> m_plans;
+	std::vector<mrpt::math::TPose2D> m_trajectory;
+};
+
+}  // namespace semnav

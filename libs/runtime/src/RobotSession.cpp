@@ -1,0 +1,324 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <mrpt/core/bits_math.h>
+#include <semnav/common/Error.h>
+#include <semnav/common/OptionTable.h>
+#include <semnav/detection/SweepPerception.h>
+#include <semnav/map/SemanticMap.h>
+#include <semnav/nav/NavigationErrors.h>
+#include <semnav/nav/RobotNavInterface.h>
+#include <semnav/planning/SemanticPlanner.h>
+#include <semnav/robot/ControlClock.h>
+#include <semnav/robot/LocalizedPose.h>
+#include <semnav/robot/RobotBase.h>
+#include <semnav/runtime/CommandQueue.h>
+#include <semnav/runtime/RobotSession.h>
+#include <semnav/scan/SweepSource.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace semnav
+{
+namespace
+{
+using O = RobotSession::TOptions;
+const OptionTable<O>& optionTable()
+{
+	using Mode = StopAndScanLocalizer::Mode;
+	static const auto t =
+	    OptionTable<O>()
+	        .choice(
+	            "localize", &O::localize,
+	            {{Mode::Global, "global"}, {Mode::Tracking, "tracking"}},
+	            "How the robot finds itself in the map at the start: global "
+	            "(anywhere) or tracking (around start_pose).")
+	        .reals(
+	            "start_pose", &O::startPose, -1e6, 1e6,
+	            "x y yaw_deg of a tracking start (map frame).")
+	        .flag(
+	            "grow_map", &O::growMap,
+	            "Insert every localized sweep into the map as the robot "
+	            "drives.")
+	        .real(
+	            "laser_silence_s", &O::laserSilence, 0.05, 10,
+	            "No scan line for this long while driving: the base stops "
+	            "until lines return.")
+	        .real(
+	            "odometry_timeout_s", &O::odometryTimeout, 0.05, 10,
+	            "Older odometry while driving: the base stops until it "
+	            "returns.")
+	        .real(
+	            "odometry_lost_s", &O::odometryLost, &O::odometryTimeout, 600,
+	            "Odometry older than this: the command fails.")
+	        .real(
+	            "command_time_limit_s", &O::commandTimeLimit, 1, 1e6,
+	            "A command still running after this long is cancelled.")
+	        .real(
+	            "status_period_s", &O::statusPeriod, 0, 3600,
+	            "A status event this often while driving (0: on request "
+	            "only).")
+	        .check(
+	            [](const O& o)
+	            { return o.startPose.empty() || o.startPose.size() == 3; },
+	            "start_pose must be three numbers: x y yaw_deg")
+	        .check(
+	            [](const O& o)
+	            {
+		            return o.localize != StopAndScanLocalizer::Mode::Tracking ||
+		                   !o.startPose.empty();
+	            },
+	            "localize = tracking needs start_pose");
+	return t;
+}
+
+nlohmann::json poseJson(const mrpt::math::TPose2D& p)
+{
+	return {p.x, p.y, mrpt::RAD2DEG(p.phi)};
+}
+}  // namespace
+
+SEMNAV_OPTIONS_FROM_TABLE(RobotSession::TOptions, optionTable())
+
+RobotSession::RobotSession(
+    SemanticMap& map, const RobotInterfaces& robot, SweepObstacles& obstacles,
+    const NavigationConfig& navigation,
+    const MappingLocalizer::TOptions& localization,
+    const PerceptionPipeline::TOptions& perception,
+    const std::optional<CascadeDetector::TOptions>& cascades,
+    const TOptions& options, EventSink events)
+    : mrpt::system::COutputLogger("RobotSession"),
+      m_map(map),
+      m_robot(robot),
+      m_obstacles(obstacles),
+      m_config(navigation),
+      m_options(options),
+      m_events(std::move(events)),
+      m_localization(localization),
+      m_perception(perception),
+      m_cascades(cascades)
+{
+	if (!m_robot.base || !m_robot.sweeps || !m_robot.clock || !m_robot.pose)
+		throw Error("RobotSession: base, sweeps, clock and pose are needed");
+	for (const auto& o : m_map.instances()) m_known.insert(o.id);
+}
+
+RobotSession::~RobotSession()
+{
+	if (m_robot.base) m_robot.base->stop();
+}
+
+void RobotSession::emit(nlohmann::json e) const
+{
+	e["t"] = m_robot.clock->now();
+	if (m_events) m_events(e);
+}
+
+void RobotSession::error(const std::string& line, const std::string& why)
+{
+	m_errors++;
+	emit({{"event", "error"}, {"command", line}, {"error", why}});
+}
+
+double RobotSession::odometryAge() const
+{
+	const auto t = m_robot.base->odometry().time;
+	if (t == mrpt::Clock::time_point{})
+		return std::numeric_limits<double>::infinity();
+	return std::chrono::duration<double>(mrpt::Clock::now() - t).count();
+}
+
+double RobotSession::laserSilence()
+{
+	if (!m_lines) return 0;
+	const double now = m_robot.clock->now();
+	const std::size_t n = m_lines();
+	if (n != m_lastLines)
+	{
+		m_lastLines = n;
+		m_lastLineTime = now;
+	}
+	return now - m_lastLineTime;
+}
+
+nlohmann::json RobotSession::status() const
+{
+	nlohmann::json s{
+	    {"event", "status"},
+	    {"localized", m_localized},
+	    {"pose", poseJson(m_robot.pose->pose())},
+	    {"sweeps", m_sweeps},
+	    {"sweeps_inserted", m_inserted},
+	    {"objects", m_map.instances().size()},
+	    {"commands_done", m_done},
+	    {"errors", m_errors}};
+	s["state"] = m_current ? "driving" : "idle";
+	if (m_current) s["goal"] = m_current->text();
+	if (m_nav) s["replans"] = m_nav->replans();
+	return s;
+}
+
+void RobotSession::makeLocalizer()
+{
+	m_localizer = std::make_unique<StopAndScanLocalizer>(
+	    m_map, m_config.stopAndScan, m_localization, m_perception, m_cascades);
+	m_localizer->keepSweeps(true);
+	if (m_config.viewPlanner.enabled)
+		m_localizer->enableViewPlanning(
+		    m_config.navigationTraversability(m_map), m_config.viewPlanner);
+}
+
+void RobotSession::seedMap()
+{
+	SweepPerception perception(m_perception, m_cascades);
+	perception.pipeline().setMinLoggingLevel(mrpt::system::LVL_ERROR);
+	Sweep sweep;
+	LabeledSweep labeled;
+	m_robot.base->stop();
+	if (!m_robot.sweeps->next(sweep, mrpt::Clock::now()))
+		throw LocalizationFailedError(
+		    std::string("no sweep (") +
+		    SweepSource::endName(m_robot.sweeps->end()) +
+		    "): " + m_robot.sweeps->endMessage());
+	perception.process(sweep, labeled);
+	m_obstacles.update(sweep);
+	m_map.insert(sweep, labeled, sweep.odometry());
+	reportNewObjects();
+	m_sweeps++;
+	m_inserted++;
+	const auto odo = sweep.odometry().asTPose();
+	m_robot.pose->setEstimate(odo, odo);
+	emit({{"event", "map_started"}, {"pose", poseJson(odo)}});
+}
+
+bool RobotSession::localize()
+{
+	const auto t0 = std::chrono::steady_clock::now();
+	try
+	{
+		auto mode = m_options.localize;
+		std::optional<mrpt::math::TPose2D> guess;
+		if (mode == StopAndScanLocalizer::Mode::Tracking)
+			guess = mrpt::math::TPose2D(
+			    m_options.startPose[0], m_options.startPose[1],
+			    mrpt::DEG2RAD(m_options.startPose[2]));
+		if (m_map.sweepsInserted() == 0 && m_map.instances().empty())
+		{
+			seedMap();
+			mode = StopAndScanLocalizer::Mode::Tracking;
+			guess = m_robot.pose->pose();
+		}
+		if (!m_localizer) makeLocalizer();
+		emit(
+		    {{"event", "localizing"},
+		     {"mode", StopAndScanLocalizer::modeName(mode)}});
+		const auto rep = m_localizer->start(m_robot, mode, guess);
+		m_localized = true;
+		insertSweeps();
+		emit(
+		    {{"event", "localized"},
+		     {"pose", poseJson(rep.estimate)},
+		     {"sweeps", rep.sweeps},
+		     {"drives_to_look", rep.drives},
+		     {"std_xy_m", rep.records.empty() ? 0.0 : rep.records.back().stdXY},
+		     {"wall_s", std::chrono::duration<double>(
+		                    std::chrono::steady_clock::now() - t0)
+		                    .count()}});
+		return true;
+	}
+	catch (const Error& e)
+	{
+		m_robot.base->stop();
+		m_localized = false;
+		if (m_localizer) m_localizer->takeSweeps();
+		emit({{"event", "localization_failed"}, {"error", e.what()}});
+		return false;
+	}
+}
+
+void RobotSession::reportNewObjects()
+{
+	for (const auto& o : m_map.instances())
+		if (m_known.insert(o.id).second)
+			emit(
+			    {{"event", "new_object"},
+			     {"id", o.id},
+			     {"label", labelName(o.label)},
+			     {"xy", {o.centroid.x, o.centroid.y}}});
+}
+
+bool RobotSession::insertSweeps()
+{
+	if (!m_localizer) return false;
+	bool changed = false;
+	for (const auto& k : m_localizer->takeSweeps())
+	{
+		const auto t0 = std::chrono::steady_clock::now();
+		m_sweeps++;
+		m_obstacles.update(k.sweep);
+		const auto& r = k.record;
+		const bool insert = m_options.growMap && r.converged && !r.kidnapped &&
+		                    r.inliers >= m_config.stopAndScan.rescanMinInliers;
+		if (insert)
+		{
+			m_map.insert(k.sweep, k.labeled, mrpt::poses::CPose2D(r.estimate));
+			m_inserted++;
+			changed = true;
+			reportNewObjects();
+			m_localizer->mapChanged();
+			if (m_config.viewPlanner.enabled)
+				m_localizer->enableViewPlanning(
+				    m_config.navigationTraversability(m_map),
+				    m_config.viewPlanner);
+		}
+		emit(
+		    {{"event", "sweep"},
+		     {"estimate", poseJson(r.estimate)},
+		     {"std_xy_m", r.stdXY},
+		     {"inliers", r.inliers},
+		     {"inserted", insert},
+		     {"localize_ms", r.ms},
+		     {"insert_ms", std::chrono::duration<double, std::milli>(
+		                       std::chrono::steady_clock::now() - t0)
+		                       .count()}});
+	}
+	return changed;
+}
+
+NavCommand RobotSession::checkedGoal(const std::string& line) const
+{
+	const NavCommand c = NavCommand::parse(line);
+	if (!m_localized) throw NavigationError("the robot is not localized");
+	const SemanticPlanner planner(m_map, m_config.cnn, m_config.traversability);
+	const auto p = m_robot.pose->pose();
+	const CostProfile profile = m_config.navigationProfile();
+	try
+	{
+		switch (c.kind)
+		{
+			case NavCommand::Kind::NearestLabel:
+				planner.toLabel(p.x, p.y, c.label, profile);
+				break;
+			case NavCommand::Kind::Object:
+				if (m_map.instance(c.objectId).label != c.label)
+					throw NavigationError(
+					    "object " + std::to_string(c.objectId) + " is a " +
+					    labelName(m_map.instance(c.objectId).label));
+				planner.toObject(p.x, p.y, c.objectId, profile);
+				break;
+			case NavCommand::Kind::Point:
+				planner.toPoint(p.x, p.y, c.x, c.y, profile);
+				break;
+		}
+	}
+	catch (const StartBlockedError&)
+	{
+		// The navigator plans from the nearest free cell.
+	}
+	catch (const StartOutsideMapError&)
+	{
+	}
+	return c;
+}
+
+}  // namespace semnav
