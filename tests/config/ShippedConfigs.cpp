@@ -6,6 +6,7 @@
 #include <semnav/common/ConfigFileWriter.h>
 #include <semnav/detection/CascadeDetector.h>
 #include <semnav/hwdrivers/CTiltingLMS2xx.h>
+#include <semnav/hwdrivers/LiveSweepSource.h>
 #include <semnav/localization/Localizer.h>
 #include <semnav/localization/PredictionGuard.h>
 #include <semnav/localization/SemanticEvidenceMap.h>
@@ -26,6 +27,7 @@
 #include <semnav/planning/TraversabilityBuilder.h>
 #include <semnav/robot/SweepObstacles.h>
 #include <semnav/ros1/Ros1BaseOptions.h>
+#include <semnav/runtime/RobotSetup.h>
 #include <semnav/scan/SweepAssembler.h>
 #include <semnav/sim/SimulatedRobot.h>
 #include <semnav/sim/SimulatorOptions.h>
@@ -55,6 +57,21 @@ ShippedConfig grabber(const std::string& file)
 	ShippedConfig c;
 	c.file = file;
 	c.sections = {section<CTiltingLMS2xx::TOptions>("TILT_LMS")};
+	c.foreignKeys = {{"TILT_LMS", kGrabberSensorKeys}};
+	return c;
+}
+/** A semnav-robot file: the app's sections, the live sweep source, the ROS
+ * base and the laser + head ([TILT_LMS] with the grabber's sensor keys). */
+ShippedConfig robot(const std::string& file)
+{
+	ShippedConfig c;
+	c.file = file;
+	c.sections = {
+	    section<RobotSetup::TOptions>("RobotSetup"),
+	    section<RobotSession::TOptions>("SemnavRobot"),
+	    section<LiveSweepSource::TOptions>("LiveSweepSource"),
+	    section<Ros1BaseOptions>("Ros1Base"),
+	    section<CTiltingLMS2xx::TOptions>("TILT_LMS")};
 	c.foreignKeys = {{"TILT_LMS", kGrabberSensorKeys}};
 	return c;
 }
@@ -288,14 +305,55 @@ stats_file = ./semnav-capture-stats.json
 	     "(step length + u of\nthe cell entered).",
 	     {section<CnnPlanner::TOptions>("CnnPlanner"),
 	      section<TraversabilityBuilder::TOptions>("Traversability")}});
-	all.push_back(
-	    {"robot.ini",
-	     "semnav on a real robot (issue 37's semnav-robot): the robot base "
-	     "over ROS 1\n(libs/ros1, docs/hardware.md). The laser + tilt "
-	     "head, map and navigation\nsections join it with semnav-robot. "
-	     "Built with ROS 1 only (ros-core-dev,\nlibmrpt-ros1bridge-dev; "
-	     "scripts/install-deps installs them).",
-	     {section<Ros1BaseOptions>("Ros1Base")}});
+	{
+		ShippedConfig c = robot("robot.ini");
+		c.header =
+		    "semnav-robot on a real robot: a SICK LMS200 on a Directed "
+		    "Perception PTU\n(the [TILT_LMS] keys of "
+		    "config/grabber-tilting-lms200.ini) and a robot base\nover ROS 1 "
+		    "(cmd_vel out, odom in):\n"
+		    "  semnav-robot --config config/robot.ini --map MAPDIR\n"
+		    "then type commands (\"go to the nearest wastebasket\", "
+		    "\"status\", \"save map\";\nCtrl-D or Ctrl-C ends the run, the "
+		    "base stopped and the map saved).\nFor another base: base = "
+		    "plugin and semnav-robot --plugin libX.so (its\nsection is the "
+		    "plugin's name). docs/hardware.md.";
+		c.overrides = R"(
+[TILT_LMS]
+COM_port_LIN = /dev/ttyUSB0
+ptu_port = /dev/ttyUSB1
+tilt_speed_deg_s = 2.34
+stall_timeout_s = 1.0
+reconnect_delay_s = 1.0
+stats_file = ./semnav-robot-out/laser-stats.json
+)";
+		all.push_back(c);
+	}
+	{
+		ShippedConfig c = robot("robot-emulated.ini");
+		c.header =
+		    "semnav-robot driving the emulated robot "
+		    "(semnav-device-emulator --base: the\nLMS200 + PTU on "
+		    "pseudo-terminals riding a differential-drive base that\nspeaks "
+		    "ROS 1); scripts/robot-selftest runs both with this file, "
+		    "rewriting\nthe paths for its own directory. The tilt runs at "
+		    "37.5 deg/s (1 deg per line\nat the 500 kbaud link's 37.5 "
+		    "lines/s): a 2.8 s sweep, half the resolution of\nthe capture "
+		    "config, to keep a run within a few minutes.";
+		c.overrides = R"(
+[RobotSetup]
+out_dir = /tmp/semnav-robot/out
+[TILT_LMS]
+COM_port_LIN = /tmp/semnav-robot/lms
+COM_baudRate = 500000
+ptu_port = /tmp/semnav-robot/ptu
+tilt_speed_deg_s = 37.5
+stall_timeout_s = 1.0
+reconnect_delay_s = 0.3
+stats_file = /tmp/semnav-robot/laser-stats.json
+)";
+		all.push_back(c);
+	}
 	all.push_back(
 	    {"sim.ini",
 	     "The simulator: [Simulator] for semnav-sim (--config "

@@ -107,11 +107,12 @@ RobotSetup RobotSetup::load(
 	s.ini->getAllSections(sections);
 	for (const auto& sec : sections)
 		if (sec != "RobotSetup" && sec != "SemnavRobot" &&
-		    sec != "LiveSweepSource" && sec != s.files.laserSection &&
-		    sec != s.files.baseSection)
+		    sec != "LiveSweepSource" && sec != "Ros1Base" &&
+		    sec != s.files.laserSection && sec != s.files.baseSection)
 			throw ConfigError(
 			    path + ": unknown section [" + sec +
-			    "] (expected RobotSetup, SemnavRobot, LiveSweepSource, " +
+			    "] (expected RobotSetup, SemnavRobot, LiveSweepSource, "
+			    "Ros1Base, " +
 			    s.files.laserSection + ", " + s.files.baseSection + ")");
 	if (!s.ini->sectionExists(s.files.laserSection))
 		throw ConfigError(
