@@ -23,6 +23,7 @@
 #endif
 
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
@@ -40,8 +41,11 @@ void onSignal(int)
 
 std::mutex g_outMutex;
 /** One JSON line on stdout; the human line on stderr. */
-void printEvent(const nlohmann::json& e)
+void printEvent(nlohmann::json e)
 {
+	e["wall_time"] = std::chrono::duration<double>(
+	                     std::chrono::system_clock::now().time_since_epoch())
+	                     .count();
 	std::lock_guard<std::mutex> lk(g_outMutex);
 	std::cout << e.dump() << std::endl;
 	const std::string ev = e.value("event", "");

@@ -40,7 +40,12 @@ const OptionTable<O>& optionTable()
 	        .text(
 	            "record_rawlog", &O::recordPath,
 	            "Rawlog recording every line and odometry reading; empty: "
-	            "none.");
+	            "none.")
+	        .flag(
+	            "record_streaming", &O::recordStreaming,
+	            "Write the recording straight to its path, flushed line by "
+	            "line (it survives the process being killed); false: a "
+	            "temporary file renamed at the end.");
 	return t;
 }
 
@@ -99,7 +104,10 @@ LiveSweepSource::LiveSweepSource(
 	m_odometryHold = so.maxTiltWait + 1.0 / m_sensor->lineRateLimit() +
 	                 2.0 / m_sensor->getProcessRate();
 	if (!m_options.recordPath.empty())
-		m_writer = std::make_unique<RawlogWriter>(m_options.recordPath);
+		m_writer = std::make_unique<RawlogWriter>(
+		    m_options.recordPath, 1,
+		    m_options.recordStreaming ? RawlogWriter::Mode::Streaming
+		                              : RawlogWriter::Mode::Atomic);
 	m_sensor->initialize();
 	m_thread = std::thread([this] { run(); });
 }

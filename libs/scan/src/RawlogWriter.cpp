@@ -1,5 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/serialization/archiveFrom_std_streams.h>
 #include <mrpt/serialization/CArchive.h>
 #include <semnav/common/Error.h>
 #include <semnav/scan/RawlogWriter.h>
@@ -9,9 +10,16 @@
 
 namespace semnav
 {
-RawlogWriter::RawlogWriter(std::string path, int compressLevel)
+RawlogWriter::RawlogWriter(std::string path, int compressLevel, Mode mode)
     : m_path(std::move(path))
 {
+	if (mode == Mode::Streaming)
+	{
+		m_stream = std::make_unique<std::ofstream>(
+		    m_path, std::ios::binary | std::ios::trunc);
+		if (!*m_stream) throw IoError("cannot create rawlog " + m_path);
+		return;
+	}
 	const std::filesystem::path p(m_path);
 	m_tmpPath = (p.parent_path() / ("." + p.filename().string() + ".tmp" +
 	                                std::to_string(::getpid())))
@@ -24,6 +32,7 @@ RawlogWriter::RawlogWriter(std::string path, int compressLevel)
 
 RawlogWriter::~RawlogWriter()
 {
+	if (m_stream) return;  // closed by its destructor, kept
 	if (!m_committed)
 	{
 		m_out.reset();
@@ -37,8 +46,19 @@ void RawlogWriter::write(const mrpt::serialization::CSerializable& obj)
 	if (m_committed) throw IoError("rawlog " + m_path + " already committed");
 	try
 	{
-		auto arch = mrpt::serialization::archiveFrom(*m_out);
-		arch << obj;
+		if (m_stream)
+		{
+			mrpt::serialization::CArchiveStreamBase<std::ostream> arch(
+			    *m_stream);
+			arch << obj;
+			m_stream->flush();
+			if (!*m_stream) throw IoError("write failed");
+		}
+		else
+		{
+			auto arch = mrpt::serialization::archiveFrom(*m_out);
+			arch << obj;
+		}
 	}
 	catch (const std::exception& e)
 	{
@@ -50,6 +70,12 @@ void RawlogWriter::write(const mrpt::serialization::CSerializable& obj)
 void RawlogWriter::commit()
 {
 	if (m_committed) return;
+	if (m_stream)
+	{
+		m_stream->close();
+		m_committed = true;
+		return;
+	}
 	m_out->close();
 	std::error_code ec;
 	std::filesystem::rename(m_tmpPath, m_path, ec);

@@ -70,8 +70,11 @@ public:
 		 * start of the cut sweep without recording). 0: that + 10 s. */
 		double deviceLostAfter = 0;
 		/** Rawlog recording every line and odometry reading; empty = none.
-		 * Written to a temporary file, renamed at stop(). */
+		 * Written to a temporary file, renamed at stop() (or streamed). */
 		std::string recordPath;
+		/** record_streaming: the recording goes straight to recordPath,
+		 * flushed line by line (RawlogWriter::Mode::Streaming). */
+		bool recordStreaming = false;
 		/** How lines become sweeps; nominalSpan = 0 takes the sensor's
 		 * theta_max_deg - theta_min_deg. */
 		SweepAssembler::TOptions assembler;

@@ -3,6 +3,7 @@
 
 #include <mrpt/serialization/CSerializable.h>
 
+#include <fstream>
 #include <memory>
 #include <string>
 
@@ -17,12 +18,24 @@ namespace semnav
  * tools write them) atomically: objects go to a temporary file that
  * commit() renames to the final path. Destroying an uncommitted writer
  * removes the temporary, so an interrupted run never leaves a partial
- * rawlog under the final name. */
+ * rawlog under the final name.
+ *
+ * Streaming (a recording on a robot, which must survive the process being
+ * killed): objects go straight to the final path, uncompressed (MRPT reads
+ * plain and gz rawlogs alike), flushed after each one, so the file holds
+ * every object written until the end. */
 class RawlogWriter
 {
 public:
-	/** Opens the temporary file; throws IoError. compressLevel 0..9. */
-	explicit RawlogWriter(std::string path, int compressLevel = 1);
+	enum class Mode
+	{
+		Atomic,
+		Streaming
+	};
+	/** Opens the temporary file (Atomic) or the final one (Streaming);
+	 * throws IoError. compressLevel 0..9 (Atomic only). */
+	explicit RawlogWriter(
+	    std::string path, int compressLevel = 1, Mode mode = Mode::Atomic);
 	~RawlogWriter();
 	RawlogWriter(const RawlogWriter&) = delete;
 	RawlogWriter& operator=(const RawlogWriter&) = delete;
@@ -38,6 +51,7 @@ public:
 private:
 	std::string m_path, m_tmpPath;
 	std::unique_ptr<mrpt::io::CFileGZOutputStream> m_out;
+	std::unique_ptr<std::ofstream> m_stream;
 	std::size_t m_count = 0;
 	bool m_committed = false;
 };
