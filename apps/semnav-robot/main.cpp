@@ -137,6 +137,7 @@ int runRobot(
 		semnav::RobotRunRenderer::write(map, session, outDir + "/robot.png");
 	};
 	session.onSaveMap(save);
+	session.setNavLogPath(outDir + "/navigation.reactivenavlog");
 
 	semnav::CommandQueue queue;
 	std::thread(readStdin, std::ref(queue)).detach();
@@ -150,6 +151,7 @@ int runRobot(
 	sweeps.stop();
 	save();
 	nlohmann::json end = session.status();
+	end["navlog"] = session.finishNavLog();
 	end["event"] = "end";
 	end["rawlog"] = live.recordPath;
 	end["signal"] = g_stop.load();

@@ -236,7 +236,10 @@ rawlog_GZ_compress_level = 1
 		// The robot's ports; RS-232 at 38400 baud gives about 4.7 lines/s,
 		// so 0.5 deg per line needs 2.34 deg/s (with an RS-422 adapter:
 		// COM_baudRate = 500000, tilt_speed_deg_s = 18.75).
+		// The robot's recording survives a crash (RawlogWriter Streaming).
 		c.overrides = R"(
+[LiveSweepSource]
+record_streaming = true
 [TILT_LMS]
 COM_port_LIN = /dev/ttyUSB0
 ptu_port = /dev/ttyUSB1
@@ -318,7 +321,10 @@ stats_file = ./semnav-capture-stats.json
 		    "base stopped and the map saved).\nFor another base: base = "
 		    "plugin and semnav-robot --plugin libX.so (its\nsection is the "
 		    "plugin's name). docs/hardware.md.";
+		// The robot's recording survives a crash (RawlogWriter Streaming).
 		c.overrides = R"(
+[LiveSweepSource]
+record_streaming = true
 [TILT_LMS]
 COM_port_LIN = /dev/ttyUSB0
 ptu_port = /dev/ttyUSB1
@@ -343,6 +349,10 @@ stats_file = ./semnav-robot-out/laser-stats.json
 		c.overrides = R"(
 [RobotSetup]
 out_dir = /tmp/semnav-robot/out
+[SemnavRobot]
+laser_silence_s = 0.2
+[LiveSweepSource]
+record_streaming = true
 [TILT_LMS]
 COM_port_LIN = /tmp/semnav-robot/lms
 COM_baudRate = 500000

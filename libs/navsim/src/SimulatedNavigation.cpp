@@ -2,6 +2,7 @@
 #include <semnav/common/AtomicFile.h>
 #include <semnav/common/Error.h>
 #include <semnav/map/SemanticMap.h>
+#include <semnav/nav/NavLogFile.h>
 #include <semnav/nav/NavigationErrors.h>
 #include <semnav/nav/RobotNavInterface.h>
 #include <semnav/navsim/SceneMapBuilder.h>
@@ -38,46 +39,6 @@ double distanceToSceneObject(
 	return distanceToBox(p, lo, hi);
 }
 }  // namespace
-
-/** MRPT writes its navigation log into a directory of its own naming: a
- * private one next to the target, renamed to the target at the end. */
-class SimulatedNavigation::NavLog
-{
-public:
-	NavLog(SemanticNavigator& nav, const std::string& path)
-	    : m_nav(nav), m_path(path)
-	{
-		if (m_path.empty()) return;
-		const auto parent = std::filesystem::path(m_path).parent_path();
-		const auto dir = parent.empty() ? std::filesystem::path(".") : parent;
-		createDirectories(dir.string());
-		m_dir = (dir / (".navlog-" + std::to_string(::getpid()))).string();
-		std::filesystem::remove_all(m_dir);
-		m_nav.setNavLogDirectory(m_dir);
-	}
-	~NavLog()
-	{
-		if (!m_dir.empty()) std::filesystem::remove_all(m_dir);
-	}
-	/** Closes the log and moves it to the target; returns the target. */
-	std::string finish()
-	{
-		if (m_dir.empty()) return "";
-		m_nav.setNavLogDirectory("");  // closes the file
-		std::string written;
-		for (const auto& e : std::filesystem::directory_iterator(m_dir))
-			if (e.path().extension() == ".reactivenavlog")
-				written = e.path().string();
-		if (written.empty())
-			throw IoError("MRPT wrote no navigation log in " + m_dir);
-		std::filesystem::rename(written, m_path);
-		return m_path;
-	}
-
-private:
-	SemanticNavigator& m_nav;
-	std::string m_path, m_dir;
-};
 
 std::string SimulatedNavigation::Result::outcome(
     const std::string& object) const
@@ -149,7 +110,7 @@ SimulatedNavigation::Result SimulatedNavigation::run(
 	    robotInterface, m_map, *m_config.mrptSections, m_config.cnn,
 	    m_config.traversability, m_config.navigator);
 	nav.setMinLoggingLevel(mrpt::system::LVL_ERROR);
-	NavLog navlog(nav, navlogPath);
+	NavLogFile navlog(nav, navlogPath);
 
 	nav.start(command);
 	NavigationLoop loop(nav, io, m_localizer.get());

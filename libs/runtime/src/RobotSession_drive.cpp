@@ -1,5 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/core/bits_math.h>
+#include <mrpt/core/format.h>
 #include <semnav/common/Error.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/nav/NavigationErrors.h>
@@ -41,6 +42,11 @@ struct RobotSession::Driving
 	/** Why the session ended the drive ("" when the navigator did). */
 	std::string why;
 };
+
+std::string RobotSession::finishNavLog()
+{
+	return m_navlog ? m_navlog->finish() : "";
+}
 
 void RobotSession::run(CommandQueue& queue, const std::atomic<bool>& stop)
 {
@@ -125,6 +131,8 @@ void RobotSession::drive(
 		    *m_interface, m_map, *m_config.mrptSections, m_config.cnn,
 		    m_config.traversability, m_config.navigator);
 		m_nav->setMinLoggingLevel(mrpt::system::LVL_ERROR);
+		if (!m_navlogPath.empty())
+			m_navlog = std::make_unique<NavLogFile>(*m_nav, m_navlogPath);
 	}
 	m_current = command;
 	const auto t0 = std::chrono::steady_clock::now();
@@ -185,8 +193,8 @@ void RobotSession::whileDriving(
 	}
 	if (!waitForSensors(stop))
 	{
-		d.why = "odometry lost: none for " +
-		        std::to_string(m_options.odometryLost) + " s";
+		d.why = mrpt::format(
+		    "odometry lost: none for %.1f s", m_options.odometryLost);
 		nav.cancel();
 		return;
 	}

@@ -155,8 +155,6 @@ public:
 	StopAndScanLocalizer* localizer() { return m_localizer.get(); }
 
 private:
-	/** Writes MRPT's navigation log of `nav` to navlogPath at the end. */
-	class NavLog;
 	/** The result's outcome and evaluation fields. */
 	void evaluate(
 	    const SemanticNavigator& nav, const SimulatedRobot& robot,

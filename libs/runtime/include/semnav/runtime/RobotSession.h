@@ -4,6 +4,7 @@
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPose2D.h>
 #include <mrpt/system/COutputLogger.h>
+#include <semnav/nav/NavLogFile.h>
 #include <semnav/nav/NavigationConfig.h>
 #include <semnav/nav/NavigationLoop.h>
 #include <semnav/nav/SemanticNavigator.h>
@@ -101,6 +102,11 @@ public:
 
 	/** Watches the laser's scan lines (laser_silence_s). */
 	void monitorLaser(LineCounter lines) { m_lines = std::move(lines); }
+	/** MRPT's navigation log of every command (navlog-viewer) goes to
+	 * `path`, written by finishNavLog(). */
+	void setNavLogPath(const std::string& path) { m_navlogPath = path; }
+	/** Closes the navigation log and moves it in place ("" for none). */
+	std::string finishNavLog();
 	/** Called on "save map" and by finish(). */
 	void onSaveMap(std::function<void()> save) { m_save = std::move(save); }
 
@@ -177,6 +183,8 @@ private:
 	std::unique_ptr<StopAndScanLocalizer> m_localizer;
 	std::unique_ptr<class RobotNavInterface> m_interface;
 	std::unique_ptr<SemanticNavigator> m_nav;
+	std::string m_navlogPath;
+	std::unique_ptr<NavLogFile> m_navlog;
 	bool m_localized = false;
 	int m_inserted = 0, m_done = 0, m_errors = 0, m_sweeps = 0;
 	std::size_t m_lastLines = 0;

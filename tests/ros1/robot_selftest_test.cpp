@@ -1,0 +1,145 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// semnav-robot hardware in the loop (scripts/robot-selftest): the emulated
+// LMS200 + PTU on pseudo-terminals riding the emulated ROS 1 base in the
+// office, a map from an earlier semnav-map run, semnav-robot with
+// config/robot-emulated.ini through the real drivers and real ROS transport.
+// Each run starts its own rosmaster on a free port.
+#include <gtest/gtest.h>
+#include <semnav/map/MapIO.h>
+#include <semnav/map/SemanticMap.h>
+#include <semnav/planning/SemanticPlanner.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "../dataset/AppRunner.h"
+#include "../navsim/NavTestUtils.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace semnav;
+
+namespace
+{
+const fs::path kTmp = fs::temp_directory_path() /
+                      ("semnav_robot_hil_" + std::to_string(::getpid()));
+const mrpt::math::TPose2D kStart{2.2, 1.5, 0};
+
+/** The office map of the demo: semnav-sim, then semnav-map --poses pf. */
+const fs::path& officeMap()
+{
+	static const fs::path map = []
+	{
+		const fs::path sim = kTmp / "sim", out = kTmp / "map";
+		const auto s = test::runApp(
+		    "semnav-sim", "--scene " + test::sourceDir() +
+		                      "/datasets/office/office.yaml --out " +
+		                      sim.string() + " --seed 1");
+		EXPECT_EQ(s.code, 0) << s.err;
+		fs::path rawlog;
+		for (const auto& e : fs::directory_iterator(sim))
+			if (e.path().extension() == ".rawlog") rawlog = e.path();
+		const auto m = test::runApp(
+		    "semnav-map", "--rawlog " + rawlog.string() + " --out " +
+		                      out.string() + " --poses pf --gt-dir " +
+		                      sim.string());
+		EXPECT_EQ(m.code, 0) << m.err;
+		return out;
+	}();
+	return map;
+}
+
+/** scripts/robot-selftest with `args` (shell words), its JSON report. */
+json selftest(const std::string& name, const std::string& args)
+{
+	const fs::path out = kTmp / name;
+	const std::string cmd = test::sourceDir() +
+	                        "/scripts/robot-selftest --build " +
+	                        std::string(SEMNAV_BINARY_DIR) + " --out " +
+	                        out.string() + " --map " + officeMap().string() +
+	                        " --json " + args + " 2>" + (out.string() + ".err");
+	fs::create_directories(out);
+	FILE* p = ::popen(cmd.c_str(), "r");
+	std::string text;
+	char buf[4096];
+	std::size_t n;
+	while ((n = std::fread(buf, 1, sizeof(buf), p)) > 0) text.append(buf, n);
+	::pclose(p);
+	std::cerr << name << ": " << text << "\n";
+	try
+	{
+		return json::parse(text);
+	}
+	catch (const std::exception&)
+	{
+		ADD_FAILURE() << "no report from robot-selftest: " << text;
+		return json::object();
+	}
+}
+
+class RobotSelftest : public ::testing::Test
+{
+protected:
+	static void TearDownTestSuite() { fs::remove_all(kTmp); }
+};
+}  // namespace
+
+TEST_F(RobotSelftest, OfficeUnlocalizedMalformedCommandsAndTheLaserUnplugged)
+{
+	std::string bad;
+	for (const char* c :
+	     {"fly to the moon", "go to", "go to the nearest unicorn",
+	      "go to wastebasket 999", "go to 100 100", "go to 1.0", "go to x y",
+	      "go to the nearest wall", "go to 0 0", "save"})
+		bad += std::string(" --bad-command '") + c + "'";
+	const json r =
+	    selftest("office", bad + " --emulator-arg=--disconnect-at=22");
+	ASSERT_TRUE(r.value("success", false)) << r.dump();
+	EXPECT_EQ(r["bad_commands"].size(), 10u);
+	EXPECT_EQ(r["collisions"], 0);
+	EXPECT_LT(r["localization_error_m"].get<double>(), 0.3);
+	// The laser unplugged for 2 s: the base stopped within 0.5 s, the robot
+	// paused and resumed.
+	ASSERT_TRUE(r.contains("stop_after_laser_silent_s")) << r.dump();
+	EXPECT_LE(r["stop_after_laser_silent_s"].get<double>(), 0.5);
+	ASSERT_EQ(r["paused"].size(), 2u);
+	EXPECT_EQ(r["paused"][0]["reason"], "laser silent");
+	// The reached wastebasket is the path-nearest from the start in the
+	// map the robot saved (which holds what it added on the way).
+	SemanticMap saved(test::shippedNavigationConfig().map);
+	MapIO::load((kTmp / "office" / "map").string(), saved);
+	const auto& c = test::shippedNavigationConfig();
+	const auto plan =
+	    SemanticPlanner(saved, c.cnn, c.traversability)
+	        .toLabel(
+	            kStart.x, kStart.y, Label::Wastebasket, c.navigationProfile());
+	EXPECT_EQ(r["reached_object"].get<int>(), plan.goalObjectId);
+	EXPECT_LT(
+	    r["true_distance_to_nearest_m"].get<double>() - 0.15,
+	    c.arrivalTolerance(true));
+}
+
+TEST_F(RobotSelftest, KilledWhileDrivingTheBaseStopsAndTheRecordingIsReadable)
+{
+	const json r = selftest("kill", "--kill-robot-after 3");
+	ASSERT_TRUE(r.contains("stop_after_kill_s")) << r.dump();
+	EXPECT_LE(r["stop_after_kill_s"].get<double>(), 0.5);
+	EXPECT_TRUE(r.value("rawlog_readable", false)) << r.dump();
+	EXPECT_TRUE(r.value("success", false));
+}
+
+TEST_F(RobotSelftest, OdometryStoppedStopsTheBaseAndTheCommandFails)
+{
+	const json r = selftest(
+	    "odom",
+	    "--emulator-arg=--odom-silent-at=25 "
+	    "--emulator-arg=--odom-silent-for=8");
+	ASSERT_EQ(r["results"].size(), 1u) << r.dump();
+	EXPECT_EQ(r["results"][0]["event"], "failed");
+	EXPECT_NE(
+	    r["results"][0].value("reason", "").find("odometry"), std::string::npos)
+	    << r.dump();
+	EXPECT_EQ(r["collisions"], 0);
+}
