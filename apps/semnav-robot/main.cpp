@@ -20,12 +20,14 @@
 #include <semnav/runtime/RobotSetup.h>
 #ifdef SEMNAV_HAVE_ROS1
 #include <semnav/ros1/Ros1Base.h>
+#include <semnav/ros1/Ros1CommandChannel.h>
 #endif
 
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <mutex>
@@ -40,14 +42,19 @@ void onSignal(int)
 }
 
 std::mutex g_outMutex;
-/** One JSON line on stdout; the human line on stderr. */
+/** Also publishes every event (ROS: events_topic); may be empty. */
+std::function<void(const std::string&)> g_publish;
+/** One JSON line on stdout (and the events topic); the human line on
+ * stderr. */
 void printEvent(nlohmann::json e)
 {
 	e["wall_time"] = std::chrono::duration<double>(
 	                     std::chrono::system_clock::now().time_since_epoch())
 	                     .count();
 	std::lock_guard<std::mutex> lk(g_outMutex);
-	std::cout << e.dump() << std::endl;
+	const std::string line = e.dump();
+	std::cout << line << std::endl;
+	if (g_publish) g_publish(line);
 	const std::string ev = e.value("event", "");
 	if (ev == "error")
 		std::cerr << "semnav-robot: " << e.value("command", "") << ": "
@@ -59,6 +66,36 @@ void printEvent(nlohmann::json e)
 		                  : std::string())
 		          << std::endl;
 }
+
+#ifdef SEMNAV_HAVE_ROS1
+semnav::Ros1Base::TOptions rosOptions(const semnav::RobotSetup& s)
+{
+	semnav::Ros1Base::TOptions o;
+	try
+	{
+		o.loadFromConfigFile(*s.ini, "Ros1Base");
+	}
+	catch (const semnav::ConfigError& e)
+	{
+		throw semnav::ConfigError(s.iniPath + ": " + e.what());
+	}
+	return o;
+}
+
+/** Commands and events over ROS when the base is the ROS one. */
+std::unique_ptr<semnav::Ros1CommandChannel> rosChannel(
+    const semnav::RobotSetup& s, semnav::CommandQueue& queue)
+{
+	if (s.files.base != "ros1") return nullptr;
+	const auto o = rosOptions(s);
+	if (o.commandTopic.empty() && o.eventsTopic.empty()) return nullptr;
+	auto c = std::make_unique<semnav::Ros1CommandChannel>(
+	    o.nodeName, o.masterTimeout, o.commandTopic, o.eventsTopic,
+	    [&queue](const std::string& line) { queue.push(line); });
+	g_publish = [ch = c.get()](const std::string& l) { ch->publish(l); };
+	return c;
+}
+#endif
 
 std::shared_ptr<semnav::RobotBase> makeBase(
     const semnav::RobotSetup& s, semnav::RobotBasePlugin* plugin)
@@ -75,16 +112,7 @@ std::shared_ptr<semnav::RobotBase> makeBase(
 		}
 	}
 #ifdef SEMNAV_HAVE_ROS1
-	semnav::Ros1Base::TOptions o;
-	try
-	{
-		o.loadFromConfigFile(*s.ini, s.files.baseSection);
-	}
-	catch (const semnav::ConfigError& e)
-	{
-		throw semnav::ConfigError(s.iniPath + ": " + e.what());
-	}
-	return std::make_shared<semnav::Ros1Base>(o);
+	return std::make_shared<semnav::Ros1Base>(rosOptions(s));
 #else
 	throw semnav::ConfigError(
 	    s.iniPath + ": base = ros1 but this build has no ROS 1");
@@ -140,13 +168,17 @@ int runRobot(
 	session.setNavLogPath(outDir + "/navigation.reactivenavlog");
 
 	semnav::CommandQueue queue;
+#ifdef SEMNAV_HAVE_ROS1
+	const auto channel = rosChannel(setup, queue);
+#endif
 	std::thread(readStdin, std::ref(queue)).detach();
 	printEvent(
 	    {{"event", "started"},
 	     {"map_sweeps", map.sweepsInserted()},
 	     {"objects", map.instances().size()},
 	     {"out", outDir}});
-	if (session.localize()) session.run(queue, g_stop);
+	const bool localized = session.localize();
+	if (localized) session.run(queue, g_stop);
 	base->stop();
 	sweeps.stop();
 	save();
@@ -156,7 +188,9 @@ int runRobot(
 	end["rawlog"] = live.recordPath;
 	end["signal"] = g_stop.load();
 	printEvent(end);
-	return session.commandErrors() == 0 ? 0 : 3;
+	g_publish = nullptr;
+	// Bad commands were answered one by one; the run itself succeeded.
+	return localized ? 0 : 1;
 }
 }  // namespace
 

@@ -324,3 +324,39 @@ TEST(RobotSession, StopAndANewGoalWhileDriving)
 	EXPECT_FALSE(run.all("status").empty());
 	EXPECT_TRUE(run.all("arrived").empty());
 }
+
+TEST(RobotSession, FromAnEmptyMapTheFirstSweepStartsTheMap)
+{
+	const Scene scene = test::sourceScene("datasets/nav-trials/two_rooms.yaml");
+	// The planner may cross never-observed cells, at a cost.
+	NavigationConfig config = test::shippedNavigationConfig();
+	config.traversability.uUnobserved = 0.2;
+	SemanticMap map(config.map);
+	SimulatedRobot robot(
+	    scene, test::shippedNavigationConfig().robot, {1.0, 1.0, 0});
+	robot.base().setMinLoggingLevel(mrpt::system::LVL_ERROR);
+	robot.enableOdometryNoise(scene.odometry);
+	SweepObstacles obstacles(robot.base(), config.sweepObstacles);
+	std::vector<json> events;
+	RobotSession session(
+	    map, robot.interfaces(), obstacles, config,
+	    test::shippedLocalizationOptions(), test::shippedPerceptionOptions(),
+	    SessionRun::cascades(), RobotSession::TOptions(),
+	    [&](const json& e) { events.push_back(e); });
+	ASSERT_TRUE(session.localize());
+	ASSERT_FALSE(events.empty());
+	EXPECT_EQ(events.front()["event"], "new_object");
+	// The map frame is the odometry frame (which the simulator starts at
+	// the true pose): a goal across room A, behind the table.
+	EXPECT_TRUE(session.handle("go to 3.5 3.8", kNoStop));
+	int arrived = 0;
+	for (const auto& e : events) arrived += e["event"] == "arrived";
+	EXPECT_EQ(arrived, 1);
+	const auto& t = robot.base().pose();
+	EXPECT_LT(std::hypot(t.x - 3.5, t.y - 3.8), 0.6);
+	EXPECT_EQ(robot.base().collisions(), 0);
+	EXPECT_GE(session.sweepsInserted(), 3);
+	// Room A's washbasin and wastebasket are in the map it built.
+	EXPECT_GE(map.instances(Label::Washbasin).size(), 1u);
+	EXPECT_GE(map.instances(Label::Wastebasket).size(), 1u);
+}

@@ -299,8 +299,16 @@ std::vector<float> TraversabilityBuilder::cellCosts(
 						labelled = true;
 						s = std::max(s, m_options.labelRadiusScale[k]);
 					}
-				if (!labelled && unknown && !inflateUnknown)
-					notEnterable[i] = 1;  // lethal only for being unseen
+				if (!labelled && unknown)
+				{
+					// Lethal only for being unseen: u_unobserved decides.
+					if (m_options.uUnobserved < L)
+						ui = std::max(ui, m_options.uUnobserved);
+					else if (inflateUnknown)
+						markObstacle(i, 1);
+					else
+						notEnterable[i] = 1;
+				}
 				else
 					markObstacle(i, labelled ? s : 1);
 			}

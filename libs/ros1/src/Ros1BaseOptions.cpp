@@ -22,6 +22,14 @@ const OptionTable<O>& optionTable()
 	            "nav_msgs/Odometry (pose, real velocities, stamps) is read "
 	            "from here.")
 	        .text(
+	            "command_topic", &O::commandTopic,
+	            "semnav-robot: operator commands, one std_msgs/String each "
+	            "(empty: none).")
+	        .text(
+	            "events_topic", &O::eventsTopic,
+	            "semnav-robot: progress, one JSON event per std_msgs/String "
+	            "(empty: none).")
+	        .text(
 	            "odom_frame", &O::odomFrame,
 	            "Odometry with another header.frame_id is rejected (empty: "
 	            "any).")

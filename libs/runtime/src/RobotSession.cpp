@@ -72,6 +72,9 @@ const OptionTable<O>& optionTable()
 	return t;
 }
 
+/** Farthest point goal beyond the map the grid grows for (m). */
+constexpr double kExploreReach = 50.0;
+
 nlohmann::json poseJson(const mrpt::math::TPose2D& p)
 {
 	return {p.x, p.y, mrpt::RAD2DEG(p.phi)};
@@ -285,10 +288,23 @@ bool RobotSession::insertSweeps()
 	return changed;
 }
 
-NavCommand RobotSession::checkedGoal(const std::string& line) const
+NavCommand RobotSession::checkedGoal(const std::string& line)
 {
 	const NavCommand c = NavCommand::parse(line);
 	if (!m_localized) throw NavigationError("the robot is not localized");
+	// A point beyond the map, when the planner may cross never-observed
+	// cells (u_unobserved < L): the grid grows to hold it, up to
+	// kExploreReach from the robot.
+	const auto here = m_robot.pose->pose();
+	if (c.kind == NavCommand::Kind::Point &&
+	    m_config.traversability.uUnobserved < m_config.traversability.L &&
+	    std::hypot(c.x - here.x, c.y - here.y) <= kExploreReach)
+	{
+		const auto& g = m_map.geometry();
+		if (c.x < g.originX || c.y < g.originY || c.x >= g.maxX() ||
+		    c.y >= g.maxY())
+			m_map.growToInclude(c.x - 1, c.y - 1, c.x + 1, c.y + 1);
+	}
 	const SemanticPlanner planner(m_map, m_config.cnn, m_config.traversability);
 	const auto p = m_robot.pose->pose();
 	const CostProfile profile = m_config.navigationProfile();

@@ -191,10 +191,9 @@ void RobotSession::whileDriving(
 		nav.cancel();
 		return;
 	}
-	if (!waitForSensors(stop))
+	if (const std::string lost = waitForSensors(stop); !lost.empty())
 	{
-		d.why = mrpt::format(
-		    "odometry lost: none for %.1f s", m_options.odometryLost);
+		d.why = lost;
 		nav.cancel();
 		return;
 	}
@@ -236,7 +235,7 @@ void RobotSession::whileDriving(
 	}
 }
 
-bool RobotSession::waitForSensors(const std::atomic<bool>& stop)
+std::string RobotSession::waitForSensors(const std::atomic<bool>& stop)
 {
 	const auto why = [&]() -> std::string
 	{
@@ -246,26 +245,30 @@ bool RobotSession::waitForSensors(const std::atomic<bool>& stop)
 		return "";
 	};
 	std::string reason = why();
-	if (reason.empty()) return true;
+	if (reason.empty()) return "";
 	m_robot.base->stop();
 	emit({{"event", "paused"}, {"reason", reason}});
 	const double since = m_robot.clock->now();
 	while (!stop)
 	{
 		m_robot.clock->waitFor(m_robot.clock->period());
-		if (odometryAge() > m_options.odometryLost) return false;
-		if (m_robot.clock->now() - since > kLaserLost) return false;
+		if (odometryAge() > m_options.odometryLost)
+			return mrpt::format(
+			    "odometry lost: none for %.1f s", m_options.odometryLost);
+		if (m_robot.clock->now() - since > kLaserLost)
+			return mrpt::format(
+			    "laser lost: no scan line for %.0f s", kLaserLost);
 		reason = why();
 		if (reason.empty())
 		{
 			emit(
 			    {{"event", "resumed"},
 			     {"paused_s", m_robot.clock->now() - since}});
-			return true;
+			return "";
 		}
 		m_robot.base->stop();
 	}
-	return true;
+	return "";
 }
 
 }  // namespace semnav

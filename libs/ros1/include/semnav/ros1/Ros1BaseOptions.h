@@ -24,6 +24,10 @@ struct Ros1BaseOptions : public mrpt::config::CLoadableOptions
 	std::string cmdVelTopic = "cmd_vel";
 	/** odom_topic: nav_msgs/Odometry is read from here. */
 	std::string odomTopic = "odom";
+	/** command_topic, events_topic: semnav-robot's operator commands
+	 * (std_msgs/String, one line each) and progress (JSON events). */
+	std::string commandTopic = "semnav/command";
+	std::string eventsTopic = "semnav/events";
 	/** odom_frame: expected header.frame_id of odometry ("" = any). */
 	std::string odomFrame = "odom";
 	/** base_frame: expected child_frame_id of odometry ("" = any). */

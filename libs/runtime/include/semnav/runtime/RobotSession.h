@@ -145,8 +145,9 @@ private:
 	void emit(nlohmann::json e) const;
 	void error(const std::string& line, const std::string& why);
 	/** Parses and checks a "go to" command against the map from the
-	 * current pose; throws NavigationError/PlanningError naming it. */
-	NavCommand checkedGoal(const std::string& line) const;
+	 * current pose (growing the grid to hold a point goal beyond it);
+	 * throws NavigationError/PlanningError naming it. */
+	NavCommand checkedGoal(const std::string& line);
 	/** Drives `command` until it ends (or is replaced or stopped). */
 	void drive(const NavCommand& command, const std::atomic<bool>& stop);
 	/** Every control period while driving: sweeps into the map, safety,
@@ -158,8 +159,9 @@ private:
 	/** A "new_object" event for every reported instance not known yet. */
 	void reportNewObjects();
 	/** Blocks with the base stopped while the laser is silent or the
-	 * odometry stale; false when the odometry is lost. */
-	bool waitForSensors(const std::atomic<bool>& stop);
+	 * odometry stale; returns why the command must end (odometry or laser
+	 * lost), "" to go on. */
+	std::string waitForSensors(const std::atomic<bool>& stop);
 	double laserSilence();
 	double odometryAge() const;
 	/** A localizer on the map (the map must have walls). */
