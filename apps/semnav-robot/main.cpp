@@ -3,6 +3,7 @@
 // the tilting LMS2xx, a real robot base (ROS 1), the map growing as it
 // drives, operator commands one per line on stdin, progress as JSON lines
 // on stdout (human lines on stderr).
+#include <mrpt/core/format.h>
 #include <semnav/common/AtomicFile.h>
 #include <semnav/common/CommandLine.h>
 #include <semnav/common/Error.h>
@@ -42,6 +43,37 @@ void onSignal(int)
 }
 
 std::mutex g_outMutex;
+
+/** An event as one line for people. */
+std::string humanLine(const nlohmann::json& e)
+{
+	const std::string ev = e.value("event", "");
+	const auto pose = [&](const char* key)
+	{
+		if (!e.contains(key) || e[key].size() != 3) return std::string();
+		const auto& p = e[key];
+		return mrpt::format(
+		    " at (%.2f, %.2f, %.0f deg)", p[0].get<double>(),
+		    p[1].get<double>(), p[2].get<double>());
+	};
+	if (ev == "error")
+		return e.value("command", "") + ": " + e.value("error", "");
+	if (ev == "sweep")
+		return "sweep" + pose("estimate") +
+		       (e.value("inserted", false) ? ", inserted" : ", not inserted");
+	if (ev == "goal") return "goal: " + e.value("command", "");
+	if (ev == "arrived" || ev == "failed")
+		return ev + ": " + e.value("command", "") + pose("pose") +
+		       (e.contains("reason") ? " (" + e.value("reason", "") + ")"
+		                             : std::string());
+	if (ev == "new_object")
+		return "new object: " + e.value("label", "") + " " +
+		       std::to_string(e.value("id", 0));
+	if (ev == "localized") return "localized" + pose("pose");
+	if (e.contains("reason")) return ev + ": " + e.value("reason", "");
+	if (e.contains("error")) return ev + ": " + e.value("error", "");
+	return ev;
+}
 /** Also publishes every event (ROS: events_topic); may be empty. */
 std::function<void(const std::string&)> g_publish;
 /** One JSON line on stdout (and the events topic); the human line on
@@ -55,16 +87,7 @@ void printEvent(nlohmann::json e)
 	const std::string line = e.dump();
 	std::cout << line << std::endl;
 	if (g_publish) g_publish(line);
-	const std::string ev = e.value("event", "");
-	if (ev == "error")
-		std::cerr << "semnav-robot: " << e.value("command", "") << ": "
-		          << e.value("error", "") << std::endl;
-	else if (ev != "status")
-		std::cerr << "semnav-robot: " << ev
-		          << (e.contains("reason")
-		                  ? ": " + e["reason"].get<std::string>()
-		                  : std::string())
-		          << std::endl;
+	std::cerr << "semnav-robot: " << humanLine(e) << std::endl;
 }
 
 #ifdef SEMNAV_HAVE_ROS1
