@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <semnav/common/Error.h>
 #include <semnav/runtime/RobotSetup.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -29,7 +30,8 @@ std::string variant(
 	}
 	else
 		text += to;
-	const auto dir = std::filesystem::temp_directory_path() / "semnav-setup";
+	const auto dir = std::filesystem::temp_directory_path() /
+	                 ("semnav-setup-" + std::to_string(::getpid()));
 	std::filesystem::create_directories(dir);
 	const std::string path = (dir / name).string();
 	std::ofstream(path) << text;
@@ -79,7 +81,7 @@ TEST(RobotSetup, BadFilesAreOneLineErrorsNamingFileSectionAndKey)
 	EXPECT_NE(key.find("b.ini"), std::string::npos) << key;
 	EXPECT_NE(
 	    loadError(
-	        variant("c.ini", "laser_silence_s = 0.3", "laser_silence_s = 0"))
+	        variant("c.ini", "laser_silence_s = 0.2", "laser_silence_s = 0"))
 	        .find("laser_silence_s"),
 	    std::string::npos);
 	EXPECT_NE(
