@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/core/bits_math.h>
+#include <mrpt/poses/CPosePDFParticles.h>
 #include <semnav/common/Error.h>
 #include <semnav/localization/PredictionGuard.h>
 
 #include <cmath>
+#include <random>
 
 using namespace semnav;
 
@@ -95,4 +97,61 @@ TEST(PredictionGuard, OptionsRejectUnknownKeysAndOutOfRange)
 	c.write("PredictionGuard", "unconstrained_variance_ratio", 0.8);
 	c.write("PredictionGuard", "conflict_variance_ratio", 0.7);
 	EXPECT_THROW(o.loadFromConfigFile(c, "PredictionGuard"), ConfigError);
+}
+
+namespace
+{
+/** `n` particles of equal weight, Gaussian around `c`. */
+void addParticles(
+    mrpt::poses::CPosePDFParticles& pdf, const mrpt::poses::CPose2D& c,
+    std::size_t n, double stdXY, double stdYaw, std::mt19937& rng)
+{
+	std::normal_distribution<double> xy(0, stdXY), yaw(0, stdYaw);
+	for (std::size_t i = 0; i < n; i++)
+	{
+		mrpt::poses::CPosePDFParticles::CParticleDataContent p(
+		    c.x() + xy(rng), c.y() + xy(rng), c.phi() + yaw(rng));
+		pdf.m_particles.emplace_back(p, 0.0);
+	}
+}
+}  // namespace
+
+TEST(PredictionGuard, HypothesisOfTwoModesHoldsOneModesWeight)
+{
+	// 70 % of the particles in a corridor heading west, 30 % 4 m north and
+	// turned 90 deg (the mirror hypothesis): the estimate's hypothesis is
+	// the corridor's alone, with its own small spread.
+	std::mt19937 rng(3);
+	mrpt::poses::CPosePDFParticles pdf;
+	pdf.m_particles.clear();
+	const mrpt::poses::CPose2D corridor(2.5, 1.2, M_PI);
+	addParticles(pdf, corridor, 700, 0.1, mrpt::DEG2RAD(1.0), rng);
+	addParticles(
+	    pdf, mrpt::poses::CPose2D(2.5, 5.2, M_PI / 2), 300, 0.1,
+	    mrpt::DEG2RAD(1.0), rng);
+	const PredictionGuard guard;
+	const auto h = guard.hypothesisOf(pdf, corridor);
+	EXPECT_NEAR(h.weight, 0.7, 0.01);
+	EXPECT_NEAR(h.mean.y(), 1.2, 0.03);
+	EXPECT_LT(std::sqrt(h.cov(1, 1)), 0.15);
+	const auto [cov, mean] = pdf.getCovarianceAndMean();
+	EXPECT_GT(std::sqrt(cov(1, 1)), 1.5);
+}
+
+TEST(PredictionGuard, HypothesisOfOneWideModeIsAllParticles)
+{
+	// One hypothesis spread 0.8 m along a wall: all of it, however wide.
+	std::mt19937 rng(5);
+	mrpt::poses::CPosePDFParticles pdf;
+	pdf.m_particles.clear();
+	std::normal_distribution<double> along(0, 0.8), across(0, 0.05);
+	for (int i = 0; i < 1000; i++)
+		pdf.m_particles.emplace_back(
+		    mrpt::poses::CPosePDFParticles::CParticleDataContent(
+		        6 + along(rng), 7.5 + across(rng), M_PI),
+		    0.0);
+	const PredictionGuard guard;
+	const auto h = guard.hypothesisOf(pdf, mrpt::poses::CPose2D(6, 7.5, M_PI));
+	EXPECT_GT(h.weight, 0.99);
+	EXPECT_NEAR(std::sqrt(h.cov(0, 0)), 0.8, 0.1);
 }

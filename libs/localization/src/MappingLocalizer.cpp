@@ -76,7 +76,12 @@ LocalizationUpdate MappingLocalizer::localizeWalls(
 		    p.x(), p.y(), p.phi(), m_semanticExtractor.extract(labeled));
 	}
 	LocalizationUpdate u = m_localizer.update(incr, m_obs, &m_semanticObs);
-	const auto [cov, mean] = m_localizer.pdf().getCovarianceAndMean();
+	auto [cov, mean] = m_localizer.pdf().getCovarianceAndMean();
+	// Several hypotheses: the sweep told them apart rather than leaving a
+	// direction free; test the estimate's hypothesis alone.
+	const PredictionGuard::Hypothesis h =
+	    m_guard.hypothesisOf(m_localizer.pdf(), u.pose);
+	if (h.weight < m_options.guard.unimodalWeight) cov = h.cov, mean = h.mean;
 	const PredictionGuard::Result g = m_guard.apply(predicted, mean, cov);
 	u.unconstrained = g.unconstrained;
 	u.varianceRatio = g.maxVarianceRatio;

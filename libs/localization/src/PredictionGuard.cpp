@@ -6,6 +6,10 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
+#include <tuple>
+#include <vector>
 
 namespace semnav
 {
@@ -29,7 +33,19 @@ const OptionTable<O>& optionTable()
 	            "conflict_variance_ratio", &O::conflictVarianceRatio,
 	            &O::unconstrainedVarianceRatio, 100,
 	            "...unless above this: a posterior wider than the prediction "
-	            "means the sweep disagrees with it (the filter decides).");
+	            "means the sweep disagrees with it (the filter decides).")
+	        .real(
+	            "unimodal_weight", &O::unimodalWeight, 0, 1,
+	            "Particles connected to the estimate holding less than this "
+	            "share of the weight: several hypotheses; only the estimate's "
+	            "is tested.")
+	        .real(
+	            "cluster_cell_m", &O::clusterCellM, 0.01, 10,
+	            "Cells of the hypotheses' connection test (cells holding 0.1 % "
+	            "of the weight connect over gaps of up to two cells)...")
+	        .angle(
+	            "cluster_cell_yaw_deg", &O::clusterCellYaw, 0.1, 180,
+	            "...and their heading size.");
 	return t;
 }
 
@@ -107,6 +123,72 @@ PredictionGuard::Result PredictionGuard::apply(
 	return r;
 }
 
+PredictionGuard::Hypothesis PredictionGuard::hypothesisOf(
+    const mrpt::poses::CPosePDFParticles& pdf,
+    const mrpt::poses::CPose2D& mode) const
+{
+	const double cell = m_options.clusterCellM;
+	const double cellYaw = m_options.clusterCellYaw;
+	using Key = std::tuple<int, int, int>;
+	const auto key = [&](const mrpt::math::TPose2D& p)
+	{
+		return Key(
+		    int(std::floor(p.x / cell)), int(std::floor(p.y / cell)),
+		    int(std::floor(mrpt::math::wrapTo2Pi(p.phi) / cellYaw)));
+	};
+	const int yawCells = int(std::ceil(2 * M_PI / cellYaw));
+	std::map<Key, double> weight;
+	double total = 0;
+	for (const auto& p : pdf.m_particles)
+	{
+		const double w = std::exp(p.log_w);
+		weight[key(p.d)] += w;
+		total += w;
+	}
+	std::set<Key> reached = {key(mode.asTPose())};
+	std::vector<Key> open(reached.begin(), reached.end());
+	while (!open.empty())
+	{
+		const auto [kx, ky, kyaw] = open.back();
+		open.pop_back();
+		for (int dx = -2; dx <= 2; dx++)
+			for (int dy = -2; dy <= 2; dy++)
+				for (int da = -2; da <= 2; da++)
+				{
+					const Key k(
+					    kx + dx, ky + dy, (kyaw + da + yawCells) % yawCells);
+					const auto it = weight.find(k);
+					if (it == weight.end() || it->second < 1e-3 * total ||
+					    !reached.insert(k).second)
+						continue;
+					open.push_back(k);
+				}
+	}
+	double sw = 0, sx = 0, sy = 0, ss = 0, sc = 0;
+	std::vector<std::pair<const mrpt::math::TPose2D*, double>> members;
+	for (const auto& p : pdf.m_particles)
+	{
+		if (!reached.count(key(p.d))) continue;
+		const double w = std::exp(p.log_w);
+		members.emplace_back(&p.d, w);
+		sw += w, sx += w * p.d.x, sy += w * p.d.y;
+		ss += w * std::sin(p.d.phi), sc += w * std::cos(p.d.phi);
+	}
+	Hypothesis c;
+	if (sw <= 0) return c;
+	c.weight = sw / total;
+	c.mean = mrpt::poses::CPose2D(sx / sw, sy / sw, std::atan2(ss, sc));
+	c.cov.setZero();
+	for (const auto& [p, w] : members)
+	{
+		const double d[3] = {
+		    p->x - c.mean.x(), p->y - c.mean.y(),
+		    mrpt::math::wrapToPi(p->phi - c.mean.phi())};
+		for (int i = 0; i < 3; i++)
+			for (int j = 0; j < 3; j++) c.cov(i, j) += w / sw * d[i] * d[j];
+	}
+	return c;
+}
 bool PredictionGuard::unconstrained(double varianceRatio) const
 {
 	return varianceRatio > m_options.unconstrainedVarianceRatio &&

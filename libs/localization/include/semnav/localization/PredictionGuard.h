@@ -2,9 +2,11 @@
 #pragma once
 
 #include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/core/bits_math.h>
 #include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
+#include <mrpt/poses/CPosePDFParticles.h>
 
 #include <string>
 
@@ -30,6 +32,10 @@ namespace semnav
  * particles are moved by the dropped part so that the filter agrees with it.
  * The spread along those directions is left as it is: the reported
  * covariance says the direction is unknown.
+ * While mapping, a posterior of several hypotheses (hypothesisOf() holds
+ * less than `unimodal_weight` of the weight) is tested by the estimate's
+ * hypothesis alone: the spread between hypotheses is no lack of
+ * information.
  *
  * Options: INI section [PredictionGuard] (config/localization.ini). */
 class PredictionGuard
@@ -55,6 +61,16 @@ public:
 		 * the prediction (two modes, a wrong prediction) and the filter's
 		 * estimate stands. */
 		double conflictVarianceRatio = 1.25;
+		/** unimodal_weight: when the particles connected to the estimate
+		 * (cells of cluster_cell_m m, gaps up to two cells) hold less than
+		 * this share of the weight, the posterior has several hypotheses
+		 * and only the estimate's is tested (mapping). */
+		double unimodalWeight = 0.9;
+		/** cluster_cell_m, cluster_cell_yaw_deg: cells of that test; cells
+		 * holding at least 0.1 % of the weight connect over gaps of up
+		 * to two cells. */
+		double clusterCellM = 0.25;
+		double clusterCellYaw = mrpt::DEG2RAD(10.0);
 	};
 
 	/** What the guard decided for one update. */
@@ -84,6 +100,22 @@ public:
 	    const mrpt::poses::CPosePDFGaussian& predicted,
 	    const mrpt::poses::CPose2D& posteriorMean,
 	    const mrpt::math::CMatrixDouble33& posteriorCov) const;
+
+	/** The particles of one hypothesis: mean, covariance and share of the
+	 * weight. */
+	struct Hypothesis
+	{
+		mrpt::poses::CPose2D mean;
+		mrpt::math::CMatrixDouble33 cov;
+		double weight = 0;
+	};
+	/** The hypothesis `pose` belongs to: the particles whose cells
+	 * (cluster_cell_m, cluster_cell_yaw_deg) connect to the cell of `pose`
+	 * through cells within two cells of each other that hold at least
+	 * 0.1 % of the weight. */
+	Hypothesis hypothesisOf(
+	    const mrpt::poses::CPosePDFParticles& pdf,
+	    const mrpt::poses::CPose2D& pose) const;
 
 	/** Largest std dev of an xy covariance (m) and its direction (rad, in
 	 * (-pi/2, pi/2]). */
