@@ -7,15 +7,21 @@
 // kind. The incremental repair (CnnPlanner::repairField) of a 1 m x 1 m box
 // added to (or removed from) the map runs against the full field in the
 // same run, on 16 random free spots and on 8 spots along the start-goal
-// path. Run with
+// path. SemanticPlanner replans after a 1 m x 1 m box is inserted into a
+// SemanticMap of the same office (SemanticMap::insert of a sweep seeing it),
+// on the current path or at random free spots, incrementally (cached u,
+// goals and field, repaired) against from scratch (u, goals and field
+// rebuilt), in the same run. Run with
 //   bench_planner --benchmark_repetitions=5
 //   --benchmark_report_aggregates_only=true
 // A summary (time ratios, path costs) is printed at the end.
 #include <benchmark/benchmark.h>
 #include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/nav/planners/PlannerSimple2D.h>
+#include <semnav/map/SemanticMap.h>
 #include <semnav/planning/CnnPlanner.h>
 #include <semnav/planning/DijkstraPlanner.h>
+#include <semnav/planning/SemanticPlanner.h>
 #include <semnav/planning/TraversabilityBuilder.h>
 
 #include <algorithm>
@@ -26,6 +32,8 @@
 #include <memory>
 #include <numeric>
 #include <random>
+
+#include "../map/MapTestUtils.h"
 
 using namespace semnav;
 
@@ -506,6 +514,175 @@ void BM_TraversabilitySafe_1000(benchmark::State& st)
 		    b.build(m.geometry, {}, m.occupancy, CostProfile::Safe));
 }
 
+/** The office as a SemanticMap: occupied cells labelled obstacle, free
+ * cells floor, every cell observed once. */
+std::unique_ptr<SemanticMap> officeSemanticMap(const OfficeMap& m)
+{
+	const auto& g = m.geometry;
+	std::vector<float> labels(g.cellCount()), seen(g.cellCount(), 1.0f);
+	LabelSet floor, obstacle;
+	floor.insert(Label::Floor);
+	obstacle.insert(Label::Obstacle);
+	for (std::size_t i = 0; i < g.cellCount(); i++)
+		labels[i] = static_cast<float>(
+		    (m.occupancy[i] == CellOccupancy::Occupied ? obstacle : floor)
+		        .mask());
+	auto map = std::make_unique<SemanticMap>();
+	map->restore(
+	    g, {{"labels", labels}, {"observations", seen}},
+	    std::vector<int8_t>(g.cellCount(), 0), {}, 0);
+	auto& grid = map->occupancyGrid();
+	for (int r = 0; r < g.rows; r++)
+		for (int c = 0; c < g.cols; c++)
+			grid.setCell(
+			    c, r,
+			    m.occupancy[g.index(r, c)] == CellOccupancy::Occupied ? 0.95f
+			                                                          : 0.05f);
+	map->updateCosts();
+	return map;
+}
+
+/** Inserts a sweep seeing a 1 m x 1 m box centred on (x, y) from 1.5 m
+ * away (its top at 0.3 m, seen as obstacle points every 2.5 cm). */
+void insertBox(SemanticMap& map, double x, double y, double heading)
+{
+	std::vector<test::FakePoint> pts;
+	for (double dx = -0.4875; dx < 0.5; dx += 0.025)
+		for (double dy = -0.4875; dy < 0.5; dy += 0.025)
+			pts.push_back({1.5 + dx, dy, 0.3, Label::Obstacle});
+	const auto f = test::makeFakeSweep(pts);
+	map.insert(
+	    f.sweep, f.labeled,
+	    mrpt::poses::CPose2D(
+	        x - 1.5 * std::cos(heading), y - 1.5 * std::sin(heading), heading));
+}
+
+/** Per benchmark: the planner's own time (u, goals, field) per iteration. */
+std::map<std::string, std::vector<double>> g_refreshMs;
+
+/** 12 boxes inserted one after the other, each on the current path (at
+ * 1/13 ... 12/13 of it) or at a random free spot; after each the planner
+ * replans from the start to the goal (toPoint). Timed: the replan only,
+ * with the cache (incremental) or after clearCache() (from scratch). */
+void runSemanticReplan(
+    benchmark::State& st, bool onPath, bool incremental,
+    const std::string& name)
+{
+	const auto& m = office1000();
+	const auto& g = m.geometry;
+	const auto map = officeSemanticMap(m);
+	TraversabilityBuilder::TOptions to;
+	to.robotRadius = 0.2;
+	CnnPlanner::TOptions co;
+	co.threads = 1;
+	SemanticPlanner planner(*map, co, to);
+	const double sx = g.centerX(m.start.col), sy = g.centerY(m.start.row);
+	const double gx = g.centerX(m.goal.col), gy = g.centerY(m.goal.row);
+	SemanticPlanner::Plan plan =
+	    planner.toPoint(sx, sy, gx, gy, CostProfile::Shortest);
+	std::mt19937_64 rng(5);
+	std::size_t k = 0, differ = 0, skipped = 0;
+	auto& refreshMs = g_refreshMs[name];
+	for (auto _ : st)
+	{
+		k++;
+		double x = 0, y = 0, heading = 0;
+		for (int attempt = 0; attempt < 1000; attempt++)
+		{
+			if (onPath)
+			{
+				const auto& p = plan.path.points;
+				const std::size_t j =
+				    std::min(p.size() - 1, p.size() * (k + attempt) / 13);
+				x = p[j].x;
+				y = p[j].y;
+				const auto& q = p[std::min(p.size() - 1, j + 1)];
+				heading = std::atan2(q.y - p[j].y, q.x - p[j].x);
+			}
+			else
+			{
+				x = 2 + static_cast<double>(rng() % 4600) / 100;
+				y = 2 + static_cast<double>(rng() % 4600) / 100;
+				heading = static_cast<double>(rng() % 628) / 100;
+			}
+			// The box and the robot's footprint away from walls, the
+			// start and the goal.
+			bool clear = std::hypot(x - sx, y - sy) > 2.5 &&
+			             std::hypot(x - gx, y - gy) > 2.5;
+			for (int r = -14; r <= 14 && clear; r++)
+				for (int c = -14; c <= 14 && clear; c++)
+				{
+					const auto cell =
+					    g.cellOf(x + c * g.resolution, y + r * g.resolution);
+					clear = cell &&
+					        m.occupancy[g.index(*cell)] == CellOccupancy::Free;
+				}
+			if (clear) break;
+			skipped++;
+		}
+		insertBox(*map, x, y, heading);
+		if (!incremental) planner.clearCache();
+		const auto t0 = std::chrono::steady_clock::now();
+		try
+		{
+			plan = planner.toPoint(sx, sy, gx, gy, CostProfile::Shortest);
+		}
+		catch (const PlanningError& e)
+		{
+			st.SkipWithError(e.what());
+			return;
+		}
+		st.SetIterationTime(
+		    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+		        .count());
+		refreshMs.push_back(planner.counters().lastMilliseconds);
+		if (incremental && k <= 4)
+		{
+			SemanticPlanner fresh(*map, co, to);
+			const auto ref =
+			    fresh.toPoint(sx, sy, gx, gy, CostProfile::Shortest);
+			for (std::size_t i = 0; i < ref.field.x.size(); i++)
+				differ += ref.field.x[i] != plan.field.x[i];
+		}
+	}
+	const auto c = planner.counters();
+	st.counters["repairs"] = static_cast<double>(c.repairs);
+	st.counters["full_fields"] = static_cast<double>(c.fullFields);
+	st.counters["u_partial"] = static_cast<double>(c.partialTraversability);
+	st.counters["cells_differing_from_fresh"] = static_cast<double>(differ);
+	g_figures[name + " cells differing from a fresh planner"] =
+	    static_cast<double>(differ);
+	g_figures[name + " repair fallbacks"] =
+	    static_cast<double>(c.repairFallbacks);
+	g_figures[name + " spots skipped (not clear)"] =
+	    static_cast<double>(skipped);
+}
+
+void BM_SemanticReplanOnPathIncremental_1000(benchmark::State& st)
+{
+	runSemanticReplan(
+	    st, true, true, "BM_SemanticReplanOnPathIncremental_1000");
+}
+void BM_SemanticReplanOnPathScratch_1000(benchmark::State& st)
+{
+	runSemanticReplan(st, true, false, "BM_SemanticReplanOnPathScratch_1000");
+}
+void BM_SemanticReplanRandomIncremental_1000(benchmark::State& st)
+{
+	runSemanticReplan(
+	    st, false, true, "BM_SemanticReplanRandomIncremental_1000");
+}
+void BM_SemanticReplanRandomScratch_1000(benchmark::State& st)
+{
+	runSemanticReplan(st, false, false, "BM_SemanticReplanRandomScratch_1000");
+}
+
+/** Semantic replans: 12 boxes inserted per run, timed by hand. */
+void semanticReplanSettings(benchmark::internal::Benchmark* b)
+{
+	b->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(12);
+}
+
 /** Repairs: 64 iterations (4 or 8 per spot), timed by hand. */
 void repairSettings(benchmark::internal::Benchmark* b)
 {
@@ -531,6 +708,12 @@ BENCHMARK(BM_CnnRepairBoxRemoved_1000)->Apply(repairSettings);
 BENCHMARK(BM_CnnRepairBoxAddedNoRect_1000)->Apply(repairSettings);
 BENCHMARK(BM_CnnRepairBoxOnPathAdded_1000)->Apply(repairSettings);
 BENCHMARK(BM_CnnRepairBoxOnPathRemoved_1000)->Apply(repairSettings);
+BENCHMARK(BM_SemanticReplanOnPathIncremental_1000)
+    ->Apply(semanticReplanSettings);
+BENCHMARK(BM_SemanticReplanOnPathScratch_1000)->Apply(semanticReplanSettings);
+BENCHMARK(BM_SemanticReplanRandomIncremental_1000)
+    ->Apply(semanticReplanSettings);
+BENCHMARK(BM_SemanticReplanRandomScratch_1000)->Apply(semanticReplanSettings);
 BENCHMARK(BM_TraversabilityShortest_1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TraversabilitySafe_1000)->Unit(benchmark::kMillisecond);
 
@@ -663,6 +846,24 @@ int main(int argc, char** argv)
 		     "BM_CnnRepairBoxOnPathRemoved_1000", pathBoxes}};
 		for (const auto& r : repairs)
 			printRepairs(r.what, r.name, r.spots, full->second);
+	}
+	printRatio(
+	    rep, "SemanticPlanner replan, box on the path: scratch / incr.",
+	    "BM_SemanticReplanOnPathScratch_1000",
+	    "BM_SemanticReplanOnPathIncremental_1000");
+	printRatio(
+	    rep, "SemanticPlanner replan, random box: scratch / incr.",
+	    "BM_SemanticReplanRandomScratch_1000",
+	    "BM_SemanticReplanRandomIncremental_1000");
+	for (const auto& [name, v] : g_refreshMs)
+	{
+		std::vector<double> t = v;
+		std::sort(t.begin(), t.end());
+		if (!t.empty())
+			std::printf(
+			    "  %-50s median %.2f ms (u, goals, field; no path, no "
+			    "copies)\n",
+			    name.c_str(), t[t.size() / 2]);
 	}
 	for (const auto& [k, v] : g_figures)
 		std::printf("  %-50s %.6f\n", k.c_str(), v);

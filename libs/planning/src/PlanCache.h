@@ -1,0 +1,59 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// Internal: what SemanticPlanner keeps of its last plan.
+#pragma once
+
+#include <semnav/common/Label.h>
+#include <semnav/planning/DiffusionField.h>
+#include <semnav/planning/GoalLayer.h>
+#include <semnav/planning/TraversabilityBuilder.h>
+#include <semnav/planning/TraversabilityGrid.h>
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace semnav::detail
+{
+/** The goal of a plan: a label, an object or a point, and the profile. */
+struct GoalKey
+{
+	enum class Kind
+	{
+		Label,
+		Object,
+		Point
+	};
+	Kind kind = Kind::Point;
+	Label label = Label::Unknown;
+	int objectId = 0;
+	double x = 0, y = 0;
+	CostProfile profile = CostProfile::Shortest;
+
+	bool operator==(const GoalKey& o) const
+	{
+		return kind == o.kind && label == o.label && objectId == o.objectId &&
+		       x == o.x && y == o.y && profile == o.profile;
+	}
+};
+
+/** Goal cells (cell index, goal id), by cell index. */
+using GoalCells = std::vector<std::pair<std::size_t, int>>;
+
+/** The last plan's inputs and field. `spareU` and `spareGoals` equal `u`
+ * and `goals` between plans; an update writes the new ones there, repairs
+ * the field from (u, goals) to them, swaps, and copies the changed cells
+ * back into the spares. */
+struct PlanCache
+{
+	bool valid = false;
+	GoalKey key;
+	std::uint64_t mapVersion = 0;
+	/** Cells of the extra obstacles, sorted. */
+	std::vector<std::size_t> extraCells;
+	TraversabilityGrid u, spareU;
+	GoalLayer goals, spareGoals;
+	GoalCells goalCells;
+	DiffusionField field;
+};
+
+}  // namespace semnav::detail
