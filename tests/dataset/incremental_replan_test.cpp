@@ -205,6 +205,17 @@ TEST(IncrementalReplan, UnchangedMapReusesTheFieldAndChangesRepairIt)
 	const auto d = fresh.toLabel(5, 3, Label::Wastebasket, CostProfile::Safe);
 	EXPECT_EQ(c.field.x, d.field.x);
 	EXPECT_GT(c.path.cost, b.path.cost);
+	// A shared plan keeps its grids while held; the planner repairs a copy.
+	const auto held =
+	    planner.toLabelShared(5, 3, Label::Wastebasket, CostProfile::Safe);
+	const std::vector<double> heldField = held.field->x;
+	planner.setExtraObstacles({});
+	const auto e =
+	    planner.toLabelShared(5, 3, Label::Wastebasket, CostProfile::Safe);
+	EXPECT_EQ(held.field->x, heldField);
+	EXPECT_NE(held.field.get(), e.field.get());
+	EXPECT_EQ(e.field->x, b.field.x);
+	EXPECT_EQ(e.copy().path.cost, b.path.cost);
 	// Another profile: from scratch. A write through an accessor: the whole
 	// map counts as changed (u rebuilt everywhere, field repaired).
 	planner.toLabel(5, 3, Label::Wastebasket, CostProfile::Shortest);

@@ -9,6 +9,7 @@
 #include <semnav/planning/TraversabilityGrid.h>
 
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -42,7 +43,9 @@ using GoalCells = std::vector<std::pair<std::size_t, int>>;
 /** The last plan's inputs and field. `spareU` and `spareGoals` equal `u`
  * and `goals` between plans; an update writes the new ones there, repairs
  * the field from (u, goals) to them, swaps, and copies the changed cells
- * back into the spares. */
+ * back into the spares. u, goals and field are shared with the plans
+ * handed out (SemanticPlanner::SharedPlan): owned() copies one before it
+ * is changed while a plan still holds it. */
 struct PlanCache
 {
 	bool valid = false;
@@ -50,10 +53,21 @@ struct PlanCache
 	std::uint64_t mapVersion = 0;
 	/** Cells of the extra obstacles, sorted. */
 	std::vector<std::size_t> extraCells;
-	TraversabilityGrid u, spareU;
-	GoalLayer goals, spareGoals;
+	std::shared_ptr<TraversabilityGrid> u, spareU;
+	std::shared_ptr<GoalLayer> goals, spareGoals;
 	GoalCells goalCells;
-	DiffusionField field;
+	std::shared_ptr<DiffusionField> field;
 };
+
+/** *p, writable: a copy of it first while someone else holds it. */
+template <class T>
+T& owned(std::shared_ptr<T>& p)
+{
+	if (!p)
+		p = std::make_shared<T>();
+	else if (p.use_count() > 1)
+		p = std::make_shared<T>(*p);
+	return *p;
+}
 
 }  // namespace semnav::detail

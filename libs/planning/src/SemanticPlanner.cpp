@@ -13,6 +13,7 @@ namespace semnav
 {
 using detail::GoalCells;
 using detail::GoalKey;
+using detail::owned;
 
 namespace
 {
@@ -187,9 +188,9 @@ TraversabilityGrid SemanticPlanner::traversability(CostProfile profile) const
 	const auto extras = extraObstacleCells();
 	const auto& c = *m_cache;
 	if (c.valid && c.key.profile == profile &&
-	    c.u.geometry() == m_map.geometry() &&
+	    c.u->geometry() == m_map.geometry() &&
 	    m_map.changesSince(c.mapVersion).none() && c.extraCells == extras)
-		return c.u;
+		return *c.u;
 	return traversabilityIn(CellRect::all(m_map.geometry()), profile, extras);
 }
 
@@ -238,18 +239,19 @@ void SemanticPlanner::rebuild(
 	const GridGeometry& g = m_map.geometry();
 	c.valid = false;
 	c.mapVersion = m_map.version();
-	c.u = traversabilityIn(CellRect::all(g), key.profile, extraCells);
+	c.u = std::make_shared<TraversabilityGrid>(
+	    traversabilityIn(CellRect::all(g), key.profile, extraCells));
 	m_counters.fullTraversability++;
 	c.goalCells = goalCellsOf(key);
-	c.goals = GoalLayer(g);
-	for (const auto& [i, id] : c.goalCells) c.goals.setId(i, id);
-	if (!anyTraversable(c.goalCells, c.u))
-		CnnPlanner::checkInputs(c.u, c.goals, start);  // throws
-	m_cnn.computeFieldInto(c.u, c.goals, c.field);
+	c.goals = std::make_shared<GoalLayer>(g);
+	for (const auto& [i, id] : c.goalCells) c.goals->setId(i, id);
+	if (!anyTraversable(c.goalCells, *c.u))
+		CnnPlanner::checkInputs(*c.u, *c.goals, start);  // throws
+	m_cnn.computeFieldInto(*c.u, *c.goals, owned(c.field));
 	m_counters.fullFields++;
 	m_counters.last = FieldUpdate::Full;
-	c.spareU = c.u;
-	c.spareGoals = c.goals;
+	c.spareU = std::make_shared<TraversabilityGrid>(*c.u);
+	c.spareGoals = std::make_shared<GoalLayer>(*c.goals);
 	c.extraCells = std::move(extraCells);
 	c.key = key;
 	c.valid = true;
@@ -269,7 +271,8 @@ CellRect SemanticPlanner::updateTraversability(
 	                  static_cast<std::size_t>(window.col1 - window.col0);
 	if (2 * area > g.cellCount())
 	{
-		c.spareU = traversabilityIn(CellRect::all(g), profile, extraCells);
+		c.spareU = std::make_shared<TraversabilityGrid>(
+		    traversabilityIn(CellRect::all(g), profile, extraCells));
 		m_counters.fullTraversability++;
 		return CellRect::all(g);
 	}
@@ -277,7 +280,7 @@ CellRect SemanticPlanner::updateTraversability(
 	    traversabilityIn(window, profile, extraCells);
 	m_counters.partialTraversability++;
 	const GridGeometry& s = sub.geometry();
-	auto& u = c.spareU.values();
+	auto& u = owned(c.spareU).values();
 	for (int row = changed.row0; row < changed.row1; row++)
 	{
 		const auto from = sub.values().begin() +
@@ -295,7 +298,7 @@ void SemanticPlanner::updateField(bool sameGoal, const CellRect& changed) const
 	auto& c = *m_cache;
 	if (!sameGoal)
 	{
-		m_cnn.computeFieldInto(c.spareU, c.spareGoals, c.field);
+		m_cnn.computeFieldInto(*c.spareU, *c.spareGoals, owned(c.field));
 		m_counters.fullFields++;
 		m_counters.last = FieldUpdate::Full;
 		return;
@@ -307,7 +310,7 @@ void SemanticPlanner::updateField(bool sameGoal, const CellRect& changed) const
 		return;
 	}
 	const FieldRepairStats st = m_cnn.repairField(
-	    c.field, c.u, c.goals, c.spareU, c.spareGoals, &changed);
+	    owned(c.field), *c.u, *c.goals, *c.spareU, *c.spareGoals, &changed);
 	m_counters.changedCells += st.changedCells;
 	m_counters.repairedCells += st.poppedCells;
 	if (st.fullRecompute) m_counters.repairFallbacks++;
@@ -321,7 +324,7 @@ void SemanticPlanner::refresh(const GoalKey& key, const CellIndex& start) const
 	auto& c = *m_cache;
 	const GridGeometry& g = m_map.geometry();
 	auto extras = extraObstacleCells();
-	if (!c.valid || !(c.u.geometry() == g) || c.key.profile != key.profile)
+	if (!c.valid || !(c.u->geometry() == g) || c.key.profile != key.profile)
 		return rebuild(key, std::move(extras), start);
 	const std::uint64_t version = m_map.version();
 	const SemanticMap::Changes changes = m_map.changesSince(c.mapVersion);
@@ -342,34 +345,35 @@ void SemanticPlanner::refresh(const GoalKey& key, const CellIndex& start) const
 	c.valid = false;
 	const CellRect uRect = updateTraversability(inputs, key.profile, extras);
 	GoalCells cells = goalsMayChange ? goalCellsOf(key) : c.goalCells;
-	const CellRect goalRect = applyGoalChange(c.goalCells, cells, c.spareGoals);
-	if (!anyTraversable(cells, c.spareU))
-		CnnPlanner::checkInputs(c.spareU, c.spareGoals, start);  // throws
+	const CellRect goalRect =
+	    applyGoalChange(c.goalCells, cells, owned(c.spareGoals));
+	if (!anyTraversable(cells, *c.spareU))
+		CnnPlanner::checkInputs(*c.spareU, *c.spareGoals, start);  // throws
 	updateField(sameGoal, uRect.united(goalRect));
 	c.valid = true;
 	// The new inputs become the cache's; the spares catch up.
 	std::swap(c.u, c.spareU);
 	std::swap(c.goals, c.spareGoals);
-	copyCells(c.u.values(), c.spareU.values(), g, uRect);
-	applyGoalChange(c.goalCells, cells, c.spareGoals);
+	copyCells(c.u->values(), owned(c.spareU).values(), g, uRect);
+	applyGoalChange(c.goalCells, cells, owned(c.spareGoals));
 	c.goalCells = std::move(cells);
 	c.extraCells = std::move(extras);
 	c.key = key;
 	c.mapVersion = version;
 }
 
-SemanticPlanner::Plan SemanticPlanner::run(
+SemanticPlanner::SharedPlan SemanticPlanner::run(
     double x, double y, const GoalKey& key) const
 {
 	std::lock_guard<std::mutex> lock(m_mutex);
 	const auto t0 = std::chrono::steady_clock::now();
-	Plan p;
+	SharedPlan p;
 	p.start = CnnPlanner::startCell(m_map.geometry(), x, y);
 	refresh(key, p.start);
 	m_counters.lastMilliseconds = msSince(t0);
 	const auto& c = *m_cache;
-	CnnPlanner::checkStart(c.u, p.start);
-	p.path = CnnPlanner::tracePath(c.field, c.u, c.goals, p.start);
+	CnnPlanner::checkStart(*c.u, p.start);
+	p.path = CnnPlanner::tracePath(*c.field, *c.u, *c.goals, p.start);
 	p.field = c.field;
 	p.u = c.u;
 	p.goals = c.goals;
@@ -378,7 +382,38 @@ SemanticPlanner::Plan SemanticPlanner::run(
 	return p;
 }
 
+SemanticPlanner::Plan SemanticPlanner::SharedPlan::copy() const
+{
+	Plan p;
+	p.path = path;
+	p.field = *field;
+	p.u = *u;
+	p.goals = *goals;
+	p.start = start;
+	p.goalLabel = goalLabel;
+	p.goalObjectId = goalObjectId;
+	return p;
+}
+
 SemanticPlanner::Plan SemanticPlanner::toLabel(
+    double x, double y, Label label, CostProfile profile) const
+{
+	return toLabelShared(x, y, label, profile).copy();
+}
+
+SemanticPlanner::Plan SemanticPlanner::toObject(
+    double x, double y, int objectId, CostProfile profile) const
+{
+	return toObjectShared(x, y, objectId, profile).copy();
+}
+
+SemanticPlanner::Plan SemanticPlanner::toPoint(
+    double x, double y, double gx, double gy, CostProfile profile) const
+{
+	return toPointShared(x, y, gx, gy, profile).copy();
+}
+
+SemanticPlanner::SharedPlan SemanticPlanner::toLabelShared(
     double x, double y, Label label, CostProfile profile) const
 {
 	if (!classInfo(label).goal)
@@ -407,7 +442,7 @@ SemanticPlanner::Plan SemanticPlanner::toLabel(
 	return run(x, y, key);
 }
 
-SemanticPlanner::Plan SemanticPlanner::toObject(
+SemanticPlanner::SharedPlan SemanticPlanner::toObjectShared(
     double x, double y, int objectId, CostProfile profile) const
 {
 	GoalKey key;
@@ -418,7 +453,7 @@ SemanticPlanner::Plan SemanticPlanner::toObject(
 	return run(x, y, key);
 }
 
-SemanticPlanner::Plan SemanticPlanner::toPoint(
+SemanticPlanner::SharedPlan SemanticPlanner::toPointShared(
     double x, double y, double gx, double gy, CostProfile profile) const
 {
 	if (!m_map.geometry().cellOf(gx, gy))
