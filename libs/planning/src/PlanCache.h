@@ -2,6 +2,7 @@
 // Internal: what SemanticPlanner keeps of its last plan.
 #pragma once
 
+#include <semnav/common/CellRect.h>
 #include <semnav/common/Label.h>
 #include <semnav/planning/DiffusionField.h>
 #include <semnav/planning/GoalLayer.h>
@@ -9,6 +10,7 @@
 #include <semnav/planning/TraversabilityGrid.h>
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -40,6 +42,20 @@ struct GoalKey
 /** Goal cells (cell index, goal id), by cell index. */
 using GoalCells = std::vector<std::pair<std::size_t, int>>;
 
+/** Goal regions of the map's objects (SemanticMap::goalRegion), kept
+ * while no map change can reach them. */
+struct ObjectRegions
+{
+	bool valid = false;
+	/** The radius they were computed for. */
+	double reach = -1;
+	/** Per object id: bounding box of its cells in the "objects" layer (a
+	 * superset: a cell that lost the id stays in); none: no cell. */
+	std::map<int, CellRect> painted;
+	/** Per object id: its region's cells. */
+	std::map<int, std::vector<std::size_t>> cells;
+};
+
 /** The last plan's inputs and field. `spareU` and `spareGoals` equal `u`
  * and `goals` between plans; an update writes the new ones there, repairs
  * the field from (u, goals) to them, swaps, and copies the changed cells
@@ -56,6 +72,7 @@ struct PlanCache
 	std::shared_ptr<TraversabilityGrid> u, spareU;
 	std::shared_ptr<GoalLayer> goals, spareGoals;
 	GoalCells goalCells;
+	ObjectRegions regions;
 	std::shared_ptr<DiffusionField> field;
 };
 

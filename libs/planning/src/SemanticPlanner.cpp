@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iterator>
+#include <set>
 
 #include "PlanCache.h"
 
@@ -84,6 +86,54 @@ void copyCells(
 		    from.begin() + static_cast<long>(g.index(row, r.col0)),
 		    from.begin() + static_cast<long>(g.index(row, r.col1 - 1)) + 1,
 		    to.begin() + static_cast<long>(g.index(row, r.col0)));
+}
+
+/** Adds the cells of `rect` holding an object id to that id's box. */
+void scanPainted(
+    const SemanticMap& map, const CellRect& rect,
+    std::map<int, CellRect>& painted, std::set<int>* ids = nullptr)
+{
+	const GridGeometry& g = map.geometry();
+	const auto& objects = map.get("objects");
+	const CellRect r = rect.clipped(g);
+	for (int row = r.row0; row < r.row1; row++)
+		for (int col = r.col0; col < r.col1; col++)
+			if (const auto id = static_cast<int>(objects[g.index(row, col)]))
+			{
+				painted[id].add(row, col);
+				if (ids) ids->insert(id);
+			}
+}
+
+/** Drops the regions a map change may have reached: objects painted in the
+ * changed cells, or whose cells lie within reach of them, and objects with
+ * no cell (their region comes from their footprint, which any insertion
+ * may move). Everything after a change of the whole map or of the reach. */
+void followChanges(
+    detail::ObjectRegions& r, const SemanticMap& map,
+    const SemanticMap::Changes& changes, double reach)
+{
+	const GridGeometry& g = map.geometry();
+	if (!r.valid || r.reach != reach || changes.all)
+	{
+		r = detail::ObjectRegions();
+		r.reach = reach;
+		scanPainted(map, CellRect::all(g), r.painted);
+		r.valid = true;
+		return;
+	}
+	std::set<int> repainted;
+	scanPainted(map, changes.cells, r.painted, &repainted);
+	const int margin = static_cast<int>(std::ceil(reach / g.resolution)) + 1;
+	for (auto it = r.cells.begin(); it != r.cells.end();)
+	{
+		const CellRect& box = r.painted[it->first];
+		if (box.empty() || repainted.count(it->first) ||
+		    box.dilated(margin).intersects(changes.cells))
+			it = r.cells.erase(it);
+		else
+			++it;
+	}
 }
 
 double msSince(std::chrono::steady_clock::time_point t0)
@@ -215,10 +265,22 @@ GoalCells SemanticPlanner::goalCellsOf(const GoalKey& key) const
 		ids.push_back(key.objectId);
 	else
 		for (const auto& o : m_map.instances(key.label)) ids.push_back(o.id);
+	auto& regions = m_cache->regions;
 	const double reach = m_builder.goalRegionRadius(key.profile);
+	if (!regions.valid || regions.reach != reach)
+		followChanges(regions, m_map, {true, {}}, reach);
 	for (const int id : ids)
-		for (const auto& [cx, cy] : m_map.goalRegion(id, reach))
-			cells.emplace_back(g.index(cy, cx), id);
+	{
+		auto it = regions.cells.find(id);
+		if (it == regions.cells.end())
+		{
+			std::vector<std::size_t> region;
+			for (const auto& [cx, cy] : m_map.goalRegion(id, reach))
+				region.push_back(g.index(cy, cx));
+			it = regions.cells.emplace(id, std::move(region)).first;
+		}
+		for (const std::size_t i : it->second) cells.emplace_back(i, id);
+	}
 	// A cell in two regions keeps the first id (GoalLayer::addCells).
 	std::stable_sort(
 	    cells.begin(), cells.end(),
@@ -239,6 +301,7 @@ void SemanticPlanner::rebuild(
 	const GridGeometry& g = m_map.geometry();
 	c.valid = false;
 	c.mapVersion = m_map.version();
+	c.regions.valid = false;
 	c.u = std::make_shared<TraversabilityGrid>(
 	    traversabilityIn(CellRect::all(g), key.profile, extraCells));
 	m_counters.fullTraversability++;
@@ -331,9 +394,15 @@ void SemanticPlanner::refresh(const GoalKey& key, const CellIndex& start) const
 	const CellRect inputs =
 	    (changes.all ? CellRect::all(g) : changes.cells)
 	        .united(differingCells(c.extraCells, extras, g));
+	if (version != c.mapVersion && c.regions.valid)
+		followChanges(
+		    c.regions, m_map, changes, m_builder.goalRegionRadius(key.profile));
 	const bool sameGoal = c.key == key;
+	// Object goals follow every version: an instance may become reported
+	// (or its footprint move) with no cell changed.
 	const bool goalsMayChange =
-	    !sameGoal || (key.kind != GoalKey::Kind::Point && !changes.none());
+	    !sameGoal ||
+	    (key.kind != GoalKey::Kind::Point && version != c.mapVersion);
 	if (inputs.empty() && !goalsMayChange)
 	{
 		c.mapVersion = version;
