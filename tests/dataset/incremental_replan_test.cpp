@@ -113,6 +113,8 @@ TEST(IncrementalReplan, RandomChangesGiveTheFreshPlannersPlans)
 		map.updateCosts(r);
 	};
 	int goal = 0;
+	std::vector<mrpt::poses::CPose2D> detectionPoses;
+	const std::size_t wastebaskets = map.allInstances().size();
 	for (int step = 0; step < 60; step++)
 	{
 		const int change = step == 0 ? -1 : static_cast<int>(rng() % 6);
@@ -121,14 +123,32 @@ TEST(IncrementalReplan, RandomChangesGiveTheFreshPlannersPlans)
 			writeBox(x, y, 0.3 + 0.2 * (rng() % 5), change == 0);
 		else if (change == 2)
 		{
-			// A sweep: floor ahead and a small obstacle.
+			// A sweep: floor ahead and a small obstacle, every other time
+			// a wastebasket detected there (new, or seen again from an
+			// earlier pose: a new instance reported at its second sight).
+			const bool detected = rng() % 2;
 			auto pts = test::floorFan(2.0);
+			const int first = static_cast<int>(pts.size());
 			for (double dy = -0.15; dy <= 0.15; dy += 0.03)
-				pts.push_back({1.2, dy, 0.3, Label::Obstacle});
-			const auto f = test::makeFakeSweep(pts);
-			map.insert(
-			    f.sweep, f.labeled,
-			    mrpt::poses::CPose2D(x, y, (rng() % 628) / 100.0));
+				pts.push_back(
+				    {1.2, dy, 0.3,
+				     detected ? Label::Wastebasket : Label::Obstacle});
+			auto f = test::makeFakeSweep(pts);
+			mrpt::poses::CPose2D pose(x, y, (rng() % 628) / 100.0);
+			if (detected)
+			{
+				Detection d;
+				d.label = Label::Wastebasket;
+				d.imageBox =
+				    cv::Rect(first, 0, static_cast<int>(pts.size()) - first, 1);
+				d.centroid = {1.2, 0, 0.3};
+				d.extent = {0.1, 0.3, 0.4};
+				f.labeled.detections = {d};
+				if (!detectionPoses.empty() && rng() % 2)
+					pose = detectionPoses[rng() % detectionPoses.size()];
+				detectionPoses.push_back(pose);
+			}
+			map.insert(f.sweep, f.labeled, pose);
 			ASSERT_TRUE(map.geometry() == g) << "the map must not grow";
 		}
 		else if (change == 3)
@@ -168,6 +188,7 @@ TEST(IncrementalReplan, RandomChangesGiveTheFreshPlannersPlans)
 		expectSame(plan(planner), plan(fresh), step);
 		if (HasFatalFailure()) return;
 	}
+	EXPECT_GT(map.allInstances().size(), wastebaskets);
 	const auto c = planner.counters();
 	std::printf(
 	    "full %zu, repairs %zu (fallbacks %zu), reuses %zu, u partial %zu / "
