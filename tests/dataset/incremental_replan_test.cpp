@@ -237,6 +237,23 @@ TEST(IncrementalReplan, UnchangedMapReusesTheFieldAndChangesRepairIt)
 	EXPECT_NE(held.field.get(), e.field.get());
 	EXPECT_EQ(e.field->x, b.field.x);
 	EXPECT_EQ(e.copy().path.cost, b.path.cost);
+	// An instance whose footprint holds no cell centre: the map's version
+	// moves with no cell changed; the goals follow it.
+	planner.setExtraObstacles({});
+	const std::uint64_t v = map.version();
+	const std::size_t goalCells =
+	    planner.toLabel(5, 3, Label::Wastebasket, CostProfile::Safe)
+	        .goals.count();
+	map.addInstance(
+	    Label::Wastebasket, {8.001, 3.701, 0}, {8.01, 3.71, 0.4}, 5);
+	ASSERT_TRUE(map.changesSince(v).none());
+	ASSERT_NE(map.version(), v);
+	const auto f = planner.toLabel(5, 3, Label::Wastebasket, CostProfile::Safe);
+	const auto h = SemanticPlanner(map, cnnOptions(), traversabilityOptions())
+	                   .toLabel(5, 3, Label::Wastebasket, CostProfile::Safe);
+	EXPECT_EQ(f.goals.ids(), h.goals.ids());
+	EXPECT_EQ(f.field.x, h.field.x);
+	EXPECT_GT(f.goals.count(), goalCells);
 	// Another profile: from scratch. A write through an accessor: the whole
 	// map counts as changed (u rebuilt everywhere, field repaired).
 	planner.toLabel(5, 3, Label::Wastebasket, CostProfile::Shortest);
