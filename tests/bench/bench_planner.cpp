@@ -539,6 +539,13 @@ std::unique_ptr<SemanticMap> officeSemanticMap(const OfficeMap& m)
 			    m.occupancy[g.index(r, c)] == CellOccupancy::Occupied ? 0.95f
 			                                                          : 0.05f);
 	map->updateCosts();
+	// Three wastebaskets: in the goal's room and two other corner rooms.
+	const double far = g.maxX() - 2.5;
+	for (const auto& [x, y] :
+	     {std::pair<double, double>{far, far}, {far, 2.5}, {2.5, far}})
+		map->addInstance(
+		    Label::Wastebasket, {x - 0.15, y - 0.15, 0},
+		    {x + 0.15, y + 0.15, 0.4}, 5);
 	return map;
 }
 
@@ -604,7 +611,8 @@ enum class Replan
  * k/13 of it) or at a random free spot; after each the planner replans
  * from the start to the goal. Timed: the replan only. */
 void runSemanticReplan(
-    benchmark::State& st, bool onPath, Replan mode, const std::string& name)
+    benchmark::State& st, bool onPath, Replan mode, const std::string& name,
+    bool toLabel = false)
 {
 	const auto& m = office1000();
 	const auto& g = m.geometry;
@@ -616,9 +624,14 @@ void runSemanticReplan(
 	SemanticPlanner planner(*map, co, to);
 	const double sx = g.centerX(m.start.col), sy = g.centerY(m.start.row);
 	const double gx = g.centerX(m.goal.col), gy = g.centerY(m.goal.row);
-	std::vector<mrpt::math::TPoint2D> path =
-	    planner.toPointShared(sx, sy, gx, gy, CostProfile::Shortest)
-	        .path.points;
+	const auto planShared = [&]
+	{
+		return toLabel ? planner.toLabelShared(
+		                     sx, sy, Label::Wastebasket, CostProfile::Shortest)
+		               : planner.toPointShared(
+		                     sx, sy, gx, gy, CostProfile::Shortest);
+	};
+	std::vector<mrpt::math::TPoint2D> path = planShared().path.points;
 	std::mt19937_64 rng(5);
 	std::size_t k = 0, differ = 0, noPath = 0, spotsOnPath = 0;
 	auto& refreshMs = g_refreshMs[name];
@@ -658,10 +671,9 @@ void runSemanticReplan(
 		try
 		{
 			if (mode == Replan::Incremental)
-				copied = planner.toPoint(sx, sy, gx, gy, CostProfile::Shortest);
+				copied = planShared().copy();
 			else
-				shared = planner.toPointShared(
-				    sx, sy, gx, gy, CostProfile::Shortest);
+				shared = planShared();
 		}
 		catch (const NoPathError&)
 		{
@@ -681,7 +693,10 @@ void runSemanticReplan(
 		{
 			SemanticPlanner fresh(*map, co, to);
 			const auto ref =
-			    fresh.toPointShared(sx, sy, gx, gy, CostProfile::Shortest);
+			    toLabel ? fresh.toLabelShared(
+			                  sx, sy, Label::Wastebasket, CostProfile::Shortest)
+			            : fresh.toPointShared(
+			                  sx, sy, gx, gy, CostProfile::Shortest);
 			for (std::size_t i = 0; i < field->size(); i++)
 				differ += ref.field->x[i] != (*field)[i];
 		}
@@ -728,6 +743,18 @@ void BM_SemanticReplanRandomIncremental_1000(benchmark::State& st)
 	    st, false, Replan::Incremental,
 	    "BM_SemanticReplanRandomIncremental_1000");
 }
+void BM_SemanticReplanRandomLabelScratch_1000(benchmark::State& st)
+{
+	runSemanticReplan(
+	    st, false, Replan::Scratch, "BM_SemanticReplanRandomLabelScratch_1000",
+	    true);
+}
+void BM_SemanticReplanRandomLabelShared_1000(benchmark::State& st)
+{
+	runSemanticReplan(
+	    st, false, Replan::Shared, "BM_SemanticReplanRandomLabelShared_1000",
+	    true);
+}
 void BM_SemanticReplanRandomShared_1000(benchmark::State& st)
 {
 	runSemanticReplan(
@@ -773,6 +800,10 @@ BENCHMARK(BM_SemanticReplanRandomScratch_1000)->Apply(semanticReplanSettings);
 BENCHMARK(BM_SemanticReplanRandomIncremental_1000)
     ->Apply(semanticReplanSettings);
 BENCHMARK(BM_SemanticReplanRandomShared_1000)->Apply(semanticReplanSettings);
+BENCHMARK(BM_SemanticReplanRandomLabelScratch_1000)
+    ->Apply(semanticReplanSettings);
+BENCHMARK(BM_SemanticReplanRandomLabelShared_1000)
+    ->Apply(semanticReplanSettings);
 BENCHMARK(BM_TraversabilityShortest_1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TraversabilitySafe_1000)->Unit(benchmark::kMillisecond);
 
@@ -906,7 +937,7 @@ int main(int argc, char** argv)
 		for (const auto& r : repairs)
 			printRepairs(r.what, r.name, r.spots, full->second);
 	}
-	for (const char* where : {"OnPath", "Random"})
+	for (const char* where : {"OnPath", "Random", "RandomLabel"})
 		for (const char* how : {"Incremental", "Shared"})
 			printRatio(
 			    rep,
