@@ -7,6 +7,8 @@
 #include <semnav/common/Error.h>
 #include <semnav/map/SemanticMap.h>
 
+#include <utility>
+
 #include "../common/SavedAndLoaded.h"
 #include "MapTestUtils.h"
 
@@ -639,6 +641,10 @@ TEST(SemanticMap, ChangesSinceBoundWhatAnInsertionChanged)
 	    static_cast<std::size_t>(c.cells.row1 - c.cells.row0) *
 	        (c.cells.col1 - c.cells.col0),
 	    g.cellCount() / 2);
+	// Costs recomputed only where the sweep touched: as everywhere.
+	const std::vector<float> cost = std::as_const(m).get("cost");
+	m.updateCosts();
+	EXPECT_EQ(std::as_const(m).get("cost"), cost);
 	// Writes through accessors, growth and old versions: everything.
 	const std::uint64_t v2 = m.version();
 	m.get("labels");

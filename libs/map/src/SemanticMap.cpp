@@ -217,6 +217,7 @@ void SemanticMap::markChanged(const CellRect& cells)
 
 void SemanticMap::markAllChanged()
 {
+	m_costsCurrent = false;
 	// Repeated writes through accessors share one entry.
 	if (!m_changes.empty() && m_changes.back().all)
 	{
@@ -357,7 +358,11 @@ void SemanticMap::updateCosts(const CellRect& cells)
 {
 	CellRect changed;
 	updateCostsIn(cells, changed);
+	const CellRect c = cells.clipped(m_geometry);
 	markChanged(changed);
+	if (c.row0 == 0 && c.col0 == 0 && c.row1 == m_geometry.rows &&
+	    c.col1 == m_geometry.cols)
+		m_costsCurrent = true;
 }
 
 void SemanticMap::updateCostsIn(const CellRect& cells, CellRect& changed)

@@ -129,7 +129,11 @@ void SemanticMap::insert(
 		m_octree->updateInnerOccupancy();
 	}
 
-	updateCostsIn(e.touched, e.changed);
+	// Costs only where this sweep touched, unless the layers may have been
+	// written (or loaded) since the last full update.
+	updateCostsIn(
+	    m_costsCurrent ? e.touched : CellRect::all(m_geometry), e.changed);
+	m_costsCurrent = true;
 	m_sweeps++;
 	markChanged(e.changed);
 }

@@ -387,6 +387,10 @@ private:
 	/** Changes after m_historyStart, oldest first. */
 	std::deque<Change> m_changes;
 	std::uint64_t m_historyStart = 0;
+	/** False when layers may have been written or loaded since the cost
+	 * layer was last recomputed everywhere: the next insert() recomputes
+	 * it everywhere (otherwise only where the sweep touched). */
+	bool m_costsCurrent = true;
 };
 
 }  // namespace semnav
