@@ -33,129 +33,16 @@
 #include <numeric>
 #include <random>
 
-#include "../map/MapTestUtils.h"
+#include "OfficeGrid.h"
+#include "SemanticReplanBench.h"
 
 using namespace semnav;
+using semnav::test::makeOffice;
+using semnav::test::OfficeMap;
+using semnav::test::Replan;
 
 namespace
 {
-struct OfficeMap
-{
-	GridGeometry geometry;
-	std::vector<CellOccupancy> occupancy;
-	TraversabilityGrid u;
-	GoalLayer goals;
-	CellIndex start, goal;
-	std::size_t boxes = 0;
-};
-
-/** Square office of `rooms` x `rooms` rooms of `room` cells, 10 cm walls,
- * 1 m doors (a random spanning tree of the rooms plus extra doors), boxes
- * of 0.3-1.5 m kept 1.2 m away from doors, start and goal. */
-std::unique_ptr<OfficeMap> makeOffice(int rooms, int room, int nBoxes)
-{
-	auto m = std::make_unique<OfficeMap>();
-	const int n = rooms * room;
-	m->geometry = GridGeometry(0.05, 0, 0, n, n);
-	const auto& g = m->geometry;
-	m->occupancy.assign(g.cellCount(), CellOccupancy::Free);
-	const auto fill = [&](int r0, int c0, int r1, int c1)
-	{
-		for (int r = std::max(0, r0); r < std::min(n, r1); r++)
-			for (int c = std::max(0, c0); c < std::min(n, c1); c++)
-				m->occupancy[g.index(r, c)] = CellOccupancy::Occupied;
-	};
-	const auto clear = [&](int r0, int c0, int r1, int c1)
-	{
-		for (int r = std::max(0, r0); r < std::min(n, r1); r++)
-			for (int c = std::max(0, c0); c < std::min(n, c1); c++)
-				m->occupancy[g.index(r, c)] = CellOccupancy::Free;
-	};
-	const int wall = 2, door = 20;
-	fill(0, 0, wall, n);
-	fill(n - wall, 0, n, n);
-	fill(0, 0, n, wall);
-	fill(0, n - wall, n, n);
-	for (int k = 1; k < rooms; k++)
-	{
-		fill(k * room - 1, 0, k * room + 1, n);
-		fill(0, k * room - 1, n, k * room + 1);
-	}
-
-	std::mt19937_64 rng(20240607);
-	// Doors: Kruskal spanning tree over the rooms, plus 30 % extra doors.
-	struct Edge
-	{
-		int a, b;
-	};
-	std::vector<Edge> edges;
-	for (int i = 0; i < rooms; i++)
-		for (int j = 0; j < rooms; j++)
-		{
-			if (j + 1 < rooms)
-				edges.push_back({i * rooms + j, i * rooms + j + 1});
-			if (i + 1 < rooms)
-				edges.push_back({i * rooms + j, (i + 1) * rooms + j});
-		}
-	std::shuffle(edges.begin(), edges.end(), rng);
-	std::vector<int> parent(rooms * rooms);
-	std::iota(parent.begin(), parent.end(), 0);
-	std::function<int(int)> root = [&](int a)
-	{ return parent[a] == a ? a : parent[a] = root(parent[a]); };
-	std::uniform_real_distribution<double> U(0, 1);
-	std::vector<std::pair<int, int>> doorCentres;
-	for (const auto& e : edges)
-	{
-		const bool tree = root(e.a) != root(e.b);
-		if (!tree && U(rng) > 0.3) continue;
-		parent[root(e.a)] = root(e.b);
-		const int ia = e.a / rooms, ja = e.a % rooms;
-		const int off = 10 + static_cast<int>(U(rng) * (room - door - 20));
-		if (e.b == e.a + 1)  // vertical wall at column (ja + 1) * room
-		{
-			const int c = (ja + 1) * room, r = ia * room + off;
-			clear(r, c - 1, r + door, c + 1);
-			doorCentres.push_back({r + door / 2, c});
-		}
-		else
-		{
-			const int r = (ia + 1) * room, c = ja * room + off;
-			clear(r - 1, c, r + 1, c + door);
-			doorCentres.push_back({r, c + door / 2});
-		}
-	}
-
-	m->start = {room / 2, room / 2};
-	m->goal = {n - room / 2, n - room / 2};
-	const auto near = [](int r0, int c0, int r1, int c1, int pr, int pc, int d)
-	{ return pr >= r0 - d && pr < r1 + d && pc >= c0 - d && pc < c1 + d; };
-	for (int attempt = 0;
-	     attempt < 100 * nBoxes && m->boxes < static_cast<std::size_t>(nBoxes);
-	     attempt++)
-	{
-		const int h = 6 + static_cast<int>(U(rng) * 24);
-		const int w = 6 + static_cast<int>(U(rng) * 24);
-		const int r0 = static_cast<int>(U(rng) * (n - h));
-		const int c0 = static_cast<int>(U(rng) * (n - w));
-		bool ok =
-		    !near(r0, c0, r0 + h, c0 + w, m->start.row, m->start.col, 30) &&
-		    !near(r0, c0, r0 + h, c0 + w, m->goal.row, m->goal.col, 30);
-		for (const auto& [dr, dc] : doorCentres)
-			ok = ok && !near(r0, c0, r0 + h, c0 + w, dr, dc, 24);
-		if (!ok) continue;
-		fill(r0, c0, r0 + h, c0 + w);
-		m->boxes++;
-	}
-
-	TraversabilityBuilder::TOptions o;
-	o.robotRadius = 0.2;
-	m->u = TraversabilityBuilder(o).build(
-	    g, {}, m->occupancy, CostProfile::Shortest);
-	m->goals = GoalLayer(g);
-	m->goals.addCell(m->goal);
-	return m;
-}
-
 const OfficeMap& office1000()
 {
 	static const auto m = makeOffice(10, 100, 400);
@@ -169,6 +56,8 @@ const OfficeMap& office250()
 
 /** Path costs and iteration counts reported in the summary. */
 std::map<std::string, double> g_figures;
+/** The SemanticPlanner replans' times and counts. */
+test::ReplanRecord g_replan;
 
 CnnPlanner cnn(CnnSchedule s, int threads)
 {
@@ -514,251 +403,53 @@ void BM_TraversabilitySafe_1000(benchmark::State& st)
 		    b.build(m.geometry, {}, m.occupancy, CostProfile::Safe));
 }
 
-/** The office as a SemanticMap: occupied cells labelled obstacle, free
- * cells floor, every cell observed once. */
-std::unique_ptr<SemanticMap> officeSemanticMap(const OfficeMap& m)
-{
-	const auto& g = m.geometry;
-	std::vector<float> labels(g.cellCount()), seen(g.cellCount(), 1.0f);
-	LabelSet floor, obstacle;
-	floor.insert(Label::Floor);
-	obstacle.insert(Label::Obstacle);
-	for (std::size_t i = 0; i < g.cellCount(); i++)
-		labels[i] = static_cast<float>(
-		    (m.occupancy[i] == CellOccupancy::Occupied ? obstacle : floor)
-		        .mask());
-	auto map = std::make_unique<SemanticMap>();
-	map->restore(
-	    g, {{"labels", labels}, {"observations", seen}},
-	    std::vector<int8_t>(g.cellCount(), 0), {}, 0);
-	auto& grid = map->occupancyGrid();
-	for (int r = 0; r < g.rows; r++)
-		for (int c = 0; c < g.cols; c++)
-			grid.setCell(
-			    c, r,
-			    m.occupancy[g.index(r, c)] == CellOccupancy::Occupied ? 0.95f
-			                                                          : 0.05f);
-	map->updateCosts();
-	// Three wastebaskets: in the goal's room and two other corner rooms.
-	const double far = g.maxX() - 2.5;
-	for (const auto& [x, y] :
-	     {std::pair<double, double>{far, far}, {far, 2.5}, {2.5, far}})
-		map->addInstance(
-		    Label::Wastebasket, {x - 0.15, y - 0.15, 0},
-		    {x + 0.15, y + 0.15, 0.4}, 5);
-	return map;
-}
-
-/** Inserts a sweep seeing a 1 m x 1 m box centred on (x, y) from 1.5 m
- * away (its top at 0.3 m, seen as obstacle points every 2.5 cm). */
-void insertBox(SemanticMap& map, double x, double y, double heading)
-{
-	std::vector<test::FakePoint> pts;
-	for (double dx = -0.4875; dx < 0.5; dx += 0.025)
-		for (double dy = -0.4875; dy < 0.5; dy += 0.025)
-			pts.push_back({1.5 + dx, dy, 0.3, Label::Obstacle});
-	const auto f = test::makeFakeSweep(pts);
-	map.insert(
-	    f.sweep, f.labeled,
-	    mrpt::poses::CPose2D(
-	        x - 1.5 * std::cos(heading), y - 1.5 * std::sin(heading), heading));
-}
-
-/** The box at (x, y) (with 0.1 m around it) and the robot 1.5 m before
- * it (heading) lie in free space away from the start and the goal. */
-bool clearSpot(const OfficeMap& m, double x, double y, double heading)
-{
-	const auto& g = m.geometry;
-	const double sx = g.centerX(m.start.col), sy = g.centerY(m.start.row);
-	const double gx = g.centerX(m.goal.col), gy = g.centerY(m.goal.row);
-	if (std::hypot(x - sx, y - sy) < 2.5 || std::hypot(x - gx, y - gy) < 2.5)
-		return false;
-	const auto freeAround = [&](double cx, double cy, int half)
-	{
-		for (int r = -half; r <= half; r++)
-			for (int c = -half; c <= half; c++)
-			{
-				const auto cell =
-				    g.cellOf(cx + c * g.resolution, cy + r * g.resolution);
-				if (!cell || m.occupancy[g.index(*cell)] != CellOccupancy::Free)
-					return false;
-			}
-		return true;
-	};
-	return freeAround(x, y, 12) &&
-	       freeAround(
-	           x - 1.5 * std::cos(heading), y - 1.5 * std::sin(heading), 6);
-}
-
-/** Per benchmark: the wall time of each replan (ms). */
-std::map<std::string, std::vector<double>> g_replanMs;
-
-/** Per benchmark: the planner's own time (u, goals, field) per iteration. */
-std::map<std::string, std::vector<double>> g_refreshMs;
-
-/** How the benchmark replans. */
-enum class Replan
-{
-	/** clearCache() + toPointShared: u, goals and field from scratch. */
-	Scratch,
-	/** toPoint: cached and repaired, the Plan's grids copied out. */
-	Incremental,
-	/** toPointShared: cached and repaired, the grids shared. */
-	Shared
-};
-
-/** 12 boxes inserted one after the other, each on the current path (near
- * k/13 of it) or at a random free spot; after each the planner replans
- * from the start to the goal. Timed: the replan only. */
-void runSemanticReplan(
-    benchmark::State& st, bool onPath, Replan mode, const std::string& name,
-    bool toLabel = false)
-{
-	const auto& m = office1000();
-	const auto& g = m.geometry;
-	const auto map = officeSemanticMap(m);
-	TraversabilityBuilder::TOptions to;
-	to.robotRadius = 0.2;
-	CnnPlanner::TOptions co;
-	co.threads = 1;
-	SemanticPlanner planner(*map, co, to);
-	const double sx = g.centerX(m.start.col), sy = g.centerY(m.start.row);
-	const double gx = g.centerX(m.goal.col), gy = g.centerY(m.goal.row);
-	const auto planShared = [&]
-	{
-		return toLabel ? planner.toLabelShared(
-		                     sx, sy, Label::Wastebasket, CostProfile::Shortest)
-		               : planner.toPointShared(
-		                     sx, sy, gx, gy, CostProfile::Shortest);
-	};
-	std::vector<mrpt::math::TPoint2D> path = planShared().path.points;
-	std::mt19937_64 rng(5);
-	std::size_t k = 0, differ = 0, noPath = 0, spotsOnPath = 0;
-	auto& refreshMs = g_refreshMs[name];
-	for (auto _ : st)
-	{
-		k++;
-		double x = 0, y = 0, heading = 0;
-		bool found = false;
-		// On the path: the path points nearest to k/13 of it first.
-		const std::size_t j0 = path.size() * k / 13;
-		for (std::size_t a = 0; onPath && !found && a < 2 * path.size(); a++)
-		{
-			const std::size_t j =
-			    a % 2 ? j0 + (a + 1) / 2 : j0 - std::min(j0, a / 2);
-			if (j + 1 >= path.size()) continue;
-			x = path[j].x;
-			y = path[j].y;
-			heading = std::atan2(path[j + 1].y - y, path[j + 1].x - x);
-			found = clearSpot(m, x, y, heading);
-		}
-		if (onPath) spotsOnPath += found;
-		while (!found)
-		{
-			x = 2 + static_cast<double>(rng() % 4600) / 100;
-			y = 2 + static_cast<double>(rng() % 4600) / 100;
-			heading = static_cast<double>(rng() % 628) / 100;
-			found = clearSpot(m, x, y, heading);
-		}
-		// Seen in three sweeps: the cells turn occupied.
-		for (int sweep = 0; sweep < 3; sweep++) insertBox(*map, x, y, heading);
-		if (mode == Replan::Scratch) planner.clearCache();
-		// Plans are held past the timing (the check below), then dropped:
-		// a held SharedPlan would make the next repair copy its field.
-		SemanticPlanner::SharedPlan shared;
-		SemanticPlanner::Plan copied;
-		const auto t0 = std::chrono::steady_clock::now();
-		try
-		{
-			if (mode == Replan::Incremental)
-				copied = planShared().copy();
-			else
-				shared = planShared();
-		}
-		catch (const NoPathError&)
-		{
-			noPath++;  // the field is repaired all the same
-		}
-		const double sec =
-		    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
-		        .count();
-		st.SetIterationTime(sec);
-		g_replanMs[name].push_back(1e3 * sec);
-		if (shared.field) path = shared.path.points;
-		if (!copied.path.points.empty()) path = copied.path.points;
-		const std::vector<double>* field =
-		    shared.field ? &shared.field->x : &copied.field.x;
-		refreshMs.push_back(planner.counters().lastMilliseconds);
-		if (mode != Replan::Scratch && k <= 4 && !field->empty())
-		{
-			SemanticPlanner fresh(*map, co, to);
-			const auto ref =
-			    toLabel ? fresh.toLabelShared(
-			                  sx, sy, Label::Wastebasket, CostProfile::Shortest)
-			            : fresh.toPointShared(
-			                  sx, sy, gx, gy, CostProfile::Shortest);
-			for (std::size_t i = 0; i < field->size(); i++)
-				differ += ref.field->x[i] != (*field)[i];
-		}
-	}
-	const auto c = planner.counters();
-	st.counters["repairs"] = static_cast<double>(c.repairs);
-	st.counters["full_fields"] = static_cast<double>(c.fullFields);
-	st.counters["u_partial"] = static_cast<double>(c.partialTraversability);
-	st.counters["cells_differing_from_fresh"] = static_cast<double>(differ);
-	g_figures[name + " cells differing from a fresh planner"] =
-	    static_cast<double>(differ);
-	g_figures[name + " repair fallbacks"] =
-	    static_cast<double>(c.repairFallbacks);
-	g_figures[name + " replans without a path"] = static_cast<double>(noPath);
-	if (onPath)
-		g_figures[name + " boxes on the path / 12"] =
-		    static_cast<double>(spotsOnPath);
-}
-
 void BM_SemanticReplanOnPathScratch_1000(benchmark::State& st)
 {
-	runSemanticReplan(
-	    st, true, Replan::Scratch, "BM_SemanticReplanOnPathScratch_1000");
+	test::runSemanticReplan(
+	    st, office1000(), true, Replan::Scratch, false,
+	    "BM_SemanticReplanOnPathScratch_1000", g_replan);
 }
 void BM_SemanticReplanOnPathIncremental_1000(benchmark::State& st)
 {
-	runSemanticReplan(
-	    st, true, Replan::Incremental,
-	    "BM_SemanticReplanOnPathIncremental_1000");
+	test::runSemanticReplan(
+	    st, office1000(), true, Replan::Incremental, false,
+	    "BM_SemanticReplanOnPathIncremental_1000", g_replan);
 }
 void BM_SemanticReplanOnPathShared_1000(benchmark::State& st)
 {
-	runSemanticReplan(
-	    st, true, Replan::Shared, "BM_SemanticReplanOnPathShared_1000");
+	test::runSemanticReplan(
+	    st, office1000(), true, Replan::Shared, false,
+	    "BM_SemanticReplanOnPathShared_1000", g_replan);
 }
 void BM_SemanticReplanRandomScratch_1000(benchmark::State& st)
 {
-	runSemanticReplan(
-	    st, false, Replan::Scratch, "BM_SemanticReplanRandomScratch_1000");
+	test::runSemanticReplan(
+	    st, office1000(), false, Replan::Scratch, false,
+	    "BM_SemanticReplanRandomScratch_1000", g_replan);
 }
 void BM_SemanticReplanRandomIncremental_1000(benchmark::State& st)
 {
-	runSemanticReplan(
-	    st, false, Replan::Incremental,
-	    "BM_SemanticReplanRandomIncremental_1000");
+	test::runSemanticReplan(
+	    st, office1000(), false, Replan::Incremental, false,
+	    "BM_SemanticReplanRandomIncremental_1000", g_replan);
 }
 void BM_SemanticReplanRandomLabelScratch_1000(benchmark::State& st)
 {
-	runSemanticReplan(
-	    st, false, Replan::Scratch, "BM_SemanticReplanRandomLabelScratch_1000",
-	    true);
+	test::runSemanticReplan(
+	    st, office1000(), false, Replan::Scratch, true,
+	    "BM_SemanticReplanRandomLabelScratch_1000", g_replan);
 }
 void BM_SemanticReplanRandomLabelShared_1000(benchmark::State& st)
 {
-	runSemanticReplan(
-	    st, false, Replan::Shared, "BM_SemanticReplanRandomLabelShared_1000",
-	    true);
+	test::runSemanticReplan(
+	    st, office1000(), false, Replan::Shared, true,
+	    "BM_SemanticReplanRandomLabelShared_1000", g_replan);
 }
 void BM_SemanticReplanRandomShared_1000(benchmark::State& st)
 {
-	runSemanticReplan(
-	    st, false, Replan::Shared, "BM_SemanticReplanRandomShared_1000");
+	test::runSemanticReplan(
+	    st, office1000(), false, Replan::Shared, false,
+	    "BM_SemanticReplanRandomShared_1000", g_replan);
 }
 
 /** Semantic replans: 12 boxes inserted per run, timed by hand. */
@@ -951,10 +642,11 @@ int main(int argc, char** argv)
 		return t.empty() ? 0.0
 		                 : 0.5 * (t[(t.size() - 1) / 2] + t[t.size() / 2]);
 	};
-	for (const auto& [name, v] : g_replanMs)
+	for (const auto& [name, v] : g_replan.replanMs)
 		std::printf(
 		    "  %-42s replan median %6.2f ms, planner's own part %6.2f ms\n",
-		    name.c_str(), median(v), median(g_refreshMs[name]));
+		    name.c_str(), median(v), median(g_replan.refreshMs[name]));
+	g_figures.insert(g_replan.figures.begin(), g_replan.figures.end());
 	for (const auto& [k, v] : g_figures)
 		std::printf("  %-50s %.6f\n", k.c_str(), v);
 	const auto c = g_figures.find("BM_CnnSweep_1000 cost");

@@ -95,8 +95,9 @@ public:
 	};
 
 	/** A Plan whose u, goals and field are shared with the planner's
-	 * cache instead of copied (~20 MB at 1000 x 1000, 5-30 ms with the
-	 * page faults of fresh memory: more than a repair). They stay valid
+	 * cache instead of copied (~20 MB at 1000 x 1000: 40-60 ms on the
+	 * project's VM, page faults of fresh memory included, far more than a
+	 * repair). They stay valid
 	 * and unchanged while held; the planner copies one before changing it
 	 * only if a plan still holds it then, so drop plans that are done. */
 	struct SharedPlan
