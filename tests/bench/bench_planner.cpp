@@ -403,55 +403,6 @@ void BM_TraversabilitySafe_1000(benchmark::State& st)
 		    b.build(m.geometry, {}, m.occupancy, CostProfile::Safe));
 }
 
-void BM_SemanticReplanOnPathScratch_1000(benchmark::State& st)
-{
-	test::runSemanticReplan(
-	    st, office1000(), true, Replan::Scratch, false,
-	    "BM_SemanticReplanOnPathScratch_1000", g_replan);
-}
-void BM_SemanticReplanOnPathIncremental_1000(benchmark::State& st)
-{
-	test::runSemanticReplan(
-	    st, office1000(), true, Replan::Incremental, false,
-	    "BM_SemanticReplanOnPathIncremental_1000", g_replan);
-}
-void BM_SemanticReplanOnPathShared_1000(benchmark::State& st)
-{
-	test::runSemanticReplan(
-	    st, office1000(), true, Replan::Shared, false,
-	    "BM_SemanticReplanOnPathShared_1000", g_replan);
-}
-void BM_SemanticReplanRandomScratch_1000(benchmark::State& st)
-{
-	test::runSemanticReplan(
-	    st, office1000(), false, Replan::Scratch, false,
-	    "BM_SemanticReplanRandomScratch_1000", g_replan);
-}
-void BM_SemanticReplanRandomIncremental_1000(benchmark::State& st)
-{
-	test::runSemanticReplan(
-	    st, office1000(), false, Replan::Incremental, false,
-	    "BM_SemanticReplanRandomIncremental_1000", g_replan);
-}
-void BM_SemanticReplanRandomLabelScratch_1000(benchmark::State& st)
-{
-	test::runSemanticReplan(
-	    st, office1000(), false, Replan::Scratch, true,
-	    "BM_SemanticReplanRandomLabelScratch_1000", g_replan);
-}
-void BM_SemanticReplanRandomLabelShared_1000(benchmark::State& st)
-{
-	test::runSemanticReplan(
-	    st, office1000(), false, Replan::Shared, true,
-	    "BM_SemanticReplanRandomLabelShared_1000", g_replan);
-}
-void BM_SemanticReplanRandomShared_1000(benchmark::State& st)
-{
-	test::runSemanticReplan(
-	    st, office1000(), false, Replan::Shared, false,
-	    "BM_SemanticReplanRandomShared_1000", g_replan);
-}
-
 /** Semantic replans: 12 boxes inserted per run, timed by hand. */
 void semanticReplanSettings(benchmark::internal::Benchmark* b)
 {
@@ -483,18 +434,6 @@ BENCHMARK(BM_CnnRepairBoxRemoved_1000)->Apply(repairSettings);
 BENCHMARK(BM_CnnRepairBoxAddedNoRect_1000)->Apply(repairSettings);
 BENCHMARK(BM_CnnRepairBoxOnPathAdded_1000)->Apply(repairSettings);
 BENCHMARK(BM_CnnRepairBoxOnPathRemoved_1000)->Apply(repairSettings);
-BENCHMARK(BM_SemanticReplanOnPathScratch_1000)->Apply(semanticReplanSettings);
-BENCHMARK(BM_SemanticReplanOnPathIncremental_1000)
-    ->Apply(semanticReplanSettings);
-BENCHMARK(BM_SemanticReplanOnPathShared_1000)->Apply(semanticReplanSettings);
-BENCHMARK(BM_SemanticReplanRandomScratch_1000)->Apply(semanticReplanSettings);
-BENCHMARK(BM_SemanticReplanRandomIncremental_1000)
-    ->Apply(semanticReplanSettings);
-BENCHMARK(BM_SemanticReplanRandomShared_1000)->Apply(semanticReplanSettings);
-BENCHMARK(BM_SemanticReplanRandomLabelScratch_1000)
-    ->Apply(semanticReplanSettings);
-BENCHMARK(BM_SemanticReplanRandomLabelShared_1000)
-    ->Apply(semanticReplanSettings);
 BENCHMARK(BM_TraversabilityShortest_1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TraversabilitySafe_1000)->Unit(benchmark::kMillisecond);
 
@@ -578,6 +517,36 @@ int main(int argc, char** argv)
 	    "cells blocked (C-space, robot radius 0.2 m)\n",
 	    m.geometry.cols, m.geometry.rows, m.geometry.maxX(), m.geometry.maxY(),
 	    m.boxes, 100.0 * m.u.blockedCount() / m.geometry.cellCount());
+	// SemanticPlanner replans: where the boxes go, how it replans, the goal.
+	const struct
+	{
+		const char* name;
+		bool onPath;
+		Replan mode;
+		bool toLabel;
+	} replans[] = {
+	    {"BM_SemanticReplanOnPathScratch_1000", true, Replan::Scratch, false},
+	    {"BM_SemanticReplanOnPathIncremental_1000", true, Replan::Incremental,
+	     false},
+	    {"BM_SemanticReplanOnPathShared_1000", true, Replan::Shared, false},
+	    {"BM_SemanticReplanRandomScratch_1000", false, Replan::Scratch, false},
+	    {"BM_SemanticReplanRandomIncremental_1000", false, Replan::Incremental,
+	     false},
+	    {"BM_SemanticReplanRandomShared_1000", false, Replan::Shared, false},
+	    {"BM_SemanticReplanRandomLabelScratch_1000", false, Replan::Scratch,
+	     true},
+	    {"BM_SemanticReplanRandomLabelShared_1000", false, Replan::Shared,
+	     true}};
+	for (const auto& r : replans)
+		benchmark::RegisterBenchmark(
+		    r.name,
+		    [r](benchmark::State& st)
+		    {
+			    test::runSemanticReplan(
+			        st, office1000(), r.onPath, r.mode, r.toLabel, r.name,
+			        g_replan);
+		    })
+		    ->Apply(semanticReplanSettings);
 	SummaryReporter rep;
 	benchmark::RunSpecifiedBenchmarks(&rep);
 	std::printf("\nsummary (median real time when repetitions are used):\n");
