@@ -7,15 +7,21 @@
 // kind. The incremental repair (CnnPlanner::repairField) of a 1 m x 1 m box
 // added to (or removed from) the map runs against the full field in the
 // same run, on 16 random free spots and on 8 spots along the start-goal
-// path. Run with
+// path. SemanticPlanner replans after a 1 m x 1 m box is inserted into a
+// SemanticMap of the same office (SemanticMap::insert of a sweep seeing it),
+// on the current path or at random free spots, incrementally (cached u,
+// goals and field, repaired) against from scratch (u, goals and field
+// rebuilt), in the same run. Run with
 //   bench_planner --benchmark_repetitions=5
 //   --benchmark_report_aggregates_only=true
 // A summary (time ratios, path costs) is printed at the end.
 #include <benchmark/benchmark.h>
 #include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/nav/planners/PlannerSimple2D.h>
+#include <semnav/map/SemanticMap.h>
 #include <semnav/planning/CnnPlanner.h>
 #include <semnav/planning/DijkstraPlanner.h>
+#include <semnav/planning/SemanticPlanner.h>
 #include <semnav/planning/TraversabilityBuilder.h>
 
 #include <algorithm>
@@ -27,127 +33,16 @@
 #include <numeric>
 #include <random>
 
+#include "OfficeGrid.h"
+#include "SemanticReplanBench.h"
+
 using namespace semnav;
+using semnav::test::makeOffice;
+using semnav::test::OfficeMap;
+using semnav::test::Replan;
 
 namespace
 {
-struct OfficeMap
-{
-	GridGeometry geometry;
-	std::vector<CellOccupancy> occupancy;
-	TraversabilityGrid u;
-	GoalLayer goals;
-	CellIndex start, goal;
-	std::size_t boxes = 0;
-};
-
-/** Square office of `rooms` x `rooms` rooms of `room` cells, 10 cm walls,
- * 1 m doors (a random spanning tree of the rooms plus extra doors), boxes
- * of 0.3-1.5 m kept 1.2 m away from doors, start and goal. */
-std::unique_ptr<OfficeMap> makeOffice(int rooms, int room, int nBoxes)
-{
-	auto m = std::make_unique<OfficeMap>();
-	const int n = rooms * room;
-	m->geometry = GridGeometry(0.05, 0, 0, n, n);
-	const auto& g = m->geometry;
-	m->occupancy.assign(g.cellCount(), CellOccupancy::Free);
-	const auto fill = [&](int r0, int c0, int r1, int c1)
-	{
-		for (int r = std::max(0, r0); r < std::min(n, r1); r++)
-			for (int c = std::max(0, c0); c < std::min(n, c1); c++)
-				m->occupancy[g.index(r, c)] = CellOccupancy::Occupied;
-	};
-	const auto clear = [&](int r0, int c0, int r1, int c1)
-	{
-		for (int r = std::max(0, r0); r < std::min(n, r1); r++)
-			for (int c = std::max(0, c0); c < std::min(n, c1); c++)
-				m->occupancy[g.index(r, c)] = CellOccupancy::Free;
-	};
-	const int wall = 2, door = 20;
-	fill(0, 0, wall, n);
-	fill(n - wall, 0, n, n);
-	fill(0, 0, n, wall);
-	fill(0, n - wall, n, n);
-	for (int k = 1; k < rooms; k++)
-	{
-		fill(k * room - 1, 0, k * room + 1, n);
-		fill(0, k * room - 1, n, k * room + 1);
-	}
-
-	std::mt19937_64 rng(20240607);
-	// Doors: Kruskal spanning tree over the rooms, plus 30 % extra doors.
-	struct Edge
-	{
-		int a, b;
-	};
-	std::vector<Edge> edges;
-	for (int i = 0; i < rooms; i++)
-		for (int j = 0; j < rooms; j++)
-		{
-			if (j + 1 < rooms)
-				edges.push_back({i * rooms + j, i * rooms + j + 1});
-			if (i + 1 < rooms)
-				edges.push_back({i * rooms + j, (i + 1) * rooms + j});
-		}
-	std::shuffle(edges.begin(), edges.end(), rng);
-	std::vector<int> parent(rooms * rooms);
-	std::iota(parent.begin(), parent.end(), 0);
-	std::function<int(int)> root = [&](int a)
-	{ return parent[a] == a ? a : parent[a] = root(parent[a]); };
-	std::uniform_real_distribution<double> U(0, 1);
-	std::vector<std::pair<int, int>> doorCentres;
-	for (const auto& e : edges)
-	{
-		const bool tree = root(e.a) != root(e.b);
-		if (!tree && U(rng) > 0.3) continue;
-		parent[root(e.a)] = root(e.b);
-		const int ia = e.a / rooms, ja = e.a % rooms;
-		const int off = 10 + static_cast<int>(U(rng) * (room - door - 20));
-		if (e.b == e.a + 1)  // vertical wall at column (ja + 1) * room
-		{
-			const int c = (ja + 1) * room, r = ia * room + off;
-			clear(r, c - 1, r + door, c + 1);
-			doorCentres.push_back({r + door / 2, c});
-		}
-		else
-		{
-			const int r = (ia + 1) * room, c = ja * room + off;
-			clear(r - 1, c, r + 1, c + door);
-			doorCentres.push_back({r, c + door / 2});
-		}
-	}
-
-	m->start = {room / 2, room / 2};
-	m->goal = {n - room / 2, n - room / 2};
-	const auto near = [](int r0, int c0, int r1, int c1, int pr, int pc, int d)
-	{ return pr >= r0 - d && pr < r1 + d && pc >= c0 - d && pc < c1 + d; };
-	for (int attempt = 0;
-	     attempt < 100 * nBoxes && m->boxes < static_cast<std::size_t>(nBoxes);
-	     attempt++)
-	{
-		const int h = 6 + static_cast<int>(U(rng) * 24);
-		const int w = 6 + static_cast<int>(U(rng) * 24);
-		const int r0 = static_cast<int>(U(rng) * (n - h));
-		const int c0 = static_cast<int>(U(rng) * (n - w));
-		bool ok =
-		    !near(r0, c0, r0 + h, c0 + w, m->start.row, m->start.col, 30) &&
-		    !near(r0, c0, r0 + h, c0 + w, m->goal.row, m->goal.col, 30);
-		for (const auto& [dr, dc] : doorCentres)
-			ok = ok && !near(r0, c0, r0 + h, c0 + w, dr, dc, 24);
-		if (!ok) continue;
-		fill(r0, c0, r0 + h, c0 + w);
-		m->boxes++;
-	}
-
-	TraversabilityBuilder::TOptions o;
-	o.robotRadius = 0.2;
-	m->u = TraversabilityBuilder(o).build(
-	    g, {}, m->occupancy, CostProfile::Shortest);
-	m->goals = GoalLayer(g);
-	m->goals.addCell(m->goal);
-	return m;
-}
-
 const OfficeMap& office1000()
 {
 	static const auto m = makeOffice(10, 100, 400);
@@ -161,6 +56,8 @@ const OfficeMap& office250()
 
 /** Path costs and iteration counts reported in the summary. */
 std::map<std::string, double> g_figures;
+/** The SemanticPlanner replans' times and counts. */
+test::ReplanRecord g_replan;
 
 CnnPlanner cnn(CnnSchedule s, int threads)
 {
@@ -506,6 +403,12 @@ void BM_TraversabilitySafe_1000(benchmark::State& st)
 		    b.build(m.geometry, {}, m.occupancy, CostProfile::Safe));
 }
 
+/** Semantic replans: 12 boxes inserted per run, timed by hand. */
+void semanticReplanSettings(benchmark::internal::Benchmark* b)
+{
+	b->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(12);
+}
+
 /** Repairs: 64 iterations (4 or 8 per spot), timed by hand. */
 void repairSettings(benchmark::internal::Benchmark* b)
 {
@@ -614,6 +517,36 @@ int main(int argc, char** argv)
 	    "cells blocked (C-space, robot radius 0.2 m)\n",
 	    m.geometry.cols, m.geometry.rows, m.geometry.maxX(), m.geometry.maxY(),
 	    m.boxes, 100.0 * m.u.blockedCount() / m.geometry.cellCount());
+	// SemanticPlanner replans: where the boxes go, how it replans, the goal.
+	const struct
+	{
+		const char* name;
+		bool onPath;
+		Replan mode;
+		bool toLabel;
+	} replans[] = {
+	    {"BM_SemanticReplanOnPathScratch_1000", true, Replan::Scratch, false},
+	    {"BM_SemanticReplanOnPathIncremental_1000", true, Replan::Incremental,
+	     false},
+	    {"BM_SemanticReplanOnPathShared_1000", true, Replan::Shared, false},
+	    {"BM_SemanticReplanRandomScratch_1000", false, Replan::Scratch, false},
+	    {"BM_SemanticReplanRandomIncremental_1000", false, Replan::Incremental,
+	     false},
+	    {"BM_SemanticReplanRandomShared_1000", false, Replan::Shared, false},
+	    {"BM_SemanticReplanRandomLabelScratch_1000", false, Replan::Scratch,
+	     true},
+	    {"BM_SemanticReplanRandomLabelShared_1000", false, Replan::Shared,
+	     true}};
+	for (const auto& r : replans)
+		benchmark::RegisterBenchmark(
+		    r.name,
+		    [r](benchmark::State& st)
+		    {
+			    test::runSemanticReplan(
+			        st, office1000(), r.onPath, r.mode, r.toLabel, r.name,
+			        g_replan);
+		    })
+		    ->Apply(semanticReplanSettings);
 	SummaryReporter rep;
 	benchmark::RunSpecifiedBenchmarks(&rep);
 	std::printf("\nsummary (median real time when repetitions are used):\n");
@@ -664,6 +597,25 @@ int main(int argc, char** argv)
 		for (const auto& r : repairs)
 			printRepairs(r.what, r.name, r.spots, full->second);
 	}
+	for (const char* where : {"OnPath", "Random", "RandomLabel"})
+		for (const char* how : {"Incremental", "Shared"})
+			printRatio(
+			    rep,
+			    (std::string("SemanticPlanner ") + where + ": scratch / " + how)
+			        .c_str(),
+			    std::string("BM_SemanticReplan") + where + "Scratch_1000",
+			    std::string("BM_SemanticReplan") + where + how + "_1000");
+	const auto median = [](std::vector<double> t)
+	{
+		std::sort(t.begin(), t.end());
+		return t.empty() ? 0.0
+		                 : 0.5 * (t[(t.size() - 1) / 2] + t[t.size() / 2]);
+	};
+	for (const auto& [name, v] : g_replan.replanMs)
+		std::printf(
+		    "  %-42s replan median %6.2f ms, planner's own part %6.2f ms\n",
+		    name.c_str(), median(v), median(g_replan.refreshMs[name]));
+	g_figures.insert(g_replan.figures.begin(), g_replan.figures.end());
 	for (const auto& [k, v] : g_figures)
 		std::printf("  %-50s %.6f\n", k.c_str(), v);
 	const auto c = g_figures.find("BM_CnnSweep_1000 cost");

@@ -7,6 +7,8 @@
 #include <semnav/common/Error.h>
 #include <semnav/map/SemanticMap.h>
 
+#include <utility>
+
 #include "../common/SavedAndLoaded.h"
 #include "MapTestUtils.h"
 
@@ -589,4 +591,73 @@ TEST(TravelCostModel, FollowsTheLabels)
 	EXPECT_DOUBLE_EQ(
 	    wheeled.cost(LabelSet(), NAN, Occ::Unknown), o.unknownCost);
 	EXPECT_DOUBLE_EQ(wheeled.cost(LabelSet(), NAN, Occ::Free), 0.0);
+}
+
+TEST(SemanticMap, ChangesSinceBoundWhatAnInsertionChanged)
+{
+	SemanticMap m;
+	const auto f0 = makeFakeSweep(floorFan(3.0));
+	m.insert(f0.sweep, f0.labeled, mrpt::poses::CPose2D(0, 0, 0));
+	const auto& g = m.geometry();
+	// Each cell's state, labels, cost and object id.
+	const auto snapshot = [&]
+	{
+		std::vector<float> s;
+		for (int cy = 0; cy < g.rows; cy++)
+			for (int cx = 0; cx < g.cols; cx++)
+				s.insert(
+				    s.end(), {static_cast<float>(m.cellState(cx, cy)),
+				              static_cast<float>(m.labels(cx, cy).mask()),
+				              static_cast<float>(m.cost(cx, cy)),
+				              static_cast<float>(m.objectId(cx, cy))});
+		return s;
+	};
+	const auto before = snapshot();
+	const std::uint64_t v = m.version();
+	EXPECT_TRUE(m.changesSince(v).none());
+	// A box 1 m ahead of a robot turned left: inside the grid, no growth.
+	auto pts = floorFan(1.5);
+	for (double y = -0.2; y <= 0.2; y += 0.02)
+		pts.push_back({1.0, y, 0.3, Label::Obstacle});
+	const auto f1 = makeFakeSweep(pts);
+	const GridGeometry g0 = g;
+	m.insert(f1.sweep, f1.labeled, mrpt::poses::CPose2D(1.0, 0.0, 0.5));
+	ASSERT_TRUE(m.geometry() == g0);
+	const auto after = snapshot();
+	const SemanticMap::Changes c = m.changesSince(v);
+	ASSERT_FALSE(c.all);
+	std::size_t changed = 0;
+	for (int cy = 0; cy < g.rows; cy++)
+		for (int cx = 0; cx < g.cols; cx++)
+			for (int k = 0; k < 4; k++)
+			{
+				const std::size_t i = 4 * g.index(cy, cx) + k;
+				if (before[i] == after[i]) continue;
+				changed++;
+				EXPECT_TRUE(c.cells.contains(cy, cx)) << cx << ", " << cy;
+			}
+	EXPECT_GT(changed, 0u);
+	EXPECT_LT(
+	    static_cast<std::size_t>(c.cells.row1 - c.cells.row0) *
+	        (c.cells.col1 - c.cells.col0),
+	    g.cellCount() / 2);
+	// Costs recomputed only where the sweep touched: as everywhere.
+	const std::vector<float> cost = std::as_const(m).get("cost");
+	m.updateCosts();
+	EXPECT_EQ(std::as_const(m).get("cost"), cost);
+	// Writes through accessors, growth and old versions: everything.
+	const std::uint64_t v2 = m.version();
+	m.get("labels");
+	EXPECT_TRUE(m.changesSince(v2).all);
+	EXPECT_FALSE(m.changesSince(m.version()).all);
+	m.markChanged({1, 2, 3, 4});
+	const auto one = m.changesSince(m.version() - 1);
+	EXPECT_FALSE(one.all);
+	EXPECT_EQ(one.cells.row0, 1);
+	EXPECT_EQ(one.cells.col1, 4);
+	for (std::size_t k = 0; k <= SemanticMap::kChangeHistory; k++)
+		m.markChanged({0, 0, 1, 1});
+	EXPECT_TRUE(m.changesSince(v2).all);
+	m.growToInclude(-20, -20, 20, 20);
+	EXPECT_TRUE(m.changesSince(m.version() - 1).all);
 }

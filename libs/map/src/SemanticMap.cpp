@@ -170,8 +170,62 @@ const std::vector<float>& SemanticMap::get(const std::string& layer) const
 
 std::vector<float>& SemanticMap::get(const std::string& layer)
 {
-	return const_cast<std::vector<float>&>(
+	auto& v = const_cast<std::vector<float>&>(
 	    static_cast<const SemanticMap*>(this)->get(layer));
+	markAllChanged();
+	return v;
+}
+
+std::vector<float>& SemanticMap::layer(const char* name)
+{
+	return const_cast<std::vector<float>&>(
+	    static_cast<const SemanticMap*>(this)->get(name));
+}
+
+SemanticMap::Changes SemanticMap::changesSince(std::uint64_t version) const
+{
+	Changes c;
+	if (version > m_version || version < m_historyStart)
+	{
+		c.all = true;
+		return c;
+	}
+	for (auto it = m_changes.rbegin();
+	     it != m_changes.rend() && it->version > version; ++it)
+	{
+		if (it->all)
+		{
+			c.all = true;
+			return c;
+		}
+		c.cells = c.cells.united(it->cells);
+	}
+	c.cells = c.cells.clipped(m_geometry);
+	if (c.cells.empty()) c.cells = CellRect();
+	return c;
+}
+
+void SemanticMap::markChanged(const CellRect& cells)
+{
+	m_changes.push_back({++m_version, false, cells});
+	while (m_changes.size() > kChangeHistory)
+	{
+		m_historyStart = m_changes.front().version;
+		m_changes.pop_front();
+	}
+}
+
+void SemanticMap::markAllChanged()
+{
+	m_costsCurrent = false;
+	// Repeated writes through accessors share one entry.
+	if (!m_changes.empty() && m_changes.back().all)
+	{
+		m_changes.back().version = ++m_version;
+		return;
+	}
+	markChanged(CellRect());
+	m_changes.back().all = true;
 }
 
 std::vector<std::string> SemanticMap::layers() const
@@ -193,7 +247,28 @@ double SemanticMap::occupancy(int cx, int cy) const
 
 SemanticMap::CellState SemanticMap::cellState(int cx, int cy) const
 {
-	if (at(kObservations, cx, cy) <= 0) return CellState::Unknown;
+	return stateOf(at(kObservations, cx, cy), cx, cy);
+}
+
+std::vector<SemanticMap::CellState> SemanticMap::cellStates(
+    const CellRect& cells) const
+{
+	const CellRect r = cells.clipped(m_geometry);
+	std::vector<CellState> out;
+	if (r.empty()) return out;
+	out.reserve(static_cast<std::size_t>(r.row1 - r.row0) * (r.col1 - r.col0));
+	const auto& observations = get(kObservations);
+	for (int cy = r.row0; cy < r.row1; cy++)
+		for (int cx = r.col0; cx < r.col1; cx++)
+			out.push_back(
+			    stateOf(observations[m_geometry.index(cy, cx)], cx, cy));
+	return out;
+}
+
+SemanticMap::CellState SemanticMap::stateOf(
+    float observations, int cx, int cy) const
+{
+	if (observations <= 0) return CellState::Unknown;
 	const double p = occupancy(cx, cy);
 	if (p >= m_options.occupiedThreshold) return CellState::Occupied;
 	if (p <= m_options.freeThreshold) return CellState::Free;
@@ -271,26 +346,45 @@ void SemanticMap::growToInclude(
 	}
 	m_occupancy = std::move(grid);
 	m_geometry = g;
+	markAllChanged();
 }
 
 void SemanticMap::updateCosts()
 {
-	auto& cost = get(kCost);
-	const auto& labels = get(kLabels);
-	const auto& rough = get(kRoughness);
+	updateCosts(CellRect::all(m_geometry));
+}
+
+void SemanticMap::updateCosts(const CellRect& cells)
+{
+	CellRect changed;
+	updateCostsIn(cells, changed);
+	const CellRect c = cells.clipped(m_geometry);
+	markChanged(changed);
+	if (c.row0 == 0 && c.col0 == 0 && c.row1 == m_geometry.rows &&
+	    c.col1 == m_geometry.cols)
+		m_costsCurrent = true;
+}
+
+void SemanticMap::updateCostsIn(const CellRect& cells, CellRect& changed)
+{
+	auto& cost = layer(kCost);
+	const auto& labels = layer(kLabels);
+	const auto& rough = layer(kRoughness);
+	const auto& observations = layer(kObservations);
+	const CellRect box = cells.clipped(m_geometry);
 	const bool walking =
 	    m_costModel.options().robotType == TravelCostModel::RobotType::Walking;
 	// Walking-only classes (stairs) are solid to the laser; a walking robot
 	// climbs them.
 	const LabelSet climbable = ClassRegistry::instance().select(
 	    [](const ClassInfo& c) { return c.walkingOnly; });
-	for (int cy = 0; cy < m_geometry.rows; cy++)
-		for (int cx = 0; cx < m_geometry.cols; cx++)
+	for (int cy = box.row0; cy < box.row1; cy++)
+		for (int cx = box.col0; cx < box.col1; cx++)
 		{
 			const std::size_t i = m_geometry.index(cy, cx);
 			const LabelSet ls(static_cast<LabelSet::mask_t>(labels[i]));
 			auto occ = TravelCostModel::Occupancy::Unknown;
-			switch (cellState(cx, cy))
+			switch (stateOf(observations[i], cx, cy))
 			{
 				case CellState::Occupied:
 					occ = walking && (ls.mask() & climbable.mask()) != 0
@@ -303,7 +397,11 @@ void SemanticMap::updateCosts()
 				default:
 					break;
 			}
-			cost[i] = static_cast<float>(m_costModel.cost(ls, rough[i], occ));
+			const auto c =
+			    static_cast<float>(m_costModel.cost(ls, rough[i], occ));
+			// NaN-safe: a cost that was NaN counts as changed.
+			if (!(cost[i] == c)) changed.add(cy, cx);
+			cost[i] = c;
 		}
 }
 
@@ -430,16 +528,21 @@ int SemanticMap::addInstance(
 	    0.5 * (minCorner.z + maxCorner.z)};
 	o.observations = observations;
 	o.views = observations;
-	auto& objs = get(kObjects);
+	auto& objs = layer(kObjects);
+	CellRect painted;
 	for (int cy = 0; cy < m_geometry.rows; cy++)
 		for (int cx = 0; cx < m_geometry.cols; cx++)
 		{
 			const double x = m_geometry.centerX(cx), y = m_geometry.centerY(cy);
 			if (x >= minCorner.x && x <= maxCorner.x && y >= minCorner.y &&
 			    y <= maxCorner.y)
+			{
 				objs[m_geometry.index(cy, cx)] = static_cast<float>(o.id);
+				painted.add(cy, cx);
+			}
 		}
 	m_instances.push_back(o);
+	markChanged(painted);
 	return o.id;
 }
 
@@ -517,6 +620,7 @@ void SemanticMap::restore(
 		    m_occupancy.getRow(cy));
 	m_instances = std::move(objs);
 	m_sweeps = sweeps;
+	markAllChanged();
 }
 
 }  // namespace semnav

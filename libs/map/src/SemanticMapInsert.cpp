@@ -90,6 +90,11 @@ struct SemanticMap::SweepEvidence
 	int rows, cols;
 	/** Cell index of each pixel (-1: none). */
 	std::vector<int> cellOfPixel;
+	/** Cells whose labels, roughness or occupancy were updated (their cost
+	 * is recomputed). */
+	CellRect touched;
+	/** Cells whose state, labels, cost or object id changed. */
+	CellRect changed;
 };
 
 void SemanticMap::insert(
@@ -124,8 +129,13 @@ void SemanticMap::insert(
 		m_octree->updateInnerOccupancy();
 	}
 
-	updateCosts();
+	// Costs only where this sweep touched, unless the layers may have been
+	// written (or loaded) since the last full update.
+	updateCostsIn(
+	    m_costsCurrent ? e.touched : CellRect::all(m_geometry), e.changed);
+	m_costsCurrent = true;
 	m_sweeps++;
+	markChanged(e.changed);
 }
 
 std::vector<SemanticMap::WorldPoint> SemanticMap::worldPoints(
@@ -170,8 +180,8 @@ void SemanticMap::accumulatePoints(
 	    registry.select([](const ClassInfo& c) { return c.ground; });
 	const LabelSet overhead =
 	    registry.select([](const ClassInfo& c) { return c.overhead; });
-	auto& labelLayer = get("labels");
-	auto& stairsLayer = get(kStairsSweeps);
+	auto& labelLayer = layer("labels");
+	auto& stairsLayer = layer(kStairsSweeps);
 	std::vector<uint8_t> stairsHere(g.cellCount(), 0);
 	for (const auto& p : pts)
 	{
@@ -186,6 +196,11 @@ void SemanticMap::accumulatePoints(
 		{
 			LabelSet s(static_cast<LabelSet::mask_t>(labelLayer[i]));
 			s.insert(l);
+			if (labelLayer[i] != static_cast<float>(s.mask()))
+			{
+				e.touched.add(cy, cx);
+				e.changed.add(cy, cx);
+			}
 			labelLayer[i] = static_cast<float>(s.mask());
 			if (l == Label::Stairs && !stairsHere[i])
 			{
@@ -252,24 +267,23 @@ void SemanticMap::markSeenFree(
 		}
 }
 
-void SemanticMap::updateCells(const SweepEvidence& e)
+void SemanticMap::updateCells(SweepEvidence& e)
 {
 	const GridGeometry& g = m_geometry;
-	auto& roughLayer = get("roughness");
-	auto& obsLayer = get("observations");
+	auto& roughLayer = layer("roughness");
+	auto& obsLayer = layer("observations");
 	const float pHit = static_cast<float>(m_options.hitProbability);
 	const float pFree = static_cast<float>(m_options.freeProbability);
 	for (int cy = 0; cy < g.rows; cy++)
 		for (int cx = 0; cx < g.cols; cx++)
 		{
 			const std::size_t i = g.index(cy, cx);
-			if (e.hit[i])
-				m_occupancy.updateCell(cx, cy, pHit);
-			else if (e.seenFree[i])
-				m_occupancy.updateCell(cx, cy, pFree);
-			else
-				continue;
+			if (!e.hit[i] && !e.seenFree[i]) continue;
+			const CellState before = stateOf(obsLayer[i], cx, cy);
+			m_occupancy.updateCell(cx, cy, e.hit[i] ? pHit : pFree);
 			obsLayer[i] += 1;
+			e.touched.add(cy, cx);
+			if (stateOf(obsLayer[i], cx, cy) != before) e.changed.add(cy, cx);
 			if (e.roughN[i])
 			{
 				const float mean = e.roughSum[i] / e.roughN[i];
@@ -280,25 +294,27 @@ void SemanticMap::updateCells(const SweepEvidence& e)
 }
 
 void SemanticMap::paintObject(
-    const SweepEvidence& e, int id, const cv::Rect& box,
+    SweepEvidence& e, int id, const cv::Rect& box,
     const std::function<bool(int, int)>& belongs)
 {
-	auto& objLayer = get("objects");
+	auto& objLayer = layer("objects");
 	const cv::Rect clip = box & cv::Rect(0, 0, e.cols, e.rows);
 	for (int r = clip.y; r < clip.y + clip.height; r++)
 		for (int c = clip.x; c < clip.x + clip.width; c++)
 		{
 			const int i =
 			    e.cellOfPixel[static_cast<std::size_t>(r) * e.cols + c];
-			if (i >= 0 && belongs(r, c))
-				objLayer[static_cast<std::size_t>(i)] = static_cast<float>(id);
+			if (i < 0 || !belongs(r, c)) continue;
+			float& cell = objLayer[static_cast<std::size_t>(i)];
+			if (cell != static_cast<float>(id))
+				e.changed.add(i / m_geometry.cols, i % m_geometry.cols);
+			cell = static_cast<float>(id);
 		}
 }
 
 void SemanticMap::insertDetections(
-    const LabeledSweep& ls, const mrpt::poses::CPose3D& robot,
-    const SweepEvidence& e, std::vector<int>& seenThisSweep,
-    std::vector<int>& viewedThisSweep)
+    const LabeledSweep& ls, const mrpt::poses::CPose3D& robot, SweepEvidence& e,
+    std::vector<int>& seenThisSweep, std::vector<int>& viewedThisSweep)
 {
 	for (const auto& d : ls.detections)
 	{
@@ -332,8 +348,8 @@ void SemanticMap::insertDetections(
 }
 
 void SemanticMap::insertRegions(
-    const LabeledSweep& ls, const mrpt::poses::CPose3D& robot,
-    const SweepEvidence& e, std::vector<int>& seenThisSweep)
+    const LabeledSweep& ls, const mrpt::poses::CPose3D& robot, SweepEvidence& e,
+    std::vector<int>& seenThisSweep)
 {
 	const auto& registry = ClassRegistry::instance();
 	for (const auto& reg : ls.regions)

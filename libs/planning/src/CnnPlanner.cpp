@@ -135,8 +135,14 @@ CellIndex CnnPlanner::startCell(const GridGeometry& g, double x, double y)
 void CnnPlanner::checkInputs(
     const TraversabilityGrid& u, const GoalLayer& goals, const CellIndex& start)
 {
+	checkSameGeometry(u.geometry(), goals.geometry());
+	checkStart(u, start);
+	if (traversableGoals(u, goals) == 0) throwEmptyGoals(goals);
+}
+
+void CnnPlanner::checkStart(const TraversabilityGrid& u, const CellIndex& start)
+{
 	const auto& g = u.geometry();
-	checkSameGeometry(g, goals.geometry());
 	if (!g.contains(start))
 		throw StartOutsideMapError(
 		    "start cell [row " + std::to_string(start.row) + ", col " +
@@ -146,7 +152,6 @@ void CnnPlanner::checkInputs(
 		throw StartBlockedError(
 		    "start " + cellText(g, start) +
 		    " is blocked (obstacle or within the robot radius of one)");
-	if (traversableGoals(u, goals) == 0) throwEmptyGoals(goals);
 }
 
 DiffusionField CnnPlanner::computeField(
@@ -252,9 +257,17 @@ PlannedPath CnnPlanner::extractPath(
     const DiffusionField& field, const TraversabilityGrid& u,
     const GoalLayer& goals, const CellIndex& start)
 {
-	const auto& g = u.geometry();
 	checkInputs(u, goals, start);
+	return tracePath(field, u, goals, start);
+}
+
+PlannedPath CnnPlanner::tracePath(
+    const DiffusionField& field, const TraversabilityGrid& u,
+    const GoalLayer& goals, const CellIndex& start)
+{
+	const auto& g = u.geometry();
 	checkSameGeometry(g, field.geometry);
+	checkSameGeometry(g, goals.geometry());
 	if (!field.reached(start))
 		throw NoPathError(
 		    "no path from " + cellText(g, start) + " to any of " +

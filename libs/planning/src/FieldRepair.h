@@ -3,7 +3,7 @@
 // CnnPlanner::repairField).
 #pragma once
 
-#include <semnav/planning/CellRect.h>
+#include <semnav/common/CellRect.h>
 #include <semnav/planning/FieldRepairStats.h>
 #include <semnav/planning/GoalLayer.h>
 #include <semnav/planning/TraversabilityGrid.h>

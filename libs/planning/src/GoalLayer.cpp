@@ -110,6 +110,16 @@ std::size_t GoalLayer::addRegionAround(
 	return added;
 }
 
+void GoalLayer::setId(std::size_t i, int id)
+{
+	if (id < 0)
+		throw PlanningError(
+		    "goal id must be >= 0 (got " + std::to_string(id) + ")");
+	if (m_id[i] != 0) m_count--;
+	if (id != 0) m_count++;
+	m_id[i] = id;
+}
+
 void GoalLayer::clear()
 {
 	std::fill(m_id.begin(), m_id.end(), 0);

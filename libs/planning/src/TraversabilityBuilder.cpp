@@ -355,6 +355,17 @@ TraversabilityBuilder::inflationSources(
 	return sources;
 }
 
+int TraversabilityBuilder::reachCells(CostProfile profile, double res) const
+{
+	float scale = 1;
+	for (const double s : m_options.labelRadiusScale)
+		scale = std::max(scale, static_cast<float>(s));
+	int reach = 0;
+	for (const auto& t : influenceStencil(scale, profile, res))
+		reach = std::max({reach, std::abs(t.dr), std::abs(t.dc)});
+	return reach + 1;
+}
+
 std::vector<TraversabilityBuilder::StencilTap>
 TraversabilityBuilder::influenceStencil(
     float s, CostProfile profile, double res) const

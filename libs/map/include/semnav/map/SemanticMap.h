@@ -6,12 +6,15 @@
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/system/COutputLogger.h>
+#include <semnav/common/CellRect.h>
 #include <semnav/common/ClassRegistry.h>
 #include <semnav/common/GridGeometry.h>
 #include <semnav/common/LabelSet.h>
 #include <semnav/map/ObjectInstance.h>
 #include <semnav/map/TravelCostModel.h>
 
+#include <cstdint>
+#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
@@ -181,11 +184,14 @@ public:
 	void add(const std::string& layer, float value = 0.0f);
 	/** Throws Error if the layer does not exist. */
 	const std::vector<float>& get(const std::string& layer) const;
+	/** Write access: counts as a change of the whole map (see
+	 * changesSince()). */
 	std::vector<float>& get(const std::string& layer);
 	float at(const std::string& layer, int cx, int cy) const
 	{
 		return get(layer)[m_geometry.index(cy, cx)];
 	}
+	/** Write access: counts as a change of the whole map. */
 	float& at(const std::string& layer, int cx, int cy)
 	{
 		return get(layer)[m_geometry.index(cy, cx)];
@@ -201,12 +207,49 @@ public:
 	/** Occupancy probability (0.5 for a cell never seen). */
 	double occupancy(int cx, int cy) const;
 	CellState cellState(int cx, int cy) const;
+	/** cellState() of the cells of `cells` (clipped to the grid), row by
+	 * row. */
+	std::vector<CellState> cellStates(const CellRect& cells) const;
 
 	const mrpt::maps::COccupancyGridMap2D& occupancyGrid() const
 	{
 		return m_occupancy;
 	}
-	mrpt::maps::COccupancyGridMap2D& occupancyGrid() { return m_occupancy; }
+	/** Write access: counts as a change of the whole map. */
+	mrpt::maps::COccupancyGridMap2D& occupancyGrid()
+	{
+		markAllChanged();
+		return m_occupancy;
+	}
+
+	// ---- change tracking ------------------------------------------------
+	/** What may have changed between two versions: the cells whose state
+	 * (cellState()), labels, cost or object id changed (their bounding
+	 * box), or the whole map. Other layers (observation counts, roughness,
+	 * log-odds within a state) are not tracked; object instances
+	 * (reported or not, footprints) may change with any version. */
+	struct Changes
+	{
+		/** Anything (the grid grew, was restored or written through a
+		 * non-const accessor, or the version is too old to know). */
+		bool all = false;
+		/** Rows and columns of the current grid; meaningless when all. */
+		CellRect cells;
+		bool none() const { return !all && cells.empty(); }
+	};
+	/** Increases with every change of the contents: insert(),
+	 * addInstance(), updateCosts(), restore(), growth, and every call of a
+	 * non-const accessor (get(), at(), occupancyGrid()). */
+	std::uint64_t version() const { return m_version; }
+	/** Changes since `version` (a value of version()); cheap: the last
+	 * kChangeHistory changes are kept, older versions give all. */
+	Changes changesSince(std::uint64_t version) const;
+	/** Records a change of these cells (e.g. writes through a reference a
+	 * non-const accessor returned before the last version() was taken). */
+	void markChanged(const CellRect& cells);
+	/** Records a change of the whole map. */
+	void markAllChanged();
+	static constexpr std::size_t kChangeHistory = 64;
 
 	// ---- insertion ------------------------------------------------------
 	/** Inserts a classified sweep taken at `robotPose` (world frame). */
@@ -216,6 +259,10 @@ public:
 	/** Recomputes the cost layer of every cell from its labels, roughness
 	 * and occupancy. */
 	void updateCosts();
+	/** The same inside `cells`, recording the cells whose cost changed
+	 * (after writing labels or occupancy there: record those with
+	 * markChanged()). */
+	void updateCosts(const CellRect& cells);
 	std::size_t sweepsInserted() const { return m_sweeps; }
 
 	// ---- objects --------------------------------------------------------
@@ -265,6 +312,13 @@ public:
 private:
 	struct WorldPoint;
 	struct SweepEvidence;
+	/** Layer by name, writable, not counted as a change (internal). */
+	std::vector<float>& layer(const char* name);
+	/** updateCosts() inside `cells` (clipped); adds the cells whose cost
+	 * changed to `changed` (the caller records the change). */
+	void updateCostsIn(const CellRect& cells, CellRect& changed);
+	/** cellState() from a cell's observation count. */
+	CellState stateOf(float observations, int cx, int cy) const;
 	/** World points of the sweep's valid pixels; grows the grid to hold
 	 * them and the robot. */
 	std::vector<WorldPoint> worldPoints(
@@ -279,22 +333,22 @@ private:
 	    const Sweep& sweep, const mrpt::poses::CPose3D& robot,
 	    const mrpt::poses::CPose2D& robotPose, SweepEvidence& e) const;
 	/** Occupancy, observation counts and roughness from the evidence. */
-	void updateCells(const SweepEvidence& e);
+	void updateCells(SweepEvidence& e);
 	/** Sets the "objects" layer to `id` in the cells of the pixels in `box`
 	 * for which belongs(row, col). */
 	void paintObject(
-	    const SweepEvidence& e, int id, const cv::Rect& box,
+	    SweepEvidence& e, int id, const cv::Rect& box,
 	    const std::function<bool(int, int)>& belongs);
 	/** Merges the sweep's detections into instances. */
 	void insertDetections(
 	    const LabeledSweep& labeled, const mrpt::poses::CPose3D& robot,
-	    const SweepEvidence& e, std::vector<int>& seenThisSweep,
+	    SweepEvidence& e, std::vector<int>& seenThisSweep,
 	    std::vector<int>& viewedThisSweep);
 	/** Merges the labelled regions of region classes (doors) into
 	 * instances. */
 	void insertRegions(
 	    const LabeledSweep& labeled, const mrpt::poses::CPose3D& robot,
-	    const SweepEvidence& e, std::vector<int>& seenThisSweep);
+	    SweepEvidence& e, std::vector<int>& seenThisSweep);
 	/** Reporting rules of a class: its registry row, with the built-ins'
 	 * configured values. */
 	ClassInfo::Plausibility plausibility(Label l) const;
@@ -323,6 +377,20 @@ private:
 	std::vector<ObjectInstance> m_instances;
 	std::unique_ptr<octomap::OcTree> m_octree;
 	std::size_t m_sweeps = 0;
+	struct Change
+	{
+		std::uint64_t version;
+		bool all;
+		CellRect cells;
+	};
+	std::uint64_t m_version = 0;
+	/** Changes after m_historyStart, oldest first. */
+	std::deque<Change> m_changes;
+	std::uint64_t m_historyStart = 0;
+	/** False when layers may have been written or loaded since the cost
+	 * layer was last recomputed everywhere: the next insert() recomputes
+	 * it everywhere (otherwise only where the sweep touched). */
+	bool m_costsCurrent = true;
 };
 
 }  // namespace semnav

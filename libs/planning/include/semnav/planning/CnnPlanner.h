@@ -3,7 +3,7 @@
 
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/system/COutputLogger.h>
-#include <semnav/planning/CellRect.h>
+#include <semnav/common/CellRect.h>
 #include <semnav/planning/DiffusionField.h>
 #include <semnav/planning/FieldRepairStats.h>
 #include <semnav/planning/GoalLayer.h>
@@ -97,6 +97,9 @@ public:
 	static void checkInputs(
 	    const TraversabilityGrid& u, const GoalLayer& goals,
 	    const CellIndex& start);
+	/** The start checks of checkInputs (StartOutsideMapError,
+	 * StartBlockedError), without the pass over the goals. */
+	static void checkStart(const TraversabilityGrid& u, const CellIndex& start);
 
 	/** Diffusion to the fixed point (eq. (9)-(11)). Throws EmptyGoalError,
 	 * NotConvergedError, PlanningError. */
@@ -151,6 +154,12 @@ public:
 	/** Path by eq. (12) from `start` over a converged field. Throws
 	 * StartOutsideMapError, StartBlockedError, NoPathError. */
 	static PlannedPath extractPath(
+	    const DiffusionField& field, const TraversabilityGrid& u,
+	    const GoalLayer& goals, const CellIndex& start);
+	/** extractPath for a caller that checked the inputs (checkStart and a
+	 * traversable goal): no pass over the grid. Throws NoPathError,
+	 * PlanningError. */
+	static PlannedPath tracePath(
 	    const DiffusionField& field, const TraversabilityGrid& u,
 	    const GoalLayer& goals, const CellIndex& start);
 

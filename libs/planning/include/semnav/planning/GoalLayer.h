@@ -40,6 +40,8 @@ public:
 	std::size_t addRegionAround(
 	    const std::vector<CellIndex>& cells, double distance, int id = 1);
 	void clear();
+	/** Sets the goal id of cell i, replacing any (0: no goal). */
+	void setId(std::size_t i, int id);
 
 	bool isGoal(std::size_t i) const { return m_id[i] != 0; }
 	bool isGoal(const CellIndex& c) const

@@ -133,6 +133,12 @@ public:
 	    double baseLethal, const std::vector<LabelSet>& labels,
 	    const std::vector<CellOccupancy>& occupancy, CostProfile profile) const;
 
+	/** Reach of an input change (cells): a cell's u depends only on the
+	 * inputs (labels, occupancy, base cost) of the cells within this many
+	 * rows and columns of it (the largest inflation stencil, plus one for
+	 * the test that makes an obstacle cell a source). */
+	int reachCells(CostProfile profile, double resolution) const;
+
 	/** Distance (m) from an object's cells within which goal cells are
 	 * placed: robot_radius + the blocked clearance of the profile (scale 1) +
 	 * goal_reach. */
