@@ -263,12 +263,12 @@ const char* SemanticNavigator::replanReasonName(ReplanReason r)
 	return "?";
 }
 
-SemanticPlanner::Plan SemanticNavigator::planFrom(double x, double y)
+SemanticPlanner::SharedPlan SemanticNavigator::planFrom(double x, double y)
 {
 	switch (m_command.kind)
 	{
 		case NavCommand::Kind::NearestLabel:
-			return m_planner.toLabel(x, y, m_command.label, m_profile);
+			return m_planner.toLabelShared(x, y, m_command.label, m_profile);
 		case NavCommand::Kind::Object:
 		{
 			const ObjectInstance& o = m_map.instance(m_command.objectId);
@@ -277,14 +277,16 @@ SemanticPlanner::Plan SemanticNavigator::planFrom(double x, double y)
 				    "object " + std::to_string(o.id) + " is a " +
 				    labelName(o.label) + ", not a " +
 				    labelName(m_command.label));
-			return m_planner.toObject(x, y, m_command.objectId, m_profile);
+			return m_planner.toObjectShared(
+			    x, y, m_command.objectId, m_profile);
 		}
 		default:
-			return m_planner.toPoint(x, y, m_command.x, m_command.y, m_profile);
+			return m_planner.toPointShared(
+			    x, y, m_command.x, m_command.y, m_profile);
 	}
 }
 
-SemanticPlanner::Plan SemanticNavigator::planFromNearestFree(
+SemanticPlanner::SharedPlan SemanticNavigator::planFromNearestFree(
     const mrpt::math::TPose2D& pose)
 {
 	try
@@ -335,7 +337,7 @@ void SemanticNavigator::start(const NavCommand& command)
 	// caller's input errors: they propagate.
 	const auto t0 = std::chrono::steady_clock::now();
 	const mrpt::math::TPose2D pose = robotPose();
-	SemanticPlanner::Plan plan;
+	SemanticPlanner::SharedPlan plan;
 	try
 	{
 		plan = planFromNearestFree(pose);
@@ -354,7 +356,7 @@ void SemanticNavigator::start(const NavCommand& command)
 	rec.lengthM = plan.path.lengthM;
 	rec.goalObjectId = plan.goalObjectId;
 	rec.waypoints =
-	    WaypointBuilder::thin(plan.path, plan.u, m_options.maxWaypointSpacing);
+	    WaypointBuilder::thin(plan.path, *plan.u, m_options.maxWaypointSpacing);
 	m_goalObjectId = plan.goalObjectId;
 	m_lastPlanMs = rec.milliseconds = msSince(t0);
 	m_plans.push_back(rec);
@@ -524,7 +526,7 @@ bool SemanticNavigator::replan(ReplanReason reason)
 	if (reason != ReplanReason::MapChanged && reason != ReplanReason::Initial)
 		addSensedObstacles();
 	const mrpt::math::TPose2D pose = robotPose();
-	SemanticPlanner::Plan plan;
+	SemanticPlanner::SharedPlan plan;
 	try
 	{
 		plan = planFromNearestFree(pose);
@@ -559,7 +561,7 @@ bool SemanticNavigator::replan(ReplanReason reason)
 	rec.lengthM = plan.path.lengthM;
 	rec.goalObjectId = plan.goalObjectId;
 	rec.waypoints =
-	    WaypointBuilder::thin(plan.path, plan.u, m_options.maxWaypointSpacing);
+	    WaypointBuilder::thin(plan.path, *plan.u, m_options.maxWaypointSpacing);
 	m_goalObjectId = plan.goalObjectId;
 	m_lastPlanMs = rec.milliseconds = msSince(t0);
 	m_plans.push_back(rec);

@@ -171,6 +171,12 @@ void RobotSession::drive(
 	    m_robot.pose->pose().x, m_robot.pose->pose().y,
 	    mrpt::RAD2DEG(m_robot.pose->pose().phi)};
 	done["replans"] = m_nav->replans();
+	const auto pc = m_nav->planner().counters();
+	done["planner"] = {
+	    {"full_fields", pc.fullFields},
+	    {"repairs", pc.repairs},
+	    {"repair_fallbacks", pc.repairFallbacks},
+	    {"reuses", pc.reuses}};
 	done["wall_s"] =
 	    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
 	        .count();

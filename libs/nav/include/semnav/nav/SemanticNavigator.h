@@ -214,8 +214,9 @@ public:
 private:
 	/** planFrom the pose or, when it is blocked (inflated obstacle), from
 	 * the nearest free cell within start_snap_m. */
-	SemanticPlanner::Plan planFromNearestFree(const mrpt::math::TPose2D& pose);
-	SemanticPlanner::Plan planFrom(double x, double y);
+	SemanticPlanner::SharedPlan planFromNearestFree(
+	    const mrpt::math::TPose2D& pose);
+	SemanticPlanner::SharedPlan planFrom(double x, double y);
 	bool pathBlocked();
 	/** Hands the last plan's waypoints to MRPT, after turning toward the
 	 * first one if needed. */
