@@ -372,8 +372,8 @@ ObjectScore scoreCascadeScenes(const std::vector<std::string>& names)
 TEST(MapAccuracy, HeldOutSceneObjects)
 {
 	// The cascade test scenes (not used in training). The target is every
-	// object once and nothing spurious; measured (docs/mapping.md): 50 of 50 found
-	// once, 0 spurious of 53 instances (47 and 4 before the map's sure-
+	// object once and nothing spurious; measured (docs/mapping.md): 50 of 50
+	// found once, 0 spurious of 53 instances (47 and 4 before the map's sure-
 	// shape rule, outlier-free stairs seeds and sighting-linked merging).
 	// Asserted with a margin of one for detector changes.
 	const auto all = scoreCascadeScenes(

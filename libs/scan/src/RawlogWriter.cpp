@@ -1,7 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/io/CFileGZOutputStream.h>
-#include <mrpt/serialization/archiveFrom_std_streams.h>
 #include <mrpt/serialization/CArchive.h>
+#include <mrpt/serialization/archiveFrom_std_streams.h>
 #include <semnav/common/Error.h>
 #include <semnav/scan/RawlogWriter.h>
 #include <unistd.h>

@@ -5,8 +5,8 @@
 
 namespace semnav
 {
-/** Where the apps find the shipped configuration (the INI files of config/, which in
- * turn name the models under datasets/cascades/) without flags: the
+/** Where the apps find the shipped configuration (the INI files of config/,
+ * which in turn name the models under datasets/cascades/) without flags: the
  * directory named by the environment variable SEMNAV_CONFIG_DIR when it is
  * set and not empty, else the source tree's config/ compiled in by CMake.
  * A flag naming a file (e.g. --cascades FILE) always wins. */
