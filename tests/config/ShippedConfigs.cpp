@@ -33,7 +33,9 @@
 #include <semnav/sim/SimulatorOptions.h>
 #include <semnav/training/SampleGenerator.h>
 
+#include <algorithm>
 #include <sstream>
+#include <stdexcept>
 
 namespace semnav::test
 {
@@ -50,6 +52,23 @@ process_rate = 50
 max_queue_len = 2000
 sensorLabel = TILT_LMS
 )";
+/** [TILT_LMS] of a real LMS200 + PTU on the robot's ports, writing its
+ * stats to `statsFile`. RS-232 at 38400 baud gives about 4.7 lines/s, so
+ * 0.5 deg per line needs 2.34 deg/s (with an RS-422 adapter: COM_baudRate =
+ * 500000, tilt_speed_deg_s = 18.75). */
+std::string realHead(const std::string& statsFile)
+{
+	return R"(
+[TILT_LMS]
+COM_port_LIN = /dev/ttyUSB0
+ptu_port = /dev/ttyUSB1
+tilt_speed_deg_s = 2.34
+stall_timeout_s = 1.0
+reconnect_delay_s = 1.0
+stats_file = )" +
+	       statsFile + "\n";
+}
+
 /** A rawlog-grabber file: [global], then [TILT_LMS] with the grabber's
  * sensor keys and CTiltingLMS2xx's. */
 ShippedConfig grabber(const std::string& file)
@@ -233,21 +252,7 @@ use_sensoryframes = false
 GRABBER_PERIOD_MS = 500
 rawlog_GZ_compress_level = 1
 )";
-		// The robot's ports; RS-232 at 38400 baud gives about 4.7 lines/s,
-		// so 0.5 deg per line needs 2.34 deg/s (with an RS-422 adapter:
-		// COM_baudRate = 500000, tilt_speed_deg_s = 18.75).
-		// The robot's recording survives a crash (RawlogWriter Streaming).
-		c.overrides = R"(
-[LiveSweepSource]
-record_streaming = true
-[TILT_LMS]
-COM_port_LIN = /dev/ttyUSB0
-ptu_port = /dev/ttyUSB1
-tilt_speed_deg_s = 2.34
-stall_timeout_s = 1.0
-reconnect_delay_s = 1.0
-stats_file = ./semnav-capture-stats.json
-)";
+		c.overrides = realHead("./semnav-capture-stats.json");
 		all.push_back(c);
 	}
 	all.push_back(
@@ -322,17 +327,8 @@ stats_file = ./semnav-capture-stats.json
 		    "plugin and semnav-robot --plugin libX.so (its\nsection is the "
 		    "plugin's name). docs/hardware.md.";
 		// The robot's recording survives a crash (RawlogWriter Streaming).
-		c.overrides = R"(
-[LiveSweepSource]
-record_streaming = true
-[TILT_LMS]
-COM_port_LIN = /dev/ttyUSB0
-ptu_port = /dev/ttyUSB1
-tilt_speed_deg_s = 2.34
-stall_timeout_s = 1.0
-reconnect_delay_s = 1.0
-stats_file = ./semnav-robot-out/laser-stats.json
-)";
+		c.overrides = "\n[LiveSweepSource]\nrecord_streaming = true" +
+		              realHead("./semnav-robot-out/laser-stats.json");
 		all.push_back(c);
 	}
 	{
@@ -420,6 +416,19 @@ std::string markOverrides(const std::string& text, const std::string& defaults)
 std::string expectedText(const ShippedConfig& spec, const std::string& current)
 {
 	mrpt::config::CConfigFileMemory overrides(spec.overrides);
+	std::vector<std::string> overridden;
+	overrides.getAllSections(overridden);
+	for (const auto& name : overridden)
+		if (std::none_of(
+		        spec.sections.begin(), spec.sections.end(),
+		        [&](const ShippedSection& s)
+		        {
+			        // [Section.<label>]: read by [Section]'s options.
+			        return s.name == name || name.rfind(s.name + ".", 0) == 0;
+		        }))
+			throw std::runtime_error(
+			    spec.file + ": override of [" + name +
+			    "], which the file does not hold");
 	std::vector<std::unique_ptr<mrpt::config::CLoadableOptions>> structs;
 	std::string text;
 	{
