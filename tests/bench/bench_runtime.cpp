@@ -20,6 +20,7 @@
 #include <mrpt/config/CConfigFile.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Percentile.h>
+#include <semnav/common/Timing.h>
 #include <semnav/detection/SweepPerception.h>
 #include <semnav/localization/Localizer.h>
 #include <semnav/localization/MappingLocalizer.h>
@@ -87,13 +88,6 @@ struct Parts
 {
 	std::vector<double> loop, perception, localizeInsert, refresh, replan;
 };
-
-double msSince(std::chrono::steady_clock::time_point t0)
-{
-	return std::chrono::duration<double, std::milli>(
-	           std::chrono::steady_clock::now() - t0)
-	    .count();
-}
 
 void BM_RobotLoop(benchmark::State& state)
 {

@@ -2,6 +2,7 @@
 #include <mrpt/core/bits_math.h>
 #include <semnav/common/Error.h>
 #include <semnav/common/OptionTable.h>
+#include <semnav/common/Timing.h>
 #include <semnav/detection/SweepPerception.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/nav/NavigationErrors.h>
@@ -75,13 +76,14 @@ const OptionTable<O>& optionTable()
 /** Farthest point goal beyond the map the grid grows for (m). */
 constexpr double kExploreReach = 50.0;
 
-nlohmann::json poseJson(const mrpt::math::TPose2D& p)
-{
-	return {p.x, p.y, mrpt::RAD2DEG(p.phi)};
-}
 }  // namespace
 
 SEMNAV_OPTIONS_FROM_TABLE(RobotSession::TOptions, optionTable())
+
+nlohmann::json RobotSession::poseJson(const mrpt::math::TPose2D& p)
+{
+	return {p.x, p.y, mrpt::RAD2DEG(p.phi)};
+}
 
 RobotSession::RobotSession(
     SemanticMap& map, const RobotInterfaces& robot, SweepObstacles& obstacles,
@@ -224,9 +226,7 @@ bool RobotSession::localize()
 		     {"sweeps", rep.sweeps},
 		     {"drives_to_look", rep.drives},
 		     {"std_xy_m", rep.records.empty() ? 0.0 : rep.records.back().stdXY},
-		     {"wall_s", std::chrono::duration<double>(
-		                    std::chrono::steady_clock::now() - t0)
-		                    .count()}});
+		     {"wall_s", msSince(t0) / 1000}});
 		return true;
 	}
 	catch (const Error& e)
@@ -267,12 +267,6 @@ bool RobotSession::insertSweeps()
 			m_map.insert(k.sweep, k.labeled, mrpt::poses::CPose2D(r.estimate));
 			m_inserted++;
 			changed = true;
-			reportNewObjects();
-			m_localizer->mapChanged();
-			if (m_config.viewPlanner.enabled)
-				m_localizer->enableViewPlanning(
-				    m_config.navigationTraversability(m_map),
-				    m_config.viewPlanner);
 		}
 		emit(
 		    {{"event", "sweep"},
@@ -281,9 +275,16 @@ bool RobotSession::insertSweeps()
 		     {"inliers", r.inliers},
 		     {"inserted", insert},
 		     {"localize_ms", r.ms},
-		     {"insert_ms", std::chrono::duration<double, std::milli>(
-		                       std::chrono::steady_clock::now() - t0)
-		                       .count()}});
+		     {"insert_ms", msSince(t0)}});
+	}
+	// The localizer follows the new map once for all the sweeps taken.
+	if (changed)
+	{
+		reportNewObjects();
+		m_localizer->mapChanged();
+		if (m_config.viewPlanner.enabled)
+			m_localizer->enableViewPlanning(
+			    m_config.navigationTraversability(m_map), m_config.viewPlanner);
 	}
 	return changed;
 }

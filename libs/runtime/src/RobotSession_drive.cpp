@@ -1,7 +1,9 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
+#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/Timing.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/nav/NavigationErrors.h>
 #include <semnav/nav/RobotNavInterface.h>
@@ -20,13 +22,6 @@ namespace
 /** Seconds a laser may stay silent while the session waits for it (the
  * sweep source itself ends with DeviceLost). */
 constexpr double kLaserLost = 60.0;
-
-std::string trimmedLine(const std::string& s)
-{
-	const auto b = s.find_first_not_of(" \t\r\n");
-	if (b == std::string::npos) return "";
-	return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
-}
 
 bool isGoTo(const std::string& line)
 {
@@ -68,7 +63,7 @@ void RobotSession::run(CommandQueue& queue, const std::atomic<bool>& stop)
 bool RobotSession::handle(
     const std::string& text, const std::atomic<bool>& stop)
 {
-	const std::string line = trimmedLine(text);
+	const std::string line = trimmed(text);
 	if (line.empty()) return true;
 	if (line == "status")
 	{
@@ -167,9 +162,7 @@ void RobotSession::drive(
 	done["event"] = reached ? "arrived" : "failed";
 	if (!reached) done["reason"] = d.why.empty() ? m_nav->stopMessage() : d.why;
 	if (m_nav->goalObjectId()) done["object"] = m_nav->goalObjectId();
-	done["pose"] = {
-	    m_robot.pose->pose().x, m_robot.pose->pose().y,
-	    mrpt::RAD2DEG(m_robot.pose->pose().phi)};
+	done["pose"] = poseJson(m_robot.pose->pose());
 	done["replans"] = m_nav->replans();
 	const auto pc = m_nav->planner().counters();
 	done["planner"] = {
@@ -177,9 +170,7 @@ void RobotSession::drive(
 	    {"repairs", pc.repairs},
 	    {"repair_fallbacks", pc.repairFallbacks},
 	    {"reuses", pc.reuses}};
-	done["wall_s"] =
-	    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
-	        .count();
+	done["wall_s"] = msSince(t0) / 1000;
 	m_plans.insert(m_plans.end(), m_nav->plans().begin(), m_nav->plans().end());
 	m_current.reset();
 	m_done++;
@@ -214,7 +205,7 @@ void RobotSession::whileDriving(
 	{
 		const auto line = m_queue->pop(0);
 		if (!line) break;
-		const std::string l = trimmedLine(*line);
+		const std::string l = trimmed(*line);
 		if (l == "stop")
 		{
 			m_robot.base->stop();

@@ -142,6 +142,8 @@ public:
 
 private:
 	struct Driving;
+	/** [x, y, yaw_deg]. */
+	static nlohmann::json poseJson(const mrpt::math::TPose2D& p);
 	void emit(nlohmann::json e) const;
 	void error(const std::string& line, const std::string& why);
 	/** Parses and checks a "go to" command against the map from the
