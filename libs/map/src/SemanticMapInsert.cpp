@@ -5,6 +5,7 @@
 #include <octomap/OcTree.h>
 #include <semnav/common/ClassRegistry.h>
 #include <semnav/map/SemanticMap.h>
+#include <semnav/map/SweepView.h>
 #include <semnav/perception/LabeledSweep.h>
 #include <semnav/scan/Sweep.h>
 
@@ -376,27 +377,9 @@ void SemanticMap::countViews(
     const Sweep& sweep, const mrpt::poses::CPose3D& robot,
     std::vector<int>& viewedThisSweep)
 {
-	if (sweep.empty()) return;
-	const auto& thetas = sweep.thetas();
-	const auto& phis = sweep.phis();
-	const auto nearest = [](const std::vector<double>& v, double x)
-	{
-		const auto it = std::lower_bound(v.begin(), v.end(), x);
-		if (it == v.begin()) return std::size_t(0);
-		if (it == v.end()) return v.size() - 1;
-		return static_cast<std::size_t>(
-		    (x - *(it - 1) < *it - x) ? it - 1 - v.begin() : it - v.begin());
-	};
-	// The tilt axis (rows differ by a few cm: the laser's offset from it).
-	const auto& axis = sweep.sensorPose(sweep.rows() / 2);
-	constexpr double kObjectDepth = 0.4;  // a return this short of it: seen
-	const double maxBearing = m_options.viewMaxBearingDeg * M_PI / 180;
-	const double phiStep =
-	    phis.size() > 1 ? (phis.back() - phis.front()) / (phis.size() - 1) : 1;
-	const double thetaStep =
-	    thetas.size() > 1
-	        ? (thetas.back() - thetas.front()) / (thetas.size() - 1)
-	        : 1;
+	const SweepView view(
+	    sweep, m_options.viewMaxBearingDeg * M_PI / 180,
+	    m_options.viewMinPixels);
 	// Region classes (doors) are found by the rules in every sweep that
 	// sees them: no views to count.
 	const LabelSet fromRegions = ClassRegistry::instance().select(
@@ -407,31 +390,7 @@ void SemanticMap::countViews(
 		if (fromRegions.contains(o.label)) continue;
 		mrpt::math::TPoint3D p;
 		robot.inverseComposePoint(o.centroid, p);
-		const double dx = p.x - axis.x(), dy = p.y - axis.y(),
-		             dz = p.z - axis.z();
-		const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
-		if (d < 0.2 || d > sweep.maxRange() - kObjectDepth) continue;
-		const double theta = std::atan2(dz, dx), phi = std::asin(dy / d);
-		if (theta < thetas.front() || theta > thetas.back() ||
-		    phi < phis.front() || phi > phis.back())
-			continue;
-		if (std::abs(std::atan2(dy, dx)) > maxBearing) continue;
-		// Pixels the object would cover at this distance (its typical
-		// detection size: the union of all boxes would count views from
-		// where a real one is too small for the cascades).
-		const auto e = o.typicalSize();
-		const double wide = std::max(e.x, 0.2), high = std::max(e.z, 0.3);
-		const double px = (wide / d) / phiStep * (high / d) / thetaStep;
-		if (px < m_options.viewMinPixels) continue;
-		const std::size_t r0 = nearest(thetas, theta), c0 = nearest(phis, phi);
-		bool visible = false;
-		for (std::size_t r = r0 > 0 ? r0 - 1 : 0;
-		     r <= std::min(r0 + 1, sweep.rows() - 1) && !visible; r++)
-			for (std::size_t c = c0 > 0 ? c0 - 1 : 0;
-			     c <= std::min(c0 + 1, sweep.cols() - 1) && !visible; c++)
-				visible =
-				    !sweep.valid(r, c) || sweep.range(r, c) >= d - kObjectDepth;
-		if (!visible) continue;
+		if (!view.sees(p, o.typicalSize())) continue;
 		o.views++;
 		viewedThisSweep.push_back(o.id);
 	}

@@ -93,6 +93,11 @@ const OptionTable<O>& optionTable()
 	            "contradiction_distance_m", &O::contradictionDistance, 0, 100,
 	            "A start is refused while an object seen twice lies where the "
 	            "map observed none of its label within this (0: off).")
+	        .real(
+	            "missed_object_weight", &O::missedObjectWeight, 0, 100,
+	            "Uniqueness check: a map object a start sweep would see at a "
+	            "place but did not detect counts against it, this many "
+	            "effective points (0: off).")
 	        .integer(
 	            "max_sweeps", &O::maxSweeps, 1, 100,
 	            "Sweeps of a start before it fails.")
@@ -208,6 +213,7 @@ void StopAndScanLocalizer::keepStartSweeps(std::size_t keep)
 	trim(m_startObs);
 	trim(m_startSemantic);
 	trim(m_startOdo);
+	trim(m_startSweeps);
 }
 
 const WallMap& StopAndScanLocalizer::scoredWalls() const
@@ -243,15 +249,45 @@ void StopAndScanLocalizer::enableViewPlanning(
 	m_viewPlanner = std::make_unique<ViewPlanner>(m_map, u, options);
 }
 
+int StopAndScanLocalizer::sweepsPerTurn() const
+{
+	return static_cast<int>(std::ceil(2 * M_PI / m_options.turnAngle - 1e-6));
+}
+
+bool StopAndScanLocalizer::gatherOnClearBest(SweepRecord& rec)
+{
+	if (!m_options.uniquenessCheck) return false;
+	checkUniqueness(rec);
+	rec.evidence = evidenceOf(rec);
+	MRPT_LOG_INFO_FMT(
+	    "uniqueness after a full turn: estimate %.3f, best other place "
+	    "(%.2f, %.2f, %.1f deg) %.3f, evidence %.3f",
+	    rec.score, rec.rival.x, rec.rival.y, mrpt::RAD2DEG(rec.rival.phi),
+	    rec.rivalScore, rec.evidence);
+	mrpt::math::TPose2D best;
+	if (rec.rivalScore > rec.score + m_options.uniquenessMargin)
+		best = rec.rival;
+	else if (
+	    rec.evidence >= m_options.uniquenessMargin &&
+	    contradiction(rec.estimate).empty())
+		best = rec.estimate;
+	else
+		return false;
+	MRPT_LOG_INFO_FMT(
+	    "uniqueness: (%.2f, %.2f, %.1f deg) fits clearly best: the filter "
+	    "gathers there",
+	    best.x, best.y, mrpt::RAD2DEG(best.phi));
+	m_localizer->initializeAround({best}, kHypothesisStdXY, kHypothesisStdYaw);
+	return true;
+}
+
 bool StopAndScanLocalizer::driveToLook(
     const RobotInterfaces& robot, int spotSweeps, Report& rep)
 {
 	if (!m_viewPlanner) return false;
 	const ViewPlanner::TOptions& o = m_viewPlanner->options();
-	const int perTurn =
-	    static_cast<int>(std::ceil(2 * M_PI / m_options.turnAngle - 1e-6));
-	if (!o.enabled || spotSweeps < perTurn || rep.drives >= o.maxDrives ||
-	    rep.sweeps >= m_options.maxSweeps)
+	if (!o.enabled || spotSweeps < sweepsPerTurn() ||
+	    rep.drives >= o.maxDrives || rep.sweeps >= m_options.maxSweeps)
 		return false;
 	const std::vector<ViewPlanner::Hypothesis> h =
 	    hypotheses(rep.records.back());
@@ -414,6 +450,12 @@ void StopAndScanLocalizer::sweepUntilConverged(
 			rep.converged = true;
 			break;
 		}
+		if (global && !r.converged && spotSweeps == sweepsPerTurn() &&
+		    gatherOnClearBest(rep.records.back()))
+		{
+			m_records.back() = rep.records.back();
+			continue;
+		}
 		if (global && driveToLook(robot, spotSweeps, rep))
 		{
 			drove = true;
@@ -541,6 +583,7 @@ StopAndScanLocalizer::SweepRecord StopAndScanLocalizer::sweepAndUpdate(
 		m_startObs.push_back(obs);
 		m_startSemantic.push_back(semantic);
 		m_startOdo.push_back(odometry);
+		m_startSweeps.push_back(sweep);
 	}
 	const mrpt::poses::CPose2D incr =
 	    mrpt::poses::CPose2D(odometry) - mrpt::poses::CPose2D(m_lastOdometry);

@@ -5,10 +5,12 @@
 #include <mrpt/core/format.h>
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/poses/CPose2D.h>
+#include <mrpt/poses/CPose3D.h>
 #include <semnav/common/Error.h>
 #include <semnav/common/OptionTable.h>
 #include <semnav/common/Timing.h>
 #include <semnav/map/SemanticMap.h>
+#include <semnav/map/SweepView.h>
 #include <semnav/nav/NavigationErrors.h>
 #include <semnav/nav/OdometryMotion.h>
 #include <semnav/nav/StopAndScanLocalizer.h>
@@ -39,6 +41,10 @@ constexpr double kCarriedRadius = 0.75;
 const double kCarriedYaw = mrpt::DEG2RAD(20.0);
 /** Detections of one label this close (m) in two sweeps are one object. */
 constexpr double kSameObject = 0.5;
+/** A map object is detected by a sweep that found its label this close. */
+constexpr double kMissRadius = 1.0;
+/** Bounds of an instance's recall (detections per view) for a miss. */
+constexpr double kMinRecall = 0.3, kMaxRecall = 0.8;
 
 /** Closer than `radius` (m) and `yaw` (rad). */
 bool closeTo(
@@ -94,6 +100,39 @@ std::vector<ViewPlanner::Hypothesis> StopAndScanLocalizer::hypotheses(
 	if (h.size() > kMaxHypotheses) h.resize(kMaxHypotheses);
 	return h;
 }
+
+namespace
+{
+/** Places refined in the uniqueness check. */
+constexpr std::size_t kRivals = 8;
+using ScoredPose = std::pair<double, mrpt::math::TPose2D>;
+
+/** Adds `c` to the best-first `top` (at most kRivals), one per hypothesis:
+ * a better place within kHypothesisRadius and kHypothesisYaw replaces its
+ * neighbour (else the neighbours of one twin fill the list and the
+ * place the missed objects favour is never refined). */
+void keepBest(std::vector<ScoredPose>& top, const ScoredPose& c)
+{
+	const auto near = std::find_if(
+	    top.begin(), top.end(),
+	    [&](const ScoredPose& t) {
+		    return closeTo(
+		        t.second, c.second, kHypothesisRadius, kHypothesisYaw);
+	    });
+	if (near != top.end())
+	{
+		if (near->first >= c.first) return;
+		top.erase(near);
+	}
+	top.insert(
+	    std::upper_bound(
+	        top.begin(), top.end(), c,
+	        [](const ScoredPose& a, const ScoredPose& b)
+	        { return a.first > b.first; }),
+	    c);
+	if (top.size() > kRivals) top.pop_back();
+}
+}  // namespace
 
 void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const
 {
@@ -170,17 +209,20 @@ void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const
 	const mrpt::math::TPose2D e = rec.estimate;
 	{
 		const auto [v, at] = refine(e);
-		rec.score = v;
+		int missed = 0;
+		const double m = missedObjects(at, missed);
+		rec.score = v + m;
 		if (isLoggingLevelVisible(mrpt::system::LVL_INFO))
 			MRPT_LOG_INFO_FMT(
-			    "uniqueness: at the estimate walls %.3f, semantics %.3f",
+			    "uniqueness: at the estimate walls %.3f, semantics %.3f, "
+			    "%d objects missed %.3f",
 			    wallScore(at.x, at.y, at.phi),
-			    semanticScore(at.x, at.y, at.phi));
+			    semanticScore(at.x, at.y, at.phi), missed, m);
 	}
 	// Coarse search away from the estimate.
 	const double minD2 =
 	    m_options.uniquenessMinDistance * m_options.uniquenessMinDistance;
-	std::vector<std::pair<double, mrpt::math::TPose2D>> top;
+	std::vector<ScoredPose> top;
 	for (int k = 0; k < 4; k++)
 		for (int j = -2; j <= 2; j++)
 		{
@@ -190,23 +232,25 @@ void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const
 				const double dx = q.x - e.x, dy = q.y - e.y;
 				if (k == 0 && dx * dx + dy * dy < minD2) continue;
 				const double v = score(q.x, q.y, yaw);
-				if (top.size() < 8 || v > top.back().first)
-				{
-					top.push_back({v, {q.x, q.y, yaw}});
-					std::sort(
-					    top.begin(), top.end(),
-					    [](const auto& a, const auto& b)
-					    { return a.first > b.first; });
-					if (top.size() > 8) top.pop_back();
-				}
+				if (top.size() < kRivals || v > top.back().first)
+					keepBest(top, {v, {q.x, q.y, yaw}});
 			}
 		}
 	rec.rivalScore = -std::numeric_limits<double>::infinity();
+	int rivalMissed = 0;
 	for (const auto& t : top)
 	{
 		const auto [v, p] = refine(t.second);
-		if (v > rec.rivalScore) rec.rivalScore = v, rec.rival = p;
+		int missed = 0;
+		const double total = v + missedObjects(p, missed);
+		if (total > rec.rivalScore)
+			rec.rivalScore = total, rec.rival = p, rivalMissed = missed;
 	}
+	if (isLoggingLevelVisible(mrpt::system::LVL_INFO))
+		MRPT_LOG_INFO_FMT(
+		    "uniqueness: rival (%.2f, %.2f, %.0f deg) %.3f, %d objects missed",
+		    rec.rival.x, rec.rival.y, mrpt::RAD2DEG(rec.rival.phi),
+		    rec.rivalScore, rivalMissed);
 	rec.rival.phi = mrpt::math::wrapToPi(rec.rival.phi);
 	rec.checked = true;
 	rec.checkMs = msSince(t0);
@@ -273,6 +317,57 @@ std::string StopAndScanLocalizer::contradiction(
 			    labelName(a.label).c_str(), m_options.contradictionDistance);
 	}
 	return {};
+}
+
+double StopAndScanLocalizer::missedObjects(
+    const mrpt::math::TPose2D& at, int& missed) const
+{
+	missed = 0;
+	const double weight = m_options.missedObjectWeight;
+	if (weight <= 0 || m_semantic.empty() || m_startSweeps.empty()) return 0;
+	const auto& mo = m_map.options();
+	// Only what the detectors can find can be missed.
+	const std::vector<Label> detectable = m_perception.objectLabels();
+	std::vector<ObjectInstance> objects;
+	for (const ObjectInstance& o : m_map.instances())
+		if (std::find(detectable.begin(), detectable.end(), o.label) !=
+		    detectable.end())
+			objects.push_back(o);
+	if (objects.empty()) return 0;
+	const mrpt::poses::CPose2D last(m_startOdo.back());
+	double sum = 0;
+	for (std::size_t i = 0; i < m_startSweeps.size(); i++)
+	{
+		const SweepView view(
+		    m_startSweeps[i], mrpt::DEG2RAD(mo.viewMaxBearingDeg),
+		    mo.viewMinPixels);
+		const mrpt::poses::CPose3D robot(
+		    mrpt::poses::CPose2D(at) +
+		    (mrpt::poses::CPose2D(m_startOdo[i]) - last));
+		for (const ObjectInstance& o : objects)
+		{
+			mrpt::math::TPoint3D p;
+			robot.inverseComposePoint(o.centroid, p);
+			if (!view.sees(p, o.typicalSize())) continue;
+			const bool detected = std::any_of(
+			    m_startSemantic[i].objects.begin(),
+			    m_startSemantic[i].objects.end(),
+			    [&](const SemanticSample& d)
+			    {
+				    return d.label == o.label &&
+				           std::hypot(d.x - p.x, d.y - p.y) < kMissRadius;
+			    });
+			if (detected) continue;
+			const double recall = std::clamp(
+			    double(o.observations + 1) / double(o.views + 2), kMinRecall,
+			    kMaxRecall);
+			sum += std::log(1 - recall);
+			missed++;
+		}
+	}
+	return weight * sum /
+	       (m_locOptions.localizer.effectivePoints *
+	        double(m_startSweeps.size()));
 }
 
 double StopAndScanLocalizer::evidenceOf(const SweepRecord& rec) const

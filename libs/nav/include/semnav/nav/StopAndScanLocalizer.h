@@ -113,6 +113,16 @@ public:
 		 * where it believes, even when no better place is found: its true
 		 * place may be one the map barely saw); 0: off. */
 		double contradictionDistance = 1.0;
+		/** missed_object_weight: negative evidence in the uniqueness check.
+		 * A map object that a start sweep would have in view at a place
+		 * (SweepView: within the sweep's field, large enough, nothing in
+		 * front in the sweep's own ranges) but whose label the detectors
+		 * did not find near it counts log(1 - recall) against that place,
+		 * times this weight in effective wall points; recall is the
+		 * instance's detections per view in the map, within 0.3-0.8. Two
+		 * twin offices differ by a wastebasket in one: from the other, not
+		 * seeing it is the evidence. 0: off. */
+		double missedObjectWeight = 6.0;
 		/** max_sweeps: sweeps of a start before giving up. */
 		int maxSweeps = 12;
 		/** turn_deg: turn on the spot between start sweeps (rad). */
@@ -334,6 +344,14 @@ private:
 	/** After `spotSweeps` sweeps where the robot stands: drives to look
 	 * when enabled and within budget. True when it drove. */
 	bool driveToLook(const RobotInterfaces& robot, int spotSweeps, Report& rep);
+	/** Start sweeps in one full turn on the spot. */
+	int sweepsPerTurn() const;
+	/** After a full turn without convergence: when the uniqueness check
+	 * finds one place that explains the start's sweeps clearly best (by
+	 * uniqueness_margin; the filter may still split between twins that
+	 * only the missed objects tell apart), the filter gathers there and
+	 * true is returned; the next sweeps confirm it. */
+	bool gatherOnClearBest(SweepRecord& rec);
 	/** New Localizer with options `o` on the known map. */
 	void makeLocalizer(const Localizer::TOptions& o);
 	/** Best score of the start's sweeps over the free space, away from
@@ -370,6 +388,8 @@ private:
 	std::vector<WallObservation> m_startObs;
 	std::vector<SemanticObservation> m_startSemantic;
 	std::vector<mrpt::math::TPose2D> m_startOdo;
+	/** The start's sweeps (for what each had in view). */
+	std::vector<Sweep> m_startSweeps;
 	/** Free places of the map on the uniqueness grid. */
 	std::vector<mrpt::math::TPoint2D> m_places;
 	/** Fills m_places from the map. */
@@ -395,6 +415,10 @@ private:
 	 * map at `estimate` (see contradiction_distance_m), one line; empty
 	 * when none. */
 	std::string contradiction(const mrpt::math::TPose2D& estimate) const;
+	/** The negative evidence of missed_object_weight for the robot at
+	 * `at` after the last start sweep, in the uniqueness check's units
+	 * (<= 0); `missed` counts the misses. */
+	double missedObjects(const mrpt::math::TPose2D& at, int& missed) const;
 };
 
 }  // namespace semnav

@@ -1,0 +1,74 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/map/SweepView.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace semnav
+{
+namespace
+{
+/** A return this far short of the object still sees it (m). */
+constexpr double kObjectDepth = 0.4;
+
+/** Index of the value of the sorted `v` nearest to `x`. */
+std::size_t nearest(const std::vector<double>& v, double x)
+{
+	const auto it = std::lower_bound(v.begin(), v.end(), x);
+	if (it == v.begin()) return 0;
+	if (it == v.end()) return v.size() - 1;
+	return static_cast<std::size_t>(
+	    (x - *(it - 1) < *it - x) ? it - 1 - v.begin() : it - v.begin());
+}
+
+/** Mean step of the sorted angles `v` (1 with fewer than two). */
+double stepOf(const std::vector<double>& v)
+{
+	return v.size() > 1 ? (v.back() - v.front()) / double(v.size() - 1) : 1;
+}
+}  // namespace
+
+SweepView::SweepView(const Sweep& sweep, double maxBearing, double minPixels)
+    : m_sweep(sweep),
+      m_maxBearing(maxBearing),
+      m_minPixels(minPixels),
+      m_phiStep(stepOf(sweep.phis())),
+      m_thetaStep(stepOf(sweep.thetas()))
+{
+}
+
+bool SweepView::sees(
+    const mrpt::math::TPoint3D& centroid,
+    const mrpt::math::TPoint3D& size) const
+{
+	const Sweep& s = m_sweep;
+	if (s.empty()) return false;
+	const auto& thetas = s.thetas();
+	const auto& phis = s.phis();
+	// The tilt axis (rows differ by a few cm: the laser's offset from it).
+	const auto& axis = s.sensorPose(s.rows() / 2);
+	const double dx = centroid.x - axis.x(), dy = centroid.y - axis.y(),
+	             dz = centroid.z - axis.z();
+	const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+	if (d < 0.2 || d > s.maxRange() - kObjectDepth) return false;
+	const double theta = std::atan2(dz, dx), phi = std::asin(dy / d);
+	if (theta < thetas.front() || theta > thetas.back() || phi < phis.front() ||
+	    phi > phis.back())
+		return false;
+	if (std::abs(std::atan2(dy, dx)) > m_maxBearing) return false;
+	// Pixels the object would cover at this distance (its typical detection
+	// size: from where a real one is too small for the cascades, no view).
+	const double wide = std::max(size.x, 0.2), high = std::max(size.z, 0.3);
+	const double px = (wide / d) / m_phiStep * (high / d) / m_thetaStep;
+	if (px < m_minPixels) return false;
+	const std::size_t r0 = nearest(thetas, theta), c0 = nearest(phis, phi);
+	for (std::size_t r = r0 > 0 ? r0 - 1 : 0;
+	     r <= std::min(r0 + 1, s.rows() - 1); r++)
+		for (std::size_t c = c0 > 0 ? c0 - 1 : 0;
+		     c <= std::min(c0 + 1, s.cols() - 1); c++)
+			if (!s.valid(r, c) || s.range(r, c) >= d - kObjectDepth)
+				return true;
+	return false;
+}
+
+}  // namespace semnav
