@@ -5,6 +5,8 @@
 // config/robot-emulated.ini through the real drivers and real ROS transport.
 // Each run starts its own rosmaster on a free port.
 #include <gtest/gtest.h>
+#include <mrpt/core/format.h>
+#include <semnav/common/LabelSet.h>
 #include <semnav/map/MapIO.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/planning/SemanticPlanner.h>
@@ -26,6 +28,30 @@ namespace
 const fs::path kTmp = fs::temp_directory_path() /
                       ("semnav_robot_hil_" + std::to_string(::getpid()));
 const mrpt::math::TPose2D kStart{2.2, 1.5, 0};
+/** The box added to the emulated office: centre, size (m). */
+const mrpt::math::TPoint2D kBox{1.0, 2.6};
+const mrpt::math::TPoint3D kBoxSize{0.4, 0.4, 0.6};
+
+/** Cells of the box's footprint (and a cell around it) labelled obstacle
+ * with occupancy above `minOccupancy`. */
+int obstacleCellsInBox(const SemanticMap& m, double minOccupancy)
+{
+	const auto& g = m.geometry();
+	int n = 0;
+	const double hx = kBoxSize.x / 2 + g.resolution,
+	             hy = kBoxSize.y / 2 + g.resolution;
+	for (double x = kBox.x - hx; x <= kBox.x + hx; x += g.resolution)
+		for (double y = kBox.y - hy; y <= kBox.y + hy; y += g.resolution)
+		{
+			int cx, cy;
+			if (g.worldToCell(x, y, cx, cy) &&
+			    LabelSet(static_cast<LabelSet::mask_t>(m.at("labels", cx, cy)))
+			        .contains(Label::Obstacle) &&
+			    m.occupancy(cx, cy) > minOccupancy)
+				n++;
+		}
+	return n;
+}
 
 /** The office map of the demo: semnav-sim, then semnav-map --poses pf. */
 const fs::path& officeMap()
@@ -94,8 +120,13 @@ TEST_F(RobotSelftest, OfficeUnlocalizedMalformedCommandsAndTheLaserUnplugged)
 	      "go to wastebasket 999", "go to 100 100", "go to 1.0", "go to x y",
 	      "go to the nearest wall", "go to 0 0", "save"})
 		bad += std::string(" --bad-command '") + c + "'";
-	const json r =
-	    selftest("office", bad + " --emulator-arg=--disconnect-at=22");
+	// A box the starting map lacks, between the west wall and the table,
+	// on the way to wastebasket 1 (which the map lacks too).
+	const json r = selftest(
+	    "office", bad + " --emulator-arg=--disconnect-at=22 --add-box " +
+	                  mrpt::format(
+	                      "%g,%g,%g,%g,%g", kBox.x, kBox.y, kBoxSize.x,
+	                      kBoxSize.y, kBoxSize.z));
 	ASSERT_TRUE(r.value("success", false)) << r.dump();
 	EXPECT_EQ(r["bad_commands"].size(), 10u);
 	EXPECT_EQ(r["collisions"], 0);
@@ -126,6 +157,14 @@ TEST_F(RobotSelftest, OfficeUnlocalizedMalformedCommandsAndTheLaserUnplugged)
 	EXPECT_LT(
 	    r["true_distance_to_nearest_m"].get<double>() - 0.15,
 	    c.arrivalTolerance(true));
+	// The box: never touched, and in the saved map (obstacle-labelled cells
+	// with some occupancy where the starting map has none).
+	ASSERT_EQ(r["boxes"].size(), 1u) << r.dump();
+	EXPECT_GT(r["boxes"][0]["true_clearance_m"].get<double>(), 0.05);
+	SemanticMap start(c.map);
+	MapIO::load(officeMap().string(), start);
+	EXPECT_EQ(obstacleCellsInBox(start, 0), 0);
+	EXPECT_GE(obstacleCellsInBox(saved, 0.1), 3) << "the box is not in the map";
 }
 
 TEST_F(RobotSelftest, KilledWhileDrivingTheBaseStopsAndTheRecordingIsReadable)

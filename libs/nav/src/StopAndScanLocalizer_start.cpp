@@ -107,19 +107,19 @@ namespace
 constexpr std::size_t kRivals = 8;
 using ScoredPose = std::pair<double, mrpt::math::TPose2D>;
 
-/** Adds `c` to the best-first `top` (at most kRivals), one per hypothesis:
- * a better place within kHypothesisRadius and kHypothesisYaw replaces its
- * neighbour (else the neighbours of one twin fill the list and the
- * place the missed objects favour is never refined). */
-void keepBest(std::vector<ScoredPose>& top, const ScoredPose& c)
+/** Adds `c` to the best-first `top` (at most kRivals). `distinct`: one per
+ * hypothesis (a better place within kHypothesisRadius and kHypothesisYaw
+ * replaces its neighbour). */
+void keepBest(std::vector<ScoredPose>& top, const ScoredPose& c, bool distinct)
 {
+	if (top.size() >= kRivals && c.first <= top.back().first) return;
 	const auto near = std::find_if(
 	    top.begin(), top.end(),
 	    [&](const ScoredPose& t) {
 		    return closeTo(
 		        t.second, c.second, kHypothesisRadius, kHypothesisYaw);
 	    });
-	if (near != top.end())
+	if (distinct && near != top.end())
 	{
 		if (near->first >= c.first) return;
 		top.erase(near);
@@ -222,7 +222,11 @@ void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const
 	// Coarse search away from the estimate.
 	const double minD2 =
 	    m_options.uniquenessMinDistance * m_options.uniquenessMinDistance;
-	std::vector<ScoredPose> top;
+	// The best places (refining several neighbours of one finds its best
+	// pose), and the best of each hypothesis (else the neighbours of one
+	// twin fill the list and the twin the missed objects favour is never
+	// refined).
+	std::vector<ScoredPose> top, distinct;
 	for (int k = 0; k < 4; k++)
 		for (int j = -2; j <= 2; j++)
 		{
@@ -231,11 +235,17 @@ void StopAndScanLocalizer::checkUniqueness(SweepRecord& rec) const
 			{
 				const double dx = q.x - e.x, dy = q.y - e.y;
 				if (k == 0 && dx * dx + dy * dy < minD2) continue;
-				const double v = score(q.x, q.y, yaw);
-				if (top.size() < kRivals || v > top.back().first)
-					keepBest(top, {v, {q.x, q.y, yaw}});
+				const ScoredPose c{score(q.x, q.y, yaw), {q.x, q.y, yaw}};
+				keepBest(top, c, false);
+				keepBest(distinct, c, true);
 			}
 		}
+	for (const ScoredPose& d : distinct)
+		if (std::none_of(
+		        top.begin(), top.end(),
+		        [&](const ScoredPose& t)
+		        { return closeTo(t.second, d.second, 1e-6, 1e-6); }))
+			top.push_back(d);
 	rec.rivalScore = -std::numeric_limits<double>::infinity();
 	int rivalMissed = 0;
 	for (const auto& t : top)
