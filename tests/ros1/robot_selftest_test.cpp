@@ -29,7 +29,7 @@ const fs::path kTmp = fs::temp_directory_path() /
                       ("semnav_robot_hil_" + std::to_string(::getpid()));
 const mrpt::math::TPose2D kStart{2.2, 1.5, 0};
 /** The box added to the emulated office: centre, size (m). */
-const mrpt::math::TPoint2D kBox{1.0, 2.6};
+const mrpt::math::TPoint2D kBox{4.5, 1.4};
 const mrpt::math::TPoint3D kBoxSize{0.4, 0.4, 0.6};
 
 /** Cells of the box's footprint (and a cell around it) labelled obstacle
@@ -120,8 +120,9 @@ TEST_F(RobotSelftest, OfficeUnlocalizedMalformedCommandsAndTheLaserUnplugged)
 	      "go to wastebasket 999", "go to 100 100", "go to 1.0", "go to x y",
 	      "go to the nearest wall", "go to 0 0", "save"})
 		bad += std::string(" --bad-command '") + c + "'";
-	// A box the starting map lacks, between the west wall and the table,
-	// on the way to wastebasket 1 (which the map lacks too).
+	// A box the starting map lacks, 2.3 m ahead of the start: in view of
+	// the first sweep, on the way east (when the start sees no other
+	// wastebasket first).
 	const json r = selftest(
 	    "office", bad + " --emulator-arg=--disconnect-at=22 --add-box " +
 	                  mrpt::format(
