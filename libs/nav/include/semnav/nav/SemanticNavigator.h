@@ -203,8 +203,6 @@ public:
 	{
 		return m_plans.empty() ? 0 : static_cast<int>(m_plans.size()) - 1;
 	}
-	/** Replans since the last progress (see max_stalled_replans). */
-	int stalledReplans() const { return m_stalled; }
 	const std::vector<PlanRecord>& plans() const { return m_plans; }
 	/** Object of the current plan (0 for a point). */
 	int goalObjectId() const { return m_goalObjectId; }
