@@ -25,6 +25,9 @@ struct MapTruthScore
 	std::size_t occupied = 0, occupiedRight = 0, free = 0, freeRight = 0;
 	/** Area the map observed (free or occupied cells), m^2. */
 	double knownArea = 0;
+	/** Truly occupied cells, and those with an occupied map cell within
+	 * two cells (the obstacles the map holds). */
+	std::size_t trueOccupied = 0, trueOccupiedMapped = 0;
 
 	double occupiedPrecision() const
 	{
@@ -33,6 +36,10 @@ struct MapTruthScore
 	double freePrecision() const
 	{
 		return free ? double(freeRight) / free : 0.0;
+	}
+	double obstacleRecall() const
+	{
+		return trueOccupied ? double(trueOccupiedMapped) / trueOccupied : 0.0;
 	}
 };
 
@@ -73,11 +80,24 @@ inline MapTruthScore scoreAgainstTruth(
 	}
 	using S = SemanticMap::CellState;
 	const auto& g = map.geometry();
-	const auto truthAt = [&](double x, double y, int dx, int dy)
+	// State of `m` two cells around (x, y) at most: any `want` there.
+	const auto near = [](const SemanticMap& m, double x, double y, S want)
+	{
+		const double r = m.geometry().resolution;
+		for (int dy = -2; dy <= 2; dy++)
+			for (int dx = -2; dx <= 2; dx++)
+			{
+				int cx, cy;
+				if (m.worldToCell(x + dx * r, y + dy * r, cx, cy) &&
+				    m.cellState(cx, cy) == want)
+					return true;
+			}
+		return false;
+	};
+	const auto truthAt = [&](double x, double y)
 	{
 		int cx, cy;
-		const double r = truth.geometry().resolution;
-		if (!truth.worldToCell(x + dx * r, y + dy * r, cx, cy))
+		if (!truth.worldToCell(x, y, cx, cy))
 			return S::Free;  // outside the scene: nothing there
 		return truth.cellState(cx, cy);
 	};
@@ -91,17 +111,23 @@ inline MapTruthScore scoreAgainstTruth(
 			if (st == S::Free)
 			{
 				s.free++;
-				s.freeRight += truthAt(x, y, 0, 0) != S::Occupied;
+				s.freeRight += truthAt(x, y) != S::Occupied;
 				continue;
 			}
 			s.occupied++;
-			bool right = false;
-			for (int dy = -2; dy <= 2 && !right; dy++)
-				for (int dx = -2; dx <= 2 && !right; dx++)
-					right = truthAt(x, y, dx, dy) == S::Occupied;
-			s.occupiedRight += right;
+			s.occupiedRight += near(truth, x, y, S::Occupied);
 		}
 	s.knownArea = double(s.free + s.occupied) * g.resolution * g.resolution;
+	const auto& tg = truth.geometry();
+	for (int cy = 0; cy < tg.rows; cy++)
+		for (int cx = 0; cx < tg.cols; cx++)
+		{
+			if (truth.cellState(cx, cy) != S::Occupied) continue;
+			double x, y;
+			truth.cellToWorld(cx, cy, x, y);
+			s.trueOccupied++;
+			s.trueOccupiedMapped += near(map, x, y, S::Occupied);
+		}
 	return s;
 }
 

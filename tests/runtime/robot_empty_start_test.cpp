@@ -108,7 +108,9 @@ void print(const char* who, const test::MapTruthScore& s)
 		std::cout << " " << labelName(label) << " " << o.found << "/" << o.truth
 		          << " found (" << o.instances << " instances, " << o.spurious
 		          << " spurious);";
-	std::cout << " occupied cells on true obstacles " << s.occupiedRight << "/"
+	std::cout << " true obstacle cells mapped " << s.trueOccupiedMapped << "/"
+	          << s.trueOccupied << " = " << s.obstacleRecall()
+	          << ", occupied cells on true obstacles " << s.occupiedRight << "/"
 	          << s.occupied << " = " << s.occupiedPrecision()
 	          << ", free cells truly free " << s.freeRight << "/" << s.free
 	          << " = " << s.freePrecision() << ", observed " << s.knownArea
@@ -165,7 +167,8 @@ TEST(RobotEmptyStart, GoToThroughTwoRoomsMapsLikeSemnavMap)
 	// the same localization and insertion code, so what may differ is the
 	// sweep assembly from the recorded lines and the filter's random draws
 	// (a few cm of pose): the same objects found, no more spurious ones,
-	// occupancy precision within 2 points, the observed area within 5 %.
+	// occupancy precision and the share of true obstacles mapped within 2
+	// points, the observed area within 5 %.
 	for (const Label l : labels)
 	{
 		EXPECT_GE(robot.objects.at(l).found, mapped.objects.at(l).found)
@@ -174,6 +177,7 @@ TEST(RobotEmptyStart, GoToThroughTwoRoomsMapsLikeSemnavMap)
 		    << labelName(l);
 	}
 	EXPECT_GE(robot.occupiedPrecision(), mapped.occupiedPrecision() - 0.02);
+	EXPECT_GE(robot.obstacleRecall(), mapped.obstacleRecall() - 0.02);
 	EXPECT_GE(robot.freePrecision(), mapped.freePrecision() - 0.02);
 	EXPECT_NEAR(robot.knownArea, mapped.knownArea, 0.05 * mapped.knownArea);
 	EXPECT_GE(robot.occupiedPrecision(), 0.9);
