@@ -136,44 +136,10 @@ void RobotSession::drive(
 	Driving d;
 	d.lastStatus = m_robot.clock->now();
 	m_lastLineTime = m_robot.clock->now();
-	// Mapping: the session takes the sweeps (whileDriving, arrivals).
-	NavigationLoop loop(
-	    *m_nav, m_robot, m_mapping ? nullptr : m_localizer.get());
 	nlohmann::json done{{"command", command.text()}};
-	const double deadline = m_robot.clock->now() + m_options.commandTimeLimit;
 	try
 	{
-		auto r = loop.run(
-		    deadline, [&](double, SemanticNavigator& nav)
-		    { whileDriving(nav, d, stop); });
-		for (int attempt = 0;
-		     m_mapping && m_nav->state() == SemanticNavigator::State::Reached;
-		     attempt++)
-		{
-			const bool confirmed = confirmArrivalByMapping(*m_nav);
-			done["arrival_checks"] = attempt + 1;
-			done["arrival_confirmed"] = confirmed;
-			if (confirmed ||
-			    m_nav->state() != SemanticNavigator::State::Navigating)
-				break;
-			if (attempt >= m_config.stopAndScan.arrivalAttempts)
-			{
-				m_nav->cancel(
-				    SemanticNavigator::StopReason::ArrivalNotConfirmed);
-				break;
-			}
-			r = loop.run(
-			    deadline, [&](double, SemanticNavigator& nav)
-			    { whileDriving(nav, d, stop); });
-		}
-		if (!m_mapping)
-		{
-			done["rescans"] = r.rescans.size();
-			done["recoveries"] = r.recoveries;
-			done["arrival_checks"] = r.arrivals.size();
-			if (!r.arrivals.empty())
-				done["arrival_confirmed"] = r.arrivals.back().confirmed;
-		}
+		runLoop(d, stop, done);
 	}
 	catch (const LocalizationFailedError& e)
 	{
@@ -205,6 +171,46 @@ void RobotSession::drive(
 	m_current.reset();
 	m_done++;
 	emit(done);
+}
+
+void RobotSession::runLoop(
+    Driving& d, const std::atomic<bool>& stop, nlohmann::json& done)
+{
+	// Mapping: the session takes the sweeps (whileDriving, arrivals).
+	NavigationLoop loop(
+	    *m_nav, m_robot, m_mapping ? nullptr : m_localizer.get());
+	const double deadline = m_robot.clock->now() + m_options.commandTimeLimit;
+	const auto run = [&]
+	{
+		return loop.run(
+		    deadline, [&](double, SemanticNavigator& nav)
+		    { whileDriving(nav, d, stop); });
+	};
+	const auto r = run();
+	if (!m_mapping)
+	{
+		done["rescans"] = r.rescans.size();
+		done["recoveries"] = r.recoveries;
+		done["arrival_checks"] = r.arrivals.size();
+		if (!r.arrivals.empty())
+			done["arrival_confirmed"] = r.arrivals.back().confirmed;
+		return;
+	}
+	for (int attempt = 0; m_nav->state() == SemanticNavigator::State::Reached;
+	     attempt++)
+	{
+		const bool confirmed = confirmArrivalByMapping(*m_nav);
+		done["arrival_checks"] = attempt + 1;
+		done["arrival_confirmed"] = confirmed;
+		if (confirmed || m_nav->state() != SemanticNavigator::State::Navigating)
+			return;
+		if (attempt >= m_config.stopAndScan.arrivalAttempts)
+		{
+			m_nav->cancel(SemanticNavigator::StopReason::ArrivalNotConfirmed);
+			return;
+		}
+		run();
+	}
 }
 
 void RobotSession::whileDriving(

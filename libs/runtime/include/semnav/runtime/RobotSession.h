@@ -168,6 +168,11 @@ private:
 	NavCommand checkedGoal(const std::string& line);
 	/** Drives `command` until it ends (or is replaced or stopped). */
 	void drive(const NavCommand& command, const std::atomic<bool>& stop);
+	/** The started command's NavigationLoop (with no starting map, the
+	 * arrival checks by mapping sweeps too); fills `done`'s counters.
+	 * Throws LocalizationFailedError. */
+	void runLoop(
+	    Driving& d, const std::atomic<bool>& stop, nlohmann::json& done);
 	/** Every control period while driving: sweeps into the map, safety,
 	 * commands. */
 	void whileDriving(
