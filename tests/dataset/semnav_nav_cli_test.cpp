@@ -319,7 +319,7 @@ TEST(SemnavNavCli, ErrorsAreOneLineWithExitCodes)
 		std::stringstream ss;
 		ss << in.rdbuf();
 		std::string s = ss.str();
-		s.replace(s.find("max_replans"), 11, "max_replanz");
+		s.replace(s.find("max_stalled_replans"), 19, "max_stalled_replanz");
 		std::ofstream(badIni) << s;
 	}
 	const fs::path badLocIni = tmpDir("locini") / "loc.ini";
@@ -342,7 +342,7 @@ TEST(SemnavNavCli, ErrorsAreOneLineWithExitCodes)
 	    {base + " --start 60,2,0 --goal wastebasket", 1, "outside"},
 	    {base + " --start 6.2,2.6,0 --goal wastebasket --config " +
 	         badIni.string(),
-	     1, "max_replanz"},
+	     1, "max_stalled_replanz"},
 	    {base + " --start 6.2,2.6 --goal wastebasket", 2, "--start"},
 	    {base + " --goal wastebasket", 2, "--start"},
 	    {"--scene " + scene + " --start 1,1,0 --goal wastebasket", 2, "--map"},

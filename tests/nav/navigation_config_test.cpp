@@ -79,12 +79,12 @@ TEST(NavigationConfig, ShippedFilesLoad)
 TEST(NavigationConfig, BadInputIsAnError)
 {
 	EXPECT_NE(
-	    errorOf(variant("max_replans = 25", "max_replanz = 25"))
-	        .find("max_replanz"),
+	    errorOf(variant("max_stalled_replans = 25", "max_stalled_replanz = 25"))
+	        .find("max_stalled_replanz"),
 	    std::string::npos);
 	EXPECT_NE(
-	    errorOf(variant("max_replans = 25", "max_replans = -3"))
-	        .find("max_replans"),
+	    errorOf(variant("max_stalled_replans = 25", "max_stalled_replans = -3"))
+	        .find("max_stalled_replans"),
 	    std::string::npos);
 	EXPECT_NE(errorOf(variant("profile = safe", "profile = fastest")), "");
 	EXPECT_NE(

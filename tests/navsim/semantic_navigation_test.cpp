@@ -296,6 +296,39 @@ TEST(SemanticNavigation, StopsWithNoPathWhenEveryWayIsClosed)
 	EXPECT_GE(r.replans, 1);
 }
 
+TEST(SemanticNavigation, GivesUpOnNoProgressNotOnAReplanCount)
+{
+	// Replans on a map that changes nothing (notifyMapChanged every second
+	// steps): driving toward the goal shortens the plan, which is progress,
+	// so the replans may outnumber max_stalled_replans; when nothing counts
+	// as progress (progress_m out of reach) the navigator gives up.
+	const Scene world = scene("datasets/nav/two_routes.yaml");
+	SemanticMap map(config().map);
+	SceneMapBuilder::build(world, map);
+	const auto run = [&](double progressM)
+	{
+		SimulationConfig c = config();
+		c.navigator.maxStalledReplans = 3;
+		c.navigator.progressDistance = progressM;
+		SimulatedNavigation sim(map, world, c);
+		int steps = 0;
+		return sim.run(
+		    NavCommand::nearest(Label::Washbasin), {1.5, 2.0, 0}, "",
+		    [&](double, SemanticNavigator& nav)
+		    {
+			    if (++steps % 10 == 0) nav.notifyMapChanged();
+		    });
+	};
+	const auto moving = run(0.25);
+	EXPECT_TRUE(moving.success) << moving.message;
+	EXPECT_GT(moving.replans, 3);
+	EXPECT_EQ(moving.collisions, 0);
+	const auto stalled = run(1000);
+	EXPECT_FALSE(stalled.success);
+	EXPECT_EQ(stalled.reason, Reason::NoProgress) << stalled.message;
+	EXPECT_EQ(stalled.replans, 3);
+}
+
 TEST(SemanticNavigation, BadOrdersAreErrors)
 {
 	const Scene world = scene("datasets/nav/utrap.yaml");

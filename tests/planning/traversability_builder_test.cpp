@@ -140,6 +140,17 @@ TEST(TraversabilityBuilder, UnobservedCellsAndBadInput)
 	EXPECT_EQ(u.u(15, 17), 0.0);
 	EXPECT_EQ(u.blockedCount(), 0u);
 
+	// Exploring (finite u_unobserved), an unobserved cell carrying an
+	// obstacle label (points above the robot) is not entered but not
+	// inflated; a known map's (blocked u_unobserved) is an obstacle.
+	std::vector<LabelSet> labels(g.cellCount());
+	labels[g.index(15, 15)].insert(Label::Obstacle);
+	const auto exploring = TraversabilityBuilder(o).build(g, labels, occ);
+	EXPECT_TRUE(exploring.blocked(15, 15));
+	EXPECT_EQ(exploring.blockedCount(), 1u);
+	o.uUnobserved = TraversabilityBuilder::kBlocked;
+	EXPECT_TRUE(TraversabilityBuilder(o).build(g, labels, occ).blocked(15, 17));
+
 	EXPECT_THROW(
 	    TraversabilityBuilder().build(g, {}, std::vector<CellOccupancy>(5)),
 	    PlanningError);

@@ -328,9 +328,9 @@ TEST(RobotSession, StopAndANewGoalWhileDriving)
 TEST(RobotSession, FromAnEmptyMapTheFirstSweepStartsTheMap)
 {
 	const Scene scene = test::sourceScene("datasets/nav-trials/two_rooms.yaml");
-	// The planner may cross never-observed cells, at a cost.
-	NavigationConfig config = test::shippedNavigationConfig();
-	config.traversability.uUnobserved = 0.2;
+	// The shipped planning config blocks never-observed cells.
+	const NavigationConfig& config = test::shippedNavigationConfig();
+	ASSERT_GE(config.traversability.uUnobserved, config.traversability.L);
 	SemanticMap map(config.map);
 	SimulatedRobot robot(
 	    scene, test::shippedNavigationConfig().robot, {1.0, 1.0, 0});
@@ -343,6 +343,10 @@ TEST(RobotSession, FromAnEmptyMapTheFirstSweepStartsTheMap)
 	    test::shippedLocalizationOptions(), test::shippedPerceptionOptions(),
 	    SessionRun::cascades(), RobotSession::TOptions(),
 	    [&](const json& e) { events.push_back(e); });
+	// With no map the session lets the planner cross them, at a cost.
+	EXPECT_TRUE(session.mapping());
+	EXPECT_LT(
+	    session.config().traversability.uUnobserved, config.traversability.L);
 	ASSERT_TRUE(session.localize());
 	ASSERT_FALSE(events.empty());
 	EXPECT_EQ(events.front()["event"], "new_object");

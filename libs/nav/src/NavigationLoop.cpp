@@ -53,16 +53,16 @@ NavigationLoop::Result NavigationLoop::run(
 
 bool NavigationLoop::recoverFromFailure(Result& r)
 {
-	// No path (or the start blocked, or too many replans) may come from a
-	// wrong belief: a carried robot plans from where it is not. One
+	// No path (or the start or the goal blocked, or no progress) may come
+	// from a wrong belief: a carried robot plans from where it is not. One
 	// stop-and-scan: when it finds the robot lost it relocalizes it, and the
 	// navigator tries again from the corrected pose.
 	using R = SemanticNavigator::StopReason;
 	const R why = m_nav.stopReason();
 	if (!m_localizer || m_localizer->options().rescanDistance <= 0 ||
 	    m_failureRescans >= m_localizer->options().arrivalAttempts ||
-	    (why != R::NoPath && why != R::StartBlocked &&
-	     why != R::TooManyReplans))
+	    (why != R::NoPath && why != R::StartBlocked && why != R::GoalBlocked &&
+	     why != R::NoProgress))
 		return false;
 	m_failureRescans++;
 	const auto rep = m_localizer->rescan(m_robot);

@@ -1,5 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/core/format.h>
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/poses/CPoint2D.h>
 #include <mrpt/poses/CPose2D.h>
@@ -11,11 +12,13 @@
 #include <semnav/nav/WaypointBuilder.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <set>
 
 namespace semnav
@@ -82,8 +85,16 @@ const OptionTable<O>& optionTable()
 	            "goal_allowed_distance_m", &O::goalAllowedDistance, 0.01, 10,
 	            "The goal is reached this close.")
 	        .integer(
-	            "max_replans", &O::maxReplans, 0, 100000,
-	            "Replans before the navigation fails.")
+	            "max_stalled_replans", &O::maxStalledReplans, 0, 100000,
+	            "Replans in a row without progress before the navigation "
+	            "fails.")
+	        .real(
+	            "progress_m", &O::progressDistance, 0, 1000,
+	            "Progress: a path this much shorter than the shortest since "
+	            "the last progress...")
+	        .real(
+	            "progress_area_m2", &O::progressArea, 0, 1e6,
+	            "...or this much more of the world observed by the map.")
 	        .real(
 	            "path_check_distance_m", &O::pathCheckDistance, 0, 100,
 	            "Look-ahead along the path for sensed obstacles the map "
@@ -227,8 +238,10 @@ const char* SemanticNavigator::stopReasonName(StopReason r)
 			return "no_path";
 		case StopReason::StartBlocked:
 			return "start_blocked";
-		case StopReason::TooManyReplans:
-			return "too_many_replans";
+		case StopReason::GoalBlocked:
+			return "goal_blocked";
+		case StopReason::NoProgress:
+			return "no_progress";
 		case StopReason::Timeout:
 			return "timeout";
 		case StopReason::Cancelled:
@@ -360,6 +373,7 @@ void SemanticNavigator::start(const NavCommand& command)
 	m_goalObjectId = plan.goalObjectId;
 	m_lastPlanMs = rec.milliseconds = msSince(t0);
 	m_plans.push_back(rec);
+	trackProgress(rec.lengthM, true);
 	MRPT_LOG_INFO_FMT(
 	    "%s: path %.2f m, cost %.3f, %zu waypoints%s", command.text().c_str(),
 	    rec.lengthM, rec.cost, rec.waypoints.size() - 1,
@@ -424,7 +438,37 @@ bool SemanticNavigator::retry(ReplanReason reason)
 	m_reason = StopReason::None;
 	m_message.clear();
 	m_planner.setExtraObstacles({});
+	m_stalled = 0;
+	m_bestLength = std::numeric_limits<double>::infinity();
 	return replan(reason);
+}
+
+void SemanticNavigator::trackProgress(double lengthM, bool first)
+{
+	const std::size_t seen = observedCells();
+	const double res = m_map.geometry().resolution;
+	const double newArea =
+	    seen > m_seenAtProgress ? (seen - m_seenAtProgress) * res * res : 0;
+	if (first || lengthM <= m_bestLength - m_options.progressDistance ||
+	    newArea >= m_options.progressArea)
+	{
+		m_stalled = 0;
+		m_bestLength = lengthM;
+		m_seenAtProgress = seen;
+	}
+	else
+	{
+		m_stalled++;
+		m_bestLength = std::min(m_bestLength, lengthM);
+	}
+}
+
+std::size_t SemanticNavigator::observedCells() const
+{
+	if (!m_map.exists("observations")) return 0;
+	const auto& obs = m_map.get("observations");
+	return static_cast<std::size_t>(
+	    std::count_if(obs.begin(), obs.end(), [](float v) { return v > 0; }));
 }
 
 void SemanticNavigator::refuseArrival(const std::string& why)
@@ -538,7 +582,7 @@ bool SemanticNavigator::replan(ReplanReason reason)
 	}
 	catch (const EmptyGoalError& e)
 	{
-		stopWith(StopReason::NoPath, e.what());
+		stopWith(StopReason::GoalBlocked, e.what());
 		return false;
 	}
 	catch (const StartBlockedError& e)
@@ -565,6 +609,7 @@ bool SemanticNavigator::replan(ReplanReason reason)
 	m_goalObjectId = plan.goalObjectId;
 	m_lastPlanMs = rec.milliseconds = msSince(t0);
 	m_plans.push_back(rec);
+	trackProgress(rec.lengthM, false);
 	MRPT_LOG_INFO_FMT(
 	    "replan #%d (%s) at (%.2f, %.2f): path %.2f m, %zu waypoints, %.1f ms",
 	    replans(), replanReasonName(reason), pose.x, pose.y, rec.lengthM,
@@ -630,10 +675,13 @@ SemanticNavigator::State SemanticNavigator::step()
 	if (why)
 	{
 		m_mapChanged = false;
-		if (replans() >= m_options.maxReplans)
+		if (m_stalled >= m_options.maxStalledReplans)
 			stopWith(
-			    StopReason::TooManyReplans,
-			    "gave up after " + std::to_string(replans()) + " replans");
+			    StopReason::NoProgress, "no progress in " +
+			                                std::to_string(m_stalled) +
+			                                " replans (no path shorter than " +
+			                                mrpt::format("%.2f", m_bestLength) +
+			                                " m, no new space seen)");
 		else
 			replan(*why);
 	}

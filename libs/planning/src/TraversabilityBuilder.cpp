@@ -266,6 +266,8 @@ std::vector<float> TraversabilityBuilder::cellCosts(
 	// Unobserved cells that are blocked but not inflated.
 	std::vector<uint8_t> notEnterable(n, 0);
 	const bool inflateUnknown = m_options.inflateUnobserved;
+	// Unseen cells may be crossed (at u_unobserved): the robot explores.
+	const bool exploring = m_options.uUnobserved < L;
 	for (std::size_t i = 0; i < n; i++)
 	{
 		double ui = 0;
@@ -277,7 +279,7 @@ std::vector<float> TraversabilityBuilder::cellCosts(
 				markObstacle(i, 1);
 			else if (unknown)
 			{
-				if (m_options.uUnobserved < L)
+				if (exploring)
 					ui = std::max(ui, m_options.uUnobserved);
 				else if (inflateUnknown)
 					markObstacle(i, 1);
@@ -302,12 +304,20 @@ std::vector<float> TraversabilityBuilder::cellCosts(
 				if (!labelled && unknown)
 				{
 					// Lethal only for being unseen: u_unobserved decides.
-					if (m_options.uUnobserved < L)
+					if (exploring)
 						ui = std::max(ui, m_options.uUnobserved);
 					else if (inflateUnknown)
 						markObstacle(i, 1);
 					else
 						notEnterable[i] = 1;
+				}
+				else if (unknown && exploring)
+				{
+					// An obstacle label without occupancy evidence (points
+					// above the robot, or seen once from afar): exploring,
+					// the cell is not entered but does not push the plan
+					// away (a stray label must not wall off unseen space).
+					notEnterable[i] = 1;
 				}
 				else
 					markObstacle(i, labelled ? s : 1);
@@ -319,10 +329,12 @@ std::vector<float> TraversabilityBuilder::cellCosts(
 			for (std::size_t k = 0; k < labelCount; k++)
 			{
 				if (!(mask & (1u << k))) continue;
-				if (cost[k] >= L)
-					markObstacle(i, m_options.labelRadiusScale[k]);
-				else
+				if (cost[k] < L)
 					ui = std::max(ui, cost[k]);
+				else if (unknown && exploring)
+					notEnterable[i] = 1;
+				else
+					markObstacle(i, m_options.labelRadiusScale[k]);
 			}
 		u[i] = scale[i] != 0.f || notEnterable[i] ? L : ui;
 	}

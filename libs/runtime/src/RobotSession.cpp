@@ -59,6 +59,10 @@ const OptionTable<O>& optionTable()
 	            "status_period_s", &O::statusPeriod, 0, 3600,
 	            "A status event this often while driving (0: on request "
 	            "only).")
+	        .real(
+	            "explore_u_unobserved", &O::exploreUnobserved, 0, 1e9,
+	            "Starting with no map while [Traversability] u_unobserved "
+	            "blocks never-observed cells: their u (>= L: blocked).")
 	        .check(
 	            [](const O& o)
 	            { return o.startPose.empty() || o.startPose.size() == 3; },
@@ -106,6 +110,11 @@ RobotSession::RobotSession(
 	if (!m_robot.base || !m_robot.sweeps || !m_robot.clock || !m_robot.pose)
 		throw Error("RobotSession: base, sweeps, clock and pose are needed");
 	for (const auto& o : m_map.instances()) m_known.insert(o.id);
+	// No map: the robot must cross space it has not seen to get anywhere.
+	m_mapping = m_map.sweepsInserted() == 0 && m_map.instances().empty();
+	auto& t = m_config.traversability;
+	if (m_mapping && t.uUnobserved >= t.L)
+		t.uUnobserved = std::min(m_options.exploreUnobserved, t.L);
 }
 
 RobotSession::~RobotSession()
@@ -173,27 +182,72 @@ void RobotSession::makeLocalizer()
 		    m_config.navigationTraversability(m_map), m_config.viewPlanner);
 }
 
-void RobotSession::seedMap()
+void RobotSession::mappingSweep()
 {
-	SweepPerception perception(m_perception, m_cascades);
-	perception.pipeline().setMinLoggingLevel(mrpt::system::LVL_ERROR);
-	Sweep sweep;
-	LabeledSweep labeled;
+	if (!m_mapper)
+	{
+		m_mapper = std::make_unique<MappingLocalizer>(m_localization);
+		m_mapperPerception =
+		    std::make_unique<SweepPerception>(m_perception, m_cascades);
+		m_mapperPerception->pipeline().setMinLoggingLevel(
+		    mrpt::system::LVL_ERROR);
+	}
 	m_robot.base->stop();
+	m_robot.clock->waitFor(m_robot.clock->period());
+	Sweep sweep;
 	if (!m_robot.sweeps->next(sweep, mrpt::Clock::now()))
 		throw LocalizationFailedError(
 		    std::string("no sweep (") +
 		    SweepSource::endName(m_robot.sweeps->end()) +
 		    "): " + m_robot.sweeps->endMessage());
-	perception.process(sweep, labeled);
+	const auto t0 = std::chrono::steady_clock::now();
+	const LabeledSweep labeled = m_mapperPerception->process(sweep);
 	m_obstacles.update(sweep);
-	m_map.insert(sweep, labeled, sweep.odometry());
-	reportNewObjects();
+	const bool first = m_map.sweepsInserted() == 0;
+	const auto estimate = m_mapper->process(sweep, labeled, m_map).asTPose();
+	m_robot.pose->setEstimate(estimate, sweep.odometry().asTPose());
+	m_lastMappingSweepAt = m_robot.base->odometry().distance;
 	m_sweeps++;
 	m_inserted++;
-	const auto odo = sweep.odometry().asTPose();
-	m_robot.pose->setEstimate(odo, odo);
-	emit({{"event", "map_started"}, {"pose", poseJson(odo)}});
+	reportNewObjects();
+	const auto& u = m_mapper->lastUpdate();
+	if (first)
+		emit({{"event", "map_started"}, {"pose", poseJson(estimate)}});
+	else
+		emit(
+		    {{"event", "sweep"},
+		     {"estimate", poseJson(estimate)},
+		     {"std_xy_m", u.stdXY},
+		     {"inliers", u.inlierFraction},
+		     {"inserted", true},
+		     {"mapping_ms", msSince(t0)}});
+}
+
+bool RobotSession::mappingRescan()
+{
+	if (!m_mapper || m_config.stopAndScan.rescanDistance <= 0 ||
+	    m_robot.base->odometry().distance - m_lastMappingSweepAt <
+	        m_config.stopAndScan.rescanDistance)
+		return false;
+	mappingSweep();
+	return true;
+}
+
+bool RobotSession::confirmArrivalByMapping(SemanticNavigator& nav)
+{
+	mappingSweep();
+	nav.notifyPoseCorrected();
+	// From the corrected pose the plan is empty (in the goal region) or
+	// within the distance the navigator accepts as arrived; else the
+	// navigator drives on.
+	if (!nav.retry(SemanticNavigator::ReplanReason::ArrivalNotConfirmed))
+		return false;
+	const double accepted =
+	    m_config.navigator.goalAllowedDistance + m_map.geometry().resolution;
+	if (nav.state() == SemanticNavigator::State::Navigating &&
+	    nav.plans().back().lengthM <= accepted)
+		nav.cancel(SemanticNavigator::StopReason::Reached);
+	return nav.state() == SemanticNavigator::State::Reached;
 }
 
 bool RobotSession::localize()
@@ -207,11 +261,17 @@ bool RobotSession::localize()
 			guess = mrpt::math::TPose2D(
 			    m_options.startPose[0], m_options.startPose[1],
 			    mrpt::DEG2RAD(m_options.startPose[2]));
-		if (m_map.sweepsInserted() == 0 && m_map.instances().empty())
+		if (m_mapping)
 		{
-			seedMap();
-			mode = StopAndScanLocalizer::Mode::Tracking;
-			guess = m_robot.pose->pose();
+			if (!m_mapper) mappingSweep();
+			m_localized = true;
+			emit(
+			    {{"event", "localized"},
+			     {"mode", "mapping"},
+			     {"pose", poseJson(m_robot.pose->pose())},
+			     {"sweeps", 1},
+			     {"wall_s", msSince(t0) / 1000}});
+			return true;
 		}
 		if (!m_localizer) makeLocalizer();
 		emit(

@@ -136,19 +136,10 @@ void RobotSession::drive(
 	Driving d;
 	d.lastStatus = m_robot.clock->now();
 	m_lastLineTime = m_robot.clock->now();
-	NavigationLoop loop(*m_nav, m_robot, m_localizer.get());
 	nlohmann::json done{{"command", command.text()}};
 	try
 	{
-		const auto r = loop.run(
-		    m_robot.clock->now() + m_options.commandTimeLimit,
-		    [&](double, SemanticNavigator& nav)
-		    { whileDriving(nav, d, stop); });
-		done["rescans"] = r.rescans.size();
-		done["recoveries"] = r.recoveries;
-		done["arrival_checks"] = r.arrivals.size();
-		if (!r.arrivals.empty())
-			done["arrival_confirmed"] = r.arrivals.back().confirmed;
+		runLoop(d, stop, done);
 	}
 	catch (const LocalizationFailedError& e)
 	{
@@ -160,7 +151,12 @@ void RobotSession::drive(
 	const bool reached =
 	    m_nav->state() == SemanticNavigator::State::Reached && d.why.empty();
 	done["event"] = reached ? "arrived" : "failed";
-	if (!reached) done["reason"] = d.why.empty() ? m_nav->stopMessage() : d.why;
+	if (!reached)
+	{
+		done["reason"] = d.why.empty() ? m_nav->stopMessage() : d.why;
+		done["stop_reason"] =
+		    SemanticNavigator::stopReasonName(m_nav->stopReason());
+	}
 	if (m_nav->goalObjectId()) done["object"] = m_nav->goalObjectId();
 	done["pose"] = poseJson(m_robot.pose->pose());
 	done["replans"] = m_nav->replans();
@@ -177,11 +173,52 @@ void RobotSession::drive(
 	emit(done);
 }
 
+void RobotSession::runLoop(
+    Driving& d, const std::atomic<bool>& stop, nlohmann::json& done)
+{
+	// Mapping: the session takes the sweeps (whileDriving, arrivals).
+	NavigationLoop loop(
+	    *m_nav, m_robot, m_mapping ? nullptr : m_localizer.get());
+	const double deadline = m_robot.clock->now() + m_options.commandTimeLimit;
+	const auto run = [&]
+	{
+		return loop.run(
+		    deadline, [&](double, SemanticNavigator& nav)
+		    { whileDriving(nav, d, stop); });
+	};
+	const auto r = run();
+	if (!m_mapping)
+	{
+		done["rescans"] = r.rescans.size();
+		done["recoveries"] = r.recoveries;
+		done["arrival_checks"] = r.arrivals.size();
+		if (!r.arrivals.empty())
+			done["arrival_confirmed"] = r.arrivals.back().confirmed;
+		return;
+	}
+	for (int attempt = 0; m_nav->state() == SemanticNavigator::State::Reached;
+	     attempt++)
+	{
+		const bool confirmed = confirmArrivalByMapping(*m_nav);
+		done["arrival_checks"] = attempt + 1;
+		done["arrival_confirmed"] = confirmed;
+		if (confirmed || m_nav->state() != SemanticNavigator::State::Navigating)
+			return;
+		if (attempt >= m_config.stopAndScan.arrivalAttempts)
+		{
+			m_nav->cancel(SemanticNavigator::StopReason::ArrivalNotConfirmed);
+			return;
+		}
+		run();
+	}
+}
+
 void RobotSession::whileDriving(
     SemanticNavigator& nav, Driving& d, const std::atomic<bool>& stop)
 {
 	m_trajectory.push_back(m_robot.pose->pose());
 	if (insertSweeps()) nav.notifyMapChanged();
+	if (mappingRescan()) nav.notifyPoseCorrected();
 	if (stop)
 	{
 		m_robot.base->stop();

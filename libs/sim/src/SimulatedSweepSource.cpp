@@ -1,7 +1,9 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/math/wrap2pi.h>
+#include <mrpt/obs/CObservationOdometry.h>
 #include <semnav/common/Error.h>
 #include <semnav/robot/ControlClock.h>
+#include <semnav/scan/RawlogWriter.h>
 #include <semnav/sim/SimulatedBase.h>
 #include <semnav/sim/SimulatedSweepSource.h>
 
@@ -45,6 +47,16 @@ bool SimulatedSweepSource::next(
 		    std::to_string(m_index) + " (stop it before sweeping)");
 	sweep = sim.toSweep();
 	sweep.setOdometry(mrpt::poses::CPose2D(m_base.odometry().pose));
+	if (m_rawlog)
+	{
+		mrpt::obs::CObservationOdometry o;
+		o.sensorLabel = "ODOMETRY";
+		o.timestamp =
+		    sim.lines.empty() ? sweep.timestamp() : sim.lines.front().timestamp;
+		o.odometry = sweep.odometry();
+		m_rawlog->write(o);
+		for (const auto& line : sim.lines) m_rawlog->write(line);
+	}
 	m_index++;
 	return true;
 }

@@ -54,8 +54,8 @@ public:
 	Result run(double deadline, const StepHook& hook = {});
 
 private:
-	/** After the navigator failed (no path, start blocked, too many
-	 * replans): one stop-and-scan; true when it found the robot lost,
+	/** After the navigator failed (no path, start or goal blocked, no
+	 * progress): one stop-and-scan; true when it found the robot lost,
 	 * relocalized it and the navigator is under way again. */
 	bool recoverFromFailure(Result& r);
 	/** A global start where the robot stands after an unconfirmed arrival;

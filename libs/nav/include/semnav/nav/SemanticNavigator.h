@@ -32,7 +32,8 @@ class SemanticMap;
  *   obstacle the map does not hold (it is then added to the planner's
  *   extra obstacles),
  * - the owner calls notifyMapChanged();
- * and stops with a typed StopReason when no path exists or it gives up.
+ * and stops with a typed StopReason when the goal turns out blocked, no path
+ * exists, or it makes no progress (max_stalled_replans).
  *
  * Call start(), then step() once per control period until it returns
  * something other than State::Navigating.
@@ -62,8 +63,15 @@ public:
 		double waypointAllowedDistance = 0.35;
 		/** goal_allowed_distance_m: the last waypoint (in the goal region). */
 		double goalAllowedDistance = 0.15;
-		/** max_replans: give up after this many replans. */
-		int maxReplans = 25;
+		/** max_stalled_replans: give up after this many replans in a row
+		 * without progress. A replan makes progress when its path is
+		 * progress_m shorter than the shortest since the last progress,
+		 * or when the map has observed progress_area_m2 more of the world
+		 * since then (exploring: a plan through unseen space grows as
+		 * walls appear, and each stop-and-scan shows new space). */
+		int maxStalledReplans = 25;
+		double progressDistance = 0.25;
+		double progressArea = 1.0;
 		/** path_check_distance_m: look-ahead along the path for sensed
 		 * obstacles the map does not hold. */
 		double pathCheckDistance = 2.0;
@@ -100,9 +108,13 @@ public:
 		Reached,
 		/** No path from the current pose to the goal (any more). */
 		NoPath,
+		/** Every cell of the goal region is blocked (the goal lies in an
+		 * obstacle, or too close to one for the robot). */
+		GoalBlocked,
 		/** The robot stands where it cannot plan from. */
 		StartBlocked,
-		TooManyReplans,
+		/** max_stalled_replans replans in a row without progress. */
+		NoProgress,
 		/** The caller gave up (time limit). */
 		Timeout,
 		Cancelled,
@@ -227,6 +239,11 @@ private:
 	bool knownObstacle(double x, double y) const;
 	void addSensedObstacles();
 	void stopWith(StopReason r, const std::string& message);
+	/** Progress bookkeeping after a plan of `lengthM` (see
+	 * max_stalled_replans); `first` starts it over. */
+	void trackProgress(double lengthM, bool first);
+	/** Cells of the map observed at least once. */
+	std::size_t observedCells() const;
 
 	NavInterfaceMonitor m_monitor;
 	const SemanticMap& m_map;
@@ -245,6 +262,11 @@ private:
 	bool m_mapChanged = false;
 	bool m_aligning = false;
 	int m_blockedSteps = 0;
+	/** Replans since the last progress, the shortest path since then and
+	 * the observed cells then. */
+	int m_stalled = 0;
+	double m_bestLength = 0;
+	std::size_t m_seenAtProgress = 0;
 	double m_lastPlanMs = 0, m_lastStepMs = 0;
 };
 

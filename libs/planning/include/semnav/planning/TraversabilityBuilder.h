@@ -42,9 +42,11 @@ const char* costProfileName(CostProfile p);
  * A cell is an obstacle when it is occupied, unobserved with u_unobserved =
  * blocked, or carries a label whose u_s is blocked (stairs always are for a
  * wheeled robot). Other cells get u = max over their labels of u_s (and
- * u_unobserved if unobserved). Around obstacles, with d = distance from the
- * cell centre to the obstacle cell's square and r1 = d - robot_radius (the
- * clearance of the robot's disc):
+ * u_unobserved if unobserved). With a finite u_unobserved (exploring), an
+ * unobserved cell that carries a blocking label (points seen above the
+ * robot, or once from afar) is not entered but not inflated either. Around
+ * obstacles, with d = distance from the cell centre to the obstacle cell's
+ * square and r1 = d - robot_radius (the clearance of the robot's disc):
  * - C-space (eq. (2)): r1 < 0 (the disc would touch the obstacle) -> L;
  * - profile influence f_s(r1) with r = r_scale_<label> x the profile radius
  *   (occupancy obstacles: scale 1); u = max(u, f_s(r1)).

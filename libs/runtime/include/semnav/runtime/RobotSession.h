@@ -36,6 +36,13 @@ class SemanticMap;
  *   consistent estimate is inserted into the map at that estimate (walls,
  *   labels, objects first seen become instances, as semnav-map does); the
  *   localizer and the navigator then work on the new map.
+ * - **No map at all** (an empty map, nothing inserted): the robot maps as
+ *   semnav-map --poses pf does (MappingLocalizer: every stop-and-scan sweep
+ *   is localized against the map built so far, then inserted; the first
+ *   one at the odometry origin), and the planner crosses never-observed
+ *   cells at explore_u_unobserved when [Traversability] u_unobserved
+ *   blocks them: the plan through unseen space is optimistic, each sweep
+ *   shows walls and the navigator replans.
  * - **Safety**: while driving, a laser that has sent no scan line for
  *   laser_silence_s, or odometry older than odometry_timeout_s, stops the
  *   base and pauses the navigation until they return (odometry gone for
@@ -80,6 +87,10 @@ public:
 		/** status_period_s: a status event this often while driving (0:
 		 * only on request). */
 		double statusPeriod = 0;
+		/** explore_u_unobserved: u of never-observed cells for a run that
+		 * starts with no map while [Traversability] u_unobserved blocks
+		 * them (a value >= L keeps them blocked). */
+		double exploreUnobserved = 0.2;
 	};
 
 	/** What the session reports (one JSON object per event). */
@@ -139,6 +150,11 @@ public:
 	}
 	/** The last command's navigator (nullptr before the first). */
 	const SemanticNavigator* navigator() const { return m_nav.get(); }
+	/** The run started with no map: it maps as semnav-map --poses pf. */
+	bool mapping() const { return m_mapping; }
+	/** The navigation configuration in use (u_unobserved may be the
+	 * explore value). */
+	const NavigationConfig& config() const { return m_config; }
 
 private:
 	struct Driving;
@@ -152,6 +168,11 @@ private:
 	NavCommand checkedGoal(const std::string& line);
 	/** Drives `command` until it ends (or is replaced or stopped). */
 	void drive(const NavCommand& command, const std::atomic<bool>& stop);
+	/** The started command's NavigationLoop (with no starting map, the
+	 * arrival checks by mapping sweeps too); fills `done`'s counters.
+	 * Throws LocalizationFailedError. */
+	void runLoop(
+	    Driving& d, const std::atomic<bool>& stop, nlohmann::json& done);
 	/** Every control period while driving: sweeps into the map, safety,
 	 * commands. */
 	void whileDriving(
@@ -168,15 +189,23 @@ private:
 	double odometryAge() const;
 	/** A localizer on the map (the map must have walls). */
 	void makeLocalizer();
-	/** An empty map: the first sweep goes in at the odometry pose, which
-	 * makes the odometry frame the map frame. */
-	void seedMap();
+	/** Mapping (an empty start): stops, sweeps, localizes the sweep
+	 * against the map so far and inserts it (MappingLocalizer; the first
+	 * sweep goes in at the odometry pose, which makes the odometry frame
+	 * the map frame); the robot reports the estimate. */
+	void mappingSweep();
+	/** Mapping, while driving: a mapping sweep every rescan_distance_m of
+	 * odometry; true when one was taken. */
+	bool mappingRescan();
+	/** Mapping, at a believed arrival: one sweep, then a replan from the
+	 * corrected pose; true when that pose is in the goal region. */
+	bool confirmArrivalByMapping(SemanticNavigator& nav);
 	CommandQueue* m_queue = nullptr;
 
 	SemanticMap& m_map;
 	RobotInterfaces m_robot;
 	SweepObstacles& m_obstacles;
-	const NavigationConfig& m_config;
+	NavigationConfig m_config;
 	TOptions m_options;
 	EventSink m_events;
 	MappingLocalizer::TOptions m_localization;
@@ -185,6 +214,12 @@ private:
 	LineCounter m_lines;
 	std::function<void()> m_save;
 	std::unique_ptr<StopAndScanLocalizer> m_localizer;
+	/** Mapping (empty start): the localizer and perception of each sweep,
+	 * and the odometry distance at the last sweep. */
+	bool m_mapping = false;
+	std::unique_ptr<MappingLocalizer> m_mapper;
+	std::unique_ptr<SweepPerception> m_mapperPerception;
+	double m_lastMappingSweepAt = 0;
 	std::unique_ptr<class RobotNavInterface> m_interface;
 	std::unique_ptr<SemanticNavigator> m_nav;
 	std::string m_navlogPath;

@@ -10,6 +10,7 @@
 namespace semnav
 {
 class SimulatedBase;
+class RawlogWriter;
 class ControlClock;
 
 /** Sweeps of the simulated tilting LMS200 (TiltingLaserSimulator) taken
@@ -34,6 +35,12 @@ public:
 	End end() const override { return m_end; }
 	std::string endMessage() const override { return m_message; }
 
+	/** Records every sweep from now on into `rawlog` as semnav-sim writes
+	 * its sweeps (an odometry reading, then the scan lines), so that
+	 * semnav-map can rebuild the map of a run; nullptr stops. `rawlog`
+	 * must outlive the recording. */
+	void record(RawlogWriter* rawlog) { m_rawlog = rawlog; }
+
 	/** Sweeps taken so far. */
 	std::size_t sweeps() const { return m_index; }
 	const TiltingLaserSimulator& laser() const { return m_laser; }
@@ -45,6 +52,7 @@ private:
 	double m_linePeriod;
 	std::size_t m_index = 0;
 	std::atomic<bool> m_cancelled{false};
+	RawlogWriter* m_rawlog = nullptr;
 	End m_end = End::None;
 	std::string m_message;
 };
