@@ -1,9 +1,9 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // ObjectFootprints: a post's footprint is its centre, not the centroid of
-// the faces the sweep sees; wall fragments, wide objects and table tops are
-// no footprint; footprints score highest at the pose that put them on the
-// landmarks of earlier sweeps; new objects are not scored; options are
-// checked.
+// the faces the sweep sees; wall fragments, wide objects, sides seen edge-on
+// and table tops are no footprint; footprints score highest at the pose that
+// put them on the landmarks of earlier sweeps; new objects are not scored;
+// options are checked.
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <semnav/common/Error.h>
@@ -16,7 +16,7 @@ using namespace semnav;
 
 namespace
 {
-constexpr int kRows = 20, kCols = 240;
+constexpr int kRows = 20, kCols = 280;
 
 LabeledSweep emptySweep()
 {
@@ -98,6 +98,8 @@ TEST(ObjectFootprints, WallFragmentsWideObjectsAndTableTopsAreNoFootprint)
 	// Two pieces of one object 0.2 m apart.
 	addCylinder(s, 160, 0.0, -3.0, 0.05, 0.0, 1.0);
 	addCylinder(s, 200, 0.0, -3.25, 0.05, 0.0, 1.0);
+	// A side seen edge-on (along the ray: no width across it).
+	addFace(s, 240, 0.0, 5.0, 0.0, 5.3, 0.0, 0.8, Label::Obstacle);
 	EXPECT_TRUE(ObjectFootprints().extract(s).empty());
 	// The same post alone in the open is one.
 	LabeledSweep alone = emptySweep();

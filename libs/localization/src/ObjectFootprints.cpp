@@ -50,6 +50,10 @@ const OptionTable<O>& optionTable()
 	            "max_width_m", &O::maxWidth, 0.01, 10,
 	            "Wider clusters are no compact object.")
 	        .real(
+	            "min_width_m", &O::minWidth, 0, 10,
+	            "Narrower clusters (across the ray) are edges of something "
+	            "seen side-on.")
+	        .real(
 	            "min_height_m", &O::minHeight, 0, 10,
 	            "Lower clusters (above the ground) are left out.")
 	        .integer(
@@ -233,7 +237,8 @@ std::vector<ObjectFootprints::Footprint> ObjectFootprints::extract(
 			a0 = std::min(a0, across), a1 = std::max(a1, across);
 			b0 = std::min(b0, along), b1 = std::max(b1, along);
 		}
-		if (a1 - a0 > m_options.maxWidth || b1 - b0 > m_options.maxWidth)
+		if (a1 - a0 > m_options.maxWidth || b1 - b0 > m_options.maxWidth ||
+		    a1 - a0 < m_options.minWidth)
 			continue;
 		Footprint f;
 		f.radius = 0.5 * (a1 - a0);

@@ -59,7 +59,10 @@ public:
 		 * (8-connected). */
 		double cell = 0.1;
 		/** max_width_m: clusters wider than this are no compact object. */
-		double maxWidth = 0.6;
+		double maxWidth = 0.4;
+		/** min_width_m: clusters narrower than this across the ray are the
+		 * edge of something seen side-on (a table's side), not a post. */
+		double minWidth = 0.02;
 		/** min_height_m: clusters lower than this (above the ground) are
 		 * left out (grass bumps). */
 		double minHeight = 0.2;
