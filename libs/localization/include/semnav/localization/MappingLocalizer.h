@@ -29,7 +29,8 @@ class SemanticMap;
  *
  * Methods: Walls (Localizer on the walls of the sweeps inserted so far and,
  * with the [SemanticEvidence] weights, the sweep's semantic evidence
- * against the labels and objects of the map so far; then the
+ * against the labels and objects of the map so far, and its object
+ * footprints against those of the sweeps inserted so far; then the
  * PredictionGuard: along directions the sweep did not constrain the
  * estimate follows the motion prediction),
  * OccupancyMcl (MRPT's stock likelihood field on the map's occupancy grid
