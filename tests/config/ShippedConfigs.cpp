@@ -8,6 +8,7 @@
 #include <semnav/hwdrivers/CTiltingLMS2xx.h>
 #include <semnav/hwdrivers/LiveSweepSource.h>
 #include <semnav/localization/Localizer.h>
+#include <semnav/localization/ObjectFootprints.h>
 #include <semnav/localization/PredictionGuard.h>
 #include <semnav/localization/SemanticEvidenceMap.h>
 #include <semnav/localization/SemanticExtractor.h>
@@ -261,14 +262,16 @@ rawlog_GZ_compress_level = 1
 	     "--loc-config\nconfig/localization.ini): particle filter on wall "
 	     "landmarks with main-direction\nheading correction (paper sec. "
 	     "2.3), the semantic evidence of each sweep\n(labels and detected "
-	     "objects against the map's) and, while mapping, the\nprediction "
-	     "guard (directions the sweep does not constrain follow the\n"
-	     "odometry).",
+	     "objects against the map's) and, while mapping, the\nobject "
+	     "footprints (posts, bins) against those of earlier sweeps and the\n"
+	     "prediction guard (directions the sweep does not constrain follow "
+	     "the\nodometry).",
 	     {section<WallExtractor::TOptions>("WallExtractor"),
 	      section<WallMap::TOptions>("WallMap"),
 	      section<Localizer::TOptions>("Localizer"),
 	      section<SemanticExtractor::TOptions>("SemanticExtractor"),
 	      section<SemanticEvidenceMap::TOptions>("SemanticEvidence"),
+	      section<ObjectFootprints::TOptions>("ObjectFootprints"),
 	      section<PredictionGuard::TOptions>("PredictionGuard")}});
 	all.push_back(
 	    {"map.ini",

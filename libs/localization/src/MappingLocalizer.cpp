@@ -13,7 +13,8 @@ const std::vector<std::string>& MappingLocalizer::TOptions::sections()
 {
 	static const std::vector<std::string> s = {
 	    "WallExtractor",     "WallMap",          "Localizer",
-	    "SemanticExtractor", "SemanticEvidence", "PredictionGuard"};
+	    "SemanticExtractor", "SemanticEvidence", "ObjectFootprints",
+	    "PredictionGuard"};
 	return s;
 }
 
@@ -25,6 +26,7 @@ void MappingLocalizer::TOptions::loadFromConfigFile(
 	localizer.loadFromConfigFile(c, prefix + "Localizer");
 	semanticExtractor.loadFromConfigFile(c, prefix + "SemanticExtractor");
 	semantic.loadFromConfigFile(c, prefix + "SemanticEvidence");
+	footprints.loadFromConfigFile(c, prefix + "ObjectFootprints");
 	guard.loadFromConfigFile(c, prefix + "PredictionGuard");
 }
 
@@ -36,6 +38,7 @@ void MappingLocalizer::TOptions::saveToConfigFile(
 	localizer.saveToConfigFile(c, prefix + "Localizer");
 	semanticExtractor.saveToConfigFile(c, prefix + "SemanticExtractor");
 	semantic.saveToConfigFile(c, prefix + "SemanticEvidence");
+	footprints.saveToConfigFile(c, prefix + "ObjectFootprints");
 	guard.saveToConfigFile(c, prefix + "PredictionGuard");
 }
 
@@ -49,10 +52,12 @@ MappingLocalizer::MappingLocalizer(const TOptions& options, Method method)
       m_stock(options.localizer),
       m_semanticExtractor(options.semanticExtractor),
       m_semantic(options.semantic),
+      m_footprints(options.footprints),
       m_guard(options.guard)
 {
 	m_localizer.setWallMap(&m_walls);
 	m_localizer.setSemanticMap(&m_semantic);
+	if (options.footprints.enabled()) m_semantic.setFootprints(&m_footprints);
 }
 
 LocalizationUpdate MappingLocalizer::localizeWalls(
@@ -74,6 +79,9 @@ LocalizationUpdate MappingLocalizer::localizeWalls(
 		const auto& p = predicted.mean;
 		m_semanticObs = m_semantic.observedPart(
 		    p.x(), p.y(), p.phi(), m_semanticExtractor.extract(labeled));
+		if (m_options.footprints.enabled())
+			m_semanticObs.footprints = m_footprints.observedPart(
+			    p.x(), p.y(), p.phi(), m_sweepFootprints);
 	}
 	LocalizationUpdate u = m_localizer.update(incr, m_obs, &m_semanticObs);
 	auto [cov, mean] = m_localizer.pdf().getCovarianceAndMean();
@@ -108,6 +116,9 @@ mrpt::poses::CPose2D MappingLocalizer::process(
 {
 	const mrpt::poses::CPose2D odo = sweep.odometry();
 	m_obs = m_extractor.extract(labeled);
+	m_sweepFootprints.clear();
+	if (m_method == Method::Walls && m_options.footprints.enabled())
+		m_sweepFootprints = m_footprints.extract(labeled);
 	mrpt::poses::CPose2D pose = odo;
 	m_last = LocalizationUpdate();
 	m_last.converged = true;
@@ -144,6 +155,7 @@ mrpt::poses::CPose2D MappingLocalizer::process(
 		m_walls.addObservation(m_obs.segments, pose);
 		m_walls.rebuild(&map);
 		updateSemanticMap(map);
+		m_footprints.insert(m_sweepFootprints, pose);
 	}
 	m_lastOdometry = odo;
 	m_pose = pose;

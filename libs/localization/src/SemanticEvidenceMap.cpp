@@ -1,6 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <semnav/common/LabelSet.h>
 #include <semnav/common/OptionTable.h>
+#include <semnav/localization/ObjectFootprints.h>
 #include <semnav/localization/SemanticEvidenceMap.h>
 #include <semnav/localization/SemanticExtractor.h>
 #include <semnav/localization/WallMap.h>
@@ -224,6 +225,8 @@ SemanticEvidenceMap::Terms SemanticEvidenceMap::termsOf(
 	if (m_options.objectPoints > 0)
 		t.objects =
 		    m_options.objectPoints * meanObjects(x, y, c, s, obs.objects);
+	if (m_footprints)
+		t.footprints = m_footprints->logLikelihood(x, y, yaw, obs.footprints);
 	return t;
 }
 

@@ -5,6 +5,7 @@
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/system/COutputLogger.h>
 #include <semnav/localization/Localizer.h>
+#include <semnav/localization/ObjectFootprints.h>
 #include <semnav/localization/OccupancyMcl.h>
 #include <semnav/localization/PredictionGuard.h>
 #include <semnav/localization/SemanticEvidenceMap.h>
@@ -28,7 +29,8 @@ class SemanticMap;
  *
  * Methods: Walls (Localizer on the walls of the sweeps inserted so far and,
  * with the [SemanticEvidence] weights, the sweep's semantic evidence
- * against the labels and objects of the map so far; then the
+ * against the labels and objects of the map so far, and its object
+ * footprints against those of the sweeps inserted so far; then the
  * PredictionGuard: along directions the sweep did not constrain the
  * estimate follows the motion prediction),
  * OccupancyMcl (MRPT's stock likelihood field on the map's occupancy grid
@@ -44,8 +46,8 @@ public:
 	};
 
 	/** All localization options; sections [WallExtractor], [WallMap],
-	 * [Localizer], [SemanticExtractor], [SemanticEvidence] and
-	 * [PredictionGuard]. */
+	 * [Localizer], [SemanticExtractor], [SemanticEvidence],
+	 * [ObjectFootprints] and [PredictionGuard]. */
 	struct TOptions : public mrpt::config::CLoadableOptions
 	{
 		void loadFromConfigFile(
@@ -61,6 +63,7 @@ public:
 		Localizer::TOptions localizer;
 		SemanticExtractor::TOptions semanticExtractor;
 		SemanticEvidenceMap::TOptions semantic;
+		ObjectFootprints::TOptions footprints;
 		PredictionGuard::TOptions guard;
 	};
 
@@ -83,6 +86,8 @@ public:
 	 * sweep's that the map so far can judge). */
 	const SemanticObservation& lastSemantic() const { return m_semanticObs; }
 	const SemanticEvidenceMap& semanticMap() const { return m_semantic; }
+	/** The object footprints of the sweeps inserted so far. */
+	const ObjectFootprints& footprints() const { return m_footprints; }
 	/** Time of the last semantic-evidence rebuild (ms). */
 	double semanticBuildMs() const { return m_semanticMs; }
 
@@ -99,6 +104,8 @@ private:
 	OccupancyMcl m_stock;
 	SemanticExtractor m_semanticExtractor;
 	SemanticEvidenceMap m_semantic;
+	ObjectFootprints m_footprints;
+	std::vector<ObjectFootprints::Footprint> m_sweepFootprints;
 	PredictionGuard m_guard;
 	WallObservation m_obs;
 	SemanticObservation m_semanticObs;

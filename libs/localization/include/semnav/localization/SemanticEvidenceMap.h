@@ -13,6 +13,7 @@
 namespace semnav
 {
 class SemanticMap;
+class ObjectFootprints;
 
 /** The semantic side of the localization likelihood: how well a sweep's
  * labels and objects (SemanticObservation) agree with a known semantic map
@@ -91,8 +92,8 @@ public:
 	/** The terms alone (each already weighted). */
 	struct Terms
 	{
-		double classes = 0, ground = 0, objects = 0;
-		double total() const { return classes + ground + objects; }
+		double classes = 0, ground = 0, objects = 0, footprints = 0;
+		double total() const { return classes + ground + objects + footprints; }
 	};
 	Terms terms(
 	    double x, double y, double yaw, const SemanticObservation& obs) const;
@@ -110,6 +111,10 @@ public:
 	 * cells (nor loses: the frontier bias). */
 	SemanticObservation observedPart(
 	    double x, double y, double yaw, const SemanticObservation& obs) const;
+
+	/** Mapping: the landmarks the observation's footprints are scored
+	 * against (owned by the caller; nullptr: none). */
+	void setFootprints(const ObjectFootprints* f) { m_footprints = f; }
 
 	/** True when the map has cells of label l. */
 	bool hasField(Label l) const
@@ -137,6 +142,7 @@ private:
 	float m_outside = 0;
 	/** 1 where the map never observed the cell. */
 	std::vector<uint8_t> m_unknown;
+	const ObjectFootprints* m_footprints = nullptr;
 };
 
 }  // namespace semnav

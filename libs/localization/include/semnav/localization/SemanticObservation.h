@@ -25,9 +25,13 @@ struct SemanticObservation
 	std::vector<SemanticSample> classSamples, groundSamples;
 	/** Detected objects (centroid, label). */
 	std::vector<SemanticSample> objects;
+	/** Mapping: object footprints (centres of posts, bins; see
+	 * ObjectFootprints). */
+	std::vector<SemanticSample> footprints;
 	bool empty() const
 	{
-		return classSamples.empty() && groundSamples.empty() && objects.empty();
+		return classSamples.empty() && groundSamples.empty() &&
+		       objects.empty() && footprints.empty();
 	}
 };
 
