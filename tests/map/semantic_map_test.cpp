@@ -613,6 +613,12 @@ TEST(SemanticMap, ChangesSinceBoundWhatAnInsertionChanged)
 		return s;
 	};
 	const auto before = snapshot();
+	const std::vector<float> observationsBefore =
+	    std::as_const(m).get("observations");
+	std::vector<double> occupancyBefore;
+	for (int cy = 0; cy < g.rows; cy++)
+		for (int cx = 0; cx < g.cols; cx++)
+			occupancyBefore.push_back(m.occupancy(cx, cy));
 	const std::uint64_t v = m.version();
 	EXPECT_TRUE(m.changesSince(v).none());
 	// A box 1 m ahead of a robot turned left: inside the grid, no growth.
@@ -641,6 +647,21 @@ TEST(SemanticMap, ChangesSinceBoundWhatAnInsertionChanged)
 	    static_cast<std::size_t>(c.cells.row1 - c.cells.row0) *
 	        (c.cells.col1 - c.cells.col0),
 	    g.cellCount() / 2);
+	// Observation counts and occupancy: written inside `touched` only.
+	std::size_t written = 0;
+	for (int cy = 0; cy < g.rows; cy++)
+		for (int cx = 0; cx < g.cols; cx++)
+			if (observationsBefore[g.index(cy, cx)] !=
+			        m.at("observations", cx, cy) ||
+			    occupancyBefore[g.index(cy, cx)] != m.occupancy(cx, cy))
+			{
+				written++;
+				EXPECT_TRUE(c.touched.contains(cy, cx)) << cx << ", " << cy;
+			}
+	EXPECT_GT(written, changed / 4);
+	EXPECT_TRUE(
+	    c.touched.contains(c.cells.row0, c.cells.col0) &&
+	    c.touched.contains(c.cells.row1 - 1, c.cells.col1 - 1));
 	// Costs recomputed only where the sweep touched: as everywhere.
 	const std::vector<float> cost = std::as_const(m).get("cost");
 	m.updateCosts();
@@ -660,4 +681,33 @@ TEST(SemanticMap, ChangesSinceBoundWhatAnInsertionChanged)
 	EXPECT_TRUE(m.changesSince(v2).all);
 	m.growToInclude(-20, -20, 20, 20);
 	EXPECT_TRUE(m.changesSince(m.version() - 1).all);
+}
+
+TEST(SemanticMap, OctreeInnerNodesFollowTheirLeaves)
+{
+	// Each insertion updates the inner nodes above the leaves it touched:
+	// the tree equals one whose inner nodes are all recomputed.
+	SemanticMap m;
+	for (int k = 0; k < 5; k++)
+	{
+		auto pts = floorFan(2.0 + 0.3 * k);
+		for (double y = -0.3; y <= 0.3; y += 0.03)
+			for (double z = 0.1; z <= 1.2; z += 0.05)
+				pts.push_back({1.0 + 0.2 * k, y, z, Label::Obstacle});
+		const auto f = makeFakeSweep(pts);
+		m.insert(
+		    f.sweep, f.labeled,
+		    mrpt::poses::CPose2D(0.3 * k, 0.1 * k, 0.4 * k));
+	}
+	const auto values = [](const octomap::OcTree& t)
+	{
+		std::vector<std::pair<double, float>> v;
+		for (auto it = t.begin_tree(), end = t.end_tree(); it != end; ++it)
+			v.emplace_back(it.getSize(), it->getLogOdds());
+		return v;
+	};
+	const auto incremental = values(std::as_const(m).octree());
+	ASSERT_GT(incremental.size(), 100u);
+	m.octree().updateInnerOccupancy();
+	EXPECT_EQ(values(std::as_const(m).octree()), incremental);
 }

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 
@@ -41,6 +42,44 @@ void traceLine(int x0, int y0, int x1, int y1, F&& f)
 			y0 += sy;
 		}
 	}
+}
+
+/** The inner nodes on the paths from the root to `keys` (the leaves a
+ * lazy updateNode() changed), children first: what
+ * OcTree::updateInnerOccupancy() recomputes everywhere, done where it can
+ * change. `codes`: the keys' Morton codes (child index at depth d in bits
+ * 3 (15 - d) .. 3 (15 - d) + 2), sorted and unique. */
+void updateInnerOccupancyAlong(
+    octomap::OcTree& tree, octomap::OcTreeNode* node, unsigned depth,
+    const std::uint64_t* begin, const std::uint64_t* end)
+{
+	if (!tree.nodeHasChildren(node)) return;
+	if (depth < tree.getTreeDepth())
+	{
+		const unsigned shift = 3 * (tree.getTreeDepth() - 1 - depth);
+		for (const std::uint64_t* b = begin; b != end;)
+		{
+			const unsigned child = (*b >> shift) & 7;
+			const std::uint64_t* e = b;
+			while (e != end && ((*e >> shift) & 7) == child) ++e;
+			if (tree.nodeChildExists(node, child))
+				updateInnerOccupancyAlong(
+				    tree, tree.getNodeChild(node, child), depth + 1, b, e);
+			b = e;
+		}
+	}
+	node->updateOccupancyChildren();
+}
+
+/** Morton code of a key (see updateInnerOccupancyAlong). */
+std::uint64_t mortonCode(const octomap::OcTreeKey& k, unsigned depth)
+{
+	std::uint64_t m = 0;
+	for (unsigned d = 0; d < depth; d++)
+		m |= static_cast<std::uint64_t>(
+		         octomap::computeChildIdx(k, static_cast<int>(depth - 1 - d)))
+		     << (3 * (depth - 1 - d));
+	return m;
 }
 
 /** World-frame bounding box of the robot-frame box [a, b]. */
@@ -122,12 +161,7 @@ void SemanticMap::insert(
 	insertRegions(ls, robot, e, seenThisSweep);
 
 	// 3D: every point into the OctoMap (endpoints; free space stays 2D).
-	if (m_options.octomap)
-	{
-		for (const auto& p : pts)
-			m_octree->updateNode(octomap::point3d(p.x, p.y, p.z), true, true);
-		m_octree->updateInnerOccupancy();
-	}
+	if (m_options.octomap) insertIntoOctree(pts);
 
 	// Costs only where this sweep touched, unless the layers may have been
 	// written (or loaded) since the last full update.
@@ -135,7 +169,36 @@ void SemanticMap::insert(
 	    m_costsCurrent ? e.touched : CellRect::all(m_geometry), e.changed);
 	m_costsCurrent = true;
 	m_sweeps++;
-	markChanged(e.changed);
+	markChanged(e.changed, e.touched);
+}
+
+void SemanticMap::insertIntoOctree(const std::vector<WorldPoint>& pts)
+{
+	// Lazy leaf updates, then the inner nodes above the leaves updated
+	// (all of them after the tree was written from outside).
+	const unsigned depth = m_octree->getTreeDepth();
+	std::vector<std::uint64_t> codes;
+	codes.reserve(pts.size());
+	for (const auto& p : pts)
+	{
+		octomap::OcTreeKey key;
+		if (!m_octree->coordToKeyChecked(octomap::point3d(p.x, p.y, p.z), key))
+			continue;
+		m_octree->updateNode(key, true, true);
+		codes.push_back(mortonCode(key, depth));
+	}
+	if (!m_octreeInnerCurrent)
+	{
+		m_octree->updateInnerOccupancy();
+		m_octreeInnerCurrent = true;
+		return;
+	}
+	std::sort(codes.begin(), codes.end());
+	codes.erase(std::unique(codes.begin(), codes.end()), codes.end());
+	if (m_octree->getRoot() && !codes.empty())
+		updateInnerOccupancyAlong(
+		    *m_octree, m_octree->getRoot(), 0, codes.data(),
+		    codes.data() + codes.size());
 }
 
 std::vector<SemanticMap::WorldPoint> SemanticMap::worldPoints(
