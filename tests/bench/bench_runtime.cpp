@@ -135,7 +135,7 @@ void BM_RobotLoop(benchmark::State& state)
 			p.localizeInsert.push_back(msSince(t));
 			t = std::chrono::steady_clock::now();
 			known.setKnownMap(map);
-			evidence.build(map);
+			evidence.update(map);
 			p.refresh.push_back(msSince(t));
 			t = std::chrono::steady_clock::now();
 			try

@@ -97,7 +97,7 @@ void MappingLocalizer::updateSemanticMap(const SemanticMap& map)
 {
 	if (!m_options.semantic.enabled()) return;
 	const auto t0 = std::chrono::steady_clock::now();
-	m_semantic.build(map, m_options.semantic.mappingFlatLabelsOnly);
+	m_semantic.update(map, m_options.semantic.mappingFlatLabelsOnly);
 	m_semanticMs = std::chrono::duration<double, std::milli>(
 	                   std::chrono::steady_clock::now() - t0)
 	                   .count();

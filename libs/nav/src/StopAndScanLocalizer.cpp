@@ -176,7 +176,7 @@ void StopAndScanLocalizer::findPlaces()
 
 void StopAndScanLocalizer::mapChanged()
 {
-	if (m_locOptions.semantic.enabled()) m_semantic.build(m_map);
+	if (m_locOptions.semantic.enabled()) m_semantic.update(m_map);
 	m_localizer->setKnownMap(m_map);
 	m_localizer->setSemanticMap(m_semantic.empty() ? nullptr : &m_semantic);
 	if (m_localizer->knownWallMap().segments().empty())

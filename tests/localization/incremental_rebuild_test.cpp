@@ -1,0 +1,117 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// What the localization rebuilds after each insertion, updated around the
+// changed cells only, equals a rebuild of the whole map: on random changes
+// recorded with markChanged() and on real insertions (the grid growing).
+#include <gtest/gtest.h>
+#include <semnav/common/LabelSet.h>
+#include <semnav/localization/SemanticEvidenceMap.h>
+#include <semnav/map/SemanticMap.h>
+
+#include <random>
+
+#include "../map/MapTestUtils.h"
+
+using namespace semnav;
+
+namespace
+{
+const std::vector<Label> kLabels = {
+    Label::Floor,     Label::Door,     Label::Wastebasket,
+    Label::Washbasin, Label::Obstacle, Label::Stairs,
+    Label::Wall,      Label::Grass,    Label::Sidewalk};
+
+/** Expects the same fields and objects. */
+void expectSame(
+    const SemanticEvidenceMap& a, const SemanticEvidenceMap& b,
+    const std::string& when)
+{
+	for (const Label l : allLabels())
+	{
+		ASSERT_EQ(a.hasField(l), b.hasField(l)) << labelName(l) << " " << when;
+		ASSERT_TRUE(a.field(l) == b.field(l)) << labelName(l) << " " << when;
+	}
+}
+
+/** A point of each kind of label seen by a sweep at `pose` (a fan of floor,
+ * an obstacle or bin face, a door strip). */
+test::FakeSweep randomSweep(std::mt19937& rng)
+{
+	std::uniform_real_distribution<double> u(0, 1);
+	auto pts = test::floorFan(1.5 + 2 * u(rng), 0.05);
+	const Label face = kLabels[rng() % kLabels.size()];
+	const double fx = 1 + 2 * u(rng), fy = u(rng) - 0.5;
+	for (double y = -0.2; y <= 0.2; y += 0.03)
+		for (double z = 0.1; z <= 0.8; z += 0.1)
+			pts.push_back({fx, fy + y, z, face});
+	return test::makeFakeSweep(pts);
+}
+}  // namespace
+
+TEST(IncrementalRebuild, EvidenceOnRandomChangesEqualsAFullBuild)
+{
+	std::mt19937 rng(7);
+	for (const bool flatOnly : {false, true})
+	{
+		SemanticMap map;
+		map.growToInclude(0, 0, 8, 6);
+		const GridGeometry g = map.geometry();
+		// Written through held references; each batch recorded with
+		// markChanged().
+		auto& labels = map.get("labels");
+		auto& seen = map.get("observations");
+		for (int cy = 0; cy < g.rows; cy++)
+			for (int cx = 0; cx < g.cols / 2; cx++)
+			{
+				LabelSet floor;
+				floor.insert(Label::Floor);
+				labels[g.index(cy, cx)] = static_cast<float>(floor.mask());
+				seen[g.index(cy, cx)] = 1;
+			}
+		SemanticEvidenceMap incremental, full;
+		incremental.build(map, flatOnly);
+		for (int k = 0; k < 40; k++)
+		{
+			const int w = 1 + static_cast<int>(rng() % 25);
+			const int h = 1 + static_cast<int>(rng() % 25);
+			const int c0 = static_cast<int>(rng() % (g.cols - w));
+			const int r0 = static_cast<int>(rng() % (g.rows - h));
+			for (int n = 0; n < w * h / 3; n++)
+			{
+				const int cx = c0 + static_cast<int>(rng() % w);
+				const int cy = r0 + static_cast<int>(rng() % h);
+				LabelSet ls(
+				    static_cast<LabelSet::mask_t>(labels[g.index(cy, cx)]));
+				ls.insert(kLabels[rng() % kLabels.size()]);
+				// Now and then a label goes (an edit, not an insertion).
+				if (rng() % 50 == 0) ls = LabelSet();
+				labels[g.index(cy, cx)] = static_cast<float>(ls.mask());
+				seen[g.index(cy, cx)] += 1;
+			}
+			map.markChanged({r0, c0, r0 + h, c0 + w});
+			incremental.update(map, flatOnly);
+			full.build(map, flatOnly);
+			expectSame(incremental, full, "change " + std::to_string(k));
+		}
+	}
+}
+
+TEST(IncrementalRebuild, EvidenceAfterInsertionsEqualsAFullBuild)
+{
+	std::mt19937 rng(11);
+	std::uniform_real_distribution<double> u(0, 1);
+	SemanticMap map;
+	SemanticEvidenceMap incremental, full;
+	for (int k = 0; k < 30; k++)
+	{
+		const auto f = randomSweep(rng);
+		// Mostly inside what was seen, now and then beyond (growth).
+		const double reach = k % 7 == 6 ? 8 : 2;
+		map.insert(
+		    f.sweep, f.labeled,
+		    mrpt::poses::CPose2D(
+		        reach * u(rng), reach * u(rng), 2 * M_PI * u(rng)));
+		incremental.update(map);
+		full.build(map);
+		expectSame(incremental, full, "sweep " + std::to_string(k));
+	}
+}
