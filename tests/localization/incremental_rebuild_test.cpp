@@ -4,7 +4,9 @@
 // recorded with markChanged() and on real insertions (the grid growing).
 #include <gtest/gtest.h>
 #include <semnav/common/LabelSet.h>
+#include <semnav/localization/Localizer.h>
 #include <semnav/localization/SemanticEvidenceMap.h>
+#include <semnav/localization/WallMap.h>
 #include <semnav/map/SemanticMap.h>
 
 #include <random>
@@ -113,5 +115,138 @@ TEST(IncrementalRebuild, EvidenceAfterInsertionsEqualsAFullBuild)
 		incremental.update(map);
 		full.build(map);
 		expectSame(incremental, full, "sweep " + std::to_string(k));
+	}
+}
+
+namespace
+{
+void expectSameWalls(
+    const WallMap& a, const WallMap& b, const std::string& when)
+{
+	ASSERT_TRUE(a.geometry() == b.geometry()) << when;
+	ASSERT_TRUE(a.field() == b.field()) << when;
+	ASSERT_EQ(a.segments().size(), b.segments().size()) << when;
+	for (std::size_t k = 0; k < a.segments().size(); k++)
+	{
+		ASSERT_EQ(a.segments()[k].p0, b.segments()[k].p0) << when;
+		ASSERT_EQ(a.segments()[k].p1, b.segments()[k].p1) << when;
+	}
+	ASSERT_EQ(a.mainDirection(), b.mainDirection()) << when;
+	const mrpt::poses::CPose2D pose(2, 1, 0.3);
+	std::vector<mrpt::math::TPoint2D> pts;
+	for (double x = -3; x < 3; x += 0.07) pts.push_back({x, 0.5 * x});
+	ASSERT_EQ(a.inlierFraction(pose, pts), b.inlierFraction(pose, pts)) << when;
+}
+}  // namespace
+
+TEST(IncrementalRebuild, WallsOfRandomChangesEqualAFullBuild)
+{
+	std::mt19937 rng(5);
+	for (const bool unknown : {false, true})
+	{
+		SemanticMap map;
+		map.growToInclude(0, 0, 14, 9);
+		const GridGeometry g = map.geometry();
+		auto& labels = map.get("labels");
+		auto& seen = map.get("observations");
+		WallMap incremental;
+		incremental.buildFromSemanticMap(map, unknown);
+		for (int k = 0; k < 30; k++)
+		{
+			// A wall stretch (some cells lose it), cells observed.
+			const bool vertical = rng() % 2;
+			const int len = 5 + static_cast<int>(rng() % 60);
+			const int c0 = static_cast<int>(rng() % (g.cols - len));
+			const int r0 = static_cast<int>(rng() % (g.rows - len));
+			CellRect rect;
+			for (int t = 0; t < len; t++)
+			{
+				const int cx = vertical ? c0 : c0 + t;
+				const int cy = vertical ? r0 + t : r0;
+				LabelSet ls(
+				    static_cast<LabelSet::mask_t>(labels[g.index(cy, cx)]));
+				if (rng() % 8 == 0)
+					ls.erase(Label::Wall);
+				else
+					ls.insert(Label::Wall);
+				labels[g.index(cy, cx)] = static_cast<float>(ls.mask());
+				seen[g.index(cy, cx)] += 1;
+				rect.add(cy, cx);
+			}
+			map.markChanged(rect);
+			incremental.updateFromSemanticMap(map, unknown);
+			WallMap full;
+			full.buildFromSemanticMap(map, unknown);
+			expectSameWalls(incremental, full, "change " + std::to_string(k));
+		}
+	}
+}
+
+TEST(IncrementalRebuild, MappingWallsAfterInsertionsEqualARebuild)
+{
+	std::mt19937 rng(3);
+	std::uniform_real_distribution<double> u(0, 1);
+	SemanticMap map;
+	WallMap incremental;
+	std::vector<WallSegment> all;
+	for (int k = 0; k < 25; k++)
+	{
+		const auto f = randomSweep(rng);
+		const double reach = k % 6 == 5 ? 8 : 2;
+		const mrpt::poses::CPose2D pose(
+		    reach * u(rng), reach * u(rng), 2 * M_PI * u(rng));
+		map.insert(f.sweep, f.labeled, pose);
+		// A wall seen at the pose (robot frame), now and then none.
+		std::vector<WallSegment> seenWalls;
+		for (int n = static_cast<int>(rng() % 3); n > 0; n--)
+		{
+			WallSegment s;
+			s.p0 = {1 + 2 * u(rng), -2 + 4 * u(rng)};
+			s.p1 = {s.p0.x + 3 * u(rng) - 1.5, s.p0.y + 3 * u(rng) - 1.5};
+			seenWalls.push_back(s);
+			all.push_back(s.transformed(pose));
+		}
+		incremental.addObservation(seenWalls, pose);
+		incremental.update(map);
+		WallMap full;
+		full.addSegments(all);
+		full.rebuild(&map);
+		if (all.empty()) continue;
+		expectSameWalls(incremental, full, "sweep " + std::to_string(k));
+	}
+}
+
+TEST(IncrementalRebuild, KnownMapAfterInsertionsEqualsSetKnownMap)
+{
+	std::mt19937 rng(13);
+	std::uniform_real_distribution<double> u(0, 1);
+	SemanticMap map;
+	Localizer incremental;
+	for (int k = 0; k < 20; k++)
+	{
+		const auto f = randomSweep(rng);
+		const double reach = k % 6 == 5 ? 8 : 2;
+		map.insert(
+		    f.sweep, f.labeled,
+		    mrpt::poses::CPose2D(
+		        reach * u(rng), reach * u(rng), 2 * M_PI * u(rng)));
+		if (k == 0)
+			incremental.setKnownMap(map);
+		else
+			incremental.updateKnownMap(map);
+		Localizer full;
+		full.setKnownMap(map);
+		const std::string when = "sweep " + std::to_string(k);
+		expectSameWalls(incremental.knownWallMap(), full.knownWallMap(), when);
+		// The same free cells: the same global start from the same seed
+		// (a Localizer seeds MRPT's shared generator when made).
+		Localizer{incremental.options()};
+		incremental.initializeGlobal();
+		const auto first = incremental.pdf().m_particles;
+		Localizer{full.options()};
+		full.initializeGlobal();
+		ASSERT_EQ(first.size(), full.pdf().m_particles.size()) << when;
+		for (std::size_t i = 0; i < first.size(); i += 97)
+			ASSERT_EQ(first[i].d, full.pdf().m_particles[i].d) << when;
 	}
 }

@@ -142,7 +142,7 @@ mrpt::poses::CPose2D MappingLocalizer::process(
 	if (m_method == Method::Walls)
 	{
 		m_walls.addObservation(m_obs.segments, pose);
-		m_walls.rebuild(&map);
+		m_walls.update(map);
 		updateSemanticMap(map);
 	}
 	m_lastOdometry = odo;
