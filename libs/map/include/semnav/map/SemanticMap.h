@@ -329,6 +329,15 @@ private:
 	void updateCostsIn(const CellRect& cells, CellRect& changed);
 	/** cellState() from a cell's observation count. */
 	CellState stateOf(float observations, int cx, int cy) const;
+	/** Where the sweep's sensor stood (its middle row), world frame. */
+	static mrpt::math::TPoint2D sensorPosition(
+	    const Sweep& sweep, const mrpt::poses::CPose3D& robot,
+	    const mrpt::poses::CPose2D& robotPose);
+	/** The cells a sweep can change: its points', the rays' from the
+	 * sensor to them, the robot's footprint (clipped to the grid). */
+	CellRect sweepWindow(
+	    const std::vector<WorldPoint>& pts, const mrpt::math::TPoint2D& sensor,
+	    const mrpt::poses::CPose2D& robotPose) const;
 	/** World points of the sweep's valid pixels; grows the grid to hold
 	 * them and the robot. */
 	std::vector<WorldPoint> worldPoints(
