@@ -167,6 +167,8 @@ void BM_RobotLoop(benchmark::State& state)
 		state.counters["last10_pf_insert_ms"] = last(p.localizeInsert);
 		state.counters["last10_refresh_ms"] = last(p.refresh);
 		state.counters["last10_replan_ms"] = last(p.replan);
+		state.counters["first10_perception_ms"] = first(p.perception);
+		state.counters["first10_pf_insert_ms"] = first(p.localizeInsert);
 		state.counters["first10_refresh_ms"] = first(p.refresh);
 		state.counters["first10_replan_ms"] = first(p.replan);
 		state.counters["map_cells"] =

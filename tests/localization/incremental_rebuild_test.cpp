@@ -47,6 +47,20 @@ test::FakeSweep randomSweep(std::mt19937& rng)
 			pts.push_back({fx, fy + y, z, face});
 	return test::makeFakeSweep(pts);
 }
+
+/** Inserts a random sweep at a random pose, mostly inside what was seen,
+ * every 6th beyond (the grid grows); returns the pose. */
+mrpt::poses::CPose2D insertRandomSweep(
+    SemanticMap& map, std::mt19937& rng, int k)
+{
+	std::uniform_real_distribution<double> u(0, 1);
+	const auto f = randomSweep(rng);
+	const double reach = k % 6 == 5 ? 8 : 2;
+	const mrpt::poses::CPose2D pose(
+	    reach * u(rng), reach * u(rng), 2 * M_PI * u(rng));
+	map.insert(f.sweep, f.labeled, pose);
+	return pose;
+}
 }  // namespace
 
 TEST(IncrementalRebuild, EvidenceOnRandomChangesEqualsAFullBuild)
@@ -100,18 +114,11 @@ TEST(IncrementalRebuild, EvidenceOnRandomChangesEqualsAFullBuild)
 TEST(IncrementalRebuild, EvidenceAfterInsertionsEqualsAFullBuild)
 {
 	std::mt19937 rng(11);
-	std::uniform_real_distribution<double> u(0, 1);
 	SemanticMap map;
 	SemanticEvidenceMap incremental, full;
 	for (int k = 0; k < 30; k++)
 	{
-		const auto f = randomSweep(rng);
-		// Mostly inside what was seen, now and then beyond (growth).
-		const double reach = k % 7 == 6 ? 8 : 2;
-		map.insert(
-		    f.sweep, f.labeled,
-		    mrpt::poses::CPose2D(
-		        reach * u(rng), reach * u(rng), 2 * M_PI * u(rng)));
+		insertRandomSweep(map, rng, k);
 		incremental.update(map);
 		full.build(map);
 		expectSame(incremental, full, "sweep " + std::to_string(k));
@@ -191,11 +198,7 @@ TEST(IncrementalRebuild, MappingWallsAfterInsertionsEqualARebuild)
 	std::vector<WallSegment> all;
 	for (int k = 0; k < 25; k++)
 	{
-		const auto f = randomSweep(rng);
-		const double reach = k % 6 == 5 ? 8 : 2;
-		const mrpt::poses::CPose2D pose(
-		    reach * u(rng), reach * u(rng), 2 * M_PI * u(rng));
-		map.insert(f.sweep, f.labeled, pose);
+		const mrpt::poses::CPose2D pose = insertRandomSweep(map, rng, k);
 		// A wall seen at the pose (robot frame), now and then none.
 		std::vector<WallSegment> seenWalls;
 		for (int n = static_cast<int>(rng() % 3); n > 0; n--)
@@ -219,17 +222,11 @@ TEST(IncrementalRebuild, MappingWallsAfterInsertionsEqualARebuild)
 TEST(IncrementalRebuild, KnownMapAfterInsertionsEqualsSetKnownMap)
 {
 	std::mt19937 rng(13);
-	std::uniform_real_distribution<double> u(0, 1);
 	SemanticMap map;
 	Localizer incremental;
 	for (int k = 0; k < 20; k++)
 	{
-		const auto f = randomSweep(rng);
-		const double reach = k % 6 == 5 ? 8 : 2;
-		map.insert(
-		    f.sweep, f.labeled,
-		    mrpt::poses::CPose2D(
-		        reach * u(rng), reach * u(rng), 2 * M_PI * u(rng)));
+		insertRandomSweep(map, rng, k);
 		if (k == 0)
 			incremental.setKnownMap(map);
 		else
