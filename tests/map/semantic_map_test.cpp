@@ -2,11 +2,14 @@
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/poses/CPose3D.h>
 #include <octomap/OcTree.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
 #include <semnav/map/SemanticMap.h>
 
+#include <algorithm>
+#include <tuple>
 #include <utility>
 
 #include "../common/SavedAndLoaded.h"
@@ -685,29 +688,52 @@ TEST(SemanticMap, ChangesSinceBoundWhatAnInsertionChanged)
 
 TEST(SemanticMap, OctreeInnerNodesFollowTheirLeaves)
 {
-	// Each insertion updates the inner nodes above the leaves it touched:
-	// the tree equals one whose inner nodes are all recomputed.
+	// Each insertion updates the voxels of its points and the inner nodes
+	// above them: the tree equals one updated point by point, its inner
+	// nodes all recomputed.
 	SemanticMap m;
+	octomap::OcTree reference(m.options().resolution);
 	for (int k = 0; k < 5; k++)
 	{
 		auto pts = floorFan(2.0 + 0.3 * k);
-		for (double y = -0.3; y <= 0.3; y += 0.03)
-			for (double z = 0.1; z <= 1.2; z += 0.05)
+		for (double y = -0.3; y <= 0.3; y += 0.01)
+			for (double z = 0.1; z <= 1.2; z += 0.02)
 				pts.push_back({1.0 + 0.2 * k, y, z, Label::Obstacle});
 		const auto f = makeFakeSweep(pts);
-		m.insert(
-		    f.sweep, f.labeled,
-		    mrpt::poses::CPose2D(0.3 * k, 0.1 * k, 0.4 * k));
+		const mrpt::poses::CPose2D pose(0.3 * k, 0.1 * k, 0.4 * k);
+		m.insert(f.sweep, f.labeled, pose);
+		const mrpt::poses::CPose3D robot(
+		    pose.x(), pose.y(), 0, pose.phi(), 0, 0);
+		for (int i = 0; i < f.labeled.points.cols; i++)
+		{
+			const auto& p = f.labeled.points.at<cv::Vec3f>(0, i);
+			double x, y, z;
+			robot.composePoint(p[0], p[1], p[2], x, y, z);
+			reference.updateNode(
+			    octomap::point3d(
+			        static_cast<float>(x), static_cast<float>(y),
+			        static_cast<float>(z)),
+			    true, true);
+		}
 	}
+	reference.updateInnerOccupancy();
 	const auto values = [](const octomap::OcTree& t)
 	{
-		std::vector<std::pair<double, float>> v;
+		std::vector<std::tuple<double, double, double, double, float>> v;
 		for (auto it = t.begin_tree(), end = t.end_tree(); it != end; ++it)
-			v.emplace_back(it.getSize(), it->getLogOdds());
+			v.emplace_back(
+			    it.getX(), it.getY(), it.getZ(), it.getSize(),
+			    it->getLogOdds());
 		return v;
 	};
-	const auto incremental = values(std::as_const(m).octree());
-	ASSERT_GT(incremental.size(), 100u);
-	m.octree().updateInnerOccupancy();
-	EXPECT_EQ(values(std::as_const(m).octree()), incremental);
+	const auto inserted = values(std::as_const(m).octree());
+	ASSERT_GT(inserted.size(), 100u);
+	EXPECT_EQ(inserted, values(reference));
+	// Saturated voxels (many points each) reached the clamping bound.
+	EXPECT_GT(
+	    std::count_if(
+	        inserted.begin(), inserted.end(),
+	        [&](const auto& n)
+	        { return std::get<4>(n) == reference.getClampingThresMaxLog(); }),
+	    10);
 }

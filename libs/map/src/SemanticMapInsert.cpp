@@ -90,6 +90,23 @@ std::uint64_t mortonCode(const octomap::OcTreeKey& k)
 	       spreadBits(k.k[2]) << 2;
 }
 
+/** Bit 3 b of v moved to bit b (spreadBits() undone). */
+std::uint16_t compactBits(std::uint64_t v)
+{
+	v &= 0x249249249249ull;
+	v = (v | v >> 2) & 0x0c30c30c30c3ull;
+	v = (v | v >> 4) & 0x00f00f00f00full;
+	v = (v | v >> 8) & 0x0000ff0000ffull;
+	v = (v | v >> 16) & 0xffffull;
+	return static_cast<std::uint16_t>(v);
+}
+
+octomap::OcTreeKey keyOfCode(std::uint64_t m)
+{
+	return octomap::OcTreeKey(
+	    compactBits(m), compactBits(m >> 1), compactBits(m >> 2));
+}
+
 /** World-frame bounding box of the robot-frame box [a, b]. */
 void toWorldBox(
     const mrpt::poses::CPose3D& robot, const mrpt::math::TPoint3D& a,
@@ -202,16 +219,30 @@ void SemanticMap::insert(
 void SemanticMap::insertIntoOctree(const std::vector<WorldPoint>& pts)
 {
 	// Lazy leaf updates, then the inner nodes above the leaves updated
-	// (all of them after the tree was written from outside).
+	// (all of them after the tree was written from outside). Points of one
+	// voxel: the leaf found once, then the same log-odds update as
+	// updateNode() (skipped at the clamping bound).
 	std::vector<std::uint64_t> codes;
 	codes.reserve(pts.size());
 	for (const auto& p : pts)
 	{
 		octomap::OcTreeKey key;
-		if (!m_octree->coordToKeyChecked(octomap::point3d(p.x, p.y, p.z), key))
-			continue;
-		m_octree->updateNode(key, true, true);
-		codes.push_back(mortonCode(key));
+		if (m_octree->coordToKeyChecked(octomap::point3d(p.x, p.y, p.z), key))
+			codes.push_back(mortonCode(key));
+	}
+	std::sort(codes.begin(), codes.end());
+	const bool plain = m_octree->isChangeDetectionEnabled();
+	const float hit = m_octree->getProbHitLog();
+	const float max = m_octree->getClampingThresMaxLog();
+	for (std::size_t b = 0, e = 0; b < codes.size(); b = e)
+	{
+		const octomap::OcTreeKey key = keyOfCode(codes[b]);
+		octomap::OcTreeNode* leaf = m_octree->updateNode(key, true, true);
+		for (e = b + 1; e < codes.size() && codes[e] == codes[b]; e++)
+			if (plain || !leaf)
+				m_octree->updateNode(key, true, true);
+			else if (leaf->getLogOdds() < max)
+				m_octree->updateNodeLogOdds(leaf, hit);
 	}
 	if (!m_octreeInnerCurrent)
 	{
@@ -219,7 +250,6 @@ void SemanticMap::insertIntoOctree(const std::vector<WorldPoint>& pts)
 		m_octreeInnerCurrent = true;
 		return;
 	}
-	std::sort(codes.begin(), codes.end());
 	codes.erase(std::unique(codes.begin(), codes.end()), codes.end());
 	if (m_octree->getRoot() && !codes.empty())
 		updateInnerOccupancyAlong(
