@@ -99,6 +99,9 @@ const OptionTable<O>& optionTable()
 	            "place but did not detect counts against it, this many "
 	            "effective points (0: off).")
 	        .integer(
+	            "min_global_sweeps", &O::minGlobalSweeps, 1, 100,
+	            "A global start is accepted after this many sweeps at least.")
+	        .integer(
 	            "max_sweeps", &O::maxSweeps, 1, 100,
 	            "Sweeps of a start before it fails.")
 	        .angle(
@@ -308,11 +311,24 @@ bool StopAndScanLocalizer::driveToLook(
 	    h.size(), move->end.x, move->end.y, mrpt::RAD2DEG(move->end.phi),
 	    move->length, 100 * move->difference);
 	// What this place said of the estimate and its rival goes with them.
+	// So does an object that contradicts the map at the estimate: the
+	// sweeps that saw it are dropped after the drive.
+	const SweepRecord* checked = lastChecked(rep.records);
+	std::string contradicted;
+	if (checked)
+	{
+		contradicted = contradiction(checked->estimate);
+		if (contradicted.empty()) contradicted = carriedContradiction(*checked);
+	}
 	m_carried = CarriedEvidence();
-	if (const SweepRecord* checked = lastChecked(rep.records))
+	if (checked)
 		m_carried = {
-		    true, checked->estimate, checked->rival,
-		    robot.base->odometry().pose, checked->evidence};
+		    true,
+		    checked->estimate,
+		    checked->rival,
+		    robot.base->odometry().pose,
+		    checked->evidence,
+		    contradicted};
 	// The filter keeps every hypothesis through the drive.
 	std::vector<mrpt::math::TPose2D> poses;
 	for (const auto& x : h) poses.push_back(x.pose);
@@ -433,6 +449,8 @@ void StopAndScanLocalizer::sweepUntilConverged(
 			    rr.rivalScore, rr.evidence);
 			rep.ambiguous = rr.evidence < m_options.uniquenessMargin;
 			rep.contradiction = contradiction(rr.estimate);
+			if (rep.contradiction.empty())
+				rep.contradiction = carriedContradiction(rr);
 			rep.contradicted = !rep.contradiction.empty();
 			if (rep.contradicted)
 				MRPT_LOG_INFO_FMT("uniqueness: %s", rep.contradiction.c_str());
@@ -445,7 +463,12 @@ void StopAndScanLocalizer::sweepUntilConverged(
 				    {rr.rival}, kHypothesisStdXY, kHypothesisStdYaw);
 			}
 		}
-		if (r.converged && !rep.ambiguous && !rep.contradicted)
+		// A global start is decided on two views at least: one sweep sees
+		// half the surroundings, and a place the map barely saw can fit a
+		// twin by that half alone.
+		const bool enoughViews =
+		    !global || rep.sweeps >= m_options.minGlobalSweeps;
+		if (r.converged && !rep.ambiguous && !rep.contradicted && enoughViews)
 		{
 			rep.converged = true;
 			break;

@@ -400,6 +400,18 @@ double StopAndScanLocalizer::evidenceOf(const SweepRecord& rec) const
 	return e;
 }
 
+std::string StopAndScanLocalizer::carriedContradiction(
+    const SweepRecord& rec) const
+{
+	if (!m_carried.valid || m_carried.contradiction.empty()) return {};
+	const mrpt::poses::CPose2D drive = mrpt::poses::CPose2D(rec.odometry) -
+	                                   mrpt::poses::CPose2D(m_carried.odometry);
+	const mrpt::math::TPose2D est =
+	    (mrpt::poses::CPose2D(m_carried.estimate) + drive).asTPose();
+	if (!closeTo(rec.estimate, est, kCarriedRadius, kCarriedYaw)) return {};
+	return m_carried.contradiction + " (before the drive to look)";
+}
+
 double StopAndScanLocalizer::massNear(const mrpt::math::TPose2D& e) const
 {
 	const auto& ps = m_localizer->pdf().m_particles;

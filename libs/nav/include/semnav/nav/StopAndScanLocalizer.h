@@ -125,6 +125,11 @@ public:
 		double missedObjectWeight = 6.0;
 		/** max_sweeps: sweeps of a start before giving up. */
 		int maxSweeps = 12;
+		/** min_global_sweeps: a global start is accepted only after this
+		 * many sweeps (turning between them): one sweep sees half the
+		 * surroundings, and in a place the map barely saw that half can fit
+		 * a twin room by the margin. */
+		int minGlobalSweeps = 2;
 		/** turn_deg: turn on the spot between start sweeps (rad). */
 		double turnAngle = mrpt::DEG2RAD(60.0);
 		/** turn_speed_deg_s (rad/s). */
@@ -406,6 +411,8 @@ private:
 		bool valid = false;
 		mrpt::math::TPose2D estimate, rival, odometry;
 		double evidence = 0;
+		/** What contradicted the map at the estimate (empty: nothing). */
+		std::string contradiction;
 	};
 	CarriedEvidence m_carried;
 	/** rec.score - rec.rivalScore plus m_carried's evidence when rec's
@@ -415,6 +422,9 @@ private:
 	 * map at `estimate` (see contradiction_distance_m), one line; empty
 	 * when none. */
 	std::string contradiction(const mrpt::math::TPose2D& estimate) const;
+	/** m_carried's contradiction when rec's estimate is the carried
+	 * estimate moved by the odometry since; empty otherwise. */
+	std::string carriedContradiction(const SweepRecord& rec) const;
 	/** The negative evidence of missed_object_weight for the robot at
 	 * `at` after the last start sweep, in the uniqueness check's units
 	 * (<= 0); `missed` counts the misses. */
