@@ -39,6 +39,8 @@ nlohmann::json summary(
 {
 	nlohmann::json j;
 	j["sweeps"] = b.map().sweepsInserted();
+	j["sweeps_skipped_incomplete"] = b.sweepsSkippedIncomplete();
+	j["sweeps_dropped_moving"] = b.sweepsDroppedMoving();
 	j["objects"] = nlohmann::json::array();
 	for (const auto& o : b.map().instances())
 		j["objects"].push_back(
@@ -83,6 +85,10 @@ void printSummary(const nlohmann::json& j, const std::string& poses)
 	          << " poses), " << j["objects"].size() << " objects, "
 	          << j["ms_per_sweep_median"].get<double>()
 	          << " ms/sweep (median)\n";
+	if (j["sweeps_skipped_incomplete"] > 0 || j["sweeps_dropped_moving"] > 0)
+		std::cout << "  not mapped: " << j["sweeps_skipped_incomplete"]
+		          << " incomplete sweeps, " << j["sweeps_dropped_moving"]
+		          << " pieces of sweeps taken while driving\n";
 	for (const auto& o : j["objects"])
 		std::cout << "  #" << o["id"] << " " << o["label"].get<std::string>()
 		          << " at (" << o["x"].get<double>() << ", "

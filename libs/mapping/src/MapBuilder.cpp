@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <iostream>
 
 namespace semnav
 {
@@ -61,9 +62,21 @@ std::size_t MapBuilder::expectedSweeps() const
 	return m_gt ? m_gt->size() : 0;
 }
 
+std::size_t MapBuilder::sweepsDroppedMoving() const
+{
+	return m_reader ? m_reader->assembler().sweepsDroppedMoving() : 0;
+}
+
 bool MapBuilder::nextSweep(Sweep& sweep)
 {
-	if (m_reader) return m_reader->next(sweep);
+	while (m_reader)
+	{
+		if (!m_reader->next(sweep)) return false;
+		if (sweep.quality().complete) return true;
+		m_skippedIncomplete++;
+		std::cerr << "MapBuilder: sweep " << sweep.index()
+		          << " skipped: incomplete (" << sweep.rows() << " rows)\n";
+	}
 	if (m_next3dtk == m_settings.scans3dtk.size()) return false;
 	sweep = ThreeDtkReader().read(m_settings.scans3dtk[m_next3dtk]);
 	sweep.setIndex(m_next3dtk++);

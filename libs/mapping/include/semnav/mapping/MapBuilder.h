@@ -86,6 +86,12 @@ public:
 	/** Error of the poses used, and of the odometry (when scored()). */
 	const TrajectoryError& poseError() const { return m_poseError; }
 	const TrajectoryError& odometryError() const { return m_odometryError; }
+	/** Incomplete sweeps of the rawlog skipped, as the robot skips them
+	 * (head reversed early, cut by a fault or the end of the log). */
+	std::size_t sweepsSkippedIncomplete() const { return m_skippedIncomplete; }
+	/** Pieces of sweeps taken while the robot drove, dropped by the
+	 * assembler (SweepAssembler::sweepsDroppedMoving()). */
+	std::size_t sweepsDroppedMoving() const;
 	/** The rawlog error that ended the run early ("" if none). */
 	const std::string& readError() const { return m_readError; }
 
@@ -105,6 +111,7 @@ private:
 	GroundTruthScorer m_scorer;
 	TrajectoryError m_poseError, m_odometryError;
 	std::string m_readError;
+	std::size_t m_skippedIncomplete = 0;
 };
 
 }  // namespace semnav
