@@ -46,7 +46,8 @@ public:
 	{
 		SemanticMap::TOptions map;
 		PerceptionPipeline::TOptions perception;
-		SweepAssembler::TOptions assembler;
+		SweepAssembler::TOptions assembler =
+		    SweepAssembler::TOptions::forRecordings();
 		/** Object detection; nothing: rules only. */
 		std::optional<CascadeDetector::TOptions> cascades;
 		MappingLocalizer::TOptions localization;

@@ -24,9 +24,9 @@ namespace semnav
  * then it opens the new sweep (a nodding head may scan its end tilt twice).
  * When the robot moves (the odometry leaves the sweep's first reading by
  * more than the motion tolerance) the current sweep ends; incomplete sweeps
- * cut that way or begun after such a cut were taken while driving and are
- * dropped (dropMotionFragments), so a recording of stop-and-scan yields
- * the sweeps taken standing.
+ * cut that way or begun after such a cut were taken while driving: with
+ * dropMotionFragments (semnav-map's default) they are dropped, so a robot's
+ * recording yields the sweeps taken standing.
  * Gaps in the tilt sequence become invalid rows (quality().missingLines);
  * a sweep spanning less than `complete_span_fraction` of the reference span
  * is emitted with quality().complete == false, never dropped.
@@ -62,7 +62,16 @@ public:
 		/** Drop (never emit) incomplete sweeps cut by motion, or begun at
 		 * such a cut and ended by a reversal: the pieces of nods taken
 		 * while driving. */
-		bool dropMotionFragments = true;
+		bool dropMotionFragments = false;
+
+		/** The defaults for reprocessing a robot's recording (semnav-map):
+		 * dropMotionFragments on. */
+		static TOptions forRecordings()
+		{
+			TOptions o;
+			o.dropMotionFragments = true;
+			return o;
+		}
 		/** Odometry changes below these are not motion (m, rad). */
 		double motionTolerance = 0.005;
 		double motionToleranceYaw = 0.2 * M_PI / 180;
