@@ -1,6 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <gtest/gtest.h>
-#include <semnav/common/Error.h>
 #include <semnav/detection/PanoramicProjection.h>
 
 #include <cmath>
@@ -194,26 +193,4 @@ TEST(PanoramicProjection, LinearIsRemapsLinear)
 	const PanoramicProjection p(phis, thetas);
 	expectSameAsRemap(
 	    p, cv::INTER_LINEAR, {CV_8U, CV_16U, CV_32F, CV_8UC3}, 4, 0, 256);
-}
-
-TEST(PanoramicProjection, SingleLineGridPassesImagesThrough)
-{
-	// A sweep cut to one scan line (a fault, a live recording's first line)
-	// is a grid of one row: no projection, its images as they are.
-	std::vector<double> phis, thetas;
-	grid(phis, thetas);
-	thetas.resize(1);
-	const PanoramicProjection p(phis, thetas);
-	EXPECT_TRUE(p.empty());
-	cv::Mat1f image(1, 361);
-	for (int c = 0; c < 361; c++) image(0, c) = static_cast<float>(c);
-	for (int interpolation : {cv::INTER_NEAREST, cv::INTER_LINEAR})
-	{
-		const cv::Mat out = p.toPanoramic(image, interpolation);
-		ASSERT_EQ(out.size(), image.size());
-		EXPECT_EQ(cv::norm(out, image, cv::NORM_INF), 0.0);
-	}
-	EXPECT_TRUE(p.sweepPixelsIn(cv::Rect2d(0, 0, 361, 1)).empty());
-	// An image of another grid is still an error.
-	EXPECT_THROW(p.toPanoramic(cv::Mat1f(2, 361), cv::INTER_NEAREST), Error);
 }

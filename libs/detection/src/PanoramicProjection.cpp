@@ -131,16 +131,8 @@ bool PanoramicProjection::sameGrid(
 cv::Mat PanoramicProjection::toPanoramic(
     const cv::Mat& sweepImage, int interpolation) const
 {
-	if (empty() && !m_phis.empty() && !m_thetas.empty() &&
-	    sweepImage.cols == static_cast<int>(m_phis.size()) &&
-	    sweepImage.rows == static_cast<int>(m_thetas.size()))
-		return sweepImage.clone();  // a single row or column: as it is
 	if (sweepImage.size() != m_size)
-		throw Error(
-		    "PanoramicProjection: image of " + std::to_string(sweepImage.cols) +
-		    " x " + std::to_string(sweepImage.rows) +
-		    " differs from the grid of " + std::to_string(m_size.width) +
-		    " x " + std::to_string(m_size.height));
+		throw Error("PanoramicProjection: image size differs from the grid");
 	cv::Mat out;
 	if (interpolation == cv::INTER_NEAREST && !m_nearest.empty() &&
 	    sweepImage.isContinuous())

@@ -1,4 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/CommandLine.h>
 #include <semnav/common/Error.h>
 #include <semnav/mapping/MapBuilder.h>
 #include <semnav/scan/RawlogSweepReader.h>
@@ -118,7 +119,21 @@ void MapBuilder::run(const std::function<void(std::size_t)>& progress)
 			break;
 		}
 		const auto t0 = std::chrono::steady_clock::now();
-		const LabeledSweep ls = m_perception.process(sweep);
+		LabeledSweep ls;
+		try
+		{
+			ls = m_perception.process(sweep);
+		}
+		catch (const std::exception& e)
+		{
+			// One odd sweep (what a fault left) must not end the run.
+			m_failed++;
+			std::cerr << "MapBuilder: sweep " << sweep.index() << " ("
+			          << sweep.rows() << " x " << sweep.cols()
+			          << ") skipped: " << CommandLine::firstLine(e.what())
+			          << "\n";
+			continue;
+		}
 		const mrpt::poses::CPose2D pose = insert(sweep, ls);
 		if (scored())
 		{

@@ -30,9 +30,7 @@ class PanoramicProjection
 public:
 	PanoramicProjection() = default;
 	/** Builds the maps for a sweep grid (bearings of the columns, tilts of
-	 * the rows, both increasing). A grid of a single row or column (a
-	 * sweep cut to one line) stays empty(): toPanoramic() returns its
-	 * images as they are. */
+	 * the rows, both increasing). */
 	PanoramicProjection(
 	    const std::vector<double>& phis, const std::vector<double>& thetas);
 

@@ -90,6 +90,8 @@ public:
 	/** Incomplete sweeps of the rawlog skipped, as the robot skips them
 	 * (head reversed early, cut by a fault or the end of the log). */
 	std::size_t sweepsSkippedIncomplete() const { return m_skippedIncomplete; }
+	/** Sweeps whose perception threw (skipped with a warning on stderr). */
+	std::size_t sweepsFailed() const { return m_failed; }
 	/** Pieces of sweeps taken while the robot drove, dropped by the
 	 * assembler (SweepAssembler::sweepsDroppedMoving()). */
 	std::size_t sweepsDroppedMoving() const;
@@ -112,7 +114,7 @@ private:
 	GroundTruthScorer m_scorer;
 	TrajectoryError m_poseError, m_odometryError;
 	std::string m_readError;
-	std::size_t m_skippedIncomplete = 0;
+	std::size_t m_skippedIncomplete = 0, m_failed = 0;
 };
 
 }  // namespace semnav
