@@ -87,10 +87,12 @@ void SweepAssembler::push(const mrpt::obs::CObservation::Ptr& obs)
 void SweepAssembler::pushOdometry(const mrpt::poses::CPose2D& odometry)
 {
 	// Against the sweep's first reading: a slow drive moves little between
-	// two readings but far during a sweep.
-	if (m_options.splitOnMotion && m_sweepOdometry && !m_lines.empty())
+	// two readings but far during a sweep. (A sweep begun before any reading:
+	// against the previous one.)
+	const auto& reference = m_sweepOdometry ? m_sweepOdometry : m_odometry;
+	if (m_options.splitOnMotion && reference && !m_lines.empty())
 	{
-		const auto d = odometry - *m_sweepOdometry;
+		const auto d = odometry - *reference;
 		if (d.norm() > m_options.motionTolerance ||
 		    std::abs(mrpt::math::wrapToPi(d.phi())) >
 		        m_options.motionToleranceYaw)
