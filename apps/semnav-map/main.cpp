@@ -39,6 +39,9 @@ nlohmann::json summary(
 {
 	nlohmann::json j;
 	j["sweeps"] = b.map().sweepsInserted();
+	j["sweeps_skipped_incomplete"] = b.sweepsSkippedIncomplete();
+	j["sweeps_dropped_moving"] = b.sweepsDroppedMoving();
+	j["sweeps_failed"] = b.sweepsFailed();
 	j["objects"] = nlohmann::json::array();
 	for (const auto& o : b.map().instances())
 		j["objects"].push_back(
@@ -83,6 +86,13 @@ void printSummary(const nlohmann::json& j, const std::string& poses)
 	          << " poses), " << j["objects"].size() << " objects, "
 	          << j["ms_per_sweep_median"].get<double>()
 	          << " ms/sweep (median)\n";
+	if (j["sweeps_skipped_incomplete"] > 0 || j["sweeps_dropped_moving"] > 0)
+		std::cout << "  not mapped: " << j["sweeps_skipped_incomplete"]
+		          << " incomplete sweeps, " << j["sweeps_dropped_moving"]
+		          << " pieces of sweeps taken while driving\n";
+	if (j["sweeps_failed"] > 0)
+		std::cout << "  skipped: " << j["sweeps_failed"]
+		          << " sweeps whose perception failed (see stderr)\n";
 	for (const auto& o : j["objects"])
 		std::cout << "  #" << o["id"] << " " << o["label"].get<std::string>()
 		          << " at (" << o["x"].get<double>() << ", "

@@ -273,14 +273,23 @@ rawlog_GZ_compress_level = 1
 	      section<SemanticEvidenceMap::TOptions>("SemanticEvidence"),
 	      section<ObjectFootprints::TOptions>("ObjectFootprints"),
 	      section<PredictionGuard::TOptions>("PredictionGuard")}});
-	all.push_back(
-	    {"map.ini",
-	     "semnav-map options (semnav-map --config config/map.ini). The "
-	     "perception\nsections of config/perception.ini may be added "
-	     "here too.",
-	     {section<SemanticMap::TOptions>("SemanticMap"),
-	      section<TravelCostModel::TOptions>("TravelCost"),
-	      section<SweepAssembler::TOptions>("SweepAssembler")}});
+	{
+		ShippedConfig c{
+		    "map.ini",
+		    "semnav-map options (semnav-map --config config/map.ini). The "
+		    "perception\nsections of config/perception.ini may be added "
+		    "here too.",
+		    {section<SemanticMap::TOptions>("SemanticMap"),
+		     section<TravelCostModel::TOptions>("TravelCost"),
+		     section<SweepAssembler::TOptions>("SweepAssembler")}};
+		// semnav-map's own default (MapBuilder::Settings): a robot's
+		// recording holds every nod, most taken while driving.
+		c.overrides = R"(
+[SweepAssembler]
+drop_motion_fragments = true
+)";
+		all.push_back(c);
+	}
 	all.push_back(
 	    {"navigation.ini",
 	     "semnav navigation (semnav-nav, scripts/demo): the CNN path "

@@ -3,6 +3,7 @@
 
 #include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
+#include <semnav/scan/RawlogWriter.h>
 #include <semnav/scan/TiltGeometry.h>
 
 #include <cmath>
@@ -44,6 +45,65 @@ inline mrpt::obs::CObservationOdometry::Ptr makeOdometry(
 	o->sensorLabel = "ODOMETRY";
 	o->odometry = mrpt::poses::CPose2D(x, y, yaw);
 	return o;
+}
+
+/** A robot's streamed recording: scan lines of a nodding head with an
+ * odometry reading every 5 lines, the robot at `x` (moving `dx` per
+ * reading while `driving`). */
+class LiveRecording
+{
+public:
+	explicit LiveRecording(const std::string& path)
+	    : m_writer(path, 1, RawlogWriter::Mode::Streaming)
+	{
+		m_writer.write(*makeOdometry(0, 0, 0));
+	}
+	/** One nod from tilt index `from` to `to` (inclusive), skipping the
+	 * lines in [skipFrom, skipTo]. */
+	void nod(int from, int to, int skipFrom = -1, int skipTo = -2)
+	{
+		const int dir = to >= from ? 1 : -1;
+		for (int k = from;; k += dir)
+		{
+			if (k < skipFrom || k > skipTo) m_writer.write(*makeLine(k));
+			if (++m_lines % 5 == 0)
+			{
+				if (driving) x += dx;
+				m_writer.write(*makeOdometry(x, 0, 0));
+			}
+			if (k == to) break;
+		}
+	}
+	void commit() { m_writer.commit(); }
+
+	bool driving = false;
+	double x = 0, dx = 0.002;  // a slow drive: 2 mm per reading
+
+private:
+	RawlogWriter m_writer;
+	int m_lines = 0;
+};
+
+/** Writes the recording of a stop-and-scan run: 3 sweeps taken standing
+ * (the second with 21 lines lost) and the nods of two drives, ending while
+ * driving. Returns where the robot stopped. */
+inline double writeStopAndScanRecording(const std::string& path)
+{
+	LiveRecording rec(path);
+	rec.nod(0, 210);          // standing
+	rec.nod(210, 0, 60, 80);  // standing, 21 lines lost
+	rec.driving = true;       // the head keeps nodding while the robot drives
+	rec.nod(0, 210);
+	rec.nod(210, 0);
+	rec.nod(0, 100);
+	rec.driving = false;  // stops mid-nod: the rest of this nod is partial
+	rec.nod(101, 210);
+	const double stoppedAt = rec.x;
+	rec.nod(210, 0);  // standing
+	rec.driving = true;
+	rec.nod(0, 210);
+	rec.commit();
+	return stoppedAt;
 }
 
 }  // namespace semnav::test

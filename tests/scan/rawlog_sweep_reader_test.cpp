@@ -91,6 +91,43 @@ TEST(RawlogSweepReader, TruncatedLogGivesGoodSweepsThenAClearError)
 	fs::remove_all(dir);
 }
 
+TEST(RawlogSweepReader, LiveRecordingGivesTheStandingSweepsOnly)
+{
+	const auto dir = tempDir("rawlog_live");
+	const std::string path = (dir / "robot.rawlog").string();
+	const double stoppedAt = test::writeStopAndScanRecording(path);
+
+	// The live source's options keep the pieces, all incomplete: the same
+	// three sweeps are complete.
+	std::size_t complete = 0;
+	for (const Sweep& sweep : readRawlogSweeps(path))
+		complete += sweep.quality().complete ? 1 : 0;
+	EXPECT_EQ(complete, 3u);
+
+	RawlogSweepReader reader(path, SweepAssembler::TOptions::forRecordings());
+	std::vector<Sweep> got;
+	Sweep s;
+	EXPECT_NO_THROW(while (reader.next(s)) got.push_back(s));
+	// The piece the log ends in is flagged incomplete (semnav-map and the
+	// robot skip those), the other pieces taken while driving are dropped.
+	ASSERT_EQ(got.size(), 4u);
+	EXPECT_FALSE(got.back().quality().complete);
+	got.pop_back();
+	for (const Sweep& sweep : got)
+	{
+		EXPECT_TRUE(sweep.quality().complete);
+		EXPECT_EQ(sweep.rows(), 211u);
+	}
+	EXPECT_EQ(got[1].quality().missingLines, 21u);
+	EXPECT_DOUBLE_EQ(got[0].odometry().x(), 0);
+	EXPECT_DOUBLE_EQ(got[1].odometry().x(), 0);
+	EXPECT_NEAR(got[2].odometry().x(), stoppedAt, 1e-12);
+	EXPECT_GT(stoppedAt, 0.1);
+	EXPECT_EQ(got[2].index(), 2u);  // dropped pieces take no index
+	EXPECT_GT(reader.assembler().sweepsDroppedMoving(), 10u);
+	fs::remove_all(dir);
+}
+
 TEST(RawlogSweepReader, GarbageAndMissingFilesAreRawlogErrors)
 {
 	const auto dir = tempDir("rawlog_bad");

@@ -1,4 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/CommandLine.h>
 #include <semnav/common/Error.h>
 #include <semnav/mapping/MapBuilder.h>
 #include <semnav/scan/RawlogSweepReader.h>
@@ -6,6 +7,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <iostream>
 
 namespace semnav
 {
@@ -61,9 +63,21 @@ std::size_t MapBuilder::expectedSweeps() const
 	return m_gt ? m_gt->size() : 0;
 }
 
+std::size_t MapBuilder::sweepsDroppedMoving() const
+{
+	return m_reader ? m_reader->assembler().sweepsDroppedMoving() : 0;
+}
+
 bool MapBuilder::nextSweep(Sweep& sweep)
 {
-	if (m_reader) return m_reader->next(sweep);
+	while (m_reader)
+	{
+		if (!m_reader->next(sweep)) return false;
+		if (sweep.quality().complete) return true;
+		m_skippedIncomplete++;
+		std::cerr << "MapBuilder: sweep " << sweep.index()
+		          << " skipped: incomplete (" << sweep.rows() << " rows)\n";
+	}
 	if (m_next3dtk == m_settings.scans3dtk.size()) return false;
 	sweep = ThreeDtkReader().read(m_settings.scans3dtk[m_next3dtk]);
 	sweep.setIndex(m_next3dtk++);
@@ -105,7 +119,21 @@ void MapBuilder::run(const std::function<void(std::size_t)>& progress)
 			break;
 		}
 		const auto t0 = std::chrono::steady_clock::now();
-		const LabeledSweep ls = m_perception.process(sweep);
+		LabeledSweep ls;
+		try
+		{
+			ls = m_perception.process(sweep);
+		}
+		catch (const std::exception& e)
+		{
+			// One odd sweep (what a fault left) must not end the run.
+			m_failed++;
+			std::cerr << "MapBuilder: sweep " << sweep.index() << " ("
+			          << sweep.rows() << " x " << sweep.cols()
+			          << ") skipped: " << CommandLine::firstLine(e.what())
+			          << "\n";
+			continue;
+		}
 		const mrpt::poses::CPose2D pose = insert(sweep, ls);
 		if (scored())
 		{

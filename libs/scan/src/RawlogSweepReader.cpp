@@ -9,12 +9,21 @@
 #include <semnav/common/Error.h>
 #include <semnav/scan/RawlogSweepReader.h>
 
+#include <iostream>
+
 namespace semnav
 {
 RawlogSweepReader::RawlogSweepReader(
     const std::string& path, const SweepAssembler::TOptions& options)
     : m_path(path), m_assembler(options)
 {
+	// Notes on stderr: MRPT's console output is stdout, which may carry
+	// the apps' JSON.
+	m_assembler.logging_enable_console_output = false;
+	m_assembler.logRegisterCallback(
+	    [](std::string_view msg, mrpt::system::VerbosityLevel,
+	       std::string_view loggerName, mrpt::Clock::time_point)
+	    { std::cerr << loggerName << ": " << msg << std::endl; });
 	if (!mrpt::system::fileExists(path))
 		throw RawlogError("cannot open rawlog " + path + ": no such file");
 	m_in = std::make_unique<mrpt::io::CFileGZInputStream>();

@@ -37,6 +37,10 @@ const OptionTable<O>& optionTable()
 	        .flag(
 	            "split_on_motion", &O::splitOnMotion,
 	            "End a sweep when the odometry moves (stop-and-scan).")
+	        .flag(
+	            "drop_motion_fragments", &O::dropMotionFragments,
+	            "Drop incomplete sweeps cut by motion or begun after it (taken "
+	            "while driving).")
 	        .real(
 	            "motion_tolerance_m", &O::motionTolerance, 0, 10,
 	            "Odometry moves below this are no motion...")
@@ -82,13 +86,20 @@ void SweepAssembler::push(const mrpt::obs::CObservation::Ptr& obs)
 
 void SweepAssembler::pushOdometry(const mrpt::poses::CPose2D& odometry)
 {
-	if (m_options.splitOnMotion && m_odometry && !m_lines.empty())
+	// Against the sweep's first reading: a slow drive moves little between
+	// two readings but far during a sweep. (A sweep begun before any reading:
+	// against the previous one.)
+	const auto& reference = m_sweepOdometry ? m_sweepOdometry : m_odometry;
+	if (m_options.splitOnMotion && reference && !m_lines.empty())
 	{
-		const auto d = odometry - *m_odometry;
+		const auto d = odometry - *reference;
 		if (d.norm() > m_options.motionTolerance ||
 		    std::abs(mrpt::math::wrapToPi(d.phi())) >
 		        m_options.motionToleranceYaw)
+		{
 			closeSweep(EndReason::Motion);
+			m_afterMotion = true;
+		}
 	}
 	m_odometry = odometry;
 }
@@ -148,6 +159,8 @@ void SweepAssembler::startSweep(std::vector<Line> lines)
 		m_direction = m_lines.back().theta > m_lines.front().theta ? 1 : -1;
 	m_repeated = 0;
 	m_sweepOdometry = m_odometry;
+	m_startedAfterMotion = m_afterMotion;
+	m_afterMotion = false;
 }
 
 void SweepAssembler::finish()
@@ -163,10 +176,35 @@ void SweepAssembler::closeSweep(EndReason why)
 		m_pending.reset();
 	}
 	if (m_lines.empty()) return;
-	m_ready.push_back(build(m_lines, why));
+	if (isMotionFragment(why))
+		m_droppedMoving++;
+	else
+		m_ready.push_back(build(m_lines, why));
 	m_lines.clear();
 	m_direction = 0;
 	m_repeated = 0;
+}
+
+bool SweepAssembler::isMotionFragment(EndReason why) const
+{
+	if (!m_options.dropMotionFragments) return false;
+	// A sweep cut by the end of the stream is kept (and flagged).
+	const bool driving = why == EndReason::Motion ||
+	                     (why == EndReason::Reversal && m_startedAfterMotion);
+	if (!driving) return false;
+	double lo = m_lines.front().theta, hi = lo;
+	for (const Line& l : m_lines)
+	{
+		lo = std::min(lo, l.theta);
+		hi = std::max(hi, l.theta);
+	}
+	return !spanIsComplete(hi - lo);
+}
+
+bool SweepAssembler::spanIsComplete(double span) const
+{
+	const double reference = referenceSpan();
+	return span >= m_options.completeSpanFraction * reference - 1e-9;
 }
 
 Sweep SweepAssembler::pop()
@@ -255,13 +293,12 @@ Sweep SweepAssembler::build(const std::vector<Line>& lines, EndReason why)
 	}
 
 	m_largestSpan = std::max(m_largestSpan, span);
-	const double reference =
-	    m_options.nominalSpan > 0 ? m_options.nominalSpan : m_largestSpan;
+	const double reference = referenceSpan();
 	auto& q = sw.quality();
 	q.ascending = lines.back().theta >= lines.front().theta;
 	q.missingLines = missing;
 	q.repeatedLines = repeated;
-	q.complete = span >= m_options.completeSpanFraction * reference - 1e-9;
+	q.complete = spanIsComplete(span);
 	// A sweep cut because the robot moved is expected while it drives.
 	if (!q.complete)
 		INTERNAL_MRPT_LOG_FMT(

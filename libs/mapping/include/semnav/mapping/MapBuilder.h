@@ -46,7 +46,8 @@ public:
 	{
 		SemanticMap::TOptions map;
 		PerceptionPipeline::TOptions perception;
-		SweepAssembler::TOptions assembler;
+		SweepAssembler::TOptions assembler =
+		    SweepAssembler::TOptions::forRecordings();
 		/** Object detection; nothing: rules only. */
 		std::optional<CascadeDetector::TOptions> cascades;
 		MappingLocalizer::TOptions localization;
@@ -86,6 +87,14 @@ public:
 	/** Error of the poses used, and of the odometry (when scored()). */
 	const TrajectoryError& poseError() const { return m_poseError; }
 	const TrajectoryError& odometryError() const { return m_odometryError; }
+	/** Incomplete sweeps of the rawlog skipped, as the robot skips them
+	 * (head reversed early, cut by a fault or the end of the log). */
+	std::size_t sweepsSkippedIncomplete() const { return m_skippedIncomplete; }
+	/** Sweeps whose perception threw (skipped with a warning on stderr). */
+	std::size_t sweepsFailed() const { return m_failed; }
+	/** Pieces of sweeps taken while the robot drove, dropped by the
+	 * assembler (SweepAssembler::sweepsDroppedMoving()). */
+	std::size_t sweepsDroppedMoving() const;
 	/** The rawlog error that ended the run early ("" if none). */
 	const std::string& readError() const { return m_readError; }
 
@@ -105,6 +114,7 @@ private:
 	GroundTruthScorer m_scorer;
 	TrajectoryError m_poseError, m_odometryError;
 	std::string m_readError;
+	std::size_t m_skippedIncomplete = 0, m_failed = 0;
 };
 
 }  // namespace semnav

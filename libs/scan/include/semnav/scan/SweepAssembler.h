@@ -22,7 +22,11 @@ namespace semnav
  * reversals of the tilt direction. A line with the same tilt as the previous
  * one is a repeat and is dropped, unless the next line reverses direction:
  * then it opens the new sweep (a nodding head may scan its end tilt twice).
- * When the robot moves (the odometry changes) the current sweep ends.
+ * When the robot moves (the odometry leaves the sweep's first reading by
+ * more than the motion tolerance) the current sweep ends; incomplete sweeps
+ * cut that way or begun after such a cut were taken while driving: with
+ * dropMotionFragments (semnav-map's default) they are dropped, so a robot's
+ * recording yields the sweeps taken standing.
  * Gaps in the tilt sequence become invalid rows (quality().missingLines);
  * a sweep spanning less than `complete_span_fraction` of the reference span
  * is emitted with quality().complete == false, never dropped.
@@ -55,6 +59,19 @@ public:
 		double completeSpanFraction = 0.95;
 		/** End the sweep when the odometry moves (stop-and-scan). */
 		bool splitOnMotion = true;
+		/** Drop (never emit) incomplete sweeps cut by motion, or begun at
+		 * such a cut and ended by a reversal: the pieces of nods taken
+		 * while driving. */
+		bool dropMotionFragments = false;
+
+		/** The defaults for reprocessing a robot's recording (semnav-map):
+		 * dropMotionFragments on. */
+		static TOptions forRecordings()
+		{
+			TOptions o;
+			o.dropMotionFragments = true;
+			return o;
+		}
 		/** Odometry changes below these are not motion (m, rad). */
 		double motionTolerance = 0.005;
 		double motionToleranceYaw = 0.2 * M_PI / 180;
@@ -80,6 +97,9 @@ public:
 	/** Scan lines dropped because their beam count changed mid-sweep or
 	 * they came from another sensor. */
 	std::size_t linesIgnored() const { return m_linesIgnored; }
+	/** Incomplete sweeps dropped because they were taken while driving
+	 * (TOptions::dropMotionFragments). */
+	std::size_t sweepsDroppedMoving() const { return m_droppedMoving; }
 
 	const TOptions& options() const { return m_options; }
 
@@ -99,6 +119,14 @@ private:
 	void startSweep(std::vector<Line> lines);
 	void closeSweep(EndReason why);
 	Sweep build(const std::vector<Line>& lines, EndReason why);
+	/** The current lines are a piece of a nod taken while driving. */
+	bool isMotionFragment(EndReason why) const;
+	double referenceSpan() const
+	{
+		return m_options.nominalSpan > 0 ? m_options.nominalSpan
+		                                 : m_largestSpan;
+	}
+	bool spanIsComplete(double span) const;
 
 	TOptions m_options;
 	std::string m_label;
@@ -111,6 +139,9 @@ private:
 	std::deque<Sweep> m_ready;
 	std::size_t m_emitted = 0;
 	std::size_t m_linesIgnored = 0;
+	std::size_t m_droppedMoving = 0;
+	/** The last sweep was cut by motion / the current one began then. */
+	bool m_afterMotion = false, m_startedAfterMotion = false;
 };
 
 }  // namespace semnav
