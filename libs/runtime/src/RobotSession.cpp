@@ -186,7 +186,12 @@ void RobotSession::mappingSweep()
 {
 	if (!m_mapper)
 	{
-		m_mapper = std::make_unique<MappingLocalizer>(m_localization);
+		// Object footprints are validated for offline mapping outdoors;
+		// from an empty start indoors they led the two-rooms run into a
+		// table (docs/robot.md): off here until that is understood.
+		MappingLocalizer::TOptions o = m_localization;
+		o.footprints.points = 0;
+		m_mapper = std::make_unique<MappingLocalizer>(o);
 		m_mapperPerception =
 		    std::make_unique<SweepPerception>(m_perception, m_cascades);
 		m_mapperPerception->pipeline().setMinLoggingLevel(
