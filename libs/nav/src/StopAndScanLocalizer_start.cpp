@@ -380,19 +380,23 @@ double StopAndScanLocalizer::missedObjects(
 	        double(m_startSweeps.size()));
 }
 
+mrpt::math::TPose2D StopAndScanLocalizer::carriedTo(
+    const mrpt::math::TPose2D& p, const SweepRecord& rec) const
+{
+	const mrpt::poses::CPose2D drive = mrpt::poses::CPose2D(rec.odometry) -
+	                                   mrpt::poses::CPose2D(m_carried.odometry);
+	return (mrpt::poses::CPose2D(p) + drive).asTPose();
+}
+
 double StopAndScanLocalizer::evidenceOf(const SweepRecord& rec) const
 {
 	double e = rec.score - rec.rivalScore;
 	if (!m_carried.valid) return e;
-	// The carried hypotheses, moved by the odometry since.
-	const mrpt::poses::CPose2D drive = mrpt::poses::CPose2D(rec.odometry) -
-	                                   mrpt::poses::CPose2D(m_carried.odometry);
-	const auto moved = [&](const mrpt::math::TPose2D& p)
-	{ return (mrpt::poses::CPose2D(p) + drive).asTPose(); };
 	const auto near =
 	    [](const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b)
 	{ return closeTo(a, b, kCarriedRadius, kCarriedYaw); };
-	const auto est = moved(m_carried.estimate), riv = moved(m_carried.rival);
+	const auto est = carriedTo(m_carried.estimate, rec),
+	           riv = carriedTo(m_carried.rival, rec);
 	if (near(rec.estimate, est) && near(rec.rival, riv))
 		e += m_carried.evidence;
 	else if (near(rec.estimate, riv) && near(rec.rival, est))
@@ -404,11 +408,10 @@ std::string StopAndScanLocalizer::carriedContradiction(
     const SweepRecord& rec) const
 {
 	if (!m_carried.valid || m_carried.contradiction.empty()) return {};
-	const mrpt::poses::CPose2D drive = mrpt::poses::CPose2D(rec.odometry) -
-	                                   mrpt::poses::CPose2D(m_carried.odometry);
-	const mrpt::math::TPose2D est =
-	    (mrpt::poses::CPose2D(m_carried.estimate) + drive).asTPose();
-	if (!closeTo(rec.estimate, est, kCarriedRadius, kCarriedYaw)) return {};
+	if (!closeTo(
+	        rec.estimate, carriedTo(m_carried.estimate, rec), kCarriedRadius,
+	        kCarriedYaw))
+		return {};
 	return m_carried.contradiction + " (before the drive to look)";
 }
 

@@ -422,6 +422,10 @@ private:
 	 * map at `estimate` (see contradiction_distance_m), one line; empty
 	 * when none. */
 	std::string contradiction(const mrpt::math::TPose2D& estimate) const;
+	/** `p`, a pose of m_carried, moved by the odometry from the drive to
+	 * `rec`. */
+	mrpt::math::TPose2D carriedTo(
+	    const mrpt::math::TPose2D& p, const SweepRecord& rec) const;
 	/** m_carried's contradiction when rec's estimate is the carried
 	 * estimate moved by the odometry since; empty otherwise. */
 	std::string carriedContradiction(const SweepRecord& rec) const;
