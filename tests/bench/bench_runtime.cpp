@@ -6,9 +6,9 @@
 // - perception (rules, cascades, 3D checks: SweepPerception),
 // - particle filter + insertion into the map (MappingLocalizer::process,
 //   the same update and insertion semnav-robot runs),
-// - the localizer's refresh on the grown map (Localizer::setKnownMap and
-//   SemanticEvidenceMap::build, what StopAndScanLocalizer::mapChanged()
-//   does),
+// - the localizer's refresh on the grown map (Localizer::updateKnownMap
+//   and SemanticEvidenceMap::update, what StopAndScanLocalizer::mapChanged()
+//   does: around the cells the insertion changed),
 // - a replan to the nearest wastebasket (one SemanticPlanner for the run,
 //   repaired after each insertion, as the navigator's).
 // BM_RobotLoop/N runs N sweeps once and reports, as counters, the median
@@ -134,8 +134,8 @@ void BM_RobotLoop(benchmark::State& state)
 			const auto pose = localizer.process(sweep, labeled, map);
 			p.localizeInsert.push_back(msSince(t));
 			t = std::chrono::steady_clock::now();
-			known.setKnownMap(map);
-			evidence.build(map);
+			known.updateKnownMap(map);
+			evidence.update(map);
 			p.refresh.push_back(msSince(t));
 			t = std::chrono::steady_clock::now();
 			try
@@ -167,6 +167,8 @@ void BM_RobotLoop(benchmark::State& state)
 		state.counters["last10_pf_insert_ms"] = last(p.localizeInsert);
 		state.counters["last10_refresh_ms"] = last(p.refresh);
 		state.counters["last10_replan_ms"] = last(p.replan);
+		state.counters["first10_perception_ms"] = first(p.perception);
+		state.counters["first10_pf_insert_ms"] = first(p.localizeInsert);
 		state.counters["first10_refresh_ms"] = first(p.refresh);
 		state.counters["first10_replan_ms"] = first(p.replan);
 		state.counters["map_cells"] =

@@ -2,11 +2,14 @@
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/poses/CPose3D.h>
 #include <octomap/OcTree.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
 #include <semnav/map/SemanticMap.h>
 
+#include <algorithm>
+#include <tuple>
 #include <utility>
 
 #include "../common/SavedAndLoaded.h"
@@ -613,6 +616,12 @@ TEST(SemanticMap, ChangesSinceBoundWhatAnInsertionChanged)
 		return s;
 	};
 	const auto before = snapshot();
+	const std::vector<float> observationsBefore =
+	    std::as_const(m).get("observations");
+	std::vector<double> occupancyBefore;
+	for (int cy = 0; cy < g.rows; cy++)
+		for (int cx = 0; cx < g.cols; cx++)
+			occupancyBefore.push_back(m.occupancy(cx, cy));
 	const std::uint64_t v = m.version();
 	EXPECT_TRUE(m.changesSince(v).none());
 	// A box 1 m ahead of a robot turned left: inside the grid, no growth.
@@ -641,6 +650,21 @@ TEST(SemanticMap, ChangesSinceBoundWhatAnInsertionChanged)
 	    static_cast<std::size_t>(c.cells.row1 - c.cells.row0) *
 	        (c.cells.col1 - c.cells.col0),
 	    g.cellCount() / 2);
+	// Observation counts and occupancy: written inside `touched` only.
+	std::size_t written = 0;
+	for (int cy = 0; cy < g.rows; cy++)
+		for (int cx = 0; cx < g.cols; cx++)
+			if (observationsBefore[g.index(cy, cx)] !=
+			        m.at("observations", cx, cy) ||
+			    occupancyBefore[g.index(cy, cx)] != m.occupancy(cx, cy))
+			{
+				written++;
+				EXPECT_TRUE(c.touched.contains(cy, cx)) << cx << ", " << cy;
+			}
+	EXPECT_GT(written, changed / 4);
+	EXPECT_TRUE(
+	    c.touched.contains(c.cells.row0, c.cells.col0) &&
+	    c.touched.contains(c.cells.row1 - 1, c.cells.col1 - 1));
 	// Costs recomputed only where the sweep touched: as everywhere.
 	const std::vector<float> cost = std::as_const(m).get("cost");
 	m.updateCosts();
@@ -660,4 +684,56 @@ TEST(SemanticMap, ChangesSinceBoundWhatAnInsertionChanged)
 	EXPECT_TRUE(m.changesSince(v2).all);
 	m.growToInclude(-20, -20, 20, 20);
 	EXPECT_TRUE(m.changesSince(m.version() - 1).all);
+}
+
+TEST(SemanticMap, OctreeInnerNodesFollowTheirLeaves)
+{
+	// Each insertion updates the voxels of its points and the inner nodes
+	// above them: the tree equals one updated point by point, its inner
+	// nodes all recomputed.
+	SemanticMap m;
+	octomap::OcTree reference(m.options().resolution);
+	for (int k = 0; k < 5; k++)
+	{
+		auto pts = floorFan(2.0 + 0.3 * k);
+		for (double y = -0.3; y <= 0.3; y += 0.01)
+			for (double z = 0.1; z <= 1.2; z += 0.02)
+				pts.push_back({1.0 + 0.2 * k, y, z, Label::Obstacle});
+		const auto f = makeFakeSweep(pts);
+		const mrpt::poses::CPose2D pose(0.3 * k, 0.1 * k, 0.4 * k);
+		m.insert(f.sweep, f.labeled, pose);
+		const mrpt::poses::CPose3D robot(
+		    pose.x(), pose.y(), 0, pose.phi(), 0, 0);
+		for (int i = 0; i < f.labeled.points.cols; i++)
+		{
+			const auto& p = f.labeled.points.at<cv::Vec3f>(0, i);
+			double x, y, z;
+			robot.composePoint(p[0], p[1], p[2], x, y, z);
+			reference.updateNode(
+			    octomap::point3d(
+			        static_cast<float>(x), static_cast<float>(y),
+			        static_cast<float>(z)),
+			    true, true);
+		}
+	}
+	reference.updateInnerOccupancy();
+	const auto values = [](const octomap::OcTree& t)
+	{
+		std::vector<std::tuple<double, double, double, double, float>> v;
+		for (auto it = t.begin_tree(), end = t.end_tree(); it != end; ++it)
+			v.emplace_back(
+			    it.getX(), it.getY(), it.getZ(), it.getSize(),
+			    it->getLogOdds());
+		return v;
+	};
+	const auto inserted = values(std::as_const(m).octree());
+	ASSERT_GT(inserted.size(), 100u);
+	EXPECT_EQ(inserted, values(reference));
+	// Saturated voxels (many points each) reached the clamping bound.
+	EXPECT_GT(
+	    std::count_if(
+	        inserted.begin(), inserted.end(),
+	        [&](const auto& n)
+	        { return std::get<4>(n) == reference.getClampingThresMaxLog(); }),
+	    10);
 }

@@ -225,17 +225,59 @@ void Localizer::setKnownMap(const SemanticMap& map)
 {
 	m_knownWalls = WallMap();
 	m_knownWalls.buildFromSemanticMap(map);
-	m_freeCells.clear();
-	const auto& g = map.geometry();
-	m_freeCellSize = g.resolution;
-	for (int cy = 0; cy < g.rows; cy++)
-		for (int cx = 0; cx < g.cols; cx++)
-			if (map.at("observations", cx, cy) > 0 &&
-			    map.occupancy(cx, cy) < m_options.freeCellThreshold)
-				m_freeCells.push_back({g.centerX(cx), g.centerY(cy)});
-	if (m_freeCells.empty())
+	m_freeGeometry = map.geometry();
+	m_free.assign(m_freeGeometry.cellCount(), 0);
+	m_freeCount = 0;
+	markFreeCells(map, CellRect::all(m_freeGeometry));
+	m_known = &map;
+	m_knownVersion = map.version();
+	if (m_freeCount == 0)
 		throw Error("Localizer: the known map has no free cell");
 	setWallMap(&m_knownWalls);
+}
+
+void Localizer::updateKnownMap(const SemanticMap& map)
+{
+	const SemanticMap::Changes changes = map.changesSince(m_knownVersion);
+	if (m_known != &map || changes.all || !(map.geometry() == m_freeGeometry))
+	{
+		setKnownMap(map);
+		return;
+	}
+	m_knownWalls.updateFromSemanticMap(map);
+	markFreeCells(map, changes.touched);
+	m_knownVersion = map.version();
+	if (m_freeCount == 0)
+		throw Error("Localizer: the known map has no free cell");
+	setWallMap(&m_knownWalls);
+}
+
+void Localizer::markFreeCells(const SemanticMap& map, const CellRect& cells)
+{
+	const auto& observations = map.get("observations");
+	for (int cy = cells.row0; cy < cells.row1; cy++)
+		for (int cx = cells.col0; cx < cells.col1; cx++)
+		{
+			const std::size_t i = m_freeGeometry.index(cy, cx);
+			const uint8_t free =
+			    observations[i] > 0 &&
+			    map.occupancy(cx, cy) < m_options.freeCellThreshold;
+			m_freeCount += free;
+			m_freeCount -= m_free[i];
+			m_free[i] = free;
+		}
+}
+
+std::vector<mrpt::math::TPoint2D> Localizer::freeCells() const
+{
+	std::vector<mrpt::math::TPoint2D> out;
+	out.reserve(m_freeCount);
+	const GridGeometry& g = m_freeGeometry;
+	for (int cy = 0; cy < g.rows; cy++)
+		for (int cx = 0; cx < g.cols; cx++)
+			if (m_free[g.index(cy, cx)])
+				out.push_back({g.centerX(cx), g.centerY(cy)});
+	return out;
 }
 
 void Localizer::initialize(const mrpt::poses::CPose2D& pose)
@@ -255,16 +297,16 @@ void Localizer::initialize(const mrpt::poses::CPose2D& pose)
 
 void Localizer::initializeGlobal()
 {
-	if (m_freeCells.empty())
+	if (m_freeCount == 0)
 		throw Error("Localizer: global localization needs a known map");
+	const std::vector<mrpt::math::TPoint2D> free = freeCells();
 	auto& rng = mrpt::random::getRandomGenerator();
 	const std::size_t n = static_cast<std::size_t>(m_options.globalParticles);
 	m_pdf.resetDeterministic(mrpt::math::TPose2D(0, 0, 0), n);
-	const double h = m_freeCellSize / 2;
+	const double h = m_freeGeometry.resolution / 2;
 	for (auto& p : m_pdf.m_particles)
 	{
-		const auto& c =
-		    m_freeCells[rng.drawUniform32bit() % m_freeCells.size()];
+		const auto& c = free[rng.drawUniform32bit() % free.size()];
 		p.d.x = c.x + rng.drawUniform(-h, h);
 		p.d.y = c.y + rng.drawUniform(-h, h);
 		p.d.phi = rng.drawUniform(-M_PI, M_PI);
@@ -349,8 +391,7 @@ LocalizationUpdate Localizer::update(
 
 	// Likelihood collapse while tracking in a known map: spread the particles
 	// over the free space and score the same sweep again.
-	if (scoreWalls && !m_freeCells.empty() && m_options.kidnapDetection &&
-	    !m_global)
+	if (scoreWalls && m_freeCount > 0 && m_options.kidnapDetection && !m_global)
 	{
 		if (u.inlierFraction < m_options.kidnapInlierFraction)
 			m_lowInlierUpdates++;

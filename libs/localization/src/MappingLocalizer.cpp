@@ -105,7 +105,7 @@ void MappingLocalizer::updateSemanticMap(const SemanticMap& map)
 {
 	if (!m_options.semantic.enabled()) return;
 	const auto t0 = std::chrono::steady_clock::now();
-	m_semantic.build(map, m_options.semantic.mappingFlatLabelsOnly);
+	m_semantic.update(map, m_options.semantic.mappingFlatLabelsOnly);
 	m_semanticMs = std::chrono::duration<double, std::milli>(
 	                   std::chrono::steady_clock::now() - t0)
 	                   .count();
@@ -153,7 +153,7 @@ mrpt::poses::CPose2D MappingLocalizer::process(
 	if (m_method == Method::Walls)
 	{
 		m_walls.addObservation(m_obs.segments, pose);
-		m_walls.rebuild(&map);
+		m_walls.update(map);
 		updateSemanticMap(map);
 		m_footprints.insert(m_sweepFootprints, pose);
 	}

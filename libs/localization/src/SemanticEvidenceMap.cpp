@@ -76,12 +76,10 @@ float SemanticEvidenceMap::value(double d, double sigma, double maxD) const
 void SemanticEvidenceMap::build(const SemanticMap& map, bool flatOnly)
 {
 	m_geometry = map.geometry();
-	const int nx = m_geometry.cols, ny = m_geometry.rows;
 	const float unknown = static_cast<float>(std::log(m_options.unknownWeight));
 	const float far = value(m_options.maxDistance, m_options.sigma, 1e9);
 	m_outside = std::max(far, unknown);
 	for (auto& f : m_fields) f.clear();
-	for (auto& o : m_objects) o.clear();
 	const std::vector<float>& observations = map.get("observations");
 	const std::vector<float>& labels = map.get("labels");
 	m_unknown.assign(m_geometry.cellCount(), 0);
@@ -93,32 +91,73 @@ void SemanticEvidenceMap::build(const SemanticMap& map, bool flatOnly)
 	}
 	for (const Label l : allLabels())
 	{
-		const bool flat =
-		    SemanticExtractor::isGroundLabel(l) && l != Label::Obstacle;
-		if ((!SemanticExtractor::isClassLabel(l) &&
-		     !SemanticExtractor::isGroundLabel(l)) ||
-		    (flatOnly && !flat) || !LabelSet(present).contains(l))
-			continue;
-		cv::Mat src(ny, nx, CV_8U, cv::Scalar(255));
-		for (std::size_t i = 0; i < m_unknown.size(); i++)
-			if (LabelSet(static_cast<LabelSet::mask_t>(labels[i])).contains(l))
-				src.data[i] = 0;
-		cv::Mat dist;
-		cv::distanceTransform(src, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
-		auto& field = m_fields[static_cast<std::size_t>(l)];
-		field.resize(m_geometry.cellCount());
-		const float* d = dist.ptr<float>();
-		for (std::size_t i = 0; i < field.size(); i++)
+		if (!scored(l, flatOnly) || !LabelSet(present).contains(l)) continue;
+		m_fields[static_cast<std::size_t>(l)].resize(m_geometry.cellCount());
+		computeField(l, labels, CellRect::all(m_geometry));
+	}
+	takeObjects(map);
+	m_source = &map;
+	m_version = map.version();
+	m_flatOnly = flatOnly;
+	m_labels = labels;
+	m_present = present;
+}
+
+bool SemanticEvidenceMap::scored(Label l, bool flatOnly)
+{
+	const bool flat =
+	    SemanticExtractor::isGroundLabel(l) && l != Label::Obstacle;
+	return (SemanticExtractor::isClassLabel(l) ||
+	        SemanticExtractor::isGroundLabel(l)) &&
+	       (!flatOnly || flat);
+}
+
+void SemanticEvidenceMap::takeObjects(const SemanticMap& map)
+{
+	for (auto& o : m_objects) o.clear();
+	for (const auto& o : map.instances())
+		m_objects[static_cast<std::size_t>(o.label)].push_back(
+		    {o.centroid.x, o.centroid.y});
+}
+
+void SemanticEvidenceMap::computeField(
+    Label l, const std::vector<float>& labels, const CellRect& cells)
+{
+	// A cell's value depends on the cells of label l within max_distance
+	// only (farther, the distance is clamped): the distance transform of
+	// the window around `cells` gives the whole map's there.
+	const int reach = static_cast<int>(std::ceil(
+	                      m_options.maxDistance / m_geometry.resolution)) +
+	                  1;
+	const CellRect out = cells.dilated(reach).clipped(m_geometry);
+	const CellRect in = out.dilated(reach).clipped(m_geometry);
+	if (out.empty()) return;
+	const int w = in.col1 - in.col0, h = in.row1 - in.row0;
+	cv::Mat src(h, w, CV_8U, cv::Scalar(255));
+	for (int r = 0; r < h; r++)
+	{
+		uint8_t* row = src.ptr<uint8_t>(r);
+		const float* lab = &labels[m_geometry.index(in.row0 + r, in.col0)];
+		for (int c = 0; c < w; c++)
+			if (LabelSet(static_cast<LabelSet::mask_t>(lab[c])).contains(l))
+				row[c] = 0;
+	}
+	cv::Mat dist;
+	cv::distanceTransform(src, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+	const float unknown = static_cast<float>(std::log(m_options.unknownWeight));
+	auto& field = m_fields[static_cast<std::size_t>(l)];
+	for (int cy = out.row0; cy < out.row1; cy++)
+	{
+		const float* d = dist.ptr<float>(cy - in.row0) - in.col0;
+		for (int cx = out.col0; cx < out.col1; cx++)
 		{
+			const std::size_t i = m_geometry.index(cy, cx);
 			const float v = value(
-			    d[i] * m_geometry.resolution, m_options.sigma,
+			    d[cx] * m_geometry.resolution, m_options.sigma,
 			    m_options.maxDistance);
 			field[i] = m_unknown[i] ? std::max(v, unknown) : v;
 		}
 	}
-	for (const auto& o : map.instances())
-		m_objects[static_cast<std::size_t>(o.label)].push_back(
-		    {o.centroid.x, o.centroid.y});
 }
 
 SemanticObservation SemanticEvidenceMap::observedPart(

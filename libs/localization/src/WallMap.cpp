@@ -64,11 +64,8 @@ void WallMap::addObservation(
 		m_segments.push_back(s.transformed(pose));
 }
 
-void WallMap::rebuild(const SemanticMap* observed)
+GridGeometry WallMap::fieldGeometry(const SemanticMap* observed) const
 {
-	m_main.reset();
-	m_field.clear();
-	if (m_segments.empty()) return;
 	double x0 = std::numeric_limits<double>::max(), y0 = x0;
 	double x1 = -x0, y1 = -x0;
 	for (const auto& s : m_segments)
@@ -85,56 +82,111 @@ void WallMap::rebuild(const SemanticMap* observed)
 		x0 = std::min(x0, og.originX + m), y0 = std::min(y0, og.originY + m);
 		x1 = std::max(x1, og.maxX() - m), y1 = std::max(y1, og.maxY() - m);
 	}
-	m_geometry = GridGeometry(
+	return GridGeometry(
 	    res, x0 - m, y0 - m,
 	    static_cast<int>(std::ceil((x1 - x0 + 2 * m) / res)),
 	    static_cast<int>(std::ceil((y1 - y0 + 2 * m) / res)));
-	cv::Mat mask(m_geometry.rows, m_geometry.cols, CV_8U, cv::Scalar(0));
+}
+
+CellRect WallMap::drawSegments(std::size_t from)
+{
+	const double res = m_geometry.resolution;
 	const auto toPx = [&](const mrpt::math::TPoint2D& p)
 	{
 		return cv::Point(
 		    static_cast<int>((p.x - m_geometry.originX) / res),
 		    static_cast<int>((p.y - m_geometry.originY) / res));
 	};
-	for (const auto& s : m_segments)
-		cv::line(mask, toPx(s.p0), toPx(s.p1), cv::Scalar(1), 1, cv::LINE_8);
-	std::vector<uint8_t> unknown;
-	if (observed)
+	CellRect drawn;
+	const auto draw = [&](cv::Mat& mask, const mrpt::math::TPoint2D& a,
+	                      const mrpt::math::TPoint2D& b)
 	{
-		unknown.assign(m_geometry.cellCount(), 1);
-		const auto& obs = observed->get("observations");
-		const auto& og = observed->geometry();
-		for (int r = 0; r < m_geometry.rows; r++)
-			for (int c = 0; c < m_geometry.cols; c++)
-			{
-				int cx, cy;
-				if (og.worldToCell(
-				        m_geometry.centerX(c), m_geometry.centerY(r), cx, cy) &&
-				    obs[og.index(cy, cx)] > 0)
-					unknown[m_geometry.index(r, c)] = 0;
-			}
+		const cv::Point pa = toPx(a), pb = toPx(b);
+		cv::line(mask, pa, pb, cv::Scalar(1), 1, cv::LINE_8);
+		drawn.add(std::min(pa.y, pb.y), std::min(pa.x, pb.x));
+		drawn.add(std::max(pa.y, pb.y), std::max(pa.x, pb.x));
+	};
+	cv::Mat lines(m_geometry.rows, m_geometry.cols, CV_8U, m_lines.data());
+	cv::Mat ext;
+	if (!m_extension.empty())
+		ext = cv::Mat(
+		    m_geometry.rows, m_geometry.cols, CV_8U, m_extension.data());
+	const double e = m_options.unknownExtension;
+	for (std::size_t k = from; k < m_segments.size(); k++)
+	{
+		const WallSegment& s = m_segments[k];
+		draw(lines, s.p0, s.p1);
 		// A wall seen up to the edge of the view goes on into the unseen
 		// cells: extend the segments there, else a new view of the wall is
 		// pulled back onto the known part (a bias along the wall).
-		const double e = m_options.unknownExtension;
-		if (e > 0)
-		{
-			cv::Mat ext(m_geometry.rows, m_geometry.cols, CV_8U, cv::Scalar(0));
-			for (const auto& s : m_segments)
-			{
-				const double len = s.length();
-				if (len <= 0) continue;
-				const auto d = (s.p1 - s.p0) * (e / len);
-				cv::line(ext, toPx(s.p0 - d), toPx(s.p0), cv::Scalar(1));
-				cv::line(ext, toPx(s.p1), toPx(s.p1 + d), cv::Scalar(1));
-			}
-			for (std::size_t i = 0; i < unknown.size(); i++)
-				if (ext.data[i] && unknown[i]) mask.data[i] = 1;
-		}
+		const double len = s.length();
+		if (m_extension.empty() || e <= 0 || len <= 0) continue;
+		const auto d = (s.p1 - s.p0) * (e / len);
+		draw(ext, s.p0 - d, s.p0);
+		draw(ext, s.p1, s.p1 + d);
 	}
-	buildField(
-	    std::vector<uint8_t>(mask.datastart, mask.dataend),
-	    observed ? &unknown : nullptr);
+	m_drawn = m_segments.size();
+	return drawn.clipped(m_geometry);
+}
+
+CellRect WallMap::markUnknown(
+    const SemanticMap& observed, const CellRect& cells)
+{
+	const auto& obs = observed.get("observations");
+	const auto& og = observed.geometry();
+	CellRect flipped;
+	for (int r = cells.row0; r < cells.row1; r++)
+		for (int c = cells.col0; c < cells.col1; c++)
+		{
+			int cx, cy;
+			const uint8_t unknown =
+			    og.worldToCell(
+			        m_geometry.centerX(c), m_geometry.centerY(r), cx, cy) &&
+			            obs[og.index(cy, cx)] > 0
+			        ? 0
+			        : 1;
+			auto& u = m_unknownMask[m_geometry.index(r, c)];
+			if (u != unknown) flipped.add(r, c);
+			u = unknown;
+		}
+	return flipped;
+}
+
+void WallMap::maskWalls(const CellRect& cells)
+{
+	for (int r = cells.row0; r < cells.row1; r++)
+		for (int c = cells.col0; c < cells.col1; c++)
+		{
+			const std::size_t i = m_geometry.index(r, c);
+			m_wallMask[i] = m_lines[i] || (!m_extension.empty() &&
+			                               m_extension[i] && m_unknownMask[i]);
+		}
+}
+
+void WallMap::rebuild(const SemanticMap* observed)
+{
+	m_main.reset();
+	m_field.clear();
+	m_source = nullptr;
+	m_fromSemanticMap = false;
+	m_tileSegments.clear();
+	if (m_segments.empty()) return;
+	m_geometry = fieldGeometry(observed);
+	const std::size_t n = m_geometry.cellCount();
+	m_lines.assign(n, 0);
+	m_extension.assign(observed ? n : 0, 0);
+	m_unknownMask.assign(observed ? n : 0, 1);
+	drawSegments(0);
+	const CellRect all = CellRect::all(m_geometry);
+	if (observed) markUnknown(*observed, all);
+	m_wallMask.assign(n, 0);
+	maskWalls(all);
+	if (observed)
+	{
+		m_source = observed;
+		m_version = observed->version();
+	}
+	buildField(observed != nullptr);
 	m_main = MainDirections::estimate(m_segments, m_options.directions);
 }
 
@@ -143,31 +195,19 @@ void WallMap::buildFromSemanticMap(
 {
 	m_segments.clear();
 	m_main.reset();
+	m_lines.clear();
+	m_extension.clear();
 	m_geometry = map.geometry();
-	std::vector<uint8_t> wall(m_geometry.cellCount(), 0);
-	std::vector<uint8_t> unknown(unobservedUnknown ? wall.size() : 0, 0);
-	for (int cy = 0; cy < m_geometry.rows; cy++)
-		for (int cx = 0; cx < m_geometry.cols; cx++)
-		{
-			if (map.labels(cx, cy).contains(Label::Wall))
-				wall[m_geometry.index(cy, cx)] = 1;
-			if (unobservedUnknown && !(map.at("observations", cx, cy) > 0))
-				unknown[m_geometry.index(cy, cx)] = 1;
-		}
-	buildField(wall, unobservedUnknown ? &unknown : nullptr);
-	// Segments of the wall cells: probabilistic Hough transform.
-	cv::Mat mask(m_geometry.rows, m_geometry.cols, CV_8U, wall.data());
-	std::vector<cv::Vec4i> lines;
-	const double res = m_geometry.resolution;
-	cv::HoughLinesP(mask, lines, 1, CV_PI / 360, 15, 0.5 / res, 2);
-	for (const auto& l : lines)
-	{
-		WallSegment s;
-		s.p0 = {m_geometry.centerX(l[0]), m_geometry.centerY(l[1])};
-		s.p1 = {m_geometry.centerX(l[2]), m_geometry.centerY(l[3])};
-		m_segments.push_back(s);
-	}
-	m_main = MainDirections::estimate(m_segments, m_options.directions);
+	m_wallMask.assign(m_geometry.cellCount(), 0);
+	m_unknownMask.assign(unobservedUnknown ? m_wallMask.size() : 0, 0);
+	const CellRect all = CellRect::all(m_geometry);
+	readSemanticMap(map, all);
+	buildField(unobservedUnknown);
+	m_tileSegments.assign(tileCount(), {});
+	houghTiles(all);
+	m_source = &map;
+	m_version = map.version();
+	m_fromSemanticMap = true;
 }
 
 float WallMap::mixtureLogLikelihood(
@@ -178,47 +218,72 @@ float WallMap::mixtureLogLikelihood(
 	    std::log(hit * std::exp(-d * d / (2 * sigma * sigma)) + random));
 }
 
-void WallMap::buildField(
-    const std::vector<uint8_t>& wallMask,
-    const std::vector<uint8_t>* unknownMask)
+void WallMap::buildField(bool withUnknown)
 {
-	const int nx = m_geometry.cols, ny = m_geometry.rows;
-	cv::Mat src(ny, nx, CV_8U);
-	for (std::size_t i = 0; i < wallMask.size(); i++)
-		src.data[i] = wallMask[i] ? 0 : 255;
-	cv::Mat dist;
-	cv::distanceTransform(src, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
 	const double res = m_geometry.resolution;
 	m_unknown = static_cast<float>(std::log(m_options.unknownWeight));
-	const auto value = [&](double d)
-	{
-		return mixtureLogLikelihood(
-		    d, m_options.sigma, m_options.maxDistance, m_options.hitWeight,
-		    m_options.randomWeight);
-	};
-	m_field.resize(static_cast<std::size_t>(nx) * ny);
+	m_field.resize(m_geometry.cellCount());
 	m_distance.resize(m_field.size());
-	for (int r = 0; r < ny; r++)
-	{
-		const float* d = dist.ptr<float>(r);
-		for (int c = 0; c < nx; c++)
-		{
-			const std::size_t i = static_cast<std::size_t>(r) * nx + c;
-			m_distance[i] = static_cast<float>(d[c] * res);
-			m_field[i] = value(m_distance[i]);
-			if (unknownMask && (*unknownMask)[i])
-				m_field[i] = std::max(m_field[i], m_unknown);
-		}
-	}
 	m_x0 = m_geometry.originX;
 	m_y0 = m_geometry.originY;
 	m_invRes = 1.0 / res;
-	m_nx = nx;
-	m_ny = ny;
+	m_nx = m_geometry.cols;
+	m_ny = m_geometry.rows;
 	m_floor = value(m_options.maxDistance);
-	m_outside = unknownMask ? std::max(m_floor, m_unknown) : m_floor;
-	m_unknownMask = unknownMask ? *unknownMask : std::vector<uint8_t>();
+	m_outside = withUnknown ? std::max(m_floor, m_unknown) : m_floor;
+	if (!withUnknown) m_unknownMask.clear();
 	m_ceiling = value(0);
+	computeField(CellRect::all(m_geometry));
+}
+
+float WallMap::value(double d) const
+{
+	return mixtureLogLikelihood(
+	    d, m_options.sigma, m_options.maxDistance, m_options.hitWeight,
+	    m_options.randomWeight);
+}
+
+int WallMap::reach() const
+{
+	// Cells farther from every wall than the clamp distance, or than the
+	// inlier distance, all score alike.
+	const double far = std::max(m_options.maxDistance, 2 * m_options.sigma);
+	return static_cast<int>(std::ceil(far / m_geometry.resolution)) + 1;
+}
+
+void WallMap::computeField(const CellRect& cells)
+{
+	// A cell's distance matters up to reach() cells only: the distance
+	// transform of the window around `cells` is the whole map's there.
+	const int n = reach();
+	const CellRect out = cells.dilated(n).clipped(m_geometry);
+	const CellRect in = out.dilated(n).clipped(m_geometry);
+	if (out.empty()) return;
+	const int w = in.col1 - in.col0, h = in.row1 - in.row0;
+	cv::Mat src(h, w, CV_8U);
+	for (int r = 0; r < h; r++)
+	{
+		const uint8_t* wall =
+		    &m_wallMask[m_geometry.index(in.row0 + r, in.col0)];
+		uint8_t* row = src.ptr<uint8_t>(r);
+		for (int c = 0; c < w; c++) row[c] = wall[c] ? 0 : 255;
+	}
+	cv::Mat dist;
+	cv::distanceTransform(src, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+	const double res = m_geometry.resolution;
+	const float clamp = static_cast<float>((n - 1) * res);
+	for (int r = out.row0; r < out.row1; r++)
+	{
+		const float* d = dist.ptr<float>(r - in.row0) - in.col0;
+		for (int c = out.col0; c < out.col1; c++)
+		{
+			const std::size_t i = m_geometry.index(r, c);
+			m_distance[i] = std::min(static_cast<float>(d[c] * res), clamp);
+			m_field[i] = value(m_distance[i]);
+			if (!m_unknownMask.empty() && m_unknownMask[i])
+				m_field[i] = std::max(m_field[i], m_unknown);
+		}
+	}
 }
 
 double WallMap::logLikelihood(

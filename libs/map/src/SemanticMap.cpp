@@ -199,15 +199,23 @@ SemanticMap::Changes SemanticMap::changesSince(std::uint64_t version) const
 			return c;
 		}
 		c.cells = c.cells.united(it->cells);
+		c.touched = c.touched.united(it->touched);
 	}
 	c.cells = c.cells.clipped(m_geometry);
 	if (c.cells.empty()) c.cells = CellRect();
+	c.touched = c.touched.united(c.cells).clipped(m_geometry);
+	if (c.touched.empty()) c.touched = CellRect();
 	return c;
 }
 
 void SemanticMap::markChanged(const CellRect& cells)
 {
-	m_changes.push_back({++m_version, false, cells});
+	markChanged(cells, cells);
+}
+
+void SemanticMap::markChanged(const CellRect& cells, const CellRect& touched)
+{
+	m_changes.push_back({++m_version, false, cells, touched});
 	while (m_changes.size() > kChangeHistory)
 	{
 		m_historyStart = m_changes.front().version;

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 
@@ -44,6 +45,69 @@ void traceLine(int x0, int y0, int x1, int y1, F&& f)
 	}
 }
 
+/** The inner nodes on the paths from the root to `keys` (the leaves a
+ * lazy updateNode() changed), children first: what
+ * OcTree::updateInnerOccupancy() recomputes everywhere, done where it can
+ * change. `codes`: the keys' Morton codes (child index at depth d in bits
+ * 3 (15 - d) .. 3 (15 - d) + 2), sorted and unique. */
+void updateInnerOccupancyAlong(
+    octomap::OcTree& tree, octomap::OcTreeNode* node, unsigned depth,
+    const std::uint64_t* begin, const std::uint64_t* end)
+{
+	if (!tree.nodeHasChildren(node)) return;
+	if (depth < tree.getTreeDepth())
+	{
+		const unsigned shift = 3 * (tree.getTreeDepth() - 1 - depth);
+		for (const std::uint64_t* b = begin; b != end;)
+		{
+			const unsigned child = (*b >> shift) & 7;
+			const std::uint64_t* e = b;
+			while (e != end && ((*e >> shift) & 7) == child) ++e;
+			if (tree.nodeChildExists(node, child))
+				updateInnerOccupancyAlong(
+				    tree, tree.getNodeChild(node, child), depth + 1, b, e);
+			b = e;
+		}
+	}
+	node->updateOccupancyChildren();
+}
+
+/** Bit b of v moved to bit 3 b (16 bits). */
+std::uint64_t spreadBits(std::uint64_t v)
+{
+	v &= 0xffff;
+	v = (v | v << 16) & 0x0000ff0000ffull;
+	v = (v | v << 8) & 0x00f00f00f00full;
+	v = (v | v << 4) & 0x0c30c30c30c3ull;
+	v = (v | v << 2) & 0x249249249249ull;
+	return v;
+}
+
+/** Morton code of a key (see updateInnerOccupancyAlong; OcTree keys have
+ * 16 bits, the tree depth). */
+std::uint64_t mortonCode(const octomap::OcTreeKey& k)
+{
+	return spreadBits(k.k[0]) | spreadBits(k.k[1]) << 1 |
+	       spreadBits(k.k[2]) << 2;
+}
+
+/** Bit 3 b of v moved to bit b (spreadBits() undone). */
+std::uint16_t compactBits(std::uint64_t v)
+{
+	v &= 0x249249249249ull;
+	v = (v | v >> 2) & 0x0c30c30c30c3ull;
+	v = (v | v >> 4) & 0x00f00f00f00full;
+	v = (v | v >> 8) & 0x0000ff0000ffull;
+	v = (v | v >> 16) & 0xffffull;
+	return static_cast<std::uint16_t>(v);
+}
+
+octomap::OcTreeKey keyOfCode(std::uint64_t m)
+{
+	return octomap::OcTreeKey(
+	    compactBits(m), compactBits(m >> 1), compactBits(m >> 2));
+}
+
 /** World-frame bounding box of the robot-frame box [a, b]. */
 void toWorldBox(
     const mrpt::poses::CPose3D& robot, const mrpt::math::TPoint3D& a,
@@ -71,20 +135,37 @@ struct SemanticMap::WorldPoint
 	int r, c;
 };
 
-/** What one sweep says of each cell, and where its pixels fell. */
+/** What one sweep says of each cell of its window (the cells it can
+ * reach), and where its pixels fell. */
 struct SemanticMap::SweepEvidence
 {
-	SweepEvidence(std::size_t cells, int rows_, int cols_)
-	    : hit(cells, 0),
-	      freeEnd(cells, 0),
-	      seenFree(cells, 0),
-	      roughSum(cells, 0.0f),
-	      roughN(cells, 0),
+	SweepEvidence(const CellRect& window_, int rows_, int cols_)
+	    : window(window_),
+	      width(window_.col1 - window_.col0),
+	      hit(area(), 0),
+	      freeEnd(area(), 0),
+	      seenFree(area(), 0),
+	      roughSum(area(), 0.0f),
+	      roughN(area(), 0),
 	      rows(rows_),
 	      cols(cols_),
 	      cellOfPixel(static_cast<std::size_t>(rows_) * cols_, -1)
 	{
 	}
+	std::size_t area() const
+	{
+		return window.empty() ? 0
+		                      : static_cast<std::size_t>(width) *
+		                            (window.row1 - window.row0);
+	}
+	/** Index of a cell of the window. */
+	std::size_t at(int cy, int cx) const
+	{
+		return static_cast<std::size_t>(cy - window.row0) * width +
+		       (cx - window.col0);
+	}
+	CellRect window;
+	int width;
 	std::vector<uint8_t> hit, freeEnd, seenFree;
 	std::vector<float> roughSum;
 	std::vector<uint16_t> roughN;
@@ -105,7 +186,9 @@ void SemanticMap::insert(
 	const mrpt::poses::CPose3D robot(
 	    robotPose.x(), robotPose.y(), 0, robotPose.phi(), 0, 0);
 	const std::vector<WorldPoint> pts = worldPoints(ls, robot, robotPose);
-	SweepEvidence e(m_geometry.cellCount(), ls.points.rows, ls.points.cols);
+	SweepEvidence e(
+	    sweepWindow(pts, sensorPosition(sweep, robot, robotPose), robotPose),
+	    ls.points.rows, ls.points.cols);
 	accumulatePoints(pts, ls, e);
 	markSeenFree(sweep, robot, robotPose, e);
 	updateCells(e);
@@ -123,12 +206,7 @@ void SemanticMap::insert(
 	insertRegions(ls, robot, e, seenThisSweep);
 
 	// 3D: every point into the OctoMap (endpoints; free space stays 2D).
-	if (m_options.octomap)
-	{
-		for (const auto& p : pts)
-			m_octree->updateNode(octomap::point3d(p.x, p.y, p.z), true, true);
-		m_octree->updateInnerOccupancy();
-	}
+	if (m_options.octomap) insertIntoOctree(pts);
 
 	// Costs only where this sweep touched, unless the layers may have been
 	// written (or loaded) since the last full update.
@@ -136,7 +214,78 @@ void SemanticMap::insert(
 	    m_costsCurrent ? e.touched : CellRect::all(m_geometry), e.changed);
 	m_costsCurrent = true;
 	m_sweeps++;
-	markChanged(e.changed);
+	markChanged(e.changed, e.touched);
+}
+
+void SemanticMap::insertIntoOctree(const std::vector<WorldPoint>& pts)
+{
+	// Lazy leaf updates, then the inner nodes above the leaves updated
+	// (all of them after the tree was written from outside). Points of one
+	// voxel: the leaf found once, then the same log-odds update as
+	// updateNode() (skipped at the clamping bound).
+	std::vector<std::uint64_t> codes;
+	codes.reserve(pts.size());
+	for (const auto& p : pts)
+	{
+		octomap::OcTreeKey key;
+		if (m_octree->coordToKeyChecked(octomap::point3d(p.x, p.y, p.z), key))
+			codes.push_back(mortonCode(key));
+	}
+	std::sort(codes.begin(), codes.end());
+	const bool plain = m_octree->isChangeDetectionEnabled();
+	const float hit = m_octree->getProbHitLog();
+	const float max = m_octree->getClampingThresMaxLog();
+	for (std::size_t b = 0, e = 0; b < codes.size(); b = e)
+	{
+		const octomap::OcTreeKey key = keyOfCode(codes[b]);
+		octomap::OcTreeNode* leaf = m_octree->updateNode(key, true, true);
+		for (e = b + 1; e < codes.size() && codes[e] == codes[b]; e++)
+			if (plain || !leaf)
+				m_octree->updateNode(key, true, true);
+			else if (leaf->getLogOdds() < max)
+				m_octree->updateNodeLogOdds(leaf, hit);
+	}
+	if (!m_octreeInnerCurrent)
+	{
+		m_octree->updateInnerOccupancy();
+		m_octreeInnerCurrent = true;
+		return;
+	}
+	codes.erase(std::unique(codes.begin(), codes.end()), codes.end());
+	if (m_octree->getRoot() && !codes.empty())
+		updateInnerOccupancyAlong(
+		    *m_octree, m_octree->getRoot(), 0, codes.data(),
+		    codes.data() + codes.size());
+}
+
+mrpt::math::TPoint2D SemanticMap::sensorPosition(
+    const Sweep& sweep, const mrpt::poses::CPose3D& robot,
+    const mrpt::poses::CPose2D& robotPose)
+{
+	double sx = robotPose.x(), sy = robotPose.y(), sz = 0;
+	if (sweep.rows() > 0)
+	{
+		const auto& sp = sweep.sensorPose(sweep.rows() / 2);
+		robot.composePoint(sp.x(), sp.y(), sp.z(), sx, sy, sz);
+	}
+	return {sx, sy};
+}
+
+CellRect SemanticMap::sweepWindow(
+    const std::vector<WorldPoint>& pts, const mrpt::math::TPoint2D& sensor,
+    const mrpt::poses::CPose2D& robotPose) const
+{
+	// The points' cells, the rays from the sensor to them, the footprint.
+	CellRect w;
+	int cx, cy;
+	for (const auto& p : pts)
+		if (worldToCell(p.x, p.y, cx, cy)) w.add(cy, cx);
+	if (worldToCell(sensor.x, sensor.y, cx, cy)) w.add(cy, cx);
+	const int rr = static_cast<int>(
+	    std::ceil(m_options.robotRadius / m_geometry.resolution));
+	if (worldToCell(robotPose.x(), robotPose.y(), cx, cy))
+		w = w.united(CellRect{cy - rr, cx - rr, cy + rr + 1, cx + rr + 1});
+	return w.clipped(m_geometry);
 }
 
 std::vector<SemanticMap::WorldPoint> SemanticMap::worldPoints(
@@ -183,12 +332,12 @@ void SemanticMap::accumulatePoints(
 	    registry.select([](const ClassInfo& c) { return c.overhead; });
 	auto& labelLayer = layer("labels");
 	auto& stairsLayer = layer(kStairsSweeps);
-	std::vector<uint8_t> stairsHere(g.cellCount(), 0);
+	std::vector<uint8_t> stairsHere(e.area(), 0);
 	for (const auto& p : pts)
 	{
 		int cx, cy;
 		if (!worldToCell(p.x, p.y, cx, cy)) continue;
-		const std::size_t i = g.index(cy, cx);
+		const std::size_t i = g.index(cy, cx), j = e.at(cy, cx);
 		e.cellOfPixel[static_cast<std::size_t>(p.r) * e.cols + p.c] =
 		    static_cast<int>(i);
 		const Label l = ls.label(
@@ -203,27 +352,27 @@ void SemanticMap::accumulatePoints(
 				e.changed.add(cy, cx);
 			}
 			labelLayer[i] = static_cast<float>(s.mask());
-			if (l == Label::Stairs && !stairsHere[i])
+			if (l == Label::Stairs && !stairsHere[j])
 			{
-				stairsHere[i] = 1;
+				stairsHere[j] = 1;
 				stairsLayer[i] += 1;
 			}
 		}
 		if (ground.contains(l) || p.height < m_options.obstacleMinHeight)
 		{
-			e.freeEnd[i] = 1;
+			e.freeEnd[j] = 1;
 			if (!ls.roughnessBar.empty())
 			{
 				const float rb = ls.roughnessBar.at<float>(p.r, p.c);
 				if (std::isfinite(rb))
 				{
-					e.roughSum[i] += rb;
-					e.roughN[i]++;
+					e.roughSum[j] += rb;
+					e.roughN[j]++;
 				}
 			}
 		}
 		else if (p.height <= m_options.robotHeight && !overhead.contains(l))
-			e.hit[i] = 1;
+			e.hit[j] = 1;
 	}
 }
 
@@ -233,22 +382,18 @@ void SemanticMap::markSeenFree(
 {
 	const GridGeometry& g = m_geometry;
 	// Free space: the rays from the sensor to every ground cell seen.
-	double sx = robotPose.x(), sy = robotPose.y(), sz = 0;
-	if (sweep.rows() > 0)
-	{
-		const auto& sp = sweep.sensorPose(sweep.rows() / 2);
-		robot.composePoint(sp.x(), sp.y(), sp.z(), sx, sy, sz);
-	}
+	const mrpt::math::TPoint2D sensor = sensorPosition(sweep, robot, robotPose);
 	int scx, scy;
-	worldToCell(sx, sy, scx, scy);
-	for (int cy = 0; cy < g.rows; cy++)
-		for (int cx = 0; cx < g.cols; cx++)
-			if (e.freeEnd[g.index(cy, cx)])
+	worldToCell(sensor.x, sensor.y, scx, scy);
+	const CellRect& w = e.window;
+	for (int cy = w.row0; cy < w.row1; cy++)
+		for (int cx = w.col0; cx < w.col1; cx++)
+			if (e.freeEnd[e.at(cy, cx)])
 				traceLine(
 				    scx, scy, cx, cy,
 				    [&](int x, int y)
 				    {
-					    if (g.contains(y, x)) e.seenFree[g.index(y, x)] = 1;
+					    if (w.contains(y, x)) e.seenFree[e.at(y, x)] = 1;
 				    });
 
 	// The robot stands on its footprint: free, though the laser cannot
@@ -264,7 +409,7 @@ void SemanticMap::markSeenFree(
 			if (!cellToWorld(rcx + dx, rcy + dy, x, y)) continue;
 			if (std::hypot(x - robotPose.x(), y - robotPose.y()) <=
 			    m_options.robotRadius)
-				e.seenFree[g.index(rcy + dy, rcx + dx)] = 1;
+				e.seenFree[e.at(rcy + dy, rcx + dx)] = 1;
 		}
 }
 
@@ -275,19 +420,20 @@ void SemanticMap::updateCells(SweepEvidence& e)
 	auto& obsLayer = layer("observations");
 	const float pHit = static_cast<float>(m_options.hitProbability);
 	const float pFree = static_cast<float>(m_options.freeProbability);
-	for (int cy = 0; cy < g.rows; cy++)
-		for (int cx = 0; cx < g.cols; cx++)
+	const CellRect& w = e.window;
+	for (int cy = w.row0; cy < w.row1; cy++)
+		for (int cx = w.col0; cx < w.col1; cx++)
 		{
-			const std::size_t i = g.index(cy, cx);
-			if (!e.hit[i] && !e.seenFree[i]) continue;
+			const std::size_t i = g.index(cy, cx), j = e.at(cy, cx);
+			if (!e.hit[j] && !e.seenFree[j]) continue;
 			const CellState before = stateOf(obsLayer[i], cx, cy);
-			m_occupancy.updateCell(cx, cy, e.hit[i] ? pHit : pFree);
+			m_occupancy.updateCell(cx, cy, e.hit[j] ? pHit : pFree);
 			obsLayer[i] += 1;
 			e.touched.add(cy, cx);
 			if (stateOf(obsLayer[i], cx, cy) != before) e.changed.add(cy, cx);
-			if (e.roughN[i])
+			if (e.roughN[j])
 			{
-				const float mean = e.roughSum[i] / e.roughN[i];
+				const float mean = e.roughSum[j] / e.roughN[j];
 				const float prev = roughLayer[i];
 				roughLayer[i] = std::isnan(prev) ? mean : 0.5f * (prev + mean);
 			}

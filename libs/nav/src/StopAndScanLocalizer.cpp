@@ -175,25 +175,25 @@ void StopAndScanLocalizer::findPlaces()
 	    1,
 	    static_cast<int>(std::lround(m_options.uniquenessStep / g.resolution)));
 	const double freeBelow = m_locOptions.localizer.freeCellThreshold;
+	const auto& observations = m_map.get("observations");
 	for (int cy = stride / 2; cy < g.rows; cy += stride)
 		for (int cx = stride / 2; cx < g.cols; cx += stride)
-			if (m_map.at("observations", cx, cy) > 0 &&
+			if (observations[g.index(cy, cx)] > 0 &&
 			    m_map.occupancy(cx, cy) < freeBelow)
 				m_places.push_back({g.centerX(cx), g.centerY(cy)});
 }
 
 void StopAndScanLocalizer::mapChanged()
 {
-	if (m_locOptions.semantic.enabled()) m_semantic.build(m_map);
-	m_localizer->setKnownMap(m_map);
+	if (m_locOptions.semantic.enabled()) m_semantic.update(m_map);
+	m_localizer->updateKnownMap(m_map);
 	m_localizer->setSemanticMap(m_semantic.empty() ? nullptr : &m_semantic);
 	if (m_localizer->knownWallMap().segments().empty())
 		throw LocalizationFailedError(
 		    "localization: the map has no walls to localize against");
 	if (m_options.unknownCells)
 	{
-		m_walls = WallMap(m_locOptions.wallMap);
-		m_walls.buildFromSemanticMap(m_map, true);
+		m_walls.updateFromSemanticMap(m_map, true);
 		m_localizer->setWallMap(&m_walls);
 	}
 	findPlaces();

@@ -129,6 +129,10 @@ public:
 	/** A known map: walls from its wall cells, free space for global
 	 * starts and recovery; kidnap detection on (if configured). */
 	void setKnownMap(const SemanticMap& map);
+	/** setKnownMap() for the same map grown since (insertions): walls and
+	 * free space updated around what changed (SemanticMap::changesSince),
+	 * with the result of setKnownMap(). */
+	void updateKnownMap(const SemanticMap& map);
 	/** Semantic evidence to score beside the walls (owned by the caller;
 	 * must outlive use; nullptr: walls only). */
 	void setSemanticMap(const SemanticEvidenceMap* map) { m_semantic = map; }
@@ -188,9 +192,17 @@ private:
 	const WallMap* m_map = nullptr;
 	const SemanticEvidenceMap* m_semantic = nullptr;
 	WallMap m_knownWalls;
+	/** Free space updated in `cells` of the known map. */
+	void markFreeCells(const SemanticMap& map, const CellRect& cells);
 	/** Centres of the known map's free cells (global starts). */
-	std::vector<mrpt::math::TPoint2D> m_freeCells;
-	double m_freeCellSize = 0.05;
+	std::vector<mrpt::math::TPoint2D> freeCells() const;
+	/** The known map's free cells (1), their count, geometry and the map
+	 * and version they were read from. */
+	std::vector<uint8_t> m_free;
+	std::size_t m_freeCount = 0;
+	GridGeometry m_freeGeometry;
+	const SemanticMap* m_known = nullptr;
+	std::uint64_t m_knownVersion = 0;
 	int m_lowInlierUpdates = 0;
 	bool m_global = false;
 	int m_globalUpdates = 0, m_convergedAfter = -1;

@@ -3,11 +3,13 @@
 
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPoint2D.h>
+#include <semnav/common/CellRect.h>
 #include <semnav/common/GridGeometry.h>
 #include <semnav/common/Label.h>
 #include <semnav/localization/SemanticObservation.h>
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 namespace semnav
@@ -83,6 +85,11 @@ public:
 	/** Fields and object instances of a known map; `flatOnly`: the fields
 	 * of the flat labels only (what mapping scores, see observedPart). */
 	void build(const SemanticMap& map, bool flatOnly = false);
+	/** The same for `map` grown since the last build() or update() from
+	 * it: only the cells near those whose labels or observed state changed
+	 * (SemanticMap::changesSince) are recomputed, with the result of
+	 * build(). A grown grid, another map or other labels build anew. */
+	void update(const SemanticMap& map, bool flatOnly = false);
 	bool empty() const { return m_geometry.cellCount() == 0; }
 
 	/** Log-likelihood of the observation seen from (x, y, yaw): the
@@ -122,8 +129,21 @@ public:
 		return !m_fields[static_cast<std::size_t>(l)].empty();
 	}
 	const TOptions& options() const { return m_options; }
+	/** The likelihood field of label l, per cell (empty: not scored). */
+	const std::vector<float>& field(Label l) const
+	{
+		return m_fields[static_cast<std::size_t>(l)];
+	}
 
 private:
+	/** True when label l gets a field (with `flatOnly`: flat labels only). */
+	static bool scored(Label l, bool flatOnly);
+	/** Recomputes the field of label l over `cells` (clipped) and the cells
+	 * within max_distance_m of them, from the map's labels. */
+	void computeField(
+	    Label l, const std::vector<float>& labels, const CellRect& cells);
+	/** The objects: the map's reported instances. */
+	void takeObjects(const SemanticMap& map);
 	double meanField(
 	    double x, double y, double c, double s,
 	    const std::vector<SemanticSample>& pts, bool knownOnly) const;
@@ -143,6 +163,13 @@ private:
 	/** 1 where the map never observed the cell. */
 	std::vector<uint8_t> m_unknown;
 	const ObjectFootprints* m_footprints = nullptr;
+	/** What update() compares against: the map built from, its version
+	 * and labels layer then, and the labels present. */
+	const SemanticMap* m_source = nullptr;
+	std::uint64_t m_version = 0;
+	bool m_flatOnly = false;
+	std::vector<float> m_labels;
+	uint32_t m_present = 0;
 };
 
 }  // namespace semnav

@@ -5,10 +5,12 @@
 #include <mrpt/core/bits_math.h>
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/poses/CPose2D.h>
+#include <semnav/common/CellRect.h>
 #include <semnav/common/GridGeometry.h>
 #include <semnav/localization/MainDirections.h>
 #include <semnav/localization/WallSegment.h>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -80,12 +82,29 @@ public:
 	 * built from a few sweeps lacks walls that are there. */
 	void buildFromSemanticMap(
 	    const SemanticMap& map, bool unobservedUnknown = false);
+	/** rebuild(&observed) after segments were added and `observed` grew
+	 * since the last rebuild(&observed) or update(): the field recomputed
+	 * around the new segments and the cells observed since only, with the
+	 * result of rebuild(&observed). */
+	void update(const SemanticMap& observed);
+	/** buildFromSemanticMap() for `map` changed since the last
+	 * buildFromSemanticMap() or updateFromSemanticMap() from it: the field
+	 * recomputed around the cells whose wall label or observed state
+	 * changed (SemanticMap::changesSince), the segments of the Hough tiles
+	 * holding them; the result of buildFromSemanticMap(). */
+	void updateFromSemanticMap(
+	    const SemanticMap& map, bool unobservedUnknown = false);
+	/** Hough transforms run on tiles of this many cells a side (segments
+	 * end at tile borders), so that a change redoes its tiles only. */
+	static constexpr int kHoughTile = 128;
 
 	bool empty() const { return m_field.empty(); }
 	const std::vector<WallSegment>& segments() const { return m_segments; }
 	/** Main direction of the walls, in [-pi/4, pi/4), if they have one. */
 	const std::optional<double>& mainDirection() const { return m_main; }
 	const GridGeometry& geometry() const { return m_geometry; }
+	/** The likelihood field, per cell of geometry(). */
+	const std::vector<float>& field() const { return m_field; }
 
 	/** Log-likelihood of one world point (outside the field: the
 	 * clamped-distance value, or the unknown-cell value when built with an
@@ -123,9 +142,31 @@ public:
 	const TOptions& options() const { return m_options; }
 
 private:
-	void buildField(
-	    const std::vector<uint8_t>& wallMask,
-	    const std::vector<uint8_t>* unknownMask = nullptr);
+	/** The field's geometry: the segments' extent (and the observed map's)
+	 * with the margin. */
+	GridGeometry fieldGeometry(const SemanticMap* observed) const;
+	/** Draws the segments from index `from` on into the line and extension
+	 * masks; returns the cells drawn (bounding box). */
+	CellRect drawSegments(std::size_t from);
+	/** Unknown mask from `observed` in `cells`; returns the cells that
+	 * changed. */
+	CellRect markUnknown(const SemanticMap& observed, const CellRect& cells);
+	/** Wall mask from the line and extension masks in `cells`. */
+	void maskWalls(const CellRect& cells);
+	/** Wall (and unknown) masks from a semantic map's cells in `cells`;
+	 * returns the cells whose wall label or unknown state changed. */
+	CellRect readSemanticMap(const SemanticMap& map, const CellRect& cells);
+	/** Hough segments of the tiles holding `cells`; then m_segments and
+	 * the main direction. */
+	void houghTiles(const CellRect& cells);
+	std::size_t tileCount() const;
+	/** Constants and the field everywhere from the masks. */
+	void buildField(bool withUnknown);
+	/** The field in `cells` and around them, from the wall mask. */
+	void computeField(const CellRect& cells);
+	/** Cells of distance beyond which the field no longer changes. */
+	int reach() const;
+	float value(double d) const;
 
 	TOptions m_options;
 	std::vector<WallSegment> m_segments;
@@ -134,6 +175,19 @@ private:
 	std::vector<float> m_field, m_distance;
 	/** 1 where the map never observed the cell (empty: all observed). */
 	std::vector<uint8_t> m_unknownMask;
+	/** 1 on the wall cells the field measures distances to. */
+	std::vector<uint8_t> m_wallMask;
+	/** Accumulated segments: their lines, their extensions (with an
+	 * observed map) and how many are drawn. */
+	std::vector<uint8_t> m_lines, m_extension;
+	std::size_t m_drawn = 0;
+	/** The map last built from, its version then, and whether from its
+	 * cells (buildFromSemanticMap) or as the observed area (rebuild). */
+	const SemanticMap* m_source = nullptr;
+	std::uint64_t m_version = 0;
+	bool m_fromSemanticMap = false;
+	/** Hough segments per tile (row by row). */
+	std::vector<std::vector<WallSegment>> m_tileSegments;
 	double m_x0 = 0, m_y0 = 0, m_invRes = 20;
 	int m_nx = 0, m_ny = 0;
 	float m_floor = 0, m_ceiling = 0, m_unknown = 0, m_outside = 0;

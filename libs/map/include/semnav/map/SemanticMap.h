@@ -235,6 +235,9 @@ public:
 		bool all = false;
 		/** Rows and columns of the current grid; meaningless when all. */
 		CellRect cells;
+		/** The cells any layer of which was written, observation counts,
+		 * occupancy and roughness included (holds `cells`). */
+		CellRect touched;
 		bool none() const { return !all && cells.empty(); }
 	};
 	/** Increases with every change of the contents: insert(),
@@ -247,6 +250,8 @@ public:
 	/** Records a change of these cells (e.g. writes through a reference a
 	 * non-const accessor returned before the last version() was taken). */
 	void markChanged(const CellRect& cells);
+	/** The same, with the other cells written (see Changes::touched). */
+	void markChanged(const CellRect& cells, const CellRect& touched);
 	/** Records a change of the whole map. */
 	void markAllChanged();
 	static constexpr std::size_t kChangeHistory = 64;
@@ -298,7 +303,12 @@ public:
 
 	// ---- 3D -------------------------------------------------------------
 	const octomap::OcTree& octree() const { return *m_octree; }
-	octomap::OcTree& octree() { return *m_octree; }
+	/** Write access: the next insert() recomputes all inner nodes. */
+	octomap::OcTree& octree()
+	{
+		m_octreeInnerCurrent = false;
+		return *m_octree;
+	}
 
 	const TOptions& options() const { return m_options; }
 	const TravelCostModel& costModel() const { return m_costModel; }
@@ -319,6 +329,15 @@ private:
 	void updateCostsIn(const CellRect& cells, CellRect& changed);
 	/** cellState() from a cell's observation count. */
 	CellState stateOf(float observations, int cx, int cy) const;
+	/** Where the sweep's sensor stood (its middle row), world frame. */
+	static mrpt::math::TPoint2D sensorPosition(
+	    const Sweep& sweep, const mrpt::poses::CPose3D& robot,
+	    const mrpt::poses::CPose2D& robotPose);
+	/** The cells a sweep can change: its points', the rays' from the
+	 * sensor to them, the robot's footprint (clipped to the grid). */
+	CellRect sweepWindow(
+	    const std::vector<WorldPoint>& pts, const mrpt::math::TPoint2D& sensor,
+	    const mrpt::poses::CPose2D& robotPose) const;
 	/** World points of the sweep's valid pixels; grows the grid to hold
 	 * them and the robot. */
 	std::vector<WorldPoint> worldPoints(
@@ -332,6 +351,9 @@ private:
 	void markSeenFree(
 	    const Sweep& sweep, const mrpt::poses::CPose3D& robot,
 	    const mrpt::poses::CPose2D& robotPose, SweepEvidence& e) const;
+	/** The points into the OctoMap (leaves, then the inner nodes above
+	 * them). */
+	void insertIntoOctree(const std::vector<WorldPoint>& pts);
 	/** Occupancy, observation counts and roughness from the evidence. */
 	void updateCells(SweepEvidence& e);
 	/** Sets the "objects" layer to `id` in the cells of the pixels in `box`
@@ -376,12 +398,15 @@ private:
 	mrpt::maps::COccupancyGridMap2D m_occupancy;
 	std::vector<ObjectInstance> m_instances;
 	std::unique_ptr<octomap::OcTree> m_octree;
+	/** False after write access to the OctoMap from outside: its inner
+	 * nodes may not match their children. */
+	bool m_octreeInnerCurrent = true;
 	std::size_t m_sweeps = 0;
 	struct Change
 	{
 		std::uint64_t version;
 		bool all;
-		CellRect cells;
+		CellRect cells, touched;
 	};
 	std::uint64_t m_version = 0;
 	/** Changes after m_historyStart, oldest first. */
