@@ -169,7 +169,6 @@ void WallMap::rebuild(const SemanticMap* observed)
 	m_field.clear();
 	m_source = nullptr;
 	m_fromSemanticMap = false;
-	m_tileSegments.clear();
 	if (m_segments.empty()) return;
 	m_geometry = fieldGeometry(observed);
 	const std::size_t n = m_geometry.cellCount();
@@ -203,8 +202,7 @@ void WallMap::buildFromSemanticMap(
 	const CellRect all = CellRect::all(m_geometry);
 	readSemanticMap(map, all);
 	buildField(unobservedUnknown);
-	m_tileSegments.assign(tileCount(), {});
-	houghTiles(all);
+	houghSegments();
 	m_source = &map;
 	m_version = map.version();
 	m_fromSemanticMap = true;

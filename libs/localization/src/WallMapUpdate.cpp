@@ -1,5 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-// WallMap: the walls of a semantic map's cells (Hough tiles), and the
+// WallMap: the walls of a semantic map's cells (Hough segments), and the
 // updates of a wall map after the map changed, around what changed only.
 #include <semnav/localization/WallMap.h>
 #include <semnav/map/SemanticMap.h>
@@ -33,49 +33,25 @@ CellRect WallMap::readSemanticMap(const SemanticMap& map, const CellRect& cells)
 	return changed;
 }
 
-std::size_t WallMap::tileCount() const
+void WallMap::houghSegments()
 {
-	const int t = kHoughTile;
-	return static_cast<std::size_t>((m_geometry.rows + t - 1) / t) *
-	       ((m_geometry.cols + t - 1) / t);
-}
-
-void WallMap::houghTiles(const CellRect& cells)
-{
-	const int t = kHoughTile, tileCols = (m_geometry.cols + t - 1) / t;
-	const double res = m_geometry.resolution;
-	cv::Mat mask(
+	// Segments of the wall cells: probabilistic Hough transform over the
+	// whole map (on tiles, the segments that end at tile borders changed
+	// the main direction enough to change the particle filter's course).
+	const cv::Mat mask(
 	    m_geometry.rows, m_geometry.cols, CV_8U,
 	    const_cast<uint8_t*>(m_wallMask.data()));
-	if (!cells.empty())
-		for (int tr = cells.row0 / t; tr <= (cells.row1 - 1) / t; tr++)
-			for (int tc = cells.col0 / t; tc <= (cells.col1 - 1) / t; tc++)
-			{
-				const cv::Rect tile =
-				    cv::Rect(tc * t, tr * t, t, t) &
-				    cv::Rect(0, 0, m_geometry.cols, m_geometry.rows);
-				std::vector<cv::Vec4i> lines;
-				cv::HoughLinesP(
-				    mask(tile).clone(), lines, 1, CV_PI / 360, 15, 0.5 / res,
-				    2);
-				auto& segs = m_tileSegments
-				    [static_cast<std::size_t>(tr) * tileCols + tc];
-				segs.clear();
-				for (const auto& l : lines)
-				{
-					WallSegment s;
-					s.p0 = {
-					    m_geometry.centerX(tile.x + l[0]),
-					    m_geometry.centerY(tile.y + l[1])};
-					s.p1 = {
-					    m_geometry.centerX(tile.x + l[2]),
-					    m_geometry.centerY(tile.y + l[3])};
-					segs.push_back(s);
-				}
-			}
+	std::vector<cv::Vec4i> lines;
+	cv::HoughLinesP(
+	    mask, lines, 1, CV_PI / 360, 15, 0.5 / m_geometry.resolution, 2);
 	m_segments.clear();
-	for (const auto& segs : m_tileSegments)
-		m_segments.insert(m_segments.end(), segs.begin(), segs.end());
+	for (const auto& l : lines)
+	{
+		WallSegment s;
+		s.p0 = {m_geometry.centerX(l[0]), m_geometry.centerY(l[1])};
+		s.p1 = {m_geometry.centerX(l[2]), m_geometry.centerY(l[3])};
+		m_segments.push_back(s);
+	}
 	m_main = MainDirections::estimate(m_segments, m_options.directions);
 }
 
@@ -92,7 +68,7 @@ void WallMap::updateFromSemanticMap(
 	}
 	const CellRect changed = readSemanticMap(map, changes.touched);
 	computeField(changed);
-	houghTiles(changed);
+	if (!changed.empty()) houghSegments();
 	m_version = map.version();
 }
 

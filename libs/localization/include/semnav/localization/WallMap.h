@@ -90,13 +90,10 @@ public:
 	/** buildFromSemanticMap() for `map` changed since the last
 	 * buildFromSemanticMap() or updateFromSemanticMap() from it: the field
 	 * recomputed around the cells whose wall label or observed state
-	 * changed (SemanticMap::changesSince), the segments of the Hough tiles
-	 * holding them; the result of buildFromSemanticMap(). */
+	 * changed (SemanticMap::changesSince), the segments again when a wall
+	 * cell changed; the result of buildFromSemanticMap(). */
 	void updateFromSemanticMap(
 	    const SemanticMap& map, bool unobservedUnknown = false);
-	/** Hough transforms run on tiles of this many cells a side (segments
-	 * end at tile borders), so that a change redoes its tiles only. */
-	static constexpr int kHoughTile = 128;
 
 	bool empty() const { return m_field.empty(); }
 	const std::vector<WallSegment>& segments() const { return m_segments; }
@@ -156,10 +153,8 @@ private:
 	/** Wall (and unknown) masks from a semantic map's cells in `cells`;
 	 * returns the cells whose wall label or unknown state changed. */
 	CellRect readSemanticMap(const SemanticMap& map, const CellRect& cells);
-	/** Hough segments of the tiles holding `cells`; then m_segments and
-	 * the main direction. */
-	void houghTiles(const CellRect& cells);
-	std::size_t tileCount() const;
+	/** Segments of the wall mask (Hough), then the main direction. */
+	void houghSegments();
 	/** Constants and the field everywhere from the masks. */
 	void buildField(bool withUnknown);
 	/** The field in `cells` and around them, from the wall mask. */
@@ -186,8 +181,6 @@ private:
 	const SemanticMap* m_source = nullptr;
 	std::uint64_t m_version = 0;
 	bool m_fromSemanticMap = false;
-	/** Hough segments per tile (row by row). */
-	std::vector<std::vector<WallSegment>> m_tileSegments;
 	double m_x0 = 0, m_y0 = 0, m_invRes = 20;
 	int m_nx = 0, m_ny = 0;
 	float m_floor = 0, m_ceiling = 0, m_unknown = 0, m_outside = 0;
