@@ -7,6 +7,7 @@
 #include <semnav/planning/DiffusionField.h>
 #include <semnav/planning/FieldRepairStats.h>
 #include <semnav/planning/GoalLayer.h>
+#include <semnav/planning/PendingRepair.h>
 #include <semnav/planning/PlannedPath.h>
 #include <semnav/planning/TraversabilityGrid.h>
 
@@ -151,6 +152,35 @@ public:
 	    const GoalLayer& newGoals, const CellRect* changed = nullptr,
 	    double maxWorkFraction = kRepairMaxWorkFraction) const;
 
+	/** Start-bounded (goal-directed) repairField, as D* Lite stops once
+	 * the start is consistent: the repair stops once no queued level can
+	 * change the start's value or any above it, leaving the rest in
+	 * `pending` (docs/navigation.md "Start-bounded repair"). The field is
+	 * then exact on every cell whose value exceeds
+	 * pending.settledAbove(), which holds the path from `start` and every
+	 * cell its extraction compares: tracePath from `start` gives the full
+	 * recompute's path, bit for bit. finishRepair does the rest (before any
+	 * use of the whole field, or for a start below the settled level).
+	 * `pending` must be empty (PlanningError otherwise); it refers to newU
+	 * and newGoals until it is. A start outside the grid, blocked or not
+	 * reached repairs the whole field. Throws and falls back as
+	 * repairField (pending then empty); the work limit counts the finished
+	 * work too. */
+	FieldRepairStats repairFieldFrom(
+	    const CellIndex& start, DiffusionField& field,
+	    const TraversabilityGrid& oldU, const GoalLayer& oldGoals,
+	    const TraversabilityGrid& newU, const GoalLayer& newGoals,
+	    PendingRepair& pending, const CellRect* changed = nullptr,
+	    double maxWorkFraction = kRepairMaxWorkFraction) const;
+	/** Continues the work of repairFieldFrom on `field` (the field it
+	 * repaired, or a copy of it): all of it (start = nullptr: the field is
+	 * then the full recompute's, bit for bit) or until the field is exact
+	 * for the path from `start` (nothing when it already is). Past the
+	 * work limit, recomputes the field (fullRecompute). */
+	FieldRepairStats finishRepair(
+	    DiffusionField& field, PendingRepair& pending,
+	    const CellIndex* start = nullptr) const;
+
 	/** Path by eq. (12) from `start` over a converged field. Throws
 	 * StartOutsideMapError, StartBlockedError, NoPathError. */
 	static PlannedPath extractPath(
@@ -174,6 +204,14 @@ public:
 	    double startY, DiffusionField* field = nullptr) const;
 
 private:
+	/** repairField, bounded by `start` into `pending` when not null. */
+	FieldRepairStats repair(
+	    DiffusionField& field, const TraversabilityGrid& oldU,
+	    const GoalLayer& oldGoals, const TraversabilityGrid& newU,
+	    const GoalLayer& newGoals, const CellRect* changed,
+	    double maxWorkFraction, const CellIndex* start,
+	    PendingRepair* pending) const;
+
 	TOptions m_options;
 };
 
