@@ -5,15 +5,15 @@
 
 namespace semnav::detail
 {
-void BucketQueue::push(double value, std::size_t cell)
+void BucketQueue::push(double value, std::size_t cell, double priority)
 {
 	m_size++;
 	if (!m_started)
 	{
-		m_staged.push_back({value, cell});
+		m_staged.push_back({{value, cell}, key(priority)});
 		return;
 	}
-	const std::int64_t k = std::max(key(value), m_popped);
+	const std::int64_t k = std::max(key(priority), m_popped);
 	if (k < m_base) lowerBase(k);
 	place(k, {value, cell});
 }
@@ -49,9 +49,9 @@ void BucketQueue::start()
 	m_started = true;
 	m_ring.resize(kRing);
 	std::int64_t least = INT64_MAX;
-	for (const Entry& e : m_staged) least = std::min(least, key(e.value));
+	for (const Staged& e : m_staged) least = std::min(least, e.key);
 	m_base = m_cur = least;
-	for (const Entry& e : m_staged) place(key(e.value), e);
+	for (const Staged& e : m_staged) place(e.key, e.entry);
 	m_staged.clear();
 }
 

@@ -29,7 +29,9 @@ public:
 
 	BucketQueue(double L, double width) : m_L(L), m_invWidth(1.0 / width) {}
 
-	void push(double value, std::size_t cell);
+	void push(double value, std::size_t cell) { push(value, cell, value); }
+	/** Queued by `priority` instead of its value. */
+	void push(double value, std::size_t cell, double priority);
 	/** False when empty. */
 	bool pop(Entry& e);
 	/** The bucket the next pop comes from; false when empty. */
@@ -64,7 +66,12 @@ private:
 
 	double m_L, m_invWidth;
 	bool m_started = false;
-	std::vector<Entry> m_staged;
+	struct Staged
+	{
+		Entry entry;
+		std::int64_t key;
+	};
+	std::vector<Staged> m_staged;
 	std::vector<std::vector<Entry>> m_ring;
 	/** The ring holds buckets [m_base, m_base + kRing); none below
 	 * m_cur is filled. */

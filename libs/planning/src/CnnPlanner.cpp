@@ -254,7 +254,10 @@ FieldRepairStats CnnPlanner::repair(
 		    "L is too large for the resolution (its rounding unit exceeds "
 		    "1/64 of a cell) or the grid exceeds 2^32 cells");
 
-	auto repairer = std::make_unique<detail::FieldRepairer>(newU, newGoals);
+	// A start the field cannot serve bounds nothing: the whole field.
+	const bool bounded = start && g.contains(*start) && !newU.blocked(*start);
+	auto repairer = std::make_unique<detail::FieldRepairer>(
+	    newU, newGoals, bounded ? start : nullptr);
 	repairer->collectChanges(
 	    changed ? *changed : CellRect::all(g), oldU, oldGoals);
 	stats.changedCells = repairer->changedCount();
@@ -273,11 +276,7 @@ FieldRepairStats CnnPlanner::repair(
 	                           ? SIZE_MAX
 	                           : static_cast<std::size_t>(limit);
 	repairer->seed(field.x);
-	// A start the field cannot serve bounds nothing: the whole field.
-	const bool bounded = start && g.contains(*start) && !newU.blocked(*start);
-	const std::size_t startIndex = bounded ? g.index(*start) : 0;
-	if (const char* stopped = repairer->run(
-	        field.x, workLimit, bounded ? &startIndex : nullptr, stats))
+	if (const char* stopped = repairer->run(field.x, workLimit, bounded, stats))
 		return recompute(stopped);
 	if (pending && !repairer->done())
 	{
@@ -306,12 +305,11 @@ FieldRepairStats CnnPlanner::finishRepair(
 	if (!(field.geometry == g) || field.x.size() != g.cellCount())
 		throw PlanningError(
 		    "field repair: the field does not match the pending repair's grid");
-	const bool bounded =
-	    start && g.contains(*start) && !pending.m_u->blocked(*start);
-	const std::size_t startIndex = bounded ? g.index(*start) : 0;
+	// The order is focused on the repair's start: another start finishes
+	// all of it.
+	const bool bounded = start && *start == pending.m_repairer->start();
 	if (const char* stopped = pending.m_repairer->run(
-	        field.x, pending.m_workLimit, bounded ? &startIndex : nullptr,
-	        stats))
+	        field.x, pending.m_workLimit, bounded, stats))
 	{
 		const TraversabilityGrid& u = *pending.m_u;
 		const GoalLayer& goals = *pending.m_goals;

@@ -7,8 +7,11 @@
 namespace semnav::detail
 {
 FieldRepairer::FieldRepairer(
-    const TraversabilityGrid& newU, const GoalLayer& newGoals)
-    : m_newU(newU.values()),
+    const TraversabilityGrid& newU, const GoalLayer& newGoals,
+    const CellIndex* start)
+    : m_focused(start != nullptr),
+      m_start(start ? *start : CellIndex{0, 0}),
+      m_newU(newU.values()),
       m_newGoals(newGoals),
       m_g(newU.geometry()),
       m_L(newU.L()),
@@ -109,7 +112,7 @@ void FieldRepairer::pushDependants(std::size_t i, double v, double u)
 	    [&](std::size_t j, int k)
 	    {
 		    if (m_x[j] > -kInf && m_x[j] == v - (m_a[k] + u))
-			    m_examine.push(m_x[j], j);
+			    m_examine.push(m_x[j], j, priority(m_x[j], j));
 	    });
 }
 
@@ -140,8 +143,11 @@ void FieldRepairer::examine(std::size_t i, double v)
 	m_x[i] = -kInf;
 	m_invalidated++;
 	for (int k = 0; k < n; k++)
-		m_examine.push(m_x[dependants[k]], dependants[k]);
-	raiseFromNeighbours(i, m_examine.key(v));
+	{
+		const std::size_t j = dependants[k];
+		m_examine.push(m_x[j], j, priority(m_x[j], j));
+	}
+	raiseFromNeighbours(i, m_examine.key(priority(v, i)));
 }
 
 void FieldRepairer::raiseFromNeighbours(std::size_t i, std::int64_t level)
@@ -160,14 +166,15 @@ void FieldRepairer::raiseFromNeighbours(std::size_t i, std::int64_t level)
 	if (!(v > m_x[i])) return;
 	// Offers from a level above `level` come from settled cells; a lower
 	// one may come from a stale value: taken at its own level.
-	if (m_raise.key(v) > level)
+	const double p = priority(v, i);
+	if (m_raise.key(p) > level)
 	{
-		m_raise.push(v, i | kDeferred);
+		m_raise.push(v, i | kDeferred, p);
 		return;
 	}
 	m_x[i] = v;
 	m_raised++;
-	m_raise.push(v, i);
+	m_raise.push(v, i, p);
 }
 
 void FieldRepairer::propagate(std::size_t i, double v)
@@ -183,7 +190,7 @@ void FieldRepairer::propagate(std::size_t i, double v)
 		    {
 			    m_x[j] = t;
 			    m_raised++;
-			    m_raise.push(t, j);
+			    m_raise.push(t, j, priority(t, j));
 		    }
 	    });
 }
@@ -204,7 +211,7 @@ void FieldRepairer::seed(std::vector<double>& x)
 			continue;
 		}
 		if (m_newU[c] > ch.oldU) pushDependants(c, v, ch.oldU);
-		if (ch.oldSource && !sourceNew(c)) m_examine.push(v, c);
+		if (ch.oldSource && !sourceNew(c)) m_examine.push(v, c, priority(v, c));
 	}
 	// Nothing is settled yet: every raise is deferred to its level.
 	for (const Change& ch : m_changed)
@@ -218,22 +225,31 @@ void FieldRepairer::seed(std::vector<double>& x)
 	}
 }
 
-bool FieldRepairer::settles(std::int64_t level, std::size_t start) const
+double FieldRepairer::focus(std::size_t i) const
 {
-	// Levels below `level` are done: a cell above them is exact.
-	const double xs = m_x[start];
+	const CellIndex c = m_g.cellAt(i);
+	const int dr = std::abs(c.row - m_start.row);
+	const int dc = std::abs(c.col - m_start.col);
+	const int d = std::min(dr, dc), s = std::max(dr, dc) - d;
+	return kFocusWeight * (d * m_a.diagonal + s * m_a.straight);
+}
+
+bool FieldRepairer::settles(std::int64_t level) const
+{
+	// Levels below `level` are done: a cell whose cost to go plus focus
+	// lies in them is exact, the start's focus is 0.
+	const double xs = m_x[m_g.index(m_start)];
 	return xs > -kInf && m_raise.key(xs) < level;
 }
 
-double FieldRepairer::settledAbove() const
+double FieldRepairer::settledCost() const
 {
-	if (done()) return -kInf;
-	return m_L -
-	       static_cast<double>(m_settledLevel) * bucketWidth(m_g.resolution);
+	if (done()) return kInf;
+	return static_cast<double>(m_settledLevel) * bucketWidth(m_g.resolution);
 }
 
 const char* FieldRepairer::run(
-    std::vector<double>& x, std::size_t workLimit, const std::size_t* start,
+    std::vector<double>& x, std::size_t workLimit, bool bounded,
     FieldRepairStats& stats)
 {
 	m_x = x.data();
@@ -245,11 +261,11 @@ const char* FieldRepairer::run(
 		if (!he && !hr) break;
 		const std::int64_t level = std::min(le, lr);
 		m_settledLevel = level;
-		if (start && settles(level, *start)) break;
+		if (bounded && settles(level)) break;
 		BucketQueue::Entry e;
 		// A level's examinations first: its raises read settled values.
 		// Unbounded, every examination first (fewer deferred raises).
-		const bool examining = he && (le <= lr || !start);
+		const bool examining = he && (le <= lr || !bounded);
 		(examining ? m_examine : m_raise).pop(e);
 		// The work limit counts examinations and propagations.
 		if (!(e.cell & kDeferred) && ++m_work > workLimit)

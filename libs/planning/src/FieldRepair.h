@@ -6,6 +6,7 @@
 #include <semnav/common/CellRect.h>
 #include <semnav/planning/FieldRepairStats.h>
 #include <semnav/planning/GoalLayer.h>
+#include <semnav/planning/PendingRepair.h>
 #include <semnav/planning/TraversabilityGrid.h>
 
 #include <cstddef>
@@ -35,15 +36,25 @@ namespace semnav::detail
  * value is the same floating-point expression as in the full diffusion,
  * x_j - (a + u_j), so the result is the same fixed point, bit for bit.
  *
- * Bounded by a start cell, run() stops once no queued level can change a
- * cell at or above the start's: x is then exact on every cell whose value
- * exceeds settledAbove() (every cell the start's path visits or compares)
- * and below it on the others; the queues are the pending work, which a
- * later run() finishes (it needs newU and newGoals, unchanged, alive). */
+ * Focused on a start cell, as A* / D* Lite, the queues order cells by
+ * cost to go plus focus, kFocusWeight times the octile distance to the
+ * start (a consistent lower bound with a margin of half a step, two
+ * buckets, so that order still settles every support first); a bounded
+ * run() stops once no queued level can change the start's value: x is
+ * then exact on every cell whose cost to go plus focus is below
+ * settledCost() (every cell of the start's best paths), and never above
+ * the fixed point where it is not, within it; the queues are the pending
+ * work, which a later run() finishes (it needs newU and newGoals,
+ * unchanged, alive). */
 class FieldRepairer
 {
 public:
-	FieldRepairer(const TraversabilityGrid& newU, const GoalLayer& newGoals);
+	/** Focused on `start` when not null. */
+	FieldRepairer(
+	    const TraversabilityGrid& newU, const GoalLayer& newGoals,
+	    const CellIndex* start);
+
+	static constexpr double kFocusWeight = PendingRepair::kFocusWeight;
 
 	/** Collects the cells inside `rect` (clipped to the grid) whose u or
 	 * goal status differs between (oldU, oldGoals) and the new inputs; the
@@ -72,19 +83,22 @@ public:
 	/** Seeds the queues from the changes; x is the old fixed point. */
 	void seed(std::vector<double>& x);
 	/** Repairs x (the vector seeded, or a copy of it) until the queues are
-	 * empty or, with `start`, until x is exact for the start's path.
+	 * empty or, `bounded` (and focused), until x is exact for the start's
+	 * paths.
 	 * Returns nullptr when so, else why it stopped (x then partly
 	 * repaired): more than `workLimit` cells taken from the queues in all,
 	 * or a value too far below L for the buckets to order it exactly.
 	 * Adds its counts to `stats`. */
 	const char* run(
-	    std::vector<double>& x, std::size_t workLimit, const std::size_t* start,
+	    std::vector<double>& x, std::size_t workLimit, bool bounded,
 	    FieldRepairStats& stats);
 	/** No pending work: x is the new fixed point. */
 	bool done() const { return m_examine.empty() && m_raise.empty(); }
-	/** After a bounded run: every cell whose value exceeds this is exact
-	 * (-infinity when done). */
-	double settledAbove() const;
+	/** After a bounded run: every cell whose cost to go plus focus is
+	 * below this is exact (infinity when done). */
+	double settledCost() const;
+	bool focused() const { return m_focused; }
+	const CellIndex& start() const { return m_start; }
 
 private:
 	/** A raise entry whose cell takes eq. (10) from its neighbours. */
@@ -122,10 +136,18 @@ private:
 	void raiseFromNeighbours(std::size_t i, std::int64_t level);
 	/** A popped cell offers its value to its neighbours. */
 	void propagate(std::size_t i, double v);
-	/** True when no level from `level` on can change the start's value or
-	 * any at or above it. */
-	bool settles(std::int64_t level, std::size_t start) const;
+	/** True when no level from `level` on can change the start's value. */
+	bool settles(std::int64_t level) const;
+	/** kFocusWeight times the octile distance from i to the start. */
+	double focus(std::size_t i) const;
+	/** The queues' order of value v at i: v less the focus (focused). */
+	double priority(double v, std::size_t i) const
+	{
+		return m_focused ? v - focus(i) : v;
+	}
 
+	const bool m_focused;
+	const CellIndex m_start;
 	double* m_x = nullptr;
 	const std::vector<double>& m_newU;
 	const GoalLayer& m_newGoals;

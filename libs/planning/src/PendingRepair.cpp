@@ -15,9 +15,14 @@ bool PendingRepair::empty() const
 	return !m_repairer;
 }
 
-double PendingRepair::settledAbove() const
+double PendingRepair::settledCost() const
 {
-	return m_repairer ? m_repairer->settledAbove() : -detail::kInf;
+	return m_repairer ? m_repairer->settledCost() : detail::kInf;
+}
+
+CellIndex PendingRepair::start() const
+{
+	return m_repairer ? m_repairer->start() : CellIndex{0, 0};
 }
 
 void PendingRepair::clear()
