@@ -147,7 +147,7 @@ void FieldRepairer::examine(std::size_t i, double v)
 		const std::size_t j = dependants[k];
 		m_examine.push(m_x[j], j, priority(m_x[j], j));
 	}
-	raiseFromNeighbours(i, m_examine.key(priority(v, i)));
+	deferRaise(i, m_examine.key(priority(v, i)));
 }
 
 void FieldRepairer::raiseFromNeighbours(std::size_t i, std::int64_t level)
@@ -177,6 +177,14 @@ void FieldRepairer::raiseFromNeighbours(std::size_t i, std::int64_t level)
 	m_raise.push(v, i, p);
 }
 
+void FieldRepairer::deferRaise(std::size_t i, std::int64_t level)
+{
+	if (m_examineFirst)
+		m_afterExamining.push_back(i);
+	else
+		raiseFromNeighbours(i, level);
+}
+
 void FieldRepairer::propagate(std::size_t i, double v)
 {
 	const double u = m_newU[i];
@@ -198,6 +206,7 @@ void FieldRepairer::propagate(std::size_t i, double v)
 void FieldRepairer::seed(std::vector<double>& x)
 {
 	m_x = x.data();
+	m_examineFirst = !m_focused;
 	for (const Change& ch : m_changed)
 	{
 		const std::size_t c = ch.cell;
@@ -213,15 +222,15 @@ void FieldRepairer::seed(std::vector<double>& x)
 		if (m_newU[c] > ch.oldU) pushDependants(c, v, ch.oldU);
 		if (ch.oldSource && !sourceNew(c)) m_examine.push(v, c, priority(v, c));
 	}
-	// Nothing is settled yet: every raise is deferred to its level.
+	// Nothing is settled yet: every raise waits for its level (or, not
+	// focused, for the examinations).
 	for (const Change& ch : m_changed)
 	{
 		const std::size_t c = ch.cell;
-		raiseFromNeighbours(c, -1);
+		deferRaise(c, -1);
 		// A cheaper (or newly free) cell offers more to its neighbours.
 		if (!blockedNew(c) && (ch.oldU >= m_L || m_newU[c] < ch.oldU))
-			forNeighbours(
-			    c, [&](std::size_t j, int) { raiseFromNeighbours(j, -1); });
+			forNeighbours(c, [&](std::size_t j, int) { deferRaise(j, -1); });
 	}
 }
 
@@ -253,18 +262,28 @@ const char* FieldRepairer::run(
     FieldRepairStats& stats)
 {
 	m_x = x.data();
+	m_examineFirst = !bounded;
 	const char* stopped = nullptr;
 	for (;;)
 	{
 		std::int64_t le = INT64_MAX, lr = INT64_MAX;
-		const bool he = m_examine.peek(le), hr = m_raise.peek(lr);
+		const bool he = m_examine.peek(le);
+		if (!he && !m_afterExamining.empty())
+		{
+			// Every value is settled: the raises are taken at once.
+			for (const std::size_t i : m_afterExamining)
+				raiseFromNeighbours(i, INT64_MAX);
+			m_afterExamining.clear();
+		}
+		const bool hr = m_raise.peek(lr);
 		if (!he && !hr) break;
 		const std::int64_t level = std::min(le, lr);
 		m_settledLevel = level;
 		if (bounded && settles(level)) break;
 		BucketQueue::Entry e;
 		// A level's examinations first: its raises read settled values.
-		// Unbounded, every examination first (fewer deferred raises).
+		// Unbounded, every examination first (the raises of the cells
+		// they invalidate wait until then).
 		const bool examining = he && (le <= lr || !bounded);
 		(examining ? m_examine : m_raise).pop(e);
 		// The work limit counts examinations and propagations.

@@ -93,7 +93,10 @@ public:
 	    std::vector<double>& x, std::size_t workLimit, bool bounded,
 	    FieldRepairStats& stats);
 	/** No pending work: x is the new fixed point. */
-	bool done() const { return m_examine.empty() && m_raise.empty(); }
+	bool done() const
+	{
+		return m_examine.empty() && m_raise.empty() && m_afterExamining.empty();
+	}
 	/** After a bounded run: every cell whose cost to go plus focus is
 	 * below this is exact (infinity when done). */
 	double settledCost() const;
@@ -134,6 +137,9 @@ private:
 	/** Eq. (10) at i from its neighbours: taken when its level is
 	 * settled (at or above `level`), else deferred to its level. */
 	void raiseFromNeighbours(std::size_t i, std::int64_t level);
+	/** raiseFromNeighbours at `level`, or, examining first (unbounded),
+	 * once every examination is done. */
+	void deferRaise(std::size_t i, std::int64_t level);
 	/** A popped cell offers its value to its neighbours. */
 	void propagate(std::size_t i, double v);
 	/** True when no level from `level` on can change the start's value. */
@@ -167,6 +173,10 @@ private:
 	/** m_invalidated, m_raised, m_work at the end of the last run. */
 	std::size_t m_reported[3] = {0, 0, 0};
 	std::int64_t m_settledLevel = -1;
+	/** Unbounded: examinations first, then the raises of
+	 * m_afterExamining (the two phases of LPA*'s batch form). */
+	bool m_examineFirst = false;
+	std::vector<std::size_t> m_afterExamining;
 	BucketQueue m_examine, m_raise;
 };
 
