@@ -7,8 +7,10 @@
 // kind. The incremental repair (CnnPlanner::repairField) of a 1 m x 1 m box
 // added to (or removed from) the map runs against the full field in the
 // same run, on 16 random free spots and on 8 spots along the start-goal
-// path. SemanticPlanner replans after a 1 m x 1 m box is inserted into a
-// SemanticMap of the same office (SemanticMap::insert of a sweep seeing it),
+// path, unbounded (repairField) and bounded by the start (repairFieldFrom,
+// then finishRepair, timed apart). SemanticPlanner replans after a 1 m x
+// 1 m box is inserted into a SemanticMap of the same office
+// (SemanticMap::insert of a sweep seeing it),
 // on the current path or at random free spots, incrementally (cached u,
 // goals and field, repaired) against from scratch (u, goals and field
 // rebuilt), in the same run. Run with
@@ -223,9 +225,13 @@ struct BoxChange
 	DiffusionField fieldWith;
 	/** Cells whose value differs between the two fields. */
 	std::size_t cellsChanging = 0;
-	/** Of these, the cells in the start's focus (inFocus) in the field
-	 * with the box (added) and without it (removed). */
-	std::size_t cellsChangingForStart[2] = {0, 0};
+	/** Where a robot driving the start-goal path stands when it senses
+	 * the box: 3 m before it on the path (path spots; else the start). */
+	CellIndex robot;
+	/** Of these, the cells in the focus (inFocus) of the start, then of
+	 * the robot, in the field with the box (added) and without it
+	 * (removed). */
+	std::size_t cellsChangingForStart[4] = {0, 0, 0, 0};
 };
 
 struct BoxChanges
@@ -257,25 +263,32 @@ BoxChanges makeBoxChanges(const OfficeMap& m, int n, bool onPath)
 	const CnnPlanner planner = cnn(CnnSchedule::Sweep, 2);
 	BoxChanges b;
 	b.fieldWithout = planner.computeField(m.u, m.goals);
-	std::vector<CellIndex> centres;
+	std::vector<std::pair<CellIndex, CellIndex>> centres;  // and robot
 	std::mt19937_64 rng(77);
 	if (onPath)
 	{
 		const auto path =
 		    CnnPlanner::extractPath(b.fieldWithout, m.u, m.goals, m.start);
+		const std::size_t ahead = 60;  // 3 m
 		for (int k = 1; k < 4 * n; k++)
-			centres.push_back(path.cells[path.cells.size() * k / (4 * n)]);
+		{
+			const std::size_t at = path.cells.size() * k / (4 * n);
+			centres.emplace_back(
+			    path.cells[at], path.cells[at >= ahead ? at - ahead : 0]);
+		}
 	}
 	else
 		for (int k = 0; k < 100 * n; k++)
-			centres.push_back(
-			    {static_cast<int>(rng() % (g.rows - 40)) + 20,
-			     static_cast<int>(rng() % (g.cols - 40)) + 20});
+			centres.emplace_back(
+			    CellIndex{
+			        static_cast<int>(rng() % (g.rows - 40)) + 20,
+			        static_cast<int>(rng() % (g.cols - 40)) + 20},
+			    m.start);
 	const int side = 20;
 	TraversabilityBuilder::TOptions o;
 	o.robotRadius = 0.2;
 	const TraversabilityBuilder builder(o);
-	for (const auto& c : centres)
+	for (const auto& [c, robot] : centres)
 	{
 		if (static_cast<int>(b.spots.size()) == n) break;
 		const int r0 = c.row - side / 2, c0 = c.col - side / 2;
@@ -297,16 +310,21 @@ BoxChanges makeBoxChanges(const OfficeMap& m, int n, bool onPath)
 				const auto ci = g.cellAt(i);
 				s.changed.add(ci.row, ci.col);
 			}
-		if (s.u.blocked(m.start)) continue;
+		if (s.u.blocked(m.start) || s.u.blocked(robot)) continue;
+		s.robot = robot;
 		s.fieldWith = planner.computeField(s.u, m.goals);
 		for (std::size_t i = 0; i < g.cellCount(); i++)
 		{
 			const bool changes = s.fieldWith.x[i] != b.fieldWithout.x[i];
 			s.cellsChanging += changes;
-			s.cellsChangingForStart[0] +=
-			    changes && inFocus(s.fieldWith, i, m.start);
-			s.cellsChangingForStart[1] +=
-			    changes && inFocus(b.fieldWithout, i, m.start);
+			for (int k = 0; k < 2; k++)
+			{
+				const CellIndex& from = k ? robot : m.start;
+				s.cellsChangingForStart[2 * k] +=
+				    changes && inFocus(s.fieldWith, i, from);
+				s.cellsChangingForStart[2 * k + 1] +=
+				    changes && inFocus(b.fieldWithout, i, from);
+			}
 		}
 		b.spots.push_back(std::move(s));
 	}
@@ -354,12 +372,13 @@ std::pair<std::size_t, bool> differencesForStart(
 /** Repairs the field after adding (or removing) the box of spot
  * k = iteration % spots, the field copy outside the timing; every spot's
  * result is checked bit for bit against its full recompute. `bounded`:
- * the repair bounded by the start (repairFieldFrom), checked on the cells
- * at or above the start's value and on the path, then finished
- * (finishRepair, timed apart) and checked on the whole field. */
+ * the repair bounded by the start (by the robot 3 m before the box when
+ * `fromRobot`; repairFieldFrom), checked on the cells of its focus and on
+ * its path, then finished (finishRepair, timed apart) and checked on the
+ * whole field. */
 void runRepair(
     benchmark::State& st, const BoxChanges& b, bool add, bool useRect,
-    const std::string& name, bool bounded = false)
+    const std::string& name, bool bounded = false, bool fromRobot = false)
 {
 	const auto& m = office1000();
 	const CnnPlanner p = cnn(CnnSchedule::Sweep, 1);
@@ -381,12 +400,12 @@ void runRepair(
 		const auto& newU = add ? s.u : m.u;
 		const auto& ref = add ? s.fieldWith : b.fieldWithout;
 		const CellRect* rect = useRect ? &s.changed : nullptr;
+		const CellIndex& start = fromRobot ? s.robot : m.start;
 		const auto t0 = std::chrono::steady_clock::now();
 		const auto stats =
-		    bounded
-		        ? p.repairFieldFrom(
-		              m.start, f, oldU, m.goals, newU, m.goals, pending, rect)
-		        : p.repairField(f, oldU, m.goals, newU, m.goals, rect);
+		    bounded ? p.repairFieldFrom(
+		                  start, f, oldU, m.goals, newU, m.goals, pending, rect)
+		            : p.repairField(f, oldU, m.goals, newU, m.goals, rect);
 		const double sec = secondsSince(t0);
 		st.SetIterationTime(sec);
 		spotMs[spot].push_back(1e3 * sec);
@@ -395,7 +414,7 @@ void runRepair(
 			if (k <= b.spots.size())
 			{
 				const auto [n, path] =
-				    differencesForStart(f, ref, newU, m.goals, m.start);
+				    differencesForStart(f, ref, newU, m.goals, start);
 				differAbove += n;
 				pathsDiffer += path;
 			}
@@ -457,6 +476,30 @@ void BM_CnnRepairBoxOnPathRemoved_1000(benchmark::State& st)
 	    st, pathBoxes(), false, true, "BM_CnnRepairBoxOnPathRemoved_1000");
 }
 
+void BM_CnnRepairBoxAddedBounded_1000(benchmark::State& st)
+{
+	runRepair(
+	    st, randomBoxes(), true, true, "BM_CnnRepairBoxAddedBounded_1000",
+	    true);
+}
+void BM_CnnRepairBoxRemovedBounded_1000(benchmark::State& st)
+{
+	runRepair(
+	    st, randomBoxes(), false, true, "BM_CnnRepairBoxRemovedBounded_1000",
+	    true);
+}
+void BM_CnnRepairBoxAheadAddedBounded_1000(benchmark::State& st)
+{
+	runRepair(
+	    st, pathBoxes(), true, true, "BM_CnnRepairBoxAheadAddedBounded_1000",
+	    true, true);
+}
+void BM_CnnRepairBoxAheadRemovedBounded_1000(benchmark::State& st)
+{
+	runRepair(
+	    st, pathBoxes(), false, true, "BM_CnnRepairBoxAheadRemovedBounded_1000",
+	    true, true);
+}
 void BM_CnnRepairBoxOnPathAddedBounded_1000(benchmark::State& st)
 {
 	runRepair(
@@ -522,8 +565,12 @@ BENCHMARK(BM_CnnRepairBoxRemoved_1000)->Apply(repairSettings);
 BENCHMARK(BM_CnnRepairBoxAddedNoRect_1000)->Apply(repairSettings);
 BENCHMARK(BM_CnnRepairBoxOnPathAdded_1000)->Apply(repairSettings);
 BENCHMARK(BM_CnnRepairBoxOnPathRemoved_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxAddedBounded_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxRemovedBounded_1000)->Apply(repairSettings);
 BENCHMARK(BM_CnnRepairBoxOnPathAddedBounded_1000)->Apply(repairSettings);
 BENCHMARK(BM_CnnRepairBoxOnPathRemovedBounded_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxAheadAddedBounded_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxAheadRemovedBounded_1000)->Apply(repairSettings);
 BENCHMARK(BM_TraversabilityShortest_1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TraversabilitySafe_1000)->Unit(benchmark::kMillisecond);
 
@@ -570,8 +617,8 @@ void printRatio(
 }
 /** Median over the spots of each spot's median repair time, its 75th
  * percentile and maximum, and the full field's time over the median;
- * the cells changing value: all, or (forStart 0 added, 1 removed) those
- * at or above the start's value. */
+ * the cells changing value: all, or (forStart 0 added, 1 removed; 2, 3
+ * the same from the robot) those in the start's focus. */
 void printRepairs(
     const char* what, const std::string& name, const BoxChanges& (*spots)(),
     double fullMs, int forStart)
@@ -598,7 +645,9 @@ void printRepairs(
 	    "%6.1f (median %.0f cells change value%s)\n",
 	    what, med, perSpot[(perSpot.size() * 3) / 4], perSpot.back(),
 	    fullMs / med, median(changing),
-	    forStart < 0 ? "" : " in the start's focus");
+	    forStart < 0   ? ""
+	    : forStart < 2 ? " in the start's focus"
+	                   : " in the robot's focus");
 }
 }  // namespace
 
@@ -690,6 +739,14 @@ int main(int argc, char** argv)
 		     "BM_CnnRepairBoxOnPathAdded_1000", pathBoxes},
 		    {"box removed, 8 spots on the path",
 		     "BM_CnnRepairBoxOnPathRemoved_1000", pathBoxes},
+		    {"added, random spots, start-bounded",
+		     "BM_CnnRepairBoxAddedBounded_1000", randomBoxes, 0},
+		    {"  then finishing the pending work",
+		     "BM_CnnRepairBoxAddedBounded_1000 finish", randomBoxes},
+		    {"removed, random spots, start-bounded",
+		     "BM_CnnRepairBoxRemovedBounded_1000", randomBoxes, 1},
+		    {"  then finishing the pending work",
+		     "BM_CnnRepairBoxRemovedBounded_1000 finish", randomBoxes},
 		    {"added, on the path, start-bounded",
 		     "BM_CnnRepairBoxOnPathAddedBounded_1000", pathBoxes, 0},
 		    {"  then finishing the pending work",
@@ -697,7 +754,15 @@ int main(int argc, char** argv)
 		    {"removed, on the path, start-bounded",
 		     "BM_CnnRepairBoxOnPathRemovedBounded_1000", pathBoxes, 1},
 		    {"  then finishing the pending work",
-		     "BM_CnnRepairBoxOnPathRemovedBounded_1000 finish", pathBoxes}};
+		     "BM_CnnRepairBoxOnPathRemovedBounded_1000 finish", pathBoxes},
+		    {"added, 3 m ahead, robot-bounded",
+		     "BM_CnnRepairBoxAheadAddedBounded_1000", pathBoxes, 2},
+		    {"  then finishing the pending work",
+		     "BM_CnnRepairBoxAheadAddedBounded_1000 finish", pathBoxes},
+		    {"removed, 3 m ahead, robot-bounded",
+		     "BM_CnnRepairBoxAheadRemovedBounded_1000", pathBoxes, 3},
+		    {"  then finishing the pending work",
+		     "BM_CnnRepairBoxAheadRemovedBounded_1000 finish", pathBoxes}};
 		for (const auto& r : repairs)
 			printRepairs(r.what, r.name, r.spots, full->second, r.forStart);
 	}
