@@ -152,20 +152,19 @@ public:
 	    const GoalLayer& newGoals, const CellRect* changed = nullptr,
 	    double maxWorkFraction = kRepairMaxWorkFraction) const;
 
-	/** Start-bounded (goal-directed) repairField, as D* Lite stops once
-	 * the start is consistent: the repair stops once no queued level can
-	 * change the start's value or any above it, leaving the rest in
-	 * `pending` (docs/navigation.md "Start-bounded repair"). The field is
-	 * then exact on every cell whose value exceeds
-	 * pending.settledAbove(), which holds the path from `start` and every
-	 * cell its extraction compares: tracePath from `start` gives the full
-	 * recompute's path, bit for bit. finishRepair does the rest (before any
-	 * use of the whole field, or for a start below the settled level).
-	 * `pending` must be empty (PlanningError otherwise); it refers to newU
-	 * and newGoals until it is. A start outside the grid, blocked or not
-	 * reached repairs the whole field. Throws and falls back as
-	 * repairField (pending then empty); the work limit counts the finished
-	 * work too. */
+	/** Start-bounded repairField, as D* Lite stops once the start is
+	 * consistent: the queues are ordered by cost to go plus half the
+	 * octile distance to `start` (as A* orders a search), and the repair
+	 * stops once no queued level can change the start's value, leaving the
+	 * rest in `pending` (docs/navigation.md "Start-bounded repair"). The
+	 * field is then exact on every cell of a best path from `start`
+	 * (PendingRepair::settledCost), and tracePath from `start` gives the
+	 * full recompute's path, bit for bit. finishRepair does the rest
+	 * (before any other use of the field). `pending` must be empty
+	 * (PlanningError otherwise); it refers to newU and newGoals until it
+	 * is. A start outside the grid, blocked or cut off from the goals
+	 * repairs the whole field. Throws and falls back as repairField
+	 * (pending then empty); the work limit counts the finished work too. */
 	FieldRepairStats repairFieldFrom(
 	    const CellIndex& start, DiffusionField& field,
 	    const TraversabilityGrid& oldU, const GoalLayer& oldGoals,
@@ -173,10 +172,11 @@ public:
 	    PendingRepair& pending, const CellRect* changed = nullptr,
 	    double maxWorkFraction = kRepairMaxWorkFraction) const;
 	/** Continues the work of repairFieldFrom on `field` (the field it
-	 * repaired, or a copy of it): all of it (start = nullptr: the field is
-	 * then the full recompute's, bit for bit) or until the field is exact
-	 * for the path from `start` (nothing when it already is). Past the
-	 * work limit, recomputes the field (fullRecompute). */
+	 * repaired, or a copy of it): all of it (the field is then the full
+	 * recompute's, bit for bit), or nothing more when `start` is the
+	 * repair's (its order is focused on that start: any other start
+	 * finishes all of it). Past the work limit, recomputes the field
+	 * (fullRecompute). */
 	FieldRepairStats finishRepair(
 	    DiffusionField& field, PendingRepair& pending,
 	    const CellIndex* start = nullptr) const;
