@@ -19,6 +19,8 @@ using namespace semnav;
 namespace
 {
 constexpr double kNoLimit = std::numeric_limits<double>::infinity();
+/** Grid sizes (rows, cols) of the random runs. */
+constexpr int kSizes[][2] = {{1, 9}, {7, 3}, {24, 31}, {57, 40}, {96, 128}};
 
 struct Problem
 {
@@ -208,6 +210,29 @@ bool anyTraversableGoal(const Problem& p)
 	return false;
 }
 
+/** A random change applied to p, with p before it and the rectangle
+ * holding it; nullopt (p unchanged) when it left no traversable goal. */
+struct Step
+{
+	Problem before;
+	Change kind;
+	CellRect rect;
+};
+std::optional<Step> randomStep(Problem& p, std::mt19937_64& rng)
+{
+	Step s{p, static_cast<Change>(rng() % static_cast<int>(Change::Count)), {}};
+	s.rect = applyChange(p, s.kind, rng);
+	if (anyTraversableGoal(p)) return s;
+	p = s.before;
+	return std::nullopt;
+}
+
+std::string whereText(uint64_t seed, int step, Change kind)
+{
+	return "seed " + std::to_string(seed) + " step " + std::to_string(step) +
+	       " change " + std::to_string(static_cast<int>(kind));
+}
+
 /** Paths from up to `n` random reached starts: the same cells and cost on
  * both fields. */
 void expectSamePaths(
@@ -248,23 +273,15 @@ RunTally randomRun(
 	DiffusionField f = planner.computeField(p.u, p.goals);
 	for (int step = 0; step < steps; step++)
 	{
-		const Problem before = p;
-		const auto kind =
-		    static_cast<Change>(rng() % static_cast<int>(Change::Count));
-		const CellRect rect = applyChange(p, kind, rng);
-		if (!anyTraversableGoal(p))
-		{
-			p = before;
-			continue;
-		}
+		const auto change = randomStep(p, rng);
+		if (!change) continue;
+		const auto& [before, kind, rect] = *change;
 		const bool withRect = step % 3 != 0;
 		const auto stats = planner.repairField(
 		    f, before.u, before.goals, p.u, p.goals, withRect ? &rect : nullptr,
 		    workLimit);
 		const auto full = planner.computeField(p.u, p.goals);
-		const std::string where = "seed " + std::to_string(seed) + " step " +
-		                          std::to_string(step) + " change " +
-		                          std::to_string(static_cast<int>(kind));
+		const std::string where = whereText(seed, step, kind);
 		EXPECT_EQ(cellsDiffering(f, full), 0u) << where;
 		expectSamePaths(f, full, p, rng, 3);
 		(stats.fullRecompute ? t.fallbacks : t.repairs)++;
@@ -277,8 +294,7 @@ RunTally randomRun(
 TEST(FieldRepair, RandomChangesReachTheFullRecomputesFixedPoint)
 {
 	RunTally total;
-	const int sizes[][2] = {{1, 9}, {7, 3}, {24, 31}, {57, 40}, {96, 128}};
-	for (const auto& s : sizes)
+	for (const auto& s : kSizes)
 		for (uint64_t seed = 1; seed <= 6; seed++)
 		{
 			const auto t = randomRun(s[0], s[1], 1e6, seed, 30, kNoLimit);
@@ -374,18 +390,10 @@ void boundedRun(int rows, int cols, uint64_t seed, int steps, BoundedTally& t)
 	DiffusionField f = planner.computeField(p.u, p.goals);
 	for (int step = 0; step < steps; step++)
 	{
-		const Problem before = p;
-		const auto kind =
-		    static_cast<Change>(rng() % static_cast<int>(Change::Count));
-		const CellRect rect = applyChange(p, kind, rng);
-		if (!anyTraversableGoal(p))
-		{
-			p = before;
-			continue;
-		}
-		const std::string where = "seed " + std::to_string(seed) + " step " +
-		                          std::to_string(step) + " change " +
-		                          std::to_string(static_cast<int>(kind));
+		const auto change = randomStep(p, rng);
+		if (!change) continue;
+		const auto& [before, kind, rect] = *change;
+		const std::string where = whereText(seed, step, kind);
 		const auto full = planner.computeField(p.u, p.goals);
 		DiffusionField unbounded = f;
 		t.fullWork += planner
@@ -433,8 +441,7 @@ void boundedRun(int rows, int cols, uint64_t seed, int steps, BoundedTally& t)
 TEST(FieldRepair, StartBoundedRepairIsExactForTheStartsPath)
 {
 	BoundedTally t;
-	const int sizes[][2] = {{1, 9}, {7, 3}, {24, 31}, {57, 40}, {96, 128}};
-	for (const auto& s : sizes)
+	for (const auto& s : kSizes)
 		for (uint64_t seed = 1; seed <= 6; seed++)
 			boundedRun(s[0], s[1], seed, 30, t);
 	EXPECT_GT(t.repairs, 700);
