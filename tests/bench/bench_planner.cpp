@@ -7,8 +7,10 @@
 // kind. The incremental repair (CnnPlanner::repairField) of a 1 m x 1 m box
 // added to (or removed from) the map runs against the full field in the
 // same run, on 16 random free spots and on 8 spots along the start-goal
-// path. SemanticPlanner replans after a 1 m x 1 m box is inserted into a
-// SemanticMap of the same office (SemanticMap::insert of a sweep seeing it),
+// path, unbounded (repairField) and bounded by the start (repairFieldFrom,
+// then finishRepair, timed apart). SemanticPlanner replans after a 1 m x
+// 1 m box is inserted into a SemanticMap of the same office
+// (SemanticMap::insert of a sweep seeing it),
 // on the current path or at random free spots, incrementally (cached u,
 // goals and field, repaired) against from scratch (u, goals and field
 // rebuilt), in the same run. Run with
@@ -223,6 +225,13 @@ struct BoxChange
 	DiffusionField fieldWith;
 	/** Cells whose value differs between the two fields. */
 	std::size_t cellsChanging = 0;
+	/** Where a robot driving the start-goal path stands when it senses
+	 * the box: 3 m before it on the path (path spots; else the start). */
+	CellIndex robot;
+	/** Of these, the cells in the focus (inFocus) of the start, then of
+	 * the robot, in the field with the box (added) and without it
+	 * (removed). */
+	std::size_t cellsChangingForStart[4] = {0, 0, 0, 0};
 };
 
 struct BoxChanges
@@ -230,6 +239,20 @@ struct BoxChanges
 	DiffusionField fieldWithout;
 	std::vector<BoxChange> spots;
 };
+
+/** Whether cell i's cost to go in f plus its focus (PendingRepair::
+ * kFocusWeight times its octile distance to s) is at most s's cost to go:
+ * the cells a repair bounded by s must get exact (every best path). */
+bool inFocus(const DiffusionField& f, std::size_t i, const CellIndex& s)
+{
+	const CellIndex c = f.geometry.cellAt(i);
+	const int dr = std::abs(c.row - s.row), dc = std::abs(c.col - s.col);
+	const int d = std::min(dr, dc);
+	const double octile =
+	    f.geometry.resolution * (std::sqrt(2.0) * d + std::max(dr, dc) - d);
+	return f.costToGo(c) + PendingRepair::kFocusWeight * octile <=
+	       f.costToGo(s);
+}
 
 /** Boxes of 20 x 20 cells (1 m^2 at 5 cm) whose footprint is free in the
  * occupancy: `n` random spots, or centred on `n` cells spread along the
@@ -240,25 +263,32 @@ BoxChanges makeBoxChanges(const OfficeMap& m, int n, bool onPath)
 	const CnnPlanner planner = cnn(CnnSchedule::Sweep, 2);
 	BoxChanges b;
 	b.fieldWithout = planner.computeField(m.u, m.goals);
-	std::vector<CellIndex> centres;
+	std::vector<std::pair<CellIndex, CellIndex>> centres;  // and robot
 	std::mt19937_64 rng(77);
 	if (onPath)
 	{
 		const auto path =
 		    CnnPlanner::extractPath(b.fieldWithout, m.u, m.goals, m.start);
+		const std::size_t ahead = 60;  // 3 m
 		for (int k = 1; k < 4 * n; k++)
-			centres.push_back(path.cells[path.cells.size() * k / (4 * n)]);
+		{
+			const std::size_t at = path.cells.size() * k / (4 * n);
+			centres.emplace_back(
+			    path.cells[at], path.cells[at >= ahead ? at - ahead : 0]);
+		}
 	}
 	else
 		for (int k = 0; k < 100 * n; k++)
-			centres.push_back(
-			    {static_cast<int>(rng() % (g.rows - 40)) + 20,
-			     static_cast<int>(rng() % (g.cols - 40)) + 20});
+			centres.emplace_back(
+			    CellIndex{
+			        static_cast<int>(rng() % (g.rows - 40)) + 20,
+			        static_cast<int>(rng() % (g.cols - 40)) + 20},
+			    m.start);
 	const int side = 20;
 	TraversabilityBuilder::TOptions o;
 	o.robotRadius = 0.2;
 	const TraversabilityBuilder builder(o);
-	for (const auto& c : centres)
+	for (const auto& [c, robot] : centres)
 	{
 		if (static_cast<int>(b.spots.size()) == n) break;
 		const int r0 = c.row - side / 2, c0 = c.col - side / 2;
@@ -280,10 +310,22 @@ BoxChanges makeBoxChanges(const OfficeMap& m, int n, bool onPath)
 				const auto ci = g.cellAt(i);
 				s.changed.add(ci.row, ci.col);
 			}
-		if (s.u.blocked(m.start)) continue;
+		if (s.u.blocked(m.start) || s.u.blocked(robot)) continue;
+		s.robot = robot;
 		s.fieldWith = planner.computeField(s.u, m.goals);
 		for (std::size_t i = 0; i < g.cellCount(); i++)
-			s.cellsChanging += s.fieldWith.x[i] != b.fieldWithout.x[i];
+		{
+			const bool changes = s.fieldWith.x[i] != b.fieldWithout.x[i];
+			s.cellsChanging += changes;
+			for (int k = 0; k < 2; k++)
+			{
+				const CellIndex& from = k ? robot : m.start;
+				s.cellsChangingForStart[2 * k] +=
+				    changes && inFocus(s.fieldWith, i, from);
+				s.cellsChangingForStart[2 * k + 1] +=
+				    changes && inFocus(b.fieldWithout, i, from);
+			}
+		}
 		b.spots.push_back(std::move(s));
 	}
 	return b;
@@ -300,23 +342,55 @@ const BoxChanges& pathBoxes()
 	return b;
 }
 
-/** Per benchmark, per spot: the repair times (ms) of every iteration. */
+/** Per benchmark, per spot: the repair times (ms) of every iteration;
+ * for the start-bounded repairs also those of finishing the pending
+ * work (under the name + " finish"). */
 std::map<std::string, std::vector<std::vector<double>>> g_spotMs;
+
+double secondsSince(std::chrono::steady_clock::time_point t0)
+{
+	return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+	    .count();
+}
+
+/** Cells in the start's focus in `ref` (inFocus) that differ in f, and
+ * whether the paths from the start differ (a box may cut the start off
+ * the goal: then only the start's value is compared). */
+std::pair<std::size_t, bool> differencesForStart(
+    const DiffusionField& f, const DiffusionField& ref,
+    const TraversabilityGrid& u, const GoalLayer& goals, const CellIndex& s)
+{
+	if (!ref.reached(s)) return {f.reached(s), false};
+	std::size_t n = 0;
+	for (std::size_t i = 0; i < f.x.size(); i++)
+		n += f.x[i] != ref.x[i] && inFocus(ref, i, s);
+	const auto a = CnnPlanner::extractPath(f, u, goals, s);
+	const auto b = CnnPlanner::extractPath(ref, u, goals, s);
+	return {n, a.cells != b.cells || a.cost != b.cost};
+}
 
 /** Repairs the field after adding (or removing) the box of spot
  * k = iteration % spots, the field copy outside the timing; every spot's
- * result is checked bit for bit against its full recompute. */
+ * result is checked bit for bit against its full recompute. `bounded`:
+ * the repair bounded by the start (by the robot 3 m before the box when
+ * `fromRobot`; repairFieldFrom), checked on the cells of its focus and on
+ * its path, then finished (finishRepair, timed apart) and checked on the
+ * whole field. */
 void runRepair(
     benchmark::State& st, const BoxChanges& b, bool add, bool useRect,
-    const std::string& name)
+    const std::string& name, bool bounded = false, bool fromRobot = false)
 {
 	const auto& m = office1000();
 	const CnnPlanner p = cnn(CnnSchedule::Sweep, 1);
 	auto& spotMs = g_spotMs[name];
+	auto& finishMs = g_spotMs[name + " finish"];
 	spotMs.resize(b.spots.size());
+	finishMs.resize(bounded ? b.spots.size() : 0);
 	std::size_t k = 0, differ = 0, fallbacks = 0, overInvalidated = 0;
-	double invalidated = 0, raised = 0;
+	std::size_t differAbove = 0, pathsDiffer = 0;
+	double invalidated = 0, raised = 0, popped = 0;
 	DiffusionField f;
+	PendingRepair pending;
 	for (auto _ : st)
 	{
 		const std::size_t spot = k++ % b.spots.size();
@@ -324,31 +398,46 @@ void runRepair(
 		f = add ? b.fieldWithout : s.fieldWith;  // reuses f's storage
 		const auto& oldU = add ? m.u : s.u;
 		const auto& newU = add ? s.u : m.u;
+		const auto& ref = add ? s.fieldWith : b.fieldWithout;
+		const CellRect* rect = useRect ? &s.changed : nullptr;
+		const CellIndex& start = fromRobot ? s.robot : m.start;
 		const auto t0 = std::chrono::steady_clock::now();
-		const auto stats = p.repairField(
-		    f, oldU, m.goals, newU, m.goals, useRect ? &s.changed : nullptr);
-		const double sec =
-		    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
-		        .count();
+		const auto stats =
+		    bounded ? p.repairFieldFrom(
+		                  start, f, oldU, m.goals, newU, m.goals, pending, rect)
+		            : p.repairField(f, oldU, m.goals, newU, m.goals, rect);
+		const double sec = secondsSince(t0);
 		st.SetIterationTime(sec);
 		spotMs[spot].push_back(1e3 * sec);
-		if (k <= b.spots.size())
+		if (bounded)
 		{
-			const auto& ref = add ? s.fieldWith : b.fieldWithout;
+			if (k <= b.spots.size())
+			{
+				const auto [n, path] =
+				    differencesForStart(f, ref, newU, m.goals, start);
+				differAbove += n;
+				pathsDiffer += path;
+			}
+			const auto t1 = std::chrono::steady_clock::now();
+			p.finishRepair(f, pending);
+			finishMs[spot].push_back(1e3 * secondsSince(t1));
+		}
+		if (k <= b.spots.size())
 			for (std::size_t i = 0; i < f.x.size(); i++)
 				differ += f.x[i] != ref.x[i];
-		}
 		fallbacks += stats.fullRecompute;
 		// Phase 1 invalidates exactly the cells whose value changes.
-		overInvalidated += add && !stats.fullRecompute &&
+		overInvalidated += add && !bounded && !stats.fullRecompute &&
 		                   stats.invalidatedCells != s.cellsChanging;
 		invalidated += static_cast<double>(stats.invalidatedCells);
 		raised += static_cast<double>(stats.raisedCells);
+		popped += static_cast<double>(stats.poppedCells);
 	}
 	const double n = static_cast<double>(std::max<std::size_t>(k, 1));
 	st.counters["spots"] = static_cast<double>(b.spots.size());
 	st.counters["invalidated"] = invalidated / n;
 	st.counters["raised"] = raised / n;
+	st.counters["popped"] = popped / n;
 	st.counters["full_recomputes"] = static_cast<double>(fallbacks);
 	st.counters["cells_differing_from_full"] = static_cast<double>(differ);
 	g_figures[name + " cells differing from full"] =
@@ -357,6 +446,11 @@ void runRepair(
 	    static_cast<double>(overInvalidated);
 	g_figures[name + " full recomputes / iterations"] =
 	    static_cast<double>(fallbacks) / n;
+	if (!bounded) return;
+	g_figures[name + " cells in the start's focus differing before finishing"] =
+	    static_cast<double>(differAbove);
+	g_figures[name + " paths from the start differing before finishing"] =
+	    static_cast<double>(pathsDiffer);
 }
 
 void BM_CnnRepairBoxAdded_1000(benchmark::State& st)
@@ -380,6 +474,43 @@ void BM_CnnRepairBoxOnPathRemoved_1000(benchmark::State& st)
 {
 	runRepair(
 	    st, pathBoxes(), false, true, "BM_CnnRepairBoxOnPathRemoved_1000");
+}
+
+void BM_CnnRepairBoxAddedBounded_1000(benchmark::State& st)
+{
+	runRepair(
+	    st, randomBoxes(), true, true, "BM_CnnRepairBoxAddedBounded_1000",
+	    true);
+}
+void BM_CnnRepairBoxRemovedBounded_1000(benchmark::State& st)
+{
+	runRepair(
+	    st, randomBoxes(), false, true, "BM_CnnRepairBoxRemovedBounded_1000",
+	    true);
+}
+void BM_CnnRepairBoxAheadAddedBounded_1000(benchmark::State& st)
+{
+	runRepair(
+	    st, pathBoxes(), true, true, "BM_CnnRepairBoxAheadAddedBounded_1000",
+	    true, true);
+}
+void BM_CnnRepairBoxAheadRemovedBounded_1000(benchmark::State& st)
+{
+	runRepair(
+	    st, pathBoxes(), false, true, "BM_CnnRepairBoxAheadRemovedBounded_1000",
+	    true, true);
+}
+void BM_CnnRepairBoxOnPathAddedBounded_1000(benchmark::State& st)
+{
+	runRepair(
+	    st, pathBoxes(), true, true, "BM_CnnRepairBoxOnPathAddedBounded_1000",
+	    true);
+}
+void BM_CnnRepairBoxOnPathRemovedBounded_1000(benchmark::State& st)
+{
+	runRepair(
+	    st, pathBoxes(), false, true,
+	    "BM_CnnRepairBoxOnPathRemovedBounded_1000", true);
 }
 
 void BM_TraversabilityShortest_1000(benchmark::State& st)
@@ -434,6 +565,12 @@ BENCHMARK(BM_CnnRepairBoxRemoved_1000)->Apply(repairSettings);
 BENCHMARK(BM_CnnRepairBoxAddedNoRect_1000)->Apply(repairSettings);
 BENCHMARK(BM_CnnRepairBoxOnPathAdded_1000)->Apply(repairSettings);
 BENCHMARK(BM_CnnRepairBoxOnPathRemoved_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxAddedBounded_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxRemovedBounded_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxOnPathAddedBounded_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxOnPathRemovedBounded_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxAheadAddedBounded_1000)->Apply(repairSettings);
+BENCHMARK(BM_CnnRepairBoxAheadRemovedBounded_1000)->Apply(repairSettings);
 BENCHMARK(BM_TraversabilityShortest_1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TraversabilitySafe_1000)->Unit(benchmark::kMillisecond);
 
@@ -479,10 +616,12 @@ void printRatio(
 	    ia->second / ib->second);
 }
 /** Median over the spots of each spot's median repair time, its 75th
- * percentile and maximum, and the full field's time over the median. */
+ * percentile and maximum, and the full field's time over the median;
+ * the cells changing value: all, or (forStart 0 added, 1 removed; 2, 3
+ * the same from the robot) those in the start's focus. */
 void printRepairs(
     const char* what, const std::string& name, const BoxChanges& (*spots)(),
-    double fullMs)
+    double fullMs, int forStart)
 {
 	const auto it = g_spotMs.find(name);
 	if (it == g_spotMs.end()) return;
@@ -496,14 +635,19 @@ void printRepairs(
 	std::vector<double> perSpot, changing;
 	for (const auto& t : it->second) perSpot.push_back(median(t));
 	for (const auto& s : b.spots)
-		changing.push_back(static_cast<double>(s.cellsChanging));
+		changing.push_back(static_cast<double>(
+		    forStart < 0 ? s.cellsChanging
+		                 : s.cellsChangingForStart[forStart]));
 	std::sort(perSpot.begin(), perSpot.end());
 	const double med = median(perSpot);
 	std::printf(
 	    "    %-34s median %7.3f ms, p75 %7.3f, max %7.2f; full / median = "
-	    "%6.1f (median %.0f cells change value)\n",
+	    "%6.1f (median %.0f cells change value%s)\n",
 	    what, med, perSpot[(perSpot.size() * 3) / 4], perSpot.back(),
-	    fullMs / med, median(changing));
+	    fullMs / med, median(changing),
+	    forStart < 0   ? ""
+	    : forStart < 2 ? " in the start's focus"
+	                   : " in the robot's focus");
 }
 }  // namespace
 
@@ -583,6 +727,7 @@ int main(int argc, char** argv)
 			const char* what;
 			const char* name;
 			const BoxChanges& (*spots)();
+			int forStart = -1;
 		} repairs[] = {
 		    {"box added, 16 random spots", "BM_CnnRepairBoxAdded_1000",
 		     randomBoxes},
@@ -593,9 +738,33 @@ int main(int argc, char** argv)
 		    {"box added, 8 spots on the path",
 		     "BM_CnnRepairBoxOnPathAdded_1000", pathBoxes},
 		    {"box removed, 8 spots on the path",
-		     "BM_CnnRepairBoxOnPathRemoved_1000", pathBoxes}};
+		     "BM_CnnRepairBoxOnPathRemoved_1000", pathBoxes},
+		    {"added, random spots, start-bounded",
+		     "BM_CnnRepairBoxAddedBounded_1000", randomBoxes, 0},
+		    {"  then finishing the pending work",
+		     "BM_CnnRepairBoxAddedBounded_1000 finish", randomBoxes},
+		    {"removed, random spots, start-bounded",
+		     "BM_CnnRepairBoxRemovedBounded_1000", randomBoxes, 1},
+		    {"  then finishing the pending work",
+		     "BM_CnnRepairBoxRemovedBounded_1000 finish", randomBoxes},
+		    {"added, on the path, start-bounded",
+		     "BM_CnnRepairBoxOnPathAddedBounded_1000", pathBoxes, 0},
+		    {"  then finishing the pending work",
+		     "BM_CnnRepairBoxOnPathAddedBounded_1000 finish", pathBoxes},
+		    {"removed, on the path, start-bounded",
+		     "BM_CnnRepairBoxOnPathRemovedBounded_1000", pathBoxes, 1},
+		    {"  then finishing the pending work",
+		     "BM_CnnRepairBoxOnPathRemovedBounded_1000 finish", pathBoxes},
+		    {"added, 3 m ahead, robot-bounded",
+		     "BM_CnnRepairBoxAheadAddedBounded_1000", pathBoxes, 2},
+		    {"  then finishing the pending work",
+		     "BM_CnnRepairBoxAheadAddedBounded_1000 finish", pathBoxes},
+		    {"removed, 3 m ahead, robot-bounded",
+		     "BM_CnnRepairBoxAheadRemovedBounded_1000", pathBoxes, 3},
+		    {"  then finishing the pending work",
+		     "BM_CnnRepairBoxAheadRemovedBounded_1000 finish", pathBoxes}};
 		for (const auto& r : repairs)
-			printRepairs(r.what, r.name, r.spots, full->second);
+			printRepairs(r.what, r.name, r.spots, full->second, r.forStart);
 	}
 	for (const char* where : {"OnPath", "Random", "RandomLabel"})
 		for (const char* how : {"Incremental", "Shared"})

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <random>
 
 #include "WallSegments.h"
@@ -18,6 +19,8 @@ using namespace semnav;
 namespace
 {
 constexpr double kNoLimit = std::numeric_limits<double>::infinity();
+/** Grid sizes (rows, cols) of the random runs. */
+constexpr int kSizes[][2] = {{1, 9}, {7, 3}, {24, 31}, {57, 40}, {96, 128}};
 
 struct Problem
 {
@@ -207,6 +210,29 @@ bool anyTraversableGoal(const Problem& p)
 	return false;
 }
 
+/** A random change applied to p, with p before it and the rectangle
+ * holding it; nullopt (p unchanged) when it left no traversable goal. */
+struct Step
+{
+	Problem before;
+	Change kind;
+	CellRect rect;
+};
+std::optional<Step> randomStep(Problem& p, std::mt19937_64& rng)
+{
+	Step s{p, static_cast<Change>(rng() % static_cast<int>(Change::Count)), {}};
+	s.rect = applyChange(p, s.kind, rng);
+	if (anyTraversableGoal(p)) return s;
+	p = s.before;
+	return std::nullopt;
+}
+
+std::string whereText(uint64_t seed, int step, Change kind)
+{
+	return "seed " + std::to_string(seed) + " step " + std::to_string(step) +
+	       " change " + std::to_string(static_cast<int>(kind));
+}
+
 /** Paths from up to `n` random reached starts: the same cells and cost on
  * both fields. */
 void expectSamePaths(
@@ -247,23 +273,15 @@ RunTally randomRun(
 	DiffusionField f = planner.computeField(p.u, p.goals);
 	for (int step = 0; step < steps; step++)
 	{
-		const Problem before = p;
-		const auto kind =
-		    static_cast<Change>(rng() % static_cast<int>(Change::Count));
-		const CellRect rect = applyChange(p, kind, rng);
-		if (!anyTraversableGoal(p))
-		{
-			p = before;
-			continue;
-		}
+		const auto change = randomStep(p, rng);
+		if (!change) continue;
+		const auto& [before, kind, rect] = *change;
 		const bool withRect = step % 3 != 0;
 		const auto stats = planner.repairField(
 		    f, before.u, before.goals, p.u, p.goals, withRect ? &rect : nullptr,
 		    workLimit);
 		const auto full = planner.computeField(p.u, p.goals);
-		const std::string where = "seed " + std::to_string(seed) + " step " +
-		                          std::to_string(step) + " change " +
-		                          std::to_string(static_cast<int>(kind));
+		const std::string where = whereText(seed, step, kind);
 		EXPECT_EQ(cellsDiffering(f, full), 0u) << where;
 		expectSamePaths(f, full, p, rng, 3);
 		(stats.fullRecompute ? t.fallbacks : t.repairs)++;
@@ -276,8 +294,7 @@ RunTally randomRun(
 TEST(FieldRepair, RandomChangesReachTheFullRecomputesFixedPoint)
 {
 	RunTally total;
-	const int sizes[][2] = {{1, 9}, {7, 3}, {24, 31}, {57, 40}, {96, 128}};
-	for (const auto& s : sizes)
+	for (const auto& s : kSizes)
 		for (uint64_t seed = 1; seed <= 6; seed++)
 		{
 			const auto t = randomRun(s[0], s[1], 1e6, seed, 30, kNoLimit);
@@ -304,6 +321,155 @@ TEST(FieldRepair, RandomChangesWithTheDefaultWorkLimitAndASmallL)
 		total.fallbacks += t.fallbacks;
 	}
 	EXPECT_GT(total.repairs, 50);
+}
+
+namespace
+{
+/** A random traversable cell that `full` reaches; nullopt when none is
+ * found. */
+std::optional<CellIndex> reachedStart(
+    const DiffusionField& full, const Problem& p, std::mt19937_64& rng)
+{
+	const auto& g = p.u.geometry();
+	for (int k = 0; k < 200; k++)
+	{
+		const CellIndex s{
+		    static_cast<int>(rng() % g.rows), static_cast<int>(rng() % g.cols)};
+		if (!p.u.blocked(s) && full.reached(s)) return s;
+	}
+	return std::nullopt;
+}
+
+/** After a start-bounded repair: every cell whose full-recompute cost to
+ * go plus focus (PendingRepair::kFocusWeight times its octile distance to
+ * the start) is at most the start's cost is exact, which holds every best
+ * path from the start; the path from the start is the full recompute's. */
+void expectExactForStart(
+    const DiffusionField& f, const DiffusionField& full,
+    const PendingRepair& pending, const Problem& p, const CellIndex& s,
+    const std::string& where)
+{
+	const auto& g = p.u.geometry();
+	const double startCost = full.costToGo(s);
+	std::size_t wrong = 0, inside = 0;
+	for (std::size_t i = 0; i < f.x.size(); i++)
+	{
+		const CellIndex c = g.cellAt(i);
+		const int dr = std::abs(c.row - s.row), dc = std::abs(c.col - s.col);
+		const int d = std::min(dr, dc);
+		const double octile =
+		    g.resolution * (std::sqrt(2.0) * d + std::max(dr, dc) - d);
+		if (full.costToGo(c) + PendingRepair::kFocusWeight * octile > startCost)
+			continue;
+		inside++;
+		wrong += f.x[i] != full.x[i];
+	}
+	EXPECT_EQ(wrong, 0u) << where << " (" << inside << " cells)";
+	EXPECT_GT(pending.settledCost(), startCost) << where;
+	const auto a = CnnPlanner::extractPath(f, p.u, p.goals, s);
+	const auto b = CnnPlanner::extractPath(full, p.u, p.goals, s);
+	EXPECT_EQ(a.cells, b.cells) << where;
+	EXPECT_EQ(a.cost, b.cost) << where;
+}
+
+struct BoundedTally
+{
+	int repairs = 0, leftPending = 0;
+	std::size_t boundedWork = 0, fullWork = 0;
+};
+
+/** `steps` random changes on one field, each repaired bounded by a random
+ * reached start, checked for it, bounded again by a second start, then
+ * finished (every other time on a copy of the field) and compared with the
+ * full recompute; the unbounded repair's work on a copy, for reference. */
+void boundedRun(int rows, int cols, uint64_t seed, int steps, BoundedTally& t)
+{
+	std::mt19937_64 rng(seed * 104729);
+	Problem p = randomProblem(rows, cols, 1e6, seed, 1 + seed % 3);
+	const CnnPlanner planner;
+	DiffusionField f = planner.computeField(p.u, p.goals);
+	for (int step = 0; step < steps; step++)
+	{
+		const auto change = randomStep(p, rng);
+		if (!change) continue;
+		const auto& [before, kind, rect] = *change;
+		const std::string where = whereText(seed, step, kind);
+		const auto full = planner.computeField(p.u, p.goals);
+		DiffusionField unbounded = f;
+		t.fullWork += planner
+		                  .repairField(
+		                      unbounded, before.u, before.goals, p.u, p.goals,
+		                      &rect, kNoLimit)
+		                  .poppedCells;
+		const auto s = reachedStart(full, p, rng);
+		const CellIndex start = s ? *s : CellIndex{0, 0};
+		PendingRepair pending;
+		const auto st = planner.repairFieldFrom(
+		    start, f, before.u, before.goals, p.u, p.goals, pending,
+		    step % 3 ? &rect : nullptr, kNoLimit);
+		EXPECT_FALSE(st.fullRecompute) << where;
+		t.boundedWork += st.poppedCells;
+		t.repairs++;
+		t.leftPending += !pending.empty();
+		if (s) expectExactForStart(f, full, pending, p, start, where);
+		// The same start: nothing more to do; another: all of it.
+		if (s && !pending.empty())
+		{
+			planner.finishRepair(f, pending, &start);
+			expectExactForStart(f, full, pending, p, start, where + " (again)");
+		}
+		const auto s2 = reachedStart(full, p, rng);
+		if (s2 && !(*s2 == start))
+		{
+			planner.finishRepair(f, pending, &*s2);
+			EXPECT_TRUE(pending.empty()) << where;
+		}
+		if (step % 2)
+		{
+			DiffusionField copy = f;
+			planner.finishRepair(copy, pending);
+			f = copy;
+		}
+		else
+			planner.finishRepair(f, pending);
+		EXPECT_TRUE(pending.empty()) << where;
+		EXPECT_EQ(cellsDiffering(f, full), 0u) << where;
+	}
+}
+}  // namespace
+
+TEST(FieldRepair, StartBoundedRepairIsExactForTheStartsPath)
+{
+	BoundedTally t;
+	for (const auto& s : kSizes)
+		for (uint64_t seed = 1; seed <= 6; seed++)
+			boundedRun(s[0], s[1], seed, 30, t);
+	EXPECT_GT(t.repairs, 700);
+	// Work was left for later, and the bounded repairs did less in all.
+	EXPECT_GT(t.leftPending, 100);
+	EXPECT_LT(t.boundedWork, t.fullWork);
+}
+
+TEST(FieldRepair, StartBoundedRepairNeedsNoPendingWork)
+{
+	Problem p = randomProblem(40, 50, 1e6, 5, 1);
+	const CnnPlanner planner;
+	DiffusionField f = planner.computeField(p.u, p.goals);
+	PendingRepair pending;
+	for (int k = 0; k < 20 && pending.empty(); k++)
+	{
+		const Problem before = p;
+		std::mt19937_64 rng(k);
+		const CellRect r = applyChange(p, Change::AddObstacle, rng);
+		planner.repairFieldFrom(
+		    {39, 49}, f, before.u, before.goals, p.u, p.goals, pending, &r);
+	}
+	ASSERT_FALSE(pending.empty());
+	EXPECT_THROW(
+	    planner.repairFieldFrom({0, 0}, f, p.u, p.goals, p.u, p.goals, pending),
+	    PlanningError);
+	planner.finishRepair(f, pending);
+	EXPECT_EQ(cellsDiffering(f, planner.computeField(p.u, p.goals)), 0u);
 }
 
 TEST(FieldRepair, NoChangeTouchesNothing)

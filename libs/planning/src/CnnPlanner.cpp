@@ -10,6 +10,7 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <memory>
 #include <thread>
 
 #include "DiffusionKernels.h"
@@ -199,6 +200,34 @@ FieldRepairStats CnnPlanner::repairField(
     const GoalLayer& newGoals, const CellRect* changed,
     double maxWorkFraction) const
 {
+	return repair(
+	    field, oldU, oldGoals, newU, newGoals, changed, maxWorkFraction,
+	    nullptr, nullptr);
+}
+
+FieldRepairStats CnnPlanner::repairFieldFrom(
+    const CellIndex& start, DiffusionField& field,
+    const TraversabilityGrid& oldU, const GoalLayer& oldGoals,
+    const TraversabilityGrid& newU, const GoalLayer& newGoals,
+    PendingRepair& pending, const CellRect* changed,
+    double maxWorkFraction) const
+{
+	if (!pending.empty())
+		throw PlanningError(
+		    "field repair: the previous repair's work is still pending "
+		    "(finishRepair first)");
+	pending.clear();
+	return repair(
+	    field, oldU, oldGoals, newU, newGoals, changed, maxWorkFraction, &start,
+	    &pending);
+}
+
+FieldRepairStats CnnPlanner::repair(
+    DiffusionField& field, const TraversabilityGrid& oldU,
+    const GoalLayer& oldGoals, const TraversabilityGrid& newU,
+    const GoalLayer& newGoals, const CellRect* changed, double maxWorkFraction,
+    const CellIndex* start, PendingRepair* pending) const
+{
 	const auto t0 = std::chrono::steady_clock::now();
 	const auto& g = newU.geometry();
 	checkSameGeometry(g, newGoals.geometry());
@@ -225,12 +254,17 @@ FieldRepairStats CnnPlanner::repairField(
 		    "L is too large for the resolution (its rounding unit exceeds "
 		    "1/64 of a cell) or the grid exceeds 2^32 cells");
 
-	detail::FieldRepairer repairer(field.x, oldU, oldGoals, newU, newGoals);
-	repairer.collectChanges(changed ? *changed : CellRect::all(g));
-	stats.changedCells = repairer.changed().size();
-	if (repairer.lostSources() > 0 && traversableGoals(newU, newGoals) == 0)
+	// A start the field cannot serve bounds nothing: the whole field.
+	const bool bounded = start && g.contains(*start) && !newU.blocked(*start);
+	auto repairer = std::make_unique<detail::FieldRepairer>(
+	    newU, newGoals, bounded ? start : nullptr);
+	repairer->collectChanges(
+	    changed ? *changed : CellRect::all(g), oldU, oldGoals);
+	stats.changedCells = repairer->changedCount();
+	if (repairer->lostSources() > 0 && traversableGoals(newU, newGoals) == 0)
 		throwEmptyGoals(newGoals);
-	if (oldGoals.count() > 0 && repairer.removedGoalCells() == oldGoals.count())
+	if (oldGoals.count() > 0 &&
+	    repairer->removedGoalCells() == oldGoals.count())
 		return recompute("every goal cell was removed (the goal moved)");
 	const double limit =
 	    std::max(0.0, maxWorkFraction) * static_cast<double>(g.cellCount());
@@ -241,15 +275,52 @@ FieldRepairStats CnnPlanner::repairField(
 	const auto workLimit = limit >= static_cast<double>(SIZE_MAX)
 	                           ? SIZE_MAX
 	                           : static_cast<std::size_t>(limit);
-	if (const char* stopped = repairer.run(workLimit, stats))
+	repairer->seed(field.x);
+	if (const char* stopped = repairer->run(field.x, workLimit, bounded, stats))
 		return recompute(stopped);
+	if (pending && !repairer->done())
+	{
+		pending->m_repairer = std::move(repairer);
+		pending->m_u = &newU;
+		pending->m_goals = &newGoals;
+		pending->m_workLimit = workLimit;
+	}
 	field.iterations = 0;
 	field.rowUpdates = 0;
 	field.milliseconds = stats.milliseconds = msSince(t0);
 	MRPT_LOG_DEBUG_FMT(
-	    "field repair: %zu changed, %zu invalidated, %zu raised, %.2f ms",
+	    "field repair: %zu changed, %zu invalidated, %zu raised, %.2f ms%s",
 	    stats.changedCells, stats.invalidatedCells, stats.raisedCells,
-	    stats.milliseconds);
+	    stats.milliseconds, pending && !pending->empty() ? " (bounded)" : "");
+	return stats;
+}
+
+FieldRepairStats CnnPlanner::finishRepair(
+    DiffusionField& field, PendingRepair& pending, const CellIndex* start) const
+{
+	FieldRepairStats stats;
+	if (pending.empty()) return stats;
+	const auto t0 = std::chrono::steady_clock::now();
+	const auto& g = pending.m_u->geometry();
+	if (!(field.geometry == g) || field.x.size() != g.cellCount())
+		throw PlanningError(
+		    "field repair: the field does not match the pending repair's grid");
+	// The order is focused on the repair's start: another start finishes
+	// all of it.
+	const bool bounded = start && *start == pending.m_repairer->start();
+	if (const char* stopped = pending.m_repairer->run(
+	        field.x, pending.m_workLimit, bounded, stats))
+	{
+		const TraversabilityGrid& u = *pending.m_u;
+		const GoalLayer& goals = *pending.m_goals;
+		pending.clear();
+		computeFieldInto(u, goals, field);
+		stats.fullRecompute = true;
+		stats.fallbackReason = stopped;
+	}
+	else if (pending.m_repairer->done())
+		pending.clear();
+	field.milliseconds = stats.milliseconds = msSince(t0);
 	return stats;
 }
 

@@ -6,6 +6,7 @@
 #include <semnav/common/Label.h>
 #include <semnav/planning/DiffusionField.h>
 #include <semnav/planning/GoalLayer.h>
+#include <semnav/planning/PendingRepair.h>
 #include <semnav/planning/TraversabilityBuilder.h>
 #include <semnav/planning/TraversabilityGrid.h>
 
@@ -74,6 +75,9 @@ struct PlanCache
 	GoalCells goalCells;
 	ObjectRegions regions;
 	std::shared_ptr<DiffusionField> field;
+	/** Work left by a start-bounded repair of `field`; it refers to *u and
+	 * *goals, so it is finished or dropped before they change. */
+	PendingRepair pending;
 };
 
 /** *p, writable: a copy of it first while someone else holds it. */

@@ -163,6 +163,12 @@ void SemanticPlanner::setExtraObstacles(
 	m_extraObstacles = std::move(points);
 }
 
+void SemanticPlanner::setStartBoundedRepair(bool on)
+{
+	std::lock_guard<std::mutex> lock(m_mutex);
+	m_startBounded = on;
+}
+
 SemanticPlanner::Counters SemanticPlanner::counters() const
 {
 	std::lock_guard<std::mutex> lock(m_mutex);
@@ -172,6 +178,7 @@ SemanticPlanner::Counters SemanticPlanner::counters() const
 void SemanticPlanner::clearCache()
 {
 	std::lock_guard<std::mutex> lock(m_mutex);
+	m_cache->pending.clear();
 	m_cache->valid = false;
 }
 
@@ -299,6 +306,7 @@ void SemanticPlanner::rebuild(
 {
 	auto& c = *m_cache;
 	const GridGeometry& g = m_map.geometry();
+	c.pending.clear();
 	c.valid = false;
 	c.mapVersion = m_map.version();
 	c.regions.valid = false;
@@ -356,7 +364,8 @@ CellRect SemanticPlanner::updateTraversability(
 	return changed;
 }
 
-void SemanticPlanner::updateField(bool sameGoal, const CellRect& changed) const
+void SemanticPlanner::updateField(
+    bool sameGoal, const CellRect& changed, const CellIndex& start) const
 {
 	auto& c = *m_cache;
 	if (!sameGoal)
@@ -372,8 +381,14 @@ void SemanticPlanner::updateField(bool sameGoal, const CellRect& changed) const
 		m_counters.last = FieldUpdate::Reuse;
 		return;
 	}
-	const FieldRepairStats st = m_cnn.repairField(
-	    owned(c.field), *c.u, *c.goals, *c.spareU, *c.spareGoals, &changed);
+	const FieldRepairStats st =
+	    m_startBounded ? m_cnn.repairFieldFrom(
+	                         start, owned(c.field), *c.u, *c.goals, *c.spareU,
+	                         *c.spareGoals, c.pending, &changed)
+	                   : m_cnn.repairField(
+	                         owned(c.field), *c.u, *c.goals, *c.spareU,
+	                         *c.spareGoals, &changed);
+	m_counters.boundedRepairs += !c.pending.empty();
 	m_counters.changedCells += st.changedCells;
 	m_counters.repairedCells += st.poppedCells;
 	if (st.fullRecompute) m_counters.repairFallbacks++;
@@ -408,8 +423,15 @@ void SemanticPlanner::refresh(const GoalKey& key, const CellIndex& start) const
 		c.mapVersion = version;
 		m_counters.reuses++;
 		m_counters.last = FieldUpdate::Reuse;
+		finishPending(&start);  // nothing when the start is the same
 		return;
 	}
+	// Pending work refers to u and goals: done before they change (or
+	// dropped with a field computed anew).
+	if (sameGoal)
+		finishPending(nullptr);
+	else
+		c.pending.clear();
 	// Any exception leaves the spares half updated: the cache is dropped.
 	c.valid = false;
 	const CellRect uRect = updateTraversability(inputs, key.profile, extras);
@@ -418,7 +440,7 @@ void SemanticPlanner::refresh(const GoalKey& key, const CellIndex& start) const
 	    applyGoalChange(c.goalCells, cells, owned(c.spareGoals));
 	if (!anyTraversable(cells, *c.spareU))
 		CnnPlanner::checkInputs(*c.spareU, *c.spareGoals, start);  // throws
-	updateField(sameGoal, uRect.united(goalRect));
+	updateField(sameGoal, uRect.united(goalRect), start);
 	c.valid = true;
 	// The new inputs become the cache's; the spares catch up.
 	std::swap(c.u, c.spareU);
@@ -432,13 +454,14 @@ void SemanticPlanner::refresh(const GoalKey& key, const CellIndex& start) const
 }
 
 SemanticPlanner::SharedPlan SemanticPlanner::run(
-    double x, double y, const GoalKey& key) const
+    double x, double y, const GoalKey& key, bool complete) const
 {
 	std::lock_guard<std::mutex> lock(m_mutex);
 	const auto t0 = std::chrono::steady_clock::now();
 	SharedPlan p;
 	p.start = CnnPlanner::startCell(m_map.geometry(), x, y);
 	refresh(key, p.start);
+	if (complete) finishPending(nullptr);
 	m_counters.lastMilliseconds = msSince(t0);
 	const auto& c = *m_cache;
 	CnnPlanner::checkStart(*c.u, p.start);
@@ -448,7 +471,18 @@ SemanticPlanner::SharedPlan SemanticPlanner::run(
 	p.goals = c.goals;
 	p.goalLabel = key.kind == GoalKey::Kind::Point ? Label::Unknown : key.label;
 	p.goalObjectId = p.goalLabel == Label::Unknown ? 0 : p.path.goalId;
+	p.fieldComplete = c.pending.empty();
 	return p;
+}
+
+void SemanticPlanner::finishPending(const CellIndex* start) const
+{
+	auto& c = *m_cache;
+	if (c.pending.empty()) return;
+	const FieldRepairStats st =
+	    m_cnn.finishRepair(owned(c.field), c.pending, start);
+	m_counters.repairedCells += st.poppedCells;
+	m_counters.pendingFinished += c.pending.empty();
 }
 
 SemanticPlanner::Plan SemanticPlanner::SharedPlan::copy() const
@@ -467,23 +501,40 @@ SemanticPlanner::Plan SemanticPlanner::SharedPlan::copy() const
 SemanticPlanner::Plan SemanticPlanner::toLabel(
     double x, double y, Label label, CostProfile profile) const
 {
-	return toLabelShared(x, y, label, profile).copy();
+	return run(x, y, labelKey(label, profile), true).copy();
 }
 
 SemanticPlanner::Plan SemanticPlanner::toObject(
     double x, double y, int objectId, CostProfile profile) const
 {
-	return toObjectShared(x, y, objectId, profile).copy();
+	return run(x, y, objectKey(objectId, profile), true).copy();
 }
 
 SemanticPlanner::Plan SemanticPlanner::toPoint(
     double x, double y, double gx, double gy, CostProfile profile) const
 {
-	return toPointShared(x, y, gx, gy, profile).copy();
+	return run(x, y, pointKey(gx, gy, profile), true).copy();
 }
 
 SemanticPlanner::SharedPlan SemanticPlanner::toLabelShared(
     double x, double y, Label label, CostProfile profile) const
+{
+	return run(x, y, labelKey(label, profile));
+}
+
+SemanticPlanner::SharedPlan SemanticPlanner::toObjectShared(
+    double x, double y, int objectId, CostProfile profile) const
+{
+	return run(x, y, objectKey(objectId, profile));
+}
+
+SemanticPlanner::SharedPlan SemanticPlanner::toPointShared(
+    double x, double y, double gx, double gy, CostProfile profile) const
+{
+	return run(x, y, pointKey(gx, gy, profile));
+}
+
+GoalKey SemanticPlanner::labelKey(Label label, CostProfile profile) const
 {
 	if (!classInfo(label).goal)
 	{
@@ -508,22 +559,21 @@ SemanticPlanner::SharedPlan SemanticPlanner::toLabelShared(
 	key.kind = GoalKey::Kind::Label;
 	key.label = label;
 	key.profile = profile;
-	return run(x, y, key);
+	return key;
 }
 
-SemanticPlanner::SharedPlan SemanticPlanner::toObjectShared(
-    double x, double y, int objectId, CostProfile profile) const
+GoalKey SemanticPlanner::objectKey(int objectId, CostProfile profile) const
 {
 	GoalKey key;
 	key.kind = GoalKey::Kind::Object;
 	key.label = m_map.instance(objectId).label;
 	key.objectId = objectId;
 	key.profile = profile;
-	return run(x, y, key);
+	return key;
 }
 
-SemanticPlanner::SharedPlan SemanticPlanner::toPointShared(
-    double x, double y, double gx, double gy, CostProfile profile) const
+GoalKey SemanticPlanner::pointKey(
+    double gx, double gy, CostProfile profile) const
 {
 	if (!m_map.geometry().cellOf(gx, gy))
 		throw PlanningError(
@@ -534,7 +584,7 @@ SemanticPlanner::SharedPlan SemanticPlanner::toPointShared(
 	key.x = gx;
 	key.y = gy;
 	key.profile = profile;
-	return run(x, y, key);
+	return key;
 }
 
 }  // namespace semnav

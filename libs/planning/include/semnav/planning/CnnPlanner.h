@@ -7,6 +7,7 @@
 #include <semnav/planning/DiffusionField.h>
 #include <semnav/planning/FieldRepairStats.h>
 #include <semnav/planning/GoalLayer.h>
+#include <semnav/planning/PendingRepair.h>
 #include <semnav/planning/PlannedPath.h>
 #include <semnav/planning/TraversabilityGrid.h>
 
@@ -151,6 +152,35 @@ public:
 	    const GoalLayer& newGoals, const CellRect* changed = nullptr,
 	    double maxWorkFraction = kRepairMaxWorkFraction) const;
 
+	/** Start-bounded repairField, as D* Lite stops once the start is
+	 * consistent: the queues are ordered by cost to go plus half the
+	 * octile distance to `start` (as A* orders a search), and the repair
+	 * stops once no queued level can change the start's value, leaving the
+	 * rest in `pending` (docs/navigation.md "Start-bounded repair"). The
+	 * field is then exact on every cell of a best path from `start`
+	 * (PendingRepair::settledCost), and tracePath from `start` gives the
+	 * full recompute's path, bit for bit. finishRepair does the rest
+	 * (before any other use of the field). `pending` must be empty
+	 * (PlanningError otherwise); it refers to newU and newGoals until it
+	 * is. A start outside the grid, blocked or cut off from the goals
+	 * repairs the whole field. Throws and falls back as repairField
+	 * (pending then empty); the work limit counts the finished work too. */
+	FieldRepairStats repairFieldFrom(
+	    const CellIndex& start, DiffusionField& field,
+	    const TraversabilityGrid& oldU, const GoalLayer& oldGoals,
+	    const TraversabilityGrid& newU, const GoalLayer& newGoals,
+	    PendingRepair& pending, const CellRect* changed = nullptr,
+	    double maxWorkFraction = kRepairMaxWorkFraction) const;
+	/** Continues the work of repairFieldFrom on `field` (the field it
+	 * repaired, or a copy of it): all of it (the field is then the full
+	 * recompute's, bit for bit), or nothing more when `start` is the
+	 * repair's (its order is focused on that start: any other start
+	 * finishes all of it). Past the work limit, recomputes the field
+	 * (fullRecompute). */
+	FieldRepairStats finishRepair(
+	    DiffusionField& field, PendingRepair& pending,
+	    const CellIndex* start = nullptr) const;
+
 	/** Path by eq. (12) from `start` over a converged field. Throws
 	 * StartOutsideMapError, StartBlockedError, NoPathError. */
 	static PlannedPath extractPath(
@@ -174,6 +204,14 @@ public:
 	    double startY, DiffusionField* field = nullptr) const;
 
 private:
+	/** repairField, bounded by `start` into `pending` when not null. */
+	FieldRepairStats repair(
+	    DiffusionField& field, const TraversabilityGrid& oldU,
+	    const GoalLayer& oldGoals, const TraversabilityGrid& newU,
+	    const GoalLayer& newGoals, const CellRect* changed,
+	    double maxWorkFraction, const CellIndex* start,
+	    PendingRepair* pending) const;
+
 	TOptions m_options;
 };
 

@@ -23,8 +23,9 @@ struct FieldRepairStats
 	/** Cells whose value was raised by the propagation (counted once per
 	 * raise). */
 	std::size_t raisedCells = 0;
-	/** Cells taken from the repair's queues (its work, which the work
-	 * limit bounds). */
+	/** Cells taken from the repair's queues to be examined or to offer
+	 * their value (its work, which the work limit bounds; deferred raises
+	 * are not counted). */
 	std::size_t poppedCells = 0;
 	/** Wall time of the repair (or of the full recompute) (ms). */
 	double milliseconds = 0;

@@ -68,6 +68,10 @@ public:
 		std::size_t reuses = 0;
 		/** Repairs that fell back to a full field (also in fullFields). */
 		std::size_t repairFallbacks = 0;
+		/** Start-bounded repairs that left work pending, and pending work
+		 * finished later (another start, a Plan copy, the next change). */
+		std::size_t boundedRepairs = 0;
+		std::size_t pendingFinished = 0;
 		/** Cells whose u or goal changed, summed over the repairs. */
 		std::size_t changedCells = 0;
 		/** Cells the repairs took from their queues (their work). */
@@ -109,6 +113,10 @@ public:
 		CellIndex start;
 		Label goalLabel = Label::Unknown;
 		int goalObjectId = 0;
+		/** False after a start-bounded repair left work pending
+		 * (setStartBoundedRepair): the field is then exact on the start's
+		 * best paths only (PendingRepair); path, u and goals are exact. */
+		bool fieldComplete = true;
 		/** The same as a Plan (copies). */
 		Plan copy() const;
 	};
@@ -148,6 +156,15 @@ public:
 		return m_extraObstacles;
 	}
 
+	/** Start-bounded repairs (off by default): a repair stops once the
+	 * field is exact for the path from the plan's start
+	 * (CnnPlanner::repairFieldFrom); the rest is finished before a plan
+	 * from another start, a Plan copy (toLabel, toObject, toPoint) or the
+	 * next change. Shared plans then may hold a field exact only on the
+	 * start's best paths (SharedPlan::fieldComplete); their path is the
+	 * full recompute's, bit for bit. */
+	void setStartBoundedRepair(bool on);
+
 	/** u of the whole map for a profile (the cached one when it is up to
 	 * date). */
 	TraversabilityGrid traversability(CostProfile profile) const;
@@ -157,8 +174,18 @@ public:
 	void clearCache();
 
 private:
-	/** The plan to `key` from (x, y), refreshing the cache first. */
-	SharedPlan run(double x, double y, const detail::GoalKey& key) const;
+	/** The plan to `key` from (x, y), refreshing the cache first; with a
+	 * complete field when `complete`. */
+	SharedPlan run(
+	    double x, double y, const detail::GoalKey& key,
+	    bool complete = false) const;
+	/** Finishes the pending work of a start-bounded repair: all of it, or
+	 * what the path from `start` needs. */
+	void finishPending(const CellIndex* start) const;
+	/** The goal keys of toLabel, toObject and toPoint (checked). */
+	detail::GoalKey labelKey(Label label, CostProfile profile) const;
+	detail::GoalKey objectKey(int objectId, CostProfile profile) const;
+	detail::GoalKey pointKey(double gx, double gy, CostProfile profile) const;
 	/** Brings the cache to the map, the extra obstacles and `key`. */
 	void refresh(const detail::GoalKey& key, const CellIndex& start) const;
 	/** Rebuilds u, goals and field from scratch. */
@@ -174,9 +201,10 @@ private:
 	CellRect updateTraversability(
 	    const CellRect& inputs, CostProfile profile,
 	    const std::vector<std::size_t>& extraCells) const;
-	/** The field for the spares: repaired from `changed` (same goal) or
-	 * computed from scratch. */
-	void updateField(bool sameGoal, const CellRect& changed) const;
+	/** The field for the spares: repaired from `changed` (same goal; bounded
+	 * by `start` when so set) or computed from scratch. */
+	void updateField(
+	    bool sameGoal, const CellRect& changed, const CellIndex& start) const;
 	/** Goal cells (cell, id), by cell. */
 	std::vector<std::pair<std::size_t, int>> goalCellsOf(
 	    const detail::GoalKey& key) const;
@@ -187,6 +215,7 @@ private:
 	CnnPlanner m_cnn;
 	TraversabilityBuilder m_builder;
 	std::vector<mrpt::math::TPoint2D> m_extraObstacles;
+	bool m_startBounded = false;
 	mutable std::mutex m_mutex;
 	std::unique_ptr<detail::PlanCache> m_cache;
 	mutable Counters m_counters;
