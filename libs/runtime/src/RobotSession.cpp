@@ -63,6 +63,15 @@ const OptionTable<O>& optionTable()
 	            "explore_u_unobserved", &O::exploreUnobserved, 0, 1e9,
 	            "Starting with no map while [Traversability] u_unobserved "
 	            "blocks never-observed cells: their u (>= L: blocked).")
+	        .real(
+	            "unseen_rescan_m", &O::unseenRescan, 0, 100,
+	            "Starting with no map: a sweep once the robot has driven this "
+	            "far since the last one while its path ahead passes within its "
+	            "radius of a never-observed cell (0: only every "
+	            "rescan_distance_m).")
+	        .real(
+	            "unseen_lookahead_m", &O::unseenLookahead, 0, 100,
+	            "How far ahead along the path unseen_rescan_m looks.")
 	        .check(
 	            [](const O& o)
 	            { return o.startPose.empty() || o.startPose.size() == 3; },
@@ -186,12 +195,7 @@ void RobotSession::mappingSweep()
 {
 	if (!m_mapper)
 	{
-		// Object footprints are validated for offline mapping outdoors;
-		// from an empty start indoors they led the two-rooms run into a
-		// table (docs/robot.md): off here until that is understood.
-		MappingLocalizer::TOptions o = m_localization;
-		o.footprints.points = 0;
-		m_mapper = std::make_unique<MappingLocalizer>(o);
+		m_mapper = std::make_unique<MappingLocalizer>(m_localization);
 		m_mapperPerception =
 		    std::make_unique<SweepPerception>(m_perception, m_cascades);
 		m_mapperPerception->pipeline().setMinLoggingLevel(
@@ -228,14 +232,59 @@ void RobotSession::mappingSweep()
 		     {"mapping_ms", msSince(t0)}});
 }
 
-bool RobotSession::mappingRescan()
+bool RobotSession::mappingRescan(const SemanticNavigator& nav)
 {
-	if (!m_mapper || m_config.stopAndScan.rescanDistance <= 0 ||
-	    m_robot.base->odometry().distance - m_lastMappingSweepAt <
-	        m_config.stopAndScan.rescanDistance)
-		return false;
+	if (!m_mapper) return false;
+	const double moved =
+	    m_robot.base->odometry().distance - m_lastMappingSweepAt;
+	const double every = m_config.stopAndScan.rescanDistance;
+	const bool due = every > 0 && moved >= every;
+	const bool unseen = m_options.unseenRescan > 0 &&
+	                    moved >= m_options.unseenRescan && pathAheadUnseen(nav);
+	if (!due && !unseen) return false;
 	mappingSweep();
 	return true;
+}
+
+bool RobotSession::pathAheadUnseen(const SemanticNavigator& nav) const
+{
+	if (nav.plans().empty()) return false;
+	const auto& path = nav.plans().back().path;
+	if (path.empty()) return false;
+	const auto here = m_robot.pose->pose();
+	std::size_t k = 0;
+	for (std::size_t i = 1; i < path.size(); i++)
+		if (std::hypot(path[i].x - here.x, path[i].y - here.y) <
+		    std::hypot(path[k].x - here.x, path[k].y - here.y))
+			k = i;
+	const GridGeometry& g = m_map.geometry();
+	const double r = m_config.traversability.robotRadius;
+	const int n = static_cast<int>(std::ceil(r / g.resolution));
+	const auto& observations = m_map.get("observations");
+	const auto unseenNear = [&](const mrpt::math::TPoint2D& p)
+	{
+		int cx, cy;
+		if (!g.worldToCell(p.x, p.y, cx, cy)) return true;
+		for (int dy = -n; dy <= n; dy++)
+			for (int dx = -n; dx <= n; dx++)
+			{
+				if (std::hypot(dx, dy) * g.resolution > r) continue;
+				const int x = cx + dx, y = cy + dy;
+				if (!g.contains(y, x) || observations[g.index(y, x)] <= 0)
+					return true;
+			}
+		return false;
+	};
+	double along = 0;
+	for (std::size_t i = k; i < path.size(); i++)
+	{
+		if (i > k)
+			along += std::hypot(
+			    path[i].x - path[i - 1].x, path[i].y - path[i - 1].y);
+		if (along > m_options.unseenLookahead) break;
+		if (unseenNear(path[i])) return true;
+	}
+	return false;
 }
 
 bool RobotSession::confirmArrivalByMapping(SemanticNavigator& nav)

@@ -218,7 +218,7 @@ void RobotSession::whileDriving(
 {
 	m_trajectory.push_back(m_robot.pose->pose());
 	if (insertSweeps()) nav.notifyMapChanged();
-	if (mappingRescan()) nav.notifyPoseCorrected();
+	if (mappingRescan(nav)) nav.notifyPoseCorrected();
 	if (stop)
 	{
 		m_robot.base->stop();

@@ -91,6 +91,13 @@ public:
 		 * starts with no map while [Traversability] u_unobserved blocks
 		 * them (a value >= L keeps them blocked). */
 		double exploreUnobserved = 0.2;
+		/** unseen_rescan_m, unseen_lookahead_m: starting with no map, a
+		 * sweep as soon as the robot has driven unseen_rescan_m since the
+		 * last one while its path, within unseen_lookahead_m ahead, passes
+		 * within the robot's radius of a never-observed cell (0: only every
+		 * rescan_distance_m). */
+		double unseenRescan = 0.3;
+		double unseenLookahead = 0.8;
 	};
 
 	/** What the session reports (one JSON object per event). */
@@ -195,8 +202,12 @@ private:
 	 * the map frame); the robot reports the estimate. */
 	void mappingSweep();
 	/** Mapping, while driving: a mapping sweep every rescan_distance_m of
-	 * odometry; true when one was taken. */
-	bool mappingRescan();
+	 * odometry, or earlier before the path enters never-observed cells
+	 * (unseen_rescan_m); true when one was taken. */
+	bool mappingRescan(const SemanticNavigator& nav);
+	/** The navigator's path, within unseen_lookahead_m ahead of the
+	 * robot, passes within the robot's radius of a never-observed cell. */
+	bool pathAheadUnseen(const SemanticNavigator& nav) const;
 	/** Mapping, at a believed arrival: one sweep, then a replan from the
 	 * corrected pose; true when that pose is in the goal region. */
 	bool confirmArrivalByMapping(SemanticNavigator& nav);
