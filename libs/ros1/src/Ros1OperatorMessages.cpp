@@ -70,6 +70,20 @@ MapSnapshot snapshot(const SemanticMap& map)
 	s.labels = layerOrEmpty(map, "labels");
 	s.cost = layerOrEmpty(map, "cost");
 	s.observations = layerOrEmpty(map, "observations");
+	// The bridge's cell table reads MRPT's free probability; semnav's grid
+	// holds the occupancy probability: the cells are written here (-1 for a
+	// cell never observed).
+	const auto& g = s.geometry;
+	auto& data = s.occupancy.data;
+	if (data.size() == g.cellCount())
+		for (int r = 0; r < g.rows; r++)
+			for (int c = 0; c < g.cols; c++)
+			{
+				const std::size_t i = g.index(r, c);
+				data[i] = observed(s, i) ? static_cast<int8_t>(std::lround(
+				                               100 * map.occupancy(c, r)))
+				                         : -1;
+			}
 	s.lethalCost = map.options().cost.lethalCost;
 	s.instances = map.instances();
 	return s;
