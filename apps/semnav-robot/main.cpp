@@ -236,6 +236,15 @@ int runRobot(
 	end["event"] = "end";
 	end["rawlog"] = live.recordPath;
 	end["signal"] = g_stop.load();
+#ifdef SEMNAV_HAVE_ROS1
+	if (rosOut)
+	{
+		const auto st = rosOut->stats();
+		end["ros"] = {{"maps", st.maps},   {"paths", st.paths},
+		              {"poses", st.poses}, {"sweeps", st.sweeps},
+		              {"goals", st.goals}, {"max_hook_ms", st.maxHookMs}};
+	}
+#endif
 	printEvent(end);
 	g_publish = nullptr;
 	// Bad commands were answered one by one; the run itself succeeded.

@@ -467,6 +467,16 @@ TEST_F(Ros1Operator, TopicsAgreeWithTheMapAndGoalsMoveTheRobot)
 	const auto finalDoor = rx.get(rx.m_door);
 	const auto finalObjects = rx.get(rx.m_objects);
 	EXPECT_EQ(semnav->terminate(30), 0);
+	// Publishing held the control loop (0.1 s period) only briefly.
+	json end;
+	for (const auto& l : semnav->lines())
+		if (!l.empty() && l[0] == '{' &&
+		    l.find("\"event\":\"end\"") != std::string::npos)
+			end = json::parse(l);
+	ASSERT_TRUE(end.contains("ros")) << "see " << dir << "/robot.log";
+	std::cerr << "ros: " << end["ros"].dump() << "\n";
+	EXPECT_GE(end["ros"]["goals"].get<int>(), 1);
+	EXPECT_LT(end["ros"]["max_hook_ms"].get<double>(), 20);
 	semnav.reset();
 	SemanticMap saved;
 	MapIO::load(dir + "/out/map", saved);

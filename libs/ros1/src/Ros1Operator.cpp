@@ -8,6 +8,7 @@
 #include <semnav/ros1/Ros1Operator.h>
 #include <semnav/ros1/RosNode.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -34,6 +35,29 @@ struct PoseState
 {
 	mrpt::math::TPose2D pose, odometry;
 	mrpt::Clock::time_point odometryTime;
+};
+
+/** Records the time from construction to destruction into `maxMs` (the
+ * longest so far) under `mutex`. */
+class HookTimer
+{
+public:
+	HookTimer(std::mutex& mutex, double& maxMs) : m_mutex(mutex), m_max(maxMs)
+	{
+	}
+	~HookTimer()
+	{
+		const double ms = std::chrono::duration<double, std::milli>(
+		                      SteadyClock::now() - m_start)
+		                      .count();
+		std::lock_guard<std::mutex> lk(m_mutex);
+		m_max = std::max(m_max, ms);
+	}
+
+private:
+	std::mutex& m_mutex;
+	double& m_max;
+	const SteadyClock::time_point m_start = SteadyClock::now();
 };
 
 std::string withoutSlash(const std::string& frame)
@@ -217,6 +241,7 @@ Ros1Operator::~Ros1Operator() = default;
 
 bool Ros1Operator::onMapChanged(const SemanticMap& map)
 {
+	const HookTimer timer(m_impl->mutex, m_impl->stats.maxHookMs);
 	const auto now = SteadyClock::now();
 	if (now - m_impl->lastMap <
 	    std::chrono::duration<double>(m_impl->options.mapPeriod))
@@ -230,6 +255,7 @@ bool Ros1Operator::onMapChanged(const SemanticMap& map)
 
 void Ros1Operator::onPlan(const SemanticNavigator::PlanRecord& plan)
 {
+	const HookTimer timer(m_impl->mutex, m_impl->stats.maxHookMs);
 	if (m_impl->options.pathTopic.empty()) return;
 	auto p = ros1msg::path(plan, m_impl->header());
 	std::lock_guard<std::mutex> lk(m_impl->mutex);
@@ -240,6 +266,7 @@ void Ros1Operator::onPose(
     const mrpt::math::TPose2D& pose, const mrpt::math::TPose2D& odometry,
     mrpt::Clock::time_point odometryTime)
 {
+	const HookTimer timer(m_impl->mutex, m_impl->stats.maxHookMs);
 	const auto now = SteadyClock::now();
 	if (now - m_impl->lastPose <
 	    std::chrono::duration<double>(1.0 / m_impl->options.poseRate))
@@ -253,6 +280,7 @@ void Ros1Operator::onSweep(
     const Sweep&, const LabeledSweep& labeled,
     const mrpt::math::TPose2D& estimate, double stdXY, double stdYaw)
 {
+	const HookTimer timer(m_impl->mutex, m_impl->stats.maxHookMs);
 	std::optional<SweepCopy> s;
 	if (!m_impl->options.sweepTopic.empty())
 		s = SweepCopy{labeled.points.clone(), labeled.labels.clone(), estimate};

@@ -41,10 +41,12 @@ public:
 	using ErrorSink = std::function<void(
 	    const std::string& command, const std::string& error)>;
 
-	/** Messages published so far, by kind. */
+	/** Messages published so far, by kind, and the longest a hook held
+	 * the control loop (ms). */
 	struct Stats
 	{
 		std::size_t maps = 0, paths = 0, poses = 0, sweeps = 0, goals = 0;
+		double maxHookMs = 0;
 	};
 
 	Ros1Operator(
