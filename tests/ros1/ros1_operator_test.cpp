@@ -7,7 +7,9 @@
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <gtest/gtest.h>
+#include <mrpt/poses/CPose2D.h>
 #include <nav_msgs/OccupancyGrid.h>
+#include <nav_msgs/Odometry.h>
 #include <nav_msgs/Path.h>
 #include <ros/ros.h>
 #include <semnav/common/Label.h>
@@ -113,6 +115,7 @@ public:
 		sub<geometry_msgs::PoseWithCovarianceStamped>(n, "semnav/pose", m_pose);
 		sub<sensor_msgs::PointCloud2>(n, "semnav/sweep", m_sweep);
 		sub<tf2_msgs::TFMessage>(n, "/tf", m_tf);
+		sub<nav_msgs::Odometry>(n, "odom", m_odom);
 		m_subs.push_back(n.subscribe<std_msgs::String>(
 		    "semnav/events", 1000,
 		    [this](const std_msgs::String::ConstPtr& m)
@@ -177,6 +180,7 @@ public:
 	Latest<geometry_msgs::PoseWithCovarianceStamped> m_pose;
 	Latest<sensor_msgs::PointCloud2> m_sweep;
 	Latest<tf2_msgs::TFMessage> m_tf;
+	Latest<nav_msgs::Odometry> m_odom;
 	std::vector<json> m_events;
 	std::mutex m_mutex;
 
@@ -370,6 +374,21 @@ protected:
 			ASSERT_EQ(tf->transforms.size(), 1u);
 			EXPECT_EQ(tf->transforms[0].header.frame_id, "map");
 			EXPECT_EQ(tf->transforms[0].child_frame_id, "odom");
+			// map -> odom composed with the (standing) robot's odometry is
+			// the published pose.
+			const auto odom = rx.get(rx.m_odom);
+			ASSERT_TRUE(odom);
+			const auto& t = tf->transforms[0].transform;
+			const mrpt::poses::CPose2D mapToOdom(
+			    t.translation.x, t.translation.y,
+			    2 * std::atan2(t.rotation.z, t.rotation.w));
+			const auto& o = odom->pose.pose;
+			const mrpt::poses::CPose2D inOdom(
+			    o.position.x, o.position.y,
+			    2 * std::atan2(o.orientation.z, o.orientation.w));
+			const auto inMap = mapToOdom + inOdom;
+			EXPECT_NEAR(inMap.x(), p->pose.pose.position.x, 0.02);
+			EXPECT_NEAR(inMap.y(), p->pose.pose.position.y, 0.02);
 			const auto s = rx.get(rx.m_sweep);
 			ASSERT_EQ(s->fields.size(), 4u);
 			EXPECT_EQ(s->fields[3].name, "label");
