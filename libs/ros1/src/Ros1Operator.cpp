@@ -60,6 +60,25 @@ private:
 	const SteadyClock::time_point m_start = SteadyClock::now();
 };
 
+/** A latched topic built and sent only while someone listens: the worker
+ * keeps the latest content and sends it when a subscriber is there (a late
+ * subscriber gets it within one pass, as from latching). */
+struct LatchedTopic
+{
+	ros::Publisher pub;
+	/** Content newer than the last sent. */
+	bool dirty = false;
+
+	/** Publishes make() when dirty and listened to. */
+	template <class Make>
+	void publishIfListened(Make make)
+	{
+		if (!pub || !dirty || pub.getNumSubscribers() == 0) return;
+		pub.publish(make());
+		dirty = false;
+	}
+};
+
 std::string withoutSlash(const std::string& frame)
 {
 	return !frame.empty() && frame[0] == '/' ? frame.substr(1) : frame;
@@ -72,29 +91,18 @@ struct Ros1Operator::Impl
 	    : options(o), onCommand(std::move(command)), onError(std::move(error))
 	{
 		node.setCallbackQueue(&queue);
-		const auto latched = [&](const std::string& topic)
-		{
-			return topic.empty() ? ros::Publisher()
-			                     : node.advertise<nav_msgs::OccupancyGrid>(
-			                           topic, 1, true);
-		};
-		mapPub = latched(o.mapTopic);
-		costPub = latched(o.costTopic);
+		mapTopic = latched<nav_msgs::OccupancyGrid>(o.mapTopic);
+		costTopic = latched<nav_msgs::OccupancyGrid>(o.costTopic);
 		if (!o.labelTopicPrefix.empty())
 			for (const auto l : o.labelLayers)
-				labelPubs.push_back(
-				    latched(o.labelTopicPrefix + "/" + labelName(l)));
-		if (!o.objectsTopic.empty())
-			objectsPub = node.advertise<visualization_msgs::MarkerArray>(
-			    o.objectsTopic, 1, true);
-		if (!o.pathTopic.empty())
-			pathPub = node.advertise<nav_msgs::Path>(o.pathTopic, 1, true);
+				labelTopics.push_back(latched<nav_msgs::OccupancyGrid>(
+				    o.labelTopicPrefix + "/" + labelName(l)));
+		objectsTopic = latched<visualization_msgs::MarkerArray>(o.objectsTopic);
+		pathTopic = latched<nav_msgs::Path>(o.pathTopic);
+		sweepTopic = latched<sensor_msgs::PointCloud2>(o.sweepTopic);
 		if (!o.poseTopic.empty())
 			posePub = node.advertise<geometry_msgs::PoseWithCovarianceStamped>(
 			    o.poseTopic, 10);
-		if (!o.sweepTopic.empty())
-			sweepPub =
-			    node.advertise<sensor_msgs::PointCloud2>(o.sweepTopic, 1, true);
 		if (o.publishTf) tfPub = node.advertise<tf2_msgs::TFMessage>("/tf", 10);
 		if (!o.goalTopic.empty())
 			goalSub = node.subscribe(o.goalTopic, 10, &Impl::onGoal, this);
@@ -105,6 +113,14 @@ struct Ros1Operator::Impl
 	{
 		running = false;
 		thread.join();
+	}
+
+	template <class M>
+	LatchedTopic latched(const std::string& topic)
+	{
+		LatchedTopic t;
+		if (!topic.empty()) t.pub = node.advertise<M>(topic, 1, true);
+		return t;
 	}
 
 	std_msgs::Header header(ros::Time stamp = ros::Time::now()) const
@@ -136,7 +152,8 @@ struct Ros1Operator::Impl
 		}
 	}
 
-	/** Publishes what the hooks left in the mailbox. */
+	/** Takes what the hooks left in the mailbox; publishes the pose, and
+	 * the latched topics someone listens to. */
 	void publishPending()
 	{
 		std::optional<ros1msg::MapSnapshot> m;
@@ -152,35 +169,71 @@ struct Ros1Operator::Impl
 			s.swap(sweep);
 			sxy = stdXY;
 			syaw = stdYaw;
+			stats.maps += m ? 1 : 0;
+			stats.paths += p ? 1 : 0;
+			stats.poses += pose ? 1 : 0;
+			stats.sweeps += s ? 1 : 0;
 		}
-		if (m) publishMap(*m);
-		if (p && pathPub) pathPub.publish(*p);
+		if (m)
+		{
+			lastMap = std::move(m);
+			mapStamp = ros::Time::now();
+			for (auto* t : mapTopics()) t->dirty = true;
+		}
+		if (p)
+		{
+			lastPath = std::move(p);
+			pathTopic.dirty = true;
+		}
+		if (s)
+		{
+			lastSweep = std::move(s);
+			sweepTopic.dirty = true;
+		}
 		if (pose) publishPose(*pose, sxy, syaw);
-		if (s && sweepPub)
-			sweepPub.publish(
-			    ros1msg::sweepCloud(s->points, s->labels, s->at, header()));
-		std::lock_guard<std::mutex> lk(mutex);
-		stats.maps += m ? 1 : 0;
-		stats.paths += p ? 1 : 0;
-		stats.poses += pose ? 1 : 0;
-		stats.sweeps += s ? 1 : 0;
+		publishListened();
 	}
 
-	void publishMap(ros1msg::MapSnapshot& m)
+	std::vector<LatchedTopic*> mapTopics()
 	{
-		const auto h = header();
-		if (mapPub)
+		std::vector<LatchedTopic*> out{&mapTopic, &costTopic, &objectsTopic};
+		for (auto& t : labelTopics) out.push_back(&t);
+		return out;
+	}
+
+	void publishListened()
+	{
+		if (lastMap)
 		{
-			m.occupancy.header = h;
-			m.occupancy.info.map_load_time = h.stamp;
-			mapPub.publish(m.occupancy);
+			const auto& m = *lastMap;
+			const auto h = header(mapStamp);
+			mapTopic.publishIfListened(
+			    [&]
+			    {
+				    auto g = m.occupancy;
+				    g.header = h;
+				    g.info.map_load_time = h.stamp;
+				    return g;
+			    });
+			for (std::size_t i = 0; i < labelTopics.size(); i++)
+				labelTopics[i].publishIfListened(
+				    [&] {
+					    return ros1msg::labelGrid(m, options.labelLayers[i], h);
+				    });
+			costTopic.publishIfListened([&]
+			                            { return ros1msg::costGrid(m, h); });
+			objectsTopic.publishIfListened(
+			    [&] { return ros1msg::objectMarkers(m.instances, h); });
 		}
-		for (std::size_t i = 0; i < labelPubs.size(); i++)
-			labelPubs[i].publish(
-			    ros1msg::labelGrid(m, options.labelLayers[i], h));
-		if (costPub) costPub.publish(ros1msg::costGrid(m, h));
-		if (objectsPub)
-			objectsPub.publish(ros1msg::objectMarkers(m.instances, h));
+		if (lastPath) pathTopic.publishIfListened([&] { return *lastPath; });
+		if (lastSweep)
+			sweepTopic.publishIfListened(
+			    [&]
+			    {
+				    return ros1msg::sweepCloud(
+				        lastSweep->points, lastSweep->labels, lastSweep->at,
+				        header());
+			    });
 	}
 
 	void publishPose(const PoseState& p, double sxy, double syaw)
@@ -209,9 +262,14 @@ struct Ros1Operator::Impl
 	ErrorSink onError;
 	ros::CallbackQueue queue;
 	ros::NodeHandle node;
-	ros::Publisher mapPub, costPub, objectsPub, pathPub, posePub, sweepPub,
-	    tfPub;
-	std::vector<ros::Publisher> labelPubs;
+	LatchedTopic mapTopic, costTopic, objectsTopic, pathTopic, sweepTopic;
+	std::vector<LatchedTopic> labelTopics;
+	ros::Publisher posePub, tfPub;
+	/** The worker's latest map, plan and sweep. */
+	std::optional<ros1msg::MapSnapshot> lastMap;
+	ros::Time mapStamp;
+	std::optional<nav_msgs::Path> lastPath;
+	std::optional<SweepCopy> lastSweep;
 	ros::Subscriber goalSub;
 	std::thread thread;
 	std::atomic<bool> running{true};
@@ -225,7 +283,7 @@ struct Ros1Operator::Impl
 	double stdXY = 0, stdYaw = 0;
 	Stats stats;
 	/** Control thread only. */
-	SteadyClock::time_point lastMap, lastPose;
+	SteadyClock::time_point lastMapTaken, lastPoseTaken;
 };
 
 Ros1Operator::Ros1Operator(
@@ -243,10 +301,10 @@ bool Ros1Operator::onMapChanged(const SemanticMap& map)
 {
 	const HookTimer timer(m_impl->mutex, m_impl->stats.maxHookMs);
 	const auto now = SteadyClock::now();
-	if (now - m_impl->lastMap <
+	if (now - m_impl->lastMapTaken <
 	    std::chrono::duration<double>(m_impl->options.mapPeriod))
 		return false;
-	m_impl->lastMap = now;
+	m_impl->lastMapTaken = now;
 	auto s = ros1msg::snapshot(map);
 	std::lock_guard<std::mutex> lk(m_impl->mutex);
 	m_impl->map = std::move(s);
@@ -268,10 +326,10 @@ void Ros1Operator::onPose(
 {
 	const HookTimer timer(m_impl->mutex, m_impl->stats.maxHookMs);
 	const auto now = SteadyClock::now();
-	if (now - m_impl->lastPose <
+	if (now - m_impl->lastPoseTaken <
 	    std::chrono::duration<double>(1.0 / m_impl->options.poseRate))
 		return;
-	m_impl->lastPose = now;
+	m_impl->lastPoseTaken = now;
 	std::lock_guard<std::mutex> lk(m_impl->mutex);
 	m_impl->latestPose = PoseState{pose, odometry, odometryTime};
 }

@@ -31,7 +31,9 @@ namespace semnav
  *
  * The hooks only copy what changed into a mailbox (the map when its
  * version changed); converting and publishing happen on this object's own
- * thread, so the control loop is never held up by ROS. Starts roscpp when
+ * thread, so the control loop is never held up by ROS. The latched topics
+ * are built only while someone subscribes (a late subscriber gets the
+ * latest within one pass, 20 ms). Starts roscpp when
  * needed (startRosNode; IoError when the master does not answer). */
 class Ros1Operator : public RobotSessionObserver
 {
@@ -41,8 +43,9 @@ public:
 	using ErrorSink = std::function<void(
 	    const std::string& command, const std::string& error)>;
 
-	/** Messages published so far, by kind, and the longest a hook held
-	 * the control loop (ms). */
+	/** Map versions, plans, poses and sweeps taken from the session so
+	 * far, goals received, and the longest a hook held the control loop
+	 * (ms). */
 	struct Stats
 	{
 		std::size_t maps = 0, paths = 0, poses = 0, sweeps = 0, goals = 0;
