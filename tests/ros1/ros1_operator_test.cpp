@@ -22,6 +22,7 @@
 #include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -266,6 +267,27 @@ int occupancyMismatches(const nav_msgs::OccupancyGrid& g, const SemanticMap& m)
 	return bad;
 }
 
+/** Cells whose cost grid value is not the map's travel cost u scaled to
+ * 0-100 of L (100: blocked; -1 never observed). */
+int costMismatches(const nav_msgs::OccupancyGrid& g, const SemanticMap& m)
+{
+	int bad = 0, blocked = 0;
+	const auto& cost = m.get("cost");
+	const auto& observations = m.get("observations");
+	const double L = m.options().cost.lethalCost;
+	for (std::size_t i = 0; i < cost.size() && i < g.data.size(); i++)
+	{
+		const long expected =
+		    observations[i] > 0
+		        ? std::clamp(std::lround(100 * cost[i] / L), 0L, 100L)
+		        : -1;
+		bad += g.data[i] != expected;
+		blocked += g.data[i] == 100;
+	}
+	EXPECT_GT(blocked, 100) << "no blocked cells in the cost grid";
+	return bad;
+}
+
 class Ros1Operator : public ::testing::Test
 {
 protected:
@@ -503,6 +525,7 @@ protected:
 		const auto finalMap = rx.get(rx.m_map);
 		const auto finalWall = rx.get(rx.m_wall);
 		const auto finalDoor = rx.get(rx.m_door);
+		const auto finalCost = rx.get(rx.m_cost);
 		const auto finalObjects = rx.get(rx.m_objects);
 		EXPECT_EQ(semnav->terminate(30), 0);
 		// Publishing held the control loop only briefly (under half its 0.1 s
@@ -524,6 +547,7 @@ protected:
 		EXPECT_EQ(occupancyMismatches(*finalMap, saved), 0);
 		EXPECT_EQ(labelMismatches(*finalWall, saved, Label::Wall), 0);
 		EXPECT_EQ(labelMismatches(*finalDoor, saved, Label::Door), 0);
+		EXPECT_EQ(costMismatches(*finalCost, saved), 0);
 		EXPECT_EQ(shownObjects(*finalObjects), savedObjects(saved));
 	}
 
