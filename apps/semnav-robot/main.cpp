@@ -22,6 +22,7 @@
 #ifdef SEMNAV_HAVE_ROS1
 #include <semnav/ros1/Ros1Base.h>
 #include <semnav/ros1/Ros1CommandChannel.h>
+#include <semnav/ros1/Ros1Operator.h>
 #endif
 
 #include <atomic>
@@ -91,18 +92,24 @@ void printEvent(nlohmann::json e)
 }
 
 #ifdef SEMNAV_HAVE_ROS1
-semnav::Ros1Base::TOptions rosOptions(const semnav::RobotSetup& s)
+/** Options of [section] of the robot INI. */
+template <class Options>
+Options sectionOptions(const semnav::RobotSetup& s, const char* section)
 {
-	semnav::Ros1Base::TOptions o;
+	Options o;
 	try
 	{
-		o.loadFromConfigFile(*s.ini, "Ros1Base");
+		o.loadFromConfigFile(*s.ini, section);
 	}
 	catch (const semnav::ConfigError& e)
 	{
 		throw semnav::ConfigError(s.iniPath + ": " + e.what());
 	}
 	return o;
+}
+semnav::Ros1Base::TOptions rosOptions(const semnav::RobotSetup& s)
+{
+	return sectionOptions<semnav::Ros1Base::TOptions>(s, "Ros1Base");
 }
 
 /** Commands and events over ROS when the base is the ROS one. */
@@ -117,6 +124,23 @@ std::unique_ptr<semnav::Ros1CommandChannel> rosChannel(
 	    [&queue](const std::string& line) { queue.push(line); });
 	g_publish = [ch = c.get()](const std::string& l) { ch->publish(l); };
 	return c;
+}
+
+/** Map, objects, path, pose and sweeps for ROS tools, and pose goals, when
+ * the base is the ROS one. */
+std::unique_ptr<semnav::Ros1Operator> rosOperator(
+    const semnav::RobotSetup& s, semnav::CommandQueue& queue)
+{
+	if (s.files.base != "ros1") return nullptr;
+	const auto base = rosOptions(s);
+	return std::make_unique<semnav::Ros1Operator>(
+	    base.nodeName, base.masterTimeout,
+	    sectionOptions<semnav::Ros1Operator::TOptions>(s, "Ros1Operator"),
+	    [&queue](const std::string& line) { queue.push(line); },
+	    [](const std::string& command, const std::string& error) {
+		    printEvent(
+		        {{"event", "error"}, {"command", command}, {"error", error}});
+	    });
 }
 #endif
 
@@ -151,7 +175,7 @@ void readStdin(semnav::CommandQueue& q)
 
 int runRobot(
     semnav::RobotSetup& setup, semnav::RobotBasePlugin* plugin,
-    const std::string& outDir)
+    const std::string& outDir, bool readCommandsFromStdin)
 {
 	semnav::createDirectories(outDir);
 	auto base = makeBase(setup, plugin);
@@ -193,8 +217,10 @@ int runRobot(
 	semnav::CommandQueue queue;
 #ifdef SEMNAV_HAVE_ROS1
 	const auto channel = rosChannel(setup, queue);
+	const auto rosOut = rosOperator(setup, queue);
+	if (rosOut) session.addObserver(*rosOut);
 #endif
-	std::thread(readStdin, std::ref(queue)).detach();
+	if (readCommandsFromStdin) std::thread(readStdin, std::ref(queue)).detach();
 	printEvent(
 	    {{"event", "started"},
 	     {"map_sweeps", map.sweepsInserted()},
@@ -210,6 +236,15 @@ int runRobot(
 	end["event"] = "end";
 	end["rawlog"] = live.recordPath;
 	end["signal"] = g_stop.load();
+#ifdef SEMNAV_HAVE_ROS1
+	if (rosOut)
+	{
+		const auto st = rosOut->stats();
+		end["ros"] = {{"maps", st.maps},   {"paths", st.paths},
+		              {"poses", st.poses}, {"sweeps", st.sweeps},
+		              {"goals", st.goals}, {"max_hook_ms", st.maxHookMs}};
+	}
+#endif
 	printEvent(end);
 	g_publish = nullptr;
 	// Bad commands were answered one by one; the run itself succeeded.
@@ -242,6 +277,11 @@ int main(int argc, char** argv)
 	TCLAP::ValueArg<std::string> argOut(
 	    "", "out", "Output directory (overrides out_dir)", false, "", "DIR",
 	    cmd);
+	TCLAP::SwitchArg argNoStdin(
+	    "", "no-stdin",
+	    "Read no commands from stdin (a ROS node: commands on the command "
+	    "topic; SIGINT or SIGTERM ends the run)",
+	    cmd);
 	if (const auto code = cli.parse(argc, argv)) return *code;
 	std::signal(SIGINT, onSignal);
 	std::signal(SIGTERM, onSignal);
@@ -260,6 +300,6 @@ int main(int argc, char** argv)
 		    const std::string out = argOut.getValue().empty()
 		                                ? setup.resolve(setup.files.outDir)
 		                                : argOut.getValue();
-		    return runRobot(setup, plugin.get(), out);
+		    return runRobot(setup, plugin.get(), out, !argNoStdin.getValue());
 	    });
 }

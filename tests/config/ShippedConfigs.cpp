@@ -28,6 +28,7 @@
 #include <semnav/planning/TraversabilityBuilder.h>
 #include <semnav/robot/SweepObstacles.h>
 #include <semnav/ros1/Ros1BaseOptions.h>
+#include <semnav/ros1/Ros1OperatorOptions.h>
 #include <semnav/runtime/RobotSetup.h>
 #include <semnav/scan/SweepAssembler.h>
 #include <semnav/sim/SimulatedRobot.h>
@@ -91,6 +92,7 @@ ShippedConfig robot(const std::string& file)
 	    section<RobotSession::TOptions>("SemnavRobot"),
 	    section<LiveSweepSource::TOptions>("LiveSweepSource"),
 	    section<Ros1BaseOptions>("Ros1Base"),
+	    section<Ros1OperatorOptions>("Ros1Operator"),
 	    section<CTiltingLMS2xx::TOptions>("TILT_LMS")};
 	c.foreignKeys = {{"TILT_LMS", kGrabberSensorKeys}};
 	return c;

@@ -31,7 +31,8 @@ std::set<std::string> shippedFiles()
 {
 	std::set<std::string> files;
 	for (const auto& e : std::filesystem::directory_iterator(kDir))
-		if (e.is_regular_file()) files.insert(e.path().filename().string());
+		if (e.is_regular_file() && e.path().extension() == ".ini")
+			files.insert(e.path().filename().string());
 	return files;
 }
 

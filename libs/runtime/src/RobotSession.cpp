@@ -143,6 +143,35 @@ void RobotSession::error(const std::string& line, const std::string& why)
 	emit({{"event", "error"}, {"command", line}, {"error", why}});
 }
 
+void RobotSession::notifyObservers()
+{
+	if (m_observers.empty()) return;
+	const auto version = m_map.version();
+	const SemanticNavigator::PlanRecord* plan = nullptr;
+	if (m_nav && m_nav->plans().size() != m_observedPlans)
+	{
+		m_observedPlans = m_nav->plans().size();
+		if (m_observedPlans > 0) plan = &m_nav->plans().back();
+	}
+	const auto odometry = m_robot.base->odometry();
+	const auto pose = m_robot.pose->pose();
+	for (auto& o : m_observers)
+	{
+		if (o.mapVersion != version && o.observer->onMapChanged(m_map))
+			o.mapVersion = version;
+		if (plan) o.observer->onPlan(*plan);
+		o.observer->onPose(pose, odometry.pose, odometry.time);
+	}
+}
+
+void RobotSession::notifySweep(
+    const Sweep& sweep, const LabeledSweep& labeled,
+    const mrpt::math::TPose2D& estimate, double stdXY, double stdYaw)
+{
+	for (auto& o : m_observers)
+		o.observer->onSweep(sweep, labeled, estimate, stdXY, stdYaw);
+}
+
 double RobotSession::odometryAge() const
 {
 	const auto t = m_robot.base->odometry().time;
@@ -220,6 +249,7 @@ void RobotSession::mappingSweep()
 	m_inserted++;
 	reportNewObjects();
 	const auto& u = m_mapper->lastUpdate();
+	notifySweep(sweep, labeled, estimate, u.stdXY, u.stdYaw);
 	if (first)
 		emit({{"event", "map_started"}, {"pose", poseJson(estimate)}});
 	else
@@ -319,6 +349,7 @@ bool RobotSession::localize()
 		{
 			if (!m_mapper) mappingSweep();
 			m_localized = true;
+			notifyObservers();
 			emit(
 			    {{"event", "localized"},
 			     {"mode", "mapping"},
@@ -334,6 +365,7 @@ bool RobotSession::localize()
 		const auto rep = m_localizer->start(m_robot, mode, guess);
 		m_localized = true;
 		insertSweeps();
+		notifyObservers();
 		emit(
 		    {{"event", "localized"},
 		     {"pose", poseJson(rep.estimate)},
@@ -382,6 +414,7 @@ bool RobotSession::insertSweeps()
 			m_inserted++;
 			changed = true;
 		}
+		notifySweep(k.sweep, k.labeled, r.estimate, r.stdXY, r.stdYaw);
 		emit(
 		    {{"event", "sweep"},
 		     {"estimate", poseJson(r.estimate)},

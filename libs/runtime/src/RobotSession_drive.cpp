@@ -48,6 +48,7 @@ void RobotSession::run(CommandQueue& queue, const std::atomic<bool>& stop)
 	m_queue = &queue;
 	while (!stop)
 	{
+		notifyObservers();
 		const auto line = queue.pop(0.1);
 		if (!line)
 		{
@@ -130,6 +131,7 @@ void RobotSession::drive(
 			m_navlog = std::make_unique<NavLogFile>(*m_nav, m_navlogPath);
 	}
 	m_current = command;
+	m_observedPlans = 0;
 	const auto t0 = std::chrono::steady_clock::now();
 	emit({{"event", "goal"}, {"command", command.text()}});
 	m_nav->start(command);
@@ -219,6 +221,7 @@ void RobotSession::whileDriving(
 	m_trajectory.push_back(m_robot.pose->pose());
 	if (insertSweeps()) nav.notifyMapChanged();
 	if (mappingRescan(nav)) nav.notifyPoseCorrected();
+	notifyObservers();
 	if (stop)
 	{
 		m_robot.base->stop();

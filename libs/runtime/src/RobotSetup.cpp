@@ -108,11 +108,12 @@ RobotSetup RobotSetup::load(
 	for (const auto& sec : sections)
 		if (sec != "RobotSetup" && sec != "SemnavRobot" &&
 		    sec != "LiveSweepSource" && sec != "Ros1Base" &&
-		    sec != s.files.laserSection && sec != s.files.baseSection)
+		    sec != "Ros1Operator" && sec != s.files.laserSection &&
+		    sec != s.files.baseSection)
 			throw ConfigError(
 			    path + ": unknown section [" + sec +
 			    "] (expected RobotSetup, SemnavRobot, LiveSweepSource, "
-			    "Ros1Base, " +
+			    "Ros1Base, Ros1Operator, " +
 			    s.files.laserSection + ", " + s.files.baseSection + ")");
 	if (!s.ini->sectionExists(s.files.laserSection))
 		throw ConfigError(

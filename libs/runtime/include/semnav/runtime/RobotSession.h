@@ -11,8 +11,10 @@
 #include <semnav/nav/StopAndScanLocalizer.h>
 #include <semnav/robot/RobotInterfaces.h>
 #include <semnav/robot/SweepObstacles.h>
+#include <semnav/runtime/RobotSessionObserver.h>
 
 #include <atomic>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -125,6 +127,12 @@ public:
 	void setNavLogPath(const std::string& path) { m_navlogPath = path; }
 	/** Closes the navigation log and moves it in place ("" for none). */
 	std::string finishNavLog();
+	/** `o` sees the map, plans, pose and sweeps from now on (it must
+	 * outlive the session). */
+	void addObserver(RobotSessionObserver& o)
+	{
+		m_observers.push_back({&o, std::nullopt});
+	}
 	/** Called on "save map" and by finish(). */
 	void onSaveMap(std::function<void()> save) { m_save = std::move(save); }
 
@@ -168,6 +176,11 @@ private:
 	/** [x, y, yaw_deg]. */
 	static nlohmann::json poseJson(const mrpt::math::TPose2D& p);
 	void emit(nlohmann::json e) const;
+	/** The observers' map (when changed), plan (when new) and pose. */
+	void notifyObservers();
+	void notifySweep(
+	    const Sweep& sweep, const LabeledSweep& labeled,
+	    const mrpt::math::TPose2D& estimate, double stdXY, double stdYaw);
 	void error(const std::string& line, const std::string& why);
 	/** Parses and checks a "go to" command against the map from the
 	 * current pose (growing the grid to hold a point goal beyond it);
@@ -244,6 +257,15 @@ private:
 	std::set<int> m_known;
 	std::vector<SemanticNavigator::PlanRecord> m_plans;
 	std::vector<mrpt::math::TPose2D> m_trajectory;
+	struct Observer
+	{
+		RobotSessionObserver* observer;
+		/** The map version it accepted last. */
+		std::optional<std::uint64_t> mapVersion;
+	};
+	std::vector<Observer> m_observers;
+	/** Plans of the running command the observers have seen. */
+	std::size_t m_observedPlans = 0;
 };
 
 }  // namespace semnav
