@@ -195,12 +195,6 @@ int main(int argc, char** argv)
 	    [&]
 	    {
 		    semnav::BagToRawlog converter(o);
-		    // Warnings on stderr: stdout may carry the JSON summary.
-		    converter.logging_enable_console_output = false;
-		    converter.logRegisterCallback(
-		        [](std::string_view msg, mrpt::system::VerbosityLevel,
-		           std::string_view, mrpt::Clock::time_point)
-		        { std::cerr << "semnav-bag2rawlog: " << msg << std::endl; });
 		    // Scans of a long bag: redrawn every 100 (stderr, a terminal only).
 		    std::optional<semnav::ProgressBar> bar;
 		    const auto r = converter.convert(

@@ -94,10 +94,8 @@ struct BagInputs
 class BagConversion
 {
 public:
-	BagConversion(
-	    const BagToRawlog::TOptions& o, const std::string& bagPath,
-	    mrpt::system::COutputLogger& log)
-	    : m_o(o), m_path(bagPath), m_log(log)
+	BagConversion(const BagToRawlog::TOptions& o, const std::string& bagPath)
+	    : m_o(o), m_path(bagPath)
 	{
 		try
 		{
@@ -336,8 +334,6 @@ private:
 			char stamp[32];
 			std::snprintf(stamp, sizeof(stamp), "%.3f", t.toSec());
 			r.firstSkip = "line at " + std::string(stamp) + ": " + why;
-			m_log.logStr(
-			    mrpt::system::LVL_WARN, "first skipped " + r.firstSkip);
 		}
 	}
 
@@ -405,7 +401,6 @@ private:
 
 	const BagToRawlog::TOptions& m_o;
 	std::string m_path;
-	mrpt::system::COutputLogger& m_log;
 	rosbag::Bag m_bag;
 	TopicTypes m_topics;
 	BagInputs m_in;
@@ -414,17 +409,14 @@ private:
 
 }  // namespace
 
-BagToRawlog::BagToRawlog(const TOptions& options)
-    : mrpt::system::COutputLogger("BagToRawlog"), m_options(options)
-{
-}
+BagToRawlog::BagToRawlog(const TOptions& options) : m_options(options) {}
 
 BagToRawlog::Result BagToRawlog::convert(
     const std::string& bagPath, const std::string& rawlogPath,
     const ProgressCallback& progress)
 {
 	if (!ros::Time::isValid()) ros::Time::init();
-	BagConversion conversion(m_options, bagPath, *this);
+	BagConversion conversion(m_options, bagPath);
 	return conversion.run(rawlogPath, progress);
 }
 

@@ -2,7 +2,6 @@
 #pragma once
 
 #include <mrpt/math/TPoint3D.h>
-#include <mrpt/system/COutputLogger.h>
 
 #include <cstddef>
 #include <functional>
@@ -25,7 +24,7 @@ namespace semnav
  *
  * The bag is read twice: first the tilt, odometry and tf messages (kept in
  * memory), then the scans in bag order. */
-class BagToRawlog : public mrpt::system::COutputLogger
+class BagToRawlog
 {
 public:
 	/** Where the tilt or the odometry comes from. */
