@@ -18,6 +18,7 @@
 #include <sensor_msgs/LaserScan.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -72,9 +73,11 @@ inline std::vector<SimLine> readSimLines(const std::string& rawlog)
 }
 
 /** The line as a LaserScan whose middle beam is at l.stamp (the first at
- * stamp - (n - 1) / 2 * timeIncrement); no return = +inf (REP 117). */
+ * stamp - (n - 1) / 2 * timeIncrement); no return = +inf (REP 117). A
+ * clockwise scan lists the beams from the left (negative increment). */
 inline sensor_msgs::LaserScan laserScanOf(
-    const SimLine& l, double timeIncrement, const std::string& frame)
+    const SimLine& l, double timeIncrement, const std::string& frame,
+    bool clockwise = false)
 {
 	const auto& s = *l.scan;
 	const std::size_t n = s.getScanSize();
@@ -91,6 +94,12 @@ inline sensor_msgs::LaserScan laserScanOf(
 		m.ranges.push_back(
 		    s.getScanRangeValidity(i) ? s.getScanRange(i)
 		                              : std::numeric_limits<float>::infinity());
+	if (clockwise)
+	{
+		std::swap(m.angle_min, m.angle_max);
+		m.angle_increment = -m.angle_increment;
+		std::reverse(m.ranges.begin(), m.ranges.end());
+	}
 	return m;
 }
 
@@ -154,7 +163,7 @@ inline geometry_msgs::TransformStamped transformMsg(
  * joint is published until `tiltUntil` only (default: all along). */
 inline void writeJointStatesBag(
     const std::vector<SimLine>& lines, const std::string& path,
-    const ros::Time& tiltUntil = ros::TIME_MAX)
+    const ros::Time& tiltUntil = ros::TIME_MAX, bool clockwise = false)
 {
 	rosbag::Bag bag(path, rosbag::bagmode::Write);
 	for (const auto& [t, theta] : tiltSamples(lines))
@@ -169,7 +178,7 @@ inline void writeJointStatesBag(
 	for (const auto& l : lines)
 	{
 		bag.write("/odom", l.stamp, odometryMsg(l.odometry, l.stamp));
-		bag.write("/scan", l.stamp, laserScanOf(l, 2e-5, "laser"));
+		bag.write("/scan", l.stamp, laserScanOf(l, 2e-5, "laser", clockwise));
 	}
 }
 

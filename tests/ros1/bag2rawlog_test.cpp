@@ -189,6 +189,14 @@ TEST_F(Bag2Rawlog, TfTiltAndTfOdometryGiveTheSimulatorsSweeps)
 	expectSameSweeps(simRawlog, (kTmp / "bag.rawlog").string());
 }
 
+TEST_F(Bag2Rawlog, ClockwiseScansGiveTheSimulatorsSweeps)
+{
+	writeJointStatesBag(lines, (kTmp / "cw.bag").string(), ros::TIME_MAX, true);
+	const AppRun r = convert(kTmp / "cw.bag");
+	ASSERT_EQ(r.code, 0) << r.err;
+	expectSameSweeps(simRawlog, (kTmp / "bag.rawlog").string());
+}
+
 TEST_F(Bag2Rawlog, SemnavMapOfTheBagEqualsTheMapOfTheSimulatorsRawlog)
 {
 	writeJointStatesBag(lines, (kTmp / "js.bag").string());
