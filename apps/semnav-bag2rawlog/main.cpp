@@ -10,33 +10,10 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
 #include <string>
 
 namespace
 {
-/** "X,Y,Z" (finite numbers); nothing when malformed. */
-std::optional<mrpt::math::TPoint3D> parsePoint(const std::string& s)
-{
-	std::stringstream ss(s);
-	std::vector<double> v;
-	for (std::string t; std::getline(ss, t, ',');)
-	{
-		try
-		{
-			std::size_t n = 0;
-			v.push_back(std::stod(t, &n));
-			if (n != t.size() || !std::isfinite(v.back())) return std::nullopt;
-		}
-		catch (const std::exception&)
-		{
-			return std::nullopt;
-		}
-	}
-	if (v.size() != 3) return std::nullopt;
-	return mrpt::math::TPoint3D(v[0], v[1], v[2]);
-}
-
 std::optional<semnav::BagToRawlog::Source> sourceNamed(
     const std::string& name, const std::string& topicName)
 {
@@ -160,8 +137,10 @@ int main(int argc, char** argv)
 		    if (argAxis.getValue() != "+y" && argAxis.getValue() != "-y")
 			    return "--tilt-axis must be +y or -y, got '" +
 			           argAxis.getValue() + "'";
-		    mount = parsePoint(argMount.getValue());
-		    if (!mount)
+		    if (const auto v =
+		            semnav::CommandLine::parseNumbers(argMount.getValue(), 3))
+			    mount = mrpt::math::TPoint3D((*v)[0], (*v)[1], (*v)[2]);
+		    else
 			    return "--mount must be X,Y,Z, got '" + argMount.getValue() +
 			           "'";
 		    if (!(argGap.getValue() > 0) || !std::isfinite(argGap.getValue()))

@@ -5,12 +5,11 @@
 // JointState joint or as tf, odometry as nav_msgs/Odometry or as tf.
 
 #include <geometry_msgs/TransformStamped.h>
-#include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/obs/CRawlog.h>
 #include <mrpt/ros1bridge/pose.h>
 #include <mrpt/ros1bridge/time.h>
-#include <mrpt/serialization/CArchive.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <semnav/scan/TiltGeometry.h>
@@ -39,24 +38,16 @@ struct SimLine
 /** The scan lines of a semnav-sim rawlog, in order. */
 inline std::vector<SimLine> readSimLines(const std::string& rawlog)
 {
-	mrpt::io::CFileGZInputStream in(rawlog);
-	auto arch = mrpt::serialization::archiveFrom(in);
+	mrpt::obs::CRawlog log;
+	if (!log.loadFromRawLogFile(rawlog)) return {};
 	std::vector<SimLine> lines;
 	mrpt::poses::CPose2D odometry;
 	std::size_t sweeps = 0;
-	for (;;)
+	for (std::size_t i = 0; i < log.size(); i++)
 	{
-		mrpt::serialization::CSerializable::Ptr obj;
-		try
-		{
-			obj = arch.ReadObject();
-		}
-		catch (const mrpt::serialization::CExceptionEOF&)
-		{
-			break;
-		}
+		const auto obs = log.getAsObservation(i);
 		if (auto o =
-		        std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obj))
+		        std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs))
 		{
 			odometry = o->odometry;
 			sweeps++;
@@ -64,7 +55,7 @@ inline std::vector<SimLine> readSimLines(const std::string& rawlog)
 		else if (
 		    auto s =
 		        std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(
-		            obj))
+		            obs))
 			lines.push_back(
 			    {s, odometry, sweeps - 1, mrpt::ros1bridge::toROS(s->timestamp),
 			     tiltOfSensorPose(s->sensorPose)});
