@@ -1,4 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <mrpt/math/wrap2pi.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/poses/CPose2D.h>
@@ -16,6 +17,7 @@
 #include <tf2/exceptions.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -76,9 +78,14 @@ mrpt::poses::CPose3D poseOf(const geometry_msgs::Transform& t)
 	return mrpt::ros1bridge::fromROS(p);
 }
 
+/** Odometry readings this close are one (tf's interpolation between equal
+ * transforms is not exact). */
 bool samePose(const mrpt::poses::CPose2D& a, const mrpt::poses::CPose2D& b)
 {
-	return a.x() == b.x() && a.y() == b.y() && a.phi() == b.phi();
+	constexpr double kEpsilon = 1e-6;  // m, rad
+	return std::abs(a.x() - b.x()) < kEpsilon &&
+	       std::abs(a.y() - b.y()) < kEpsilon &&
+	       std::abs(mrpt::math::wrapToPi(a.phi() - b.phi())) < kEpsilon;
 }
 
 /** The tilt, odometry and tf messages of a bag (first pass). */

@@ -36,14 +36,21 @@ std::string toScanLine(
 	if (!(msg.range_max > 0))
 		return "a scan with range_max " + std::to_string(msg.range_max);
 	const bool clockwise = step < 0;
-	const double aperture = std::abs(step) * (n - 1);
-	const double centre = msg.angle_min + 0.5 * step * (n - 1);
+	// The ends as given (in float, as MRPT's aperture) unless they disagree
+	// with the increment by half a step or more.
+	float aperture = std::abs(msg.angle_max - msg.angle_min);
+	double centre = 0.5 * (static_cast<double>(msg.angle_min) + msg.angle_max);
+	if (!(std::abs(aperture - std::abs(step) * (n - 1)) < 0.5 * std::abs(step)))
+	{
+		aperture = static_cast<float>(std::abs(step) * (n - 1));
+		centre = msg.angle_min + 0.5 * step * (n - 1);
+	}
 
 	out = mrpt::obs::CObservation2DRangeScan();
 	out.sensorLabel = sensorLabel;
 	out.timestamp = mrpt::ros1bridge::fromROS(stamp);
 	out.rightToLeft = true;
-	out.aperture = static_cast<float>(aperture);
+	out.aperture = aperture;
 	out.maxRange = msg.range_max;
 	out.sensorPose = headPose + mrpt::poses::CPose3D(0, 0, 0, centre, 0, 0);
 	out.resizeScan(n);

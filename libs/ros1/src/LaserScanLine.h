@@ -17,8 +17,9 @@ ros::Time scanMidTime(
     const sensor_msgs::LaserScan& msg, const ros::Time& fallback);
 
 /** A LaserScan as one semnav scan line (docs/design.md, "Rawlog"): beams
- * by increasing angle (a clockwise scan is reversed), aperture (n - 1) *
- * |angle_increment|, sensorPose = `headPose` turned by the scan's centre
+ * by increasing angle (a clockwise scan is reversed), aperture |angle_max -
+ * angle_min| (or (n - 1) |angle_increment| when they disagree by half a
+ * step or more), sensorPose = `headPose` turned by the scan's centre
  * bearing, a beam valid when finite and within [range_min, range_max]
  * (REP 117), an invalid one storing range_max. Stamped `stamp`. Returns ""
  * or why the message cannot be a line. */
