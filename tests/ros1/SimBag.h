@@ -149,17 +149,27 @@ inline geometry_msgs::TransformStamped transformMsg(
 	return m;
 }
 
+/** How writeJointStatesBag() records. */
+struct JointStatesBag
+{
+	/** The joint is published until then only. */
+	ros::Time tiltUntil = ros::TIME_MAX;
+	bool clockwise = false;
+	rosbag::compression::CompressionType compression =
+	    rosbag::compression::Uncompressed;
+};
+
 /** /scan (stamps spread by time_increment), /joint_states (wheel joint and
- * tilt_joint, axis +y: position = -theta) and /odom at every line. The
- * joint is published until `tiltUntil` only (default: all along). */
+ * tilt_joint, axis +y: position = -theta) and /odom at every line. */
 inline void writeJointStatesBag(
     const std::vector<SimLine>& lines, const std::string& path,
-    const ros::Time& tiltUntil = ros::TIME_MAX, bool clockwise = false)
+    const JointStatesBag& how = {})
 {
 	rosbag::Bag bag(path, rosbag::bagmode::Write);
+	bag.setCompression(how.compression);
 	for (const auto& [t, theta] : tiltSamples(lines))
 	{
-		if (t > tiltUntil) break;
+		if (t > how.tiltUntil) break;
 		sensor_msgs::JointState js;
 		js.header.stamp = t;
 		js.name = {"wheel_left_joint", "tilt_joint"};
@@ -169,7 +179,8 @@ inline void writeJointStatesBag(
 	for (const auto& l : lines)
 	{
 		bag.write("/odom", l.stamp, odometryMsg(l.odometry, l.stamp));
-		bag.write("/scan", l.stamp, laserScanOf(l, 2e-5, "laser", clockwise));
+		bag.write(
+		    "/scan", l.stamp, laserScanOf(l, 2e-5, "laser", how.clockwise));
 	}
 }
 

@@ -199,9 +199,12 @@ TEST_F(Bag2Rawlog, TfTiltAndTfOdometryGiveTheSimulatorsSweeps)
 	expectSameSweeps(simRawlog, (kTmp / "bag.rawlog").string());
 }
 
-TEST_F(Bag2Rawlog, ClockwiseScansGiveTheSimulatorsSweeps)
+TEST_F(Bag2Rawlog, ClockwiseScansInACompressedBagGiveTheSimulatorsSweeps)
 {
-	writeJointStatesBag(lines, (kTmp / "cw.bag").string(), ros::TIME_MAX, true);
+	JointStatesBag how;
+	how.clockwise = true;
+	how.compression = rosbag::compression::LZ4;
+	writeJointStatesBag(lines, (kTmp / "cw.bag").string(), how);
 	const AppRun r = convert(kTmp / "cw.bag");
 	ASSERT_EQ(r.code, 0) << r.err;
 	expectSameSweeps(simRawlog, (kTmp / "bag.rawlog").string());
@@ -250,8 +253,9 @@ TEST_F(Bag2Rawlog, LinesWithoutATiltAreSkippedAndCounted)
 	// The joint stops after the second sweep: the third is skipped.
 	std::size_t twoSweeps = 0;
 	while (lines[twoSweeps].sweep < 2) twoSweeps++;
-	writeJointStatesBag(
-	    lines, (kTmp / "short.bag").string(), lines[twoSweeps - 1].stamp);
+	JointStatesBag how;
+	how.tiltUntil = lines[twoSweeps - 1].stamp;
+	writeJointStatesBag(lines, (kTmp / "short.bag").string(), how);
 	const AppRun r = convert(kTmp / "short.bag");
 	ASSERT_EQ(r.code, 0) << r.err;
 	const auto j = nlohmann::json::parse(r.out);
