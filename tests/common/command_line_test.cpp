@@ -66,6 +66,15 @@ TEST(CommandLine, ParsePoseTakesDegreesAndRejectsJunk)
 		EXPECT_FALSE(CommandLine::parsePose(bad)) << bad;
 }
 
+TEST(CommandLine, ParseNumbersWantsExactlyThatManyFiniteNumbers)
+{
+	const auto v = CommandLine::parseNumbers("0.1,-2,0.45", 3);
+	ASSERT_TRUE(v);
+	EXPECT_EQ(*v, (std::vector<double>{0.1, -2, 0.45}));
+	for (const char* bad : {"", "1,2", "1,2,3,4", "1,,3", "1,2,3m", "0,inf,0"})
+		EXPECT_FALSE(CommandLine::parseNumbers(bad, 3)) << bad;
+}
+
 TEST(CommandLine, MedianOfEvenCountIsTheMeanOfTheMiddleTwo)
 {
 	EXPECT_EQ(median({}), 0.0);

@@ -148,7 +148,8 @@ std::optional<uint64_t> CommandLine::parseUnsigned(const std::string& s)
 	return std::stoull(s);
 }
 
-std::optional<mrpt::math::TPose2D> CommandLine::parsePose(const std::string& s)
+std::optional<std::vector<double>> CommandLine::parseNumbers(
+    const std::string& s, std::size_t count)
 {
 	std::stringstream ss(s);
 	std::vector<double> v;
@@ -158,17 +159,22 @@ std::optional<mrpt::math::TPose2D> CommandLine::parsePose(const std::string& s)
 		{
 			std::size_t n = 0;
 			v.push_back(std::stod(t, &n));
-			if (n != t.size()) return std::nullopt;
+			if (n != t.size() || !std::isfinite(v.back())) return std::nullopt;
 		}
 		catch (const std::exception&)
 		{
 			return std::nullopt;
 		}
 	}
-	if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) ||
-	    !std::isfinite(v[2]))
-		return std::nullopt;
-	return mrpt::math::TPose2D(v[0], v[1], v[2] * M_PI / 180);
+	if (v.size() != count) return std::nullopt;
+	return v;
+}
+
+std::optional<mrpt::math::TPose2D> CommandLine::parsePose(const std::string& s)
+{
+	const auto v = parseNumbers(s, 3);
+	if (!v) return std::nullopt;
+	return mrpt::math::TPose2D((*v)[0], (*v)[1], (*v)[2] * M_PI / 180);
 }
 
 std::string CommandLine::firstLine(const std::string& msg)

@@ -72,6 +72,11 @@ public:
 	 * in degrees, returned in radians); nothing when malformed. */
 	static std::optional<mrpt::math::TPose2D> parsePose(const std::string& s);
 
+	/** Strict parse of `count` comma-separated finite numbers ("X,Y,Z");
+	 * nothing when malformed. */
+	static std::optional<std::vector<double>> parseNumbers(
+	    const std::string& s, std::size_t count);
+
 private:
 	class OneLineOutput;
 	std::optional<int> writeConfig() const;
