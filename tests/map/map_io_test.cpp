@@ -5,9 +5,12 @@
 #include <semnav/map/MapIO.h>
 #include <yaml-cpp/yaml.h>
 
+#include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <thread>
 
 #include "MapTestUtils.h"
 
@@ -210,5 +213,49 @@ TEST(MapIO, CorruptOrMissingFilesGiveClearErrors)
 	}
 	expectError("trashcan");
 	EXPECT_THROW(MapIO::load((dir / "nothing").string(), a), IoError);
+	fs::remove_all(dir);
+}
+
+TEST(MapIO, ConcurrentLoadsSeeOneWholeMapWhileSavesReplaceIt)
+{
+	// Two maps that differ in every file: one and two sweeps.
+	SemanticMap a, b;
+	buildMap(b);
+	{
+		const auto f = makeFakeSweep(floorFan(2.0));
+		a.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(1, 1, 0.3));
+	}
+	const auto dir = tempDir("mapio_concurrent");
+	MapIO::save(a, dir.string());
+	std::atomic<bool> stop{false};
+	std::thread writer(
+	    [&]
+	    {
+		    for (int i = 0; !stop; i++)
+			    MapIO::save(i % 2 ? a : b, dir.string());
+	    });
+	int loads = 0, sawA = 0, sawB = 0;
+	for (; loads < 40; loads++)
+	{
+		SemanticMap m;
+		ASSERT_NO_THROW(MapIO::load(dir.string(), m)) << "load " << loads;
+		const SemanticMap& expected = m.sweepsInserted() == 1 ? a : b;
+		(m.sweepsInserted() == 1 ? sawA : sawB)++;
+		// Every layer from the save that wrote map.yaml.
+		for (const auto& name : expected.layers())
+		{
+			const auto &x = expected.get(name), &y = m.get(name);
+			ASSERT_EQ(x.size(), y.size()) << name;
+			for (std::size_t i = 0; i < x.size(); i++)
+				ASSERT_TRUE(
+				    x[i] == y[i] || (std::isnan(x[i]) && std::isnan(y[i])))
+				    << "load " << loads << ": " << name << " cell " << i
+				    << " is from the other map";
+		}
+		ASSERT_EQ(m.octree().size(), expected.octree().size());
+	}
+	stop = true;
+	writer.join();
+	EXPECT_GT(sawA + sawB, 0);
 	fs::remove_all(dir);
 }
