@@ -259,3 +259,39 @@ TEST(MapIO, ConcurrentLoadsSeeOneWholeMapWhileSavesReplaceIt)
 	EXPECT_GT(sawA + sawB, 0);
 	fs::remove_all(dir);
 }
+
+TEST(MapIO, RefusesForeignDirectoriesAndNamesAnInterruptedSave)
+{
+	SemanticMap a;
+	buildMap(a);
+	const auto root = tempDir("mapio_foreign");
+	fs::create_directories(root / "out");
+	std::ofstream(root / "out" / "notes.txt") << "mine";
+	EXPECT_THROW(MapIO::checkTarget((root / "out").string()), IoError);
+	EXPECT_THROW(MapIO::save(a, (root / "out").string()), IoError);
+	EXPECT_TRUE(fs::exists(root / "out" / "notes.txt"));
+
+	// A save interrupted between the two renames of the fallback swap.
+	MapIO::save(a, (root / "map").string());
+	const fs::path ready = root / ".map.ready-999999999";
+	fs::rename(root / "map", ready);
+	try
+	{
+		SemanticMap b;
+		MapIO::load((root / "map").string(), b);
+		FAIL() << "loaded a missing map";
+	}
+	catch (const IoError& e)
+	{
+		const std::string m = e.what();
+		EXPECT_NE(m.find("interrupted"), std::string::npos) << m;
+		EXPECT_NE(m.find(ready.string()), std::string::npos) << m;
+	}
+	// The next save recovers it first, then replaces it.
+	MapIO::save(a, (root / "map").string());
+	SemanticMap c;
+	MapIO::load((root / "map").string(), c);
+	EXPECT_EQ(c.sweepsInserted(), a.sweepsInserted());
+	EXPECT_FALSE(fs::exists(ready));
+	fs::remove_all(root);
+}

@@ -130,17 +130,7 @@ StagedDirectory::~StagedDirectory()
 void StagedDirectory::commit()
 {
 	const fs::path t(m_target), staged(m_staged);
-	if (fs::exists(t))
-	{
-		if (!fs::is_directory(t))
-			throw IoError(m_target + " exists and is not a directory");
-		for (const auto& e : fs::directory_iterator(t))
-			if (!m_ownEntry(e.path().filename().string()))
-				throw IoError(
-				    "not replacing " + m_target + ": it holds " +
-				    e.path().filename().string() +
-				    ", which is not ours (write into a directory of its own)");
-	}
+	checkReplaceable(m_target, m_ownEntry);
 	fsyncTree(staged);
 	if (!fs::exists(t))
 		renameOrThrow(staged, t);
@@ -165,6 +155,21 @@ void StagedDirectory::commit()
 	fsyncPath(parentOf(t), true);
 	std::error_code ec;
 	fs::remove_all(staged, ec);
+}
+
+void StagedDirectory::checkReplaceable(
+    const std::string& target, const OwnEntry& ownEntry)
+{
+	const fs::path t = normalized(target);
+	if (!fs::exists(t)) return;
+	if (!fs::is_directory(t))
+		throw IoError(t.string() + " exists and is not a directory");
+	for (const auto& e : fs::directory_iterator(t))
+		if (!ownEntry(e.path().filename().string()))
+			throw IoError(
+			    "not replacing " + t.string() + ": it holds " +
+			    e.path().filename().string() +
+			    ", which is not ours (write into a directory of its own)");
 }
 
 std::string StagedDirectory::interruptedSave(const std::string& target)

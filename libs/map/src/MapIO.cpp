@@ -386,6 +386,11 @@ bool isMapEntry(const std::string& name)
 }
 }  // namespace
 
+void MapIO::checkTarget(const std::string& dir)
+{
+	StagedDirectory::checkReplaceable(dir, isMapEntry);
+}
+
 void MapIO::save(const SemanticMap& map, const std::string& dir)
 {
 	StagedDirectory staged(dir, isMapEntry);

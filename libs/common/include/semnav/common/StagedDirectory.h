@@ -35,6 +35,12 @@ public:
 	/** Swaps the staged directory in; throws IoError naming the target. */
 	void commit();
 
+	/** Throws IoError when `target` exists and is not a directory or holds
+	 * an entry that is not `ownEntry`'s (what commit() refuses): for writers
+	 * to check before long work. */
+	static void checkReplaceable(
+	    const std::string& target, const OwnEntry& ownEntry);
+
 	/** A complete directory that an interrupted commit() left instead of
 	 * `target` (which does not exist then), or "" when there is none. */
 	static std::string interruptedSave(const std::string& target);
