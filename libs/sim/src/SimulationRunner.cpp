@@ -86,6 +86,7 @@ SimulationResult SimulationRunner::run(
 	// Everything is written beside the dataset first (the label images to a
 	// directory swapped in as a whole); from the first file replaced to the
 	// last the marker says the dataset is incomplete.
+	StagedDirectory::checkReplaceable(res.labelsDir, isLabelImage);
 	StagedDirectory labels(res.labelsDir, isLabelImage);
 
 	RayCaster caster(sc, m_seed, m_options.terrainCell);
