@@ -195,6 +195,7 @@ int main(int argc, char** argv)
 		    s.rawlog = argRawlog.getValue();
 		    s.scans3dtk = arg3dtk.getValue();
 		    s.gtDir = argGt.getValue();
+		    semnav::MapIO::checkTarget(argOut.getValue());
 		    semnav::MapBuilder builder(s);
 		    semnav::ProgressBar bar(builder.expectedSweeps(), "mapping");
 		    builder.run([&](std::size_t done) { bar.update(done); });

@@ -8,6 +8,7 @@
 #include <semnav/common/IniSections.h>
 #include <semnav/common/ShippedConfig.h>
 #include <semnav/nav/NavCommand.h>
+#include <semnav/nav/NavLogFile.h>
 #include <semnav/navsim/NavigationRun.h>
 
 #include <cmath>
@@ -455,6 +456,7 @@ int main(int argc, char** argv)
 			    perceptionSections.load(a.argPerceptionConfig.getValue());
 		    }
 		    semnav::NavigationRun run(s);
+		    semnav::NavLogFile::removeOnTermination(run.navlogPath());
 		    const auto r = run.run(command, *start);
 		    if (argJson.getValue())
 			    std::cout << summaryJson(

@@ -5,9 +5,12 @@
 #include <semnav/map/MapIO.h>
 #include <yaml-cpp/yaml.h>
 
+#include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <thread>
 
 #include "MapTestUtils.h"
 
@@ -211,4 +214,84 @@ TEST(MapIO, CorruptOrMissingFilesGiveClearErrors)
 	expectError("trashcan");
 	EXPECT_THROW(MapIO::load((dir / "nothing").string(), a), IoError);
 	fs::remove_all(dir);
+}
+
+TEST(MapIO, ConcurrentLoadsSeeOneWholeMapWhileSavesReplaceIt)
+{
+	// Two maps that differ in every file: one and two sweeps.
+	SemanticMap a, b;
+	buildMap(b);
+	{
+		const auto f = makeFakeSweep(floorFan(2.0));
+		a.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(1, 1, 0.3));
+	}
+	const auto dir = tempDir("mapio_concurrent");
+	MapIO::save(a, dir.string());
+	std::atomic<bool> stop{false};
+	std::thread writer(
+	    [&]
+	    {
+		    for (int i = 0; !stop; i++)
+			    MapIO::save(i % 2 ? a : b, dir.string());
+	    });
+	int loads = 0, sawA = 0, sawB = 0;
+	for (; loads < 40; loads++)
+	{
+		SemanticMap m;
+		ASSERT_NO_THROW(MapIO::load(dir.string(), m)) << "load " << loads;
+		const SemanticMap& expected = m.sweepsInserted() == 1 ? a : b;
+		(m.sweepsInserted() == 1 ? sawA : sawB)++;
+		// Every layer from the save that wrote map.yaml.
+		for (const auto& name : expected.layers())
+		{
+			const auto &x = expected.get(name), &y = m.get(name);
+			ASSERT_EQ(x.size(), y.size()) << name;
+			for (std::size_t i = 0; i < x.size(); i++)
+				ASSERT_TRUE(
+				    x[i] == y[i] || (std::isnan(x[i]) && std::isnan(y[i])))
+				    << "load " << loads << ": " << name << " cell " << i
+				    << " is from the other map";
+		}
+		ASSERT_EQ(m.octree().size(), expected.octree().size());
+	}
+	stop = true;
+	writer.join();
+	EXPECT_GT(sawA + sawB, 0);
+	fs::remove_all(dir);
+}
+
+TEST(MapIO, RefusesForeignDirectoriesAndNamesAnInterruptedSave)
+{
+	SemanticMap a;
+	buildMap(a);
+	const auto root = tempDir("mapio_foreign");
+	fs::create_directories(root / "out");
+	std::ofstream(root / "out" / "notes.txt") << "mine";
+	EXPECT_THROW(MapIO::checkTarget((root / "out").string()), IoError);
+	EXPECT_THROW(MapIO::save(a, (root / "out").string()), IoError);
+	EXPECT_TRUE(fs::exists(root / "out" / "notes.txt"));
+
+	// A save interrupted between the two renames of the fallback swap.
+	MapIO::save(a, (root / "map").string());
+	const fs::path ready = root / ".map.ready-999999999";
+	fs::rename(root / "map", ready);
+	try
+	{
+		SemanticMap b;
+		MapIO::load((root / "map").string(), b);
+		FAIL() << "loaded a missing map";
+	}
+	catch (const IoError& e)
+	{
+		const std::string m = e.what();
+		EXPECT_NE(m.find("interrupted"), std::string::npos) << m;
+		EXPECT_NE(m.find(ready.string()), std::string::npos) << m;
+	}
+	// The next save recovers it first, then replaces it.
+	MapIO::save(a, (root / "map").string());
+	SemanticMap c;
+	MapIO::load((root / "map").string(), c);
+	EXPECT_EQ(c.sweepsInserted(), a.sweepsInserted());
+	EXPECT_FALSE(fs::exists(ready));
+	fs::remove_all(root);
 }

@@ -3,8 +3,10 @@
 #include <octomap/OcTree.h>
 #include <semnav/common/AtomicFile.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/StagedDirectory.h>
 #include <semnav/map/MapIO.h>
 #include <semnav/map/MapRenderer.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
@@ -78,10 +80,90 @@ void writeImage(const std::string& path, const cv::Mat& img)
 	writeFileAtomically(path, std::string(buf.begin(), buf.end()));
 }
 
-cv::Mat readImage(const std::string& path, int type, const GridGeometry& g)
+/** The files of one map directory as it was when opened: a save that
+ * swaps a new directory in meanwhile (StagedDirectory) does not mix its
+ * files into this read; replaced() then says so and load() reads again. */
+class MapDirectory
 {
-	if (!fs::exists(path)) throw IoError("map file missing: " + path);
-	const cv::Mat img = cv::imread(path, cv::IMREAD_UNCHANGED);
+public:
+	explicit MapDirectory(const std::string& dir) : m_dir(dir)
+	{
+		m_fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+		if (m_fd < 0)
+		{
+			const std::string staged = StagedDirectory::interruptedSave(dir);
+			if (!staged.empty())
+				throw IoError(
+				    "map directory " + dir +
+				    " is missing: a save was interrupted; the complete new "
+				    "map is in " +
+				    staged + " (mv it to " + dir + ")");
+			throw IoError("not a map directory (no map.yaml): " + dir);
+		}
+		::fstat(m_fd, &m_stat);
+	}
+	~MapDirectory() { ::close(m_fd); }
+	MapDirectory(const MapDirectory&) = delete;
+	MapDirectory& operator=(const MapDirectory&) = delete;
+
+	std::string path(const std::string& rel) const
+	{
+		return (fs::path(m_dir) / rel).string();
+	}
+
+	bool has(const std::string& rel) const
+	{
+		struct stat st;
+		return ::fstatat(m_fd, rel.c_str(), &st, 0) == 0;
+	}
+
+	/** The bytes of `rel`; throws IoError when it is missing. */
+	std::string read(const std::string& rel) const
+	{
+		const int fd = ::openat(m_fd, rel.c_str(), O_RDONLY | O_CLOEXEC);
+		if (fd < 0) throw IoError("map file missing: " + path(rel));
+		std::string bytes;
+		char buf[65536];
+		ssize_t n;
+		while ((n = ::read(fd, buf, sizeof(buf))) > 0)
+			bytes.append(buf, static_cast<std::size_t>(n));
+		::close(fd);
+		if (n < 0) throw IoError("cannot read " + path(rel));
+		return bytes;
+	}
+
+	/** The path now names another directory (a save swapped it). */
+	bool replaced() const
+	{
+		struct stat now;
+		return ::stat(m_dir.c_str(), &now) != 0 ||
+		       now.st_ino != m_stat.st_ino || now.st_dev != m_stat.st_dev;
+	}
+
+private:
+	std::string m_dir;
+	int m_fd = -1;
+	struct stat m_stat = {};
+};
+
+cv::Mat readImage(
+    const MapDirectory& d, const std::string& rel, int type,
+    const GridGeometry& g)
+{
+	const std::string path = d.path(rel);
+	const std::string bytes = d.read(rel);
+	cv::Mat img;
+	try
+	{
+		img = cv::imdecode(
+		    cv::Mat(
+		        1, static_cast<int>(bytes.size()), CV_8UC1,
+		        const_cast<char*>(bytes.data())),
+		    cv::IMREAD_UNCHANGED);
+	}
+	catch (const cv::Exception&)
+	{
+	}
 	if (img.empty()) throw IoError("cannot decode map image " + path);
 	if (img.type() != type)
 		throw IoError("map image " + path + " has the wrong pixel type");
@@ -291,32 +373,42 @@ std::string mapYaml(const SemanticMap& map, double L)
 }
 }  // namespace
 
-void MapIO::save(const SemanticMap& map, const std::string& dir)
+namespace
 {
-	createDirectories(dir);
-	createDirectories((fs::path(dir) / "layers").string());
-	const double L = map.costModel().options().lethalCost;
-	saveImages(map, dir, L);
-	saveExactState(map, dir);
-	writeFileAtomically((fs::path(dir) / "map.yaml").string(), mapYaml(map, L));
+/** The names a map directory holds (MapIO::save replaces no other). */
+bool isMapEntry(const std::string& name)
+{
+	for (const char* n :
+	     {"map.yaml", "occupancy.png", "labels.png", "objects.png", "cost.png",
+	      "map.png", "octomap.bt", "layers"})
+		if (name == n) return true;
+	return false;
+}
+}  // namespace
+
+void MapIO::checkTarget(const std::string& dir)
+{
+	StagedDirectory::checkReplaceable(dir, isMapEntry);
 }
 
-void MapIO::load(const std::string& dir, SemanticMap& map)
+void MapIO::save(const SemanticMap& map, const std::string& dir)
 {
-	const std::string file = (fs::path(dir) / "map.yaml").string();
-	if (!fs::exists(file))
-		throw IoError("not a map directory (no map.yaml): " + dir);
-	YAML::Node root;
-	try
-	{
-		root = YAML::LoadFile(file);
-	}
-	catch (const YAML::Exception& ex)
-	{
-		throw IoError(
-		    file + ":" + std::to_string(ex.mark.line + 1) + ": " + ex.msg);
-	}
-	if (!root.IsMap()) throw IoError(file + ": not a map.yaml");
+	StagedDirectory staged(dir, isMapEntry);
+	const fs::path tmp(staged.path());
+	createDirectories((tmp / "layers").string());
+	const double L = map.costModel().options().lethalCost;
+	saveImages(map, tmp, L);
+	saveExactState(map, tmp);
+	writeFileAtomically((tmp / "map.yaml").string(), mapYaml(map, L));
+	staged.commit();
+}
+
+namespace
+{
+/** map.yaml's geometry, checked against the configured resolution. */
+GridGeometry readGeometry(
+    const YAML::Node& root, const std::string& file, double resolution)
+{
 	GridGeometry g;
 	g.resolution =
 	    as<double>(need(root, "resolution", file, ""), file, "resolution");
@@ -340,31 +432,16 @@ void MapIO::load(const std::string& dir, SemanticMap& map)
 	g.rows = as<int>(size[1], file, "semnav.size");
 	if (!(g.resolution > 0) || g.cols < 0 || g.rows < 0)
 		throw IoError(where(file, size, "semnav.size") + ": bad geometry");
-	if (std::abs(g.resolution - map.options().resolution) > 1e-9)
+	if (std::abs(g.resolution - resolution) > 1e-9)
 		throw IoError(
 		    where(file, root, "resolution") +
 		    ": map resolution differs from the configured one");
+	return g;
+}
 
-	std::map<std::string, std::vector<float>> layers;
-	const YAML::Node names = need(sem, "layers", file, "semnav.");
-	for (const auto& n : names)
-	{
-		const std::string name = as<std::string>(n, file, "semnav.layers");
-		const std::string p =
-		    (fs::path(dir) / "layers" / (name + ".pfm")).string();
-		layers[name] = fromImage<float>(g, readImage(p, CV_32FC1, g));
-	}
-	const auto lo = fromImage<float>(
-	    g, readImage(
-	           (fs::path(dir) / "layers" / "occupancy_logodds.pfm").string(),
-	           CV_32FC1, g));
-	std::vector<int8_t> logodds(lo.size());
-	for (std::size_t i = 0; i < lo.size(); i++)
-		logodds[i] = static_cast<int8_t>(lo[i]);
-	// The contract images must be there and agree in size.
-	readImage((fs::path(dir) / "occupancy.png").string(), CV_8UC1, g);
-	readImage((fs::path(dir) / "labels.png").string(), CV_16UC1, g);
-
+std::vector<ObjectInstance> readObjects(
+    const YAML::Node& sem, const std::string& file)
+{
 	std::vector<ObjectInstance> objs;
 	for (const auto& n : need(sem, "objects", file, "semnav."))
 	{
@@ -396,18 +473,76 @@ void MapIO::load(const std::string& dir, SemanticMap& map)
 			    as<double>(n["shape_score"], file, "shape_score");
 		objs.push_back(o);
 	}
+	return objs;
+}
+
+/** One read of the directory as `d` opened it. */
+void loadFrom(const MapDirectory& d, SemanticMap& map)
+{
+	const std::string file = d.path("map.yaml");
+	if (!d.has("map.yaml"))
+		throw IoError("not a map directory (no map.yaml): " + d.path(""));
+	YAML::Node root;
+	try
+	{
+		root = YAML::Load(d.read("map.yaml"));
+	}
+	catch (const YAML::Exception& ex)
+	{
+		throw IoError(
+		    file + ":" + std::to_string(ex.mark.line + 1) + ": " + ex.msg);
+	}
+	if (!root.IsMap()) throw IoError(file + ": not a map.yaml");
+	const GridGeometry g = readGeometry(root, file, map.options().resolution);
+	const YAML::Node sem = root["semnav"];
+
+	std::map<std::string, std::vector<float>> layers;
+	const YAML::Node names = need(sem, "layers", file, "semnav.");
+	for (const auto& n : names)
+	{
+		const std::string name = as<std::string>(n, file, "semnav.layers");
+		layers[name] = fromImage<float>(
+		    g, readImage(d, "layers/" + name + ".pfm", CV_32FC1, g));
+	}
+	const auto lo = fromImage<float>(
+	    g, readImage(d, "layers/occupancy_logodds.pfm", CV_32FC1, g));
+	std::vector<int8_t> logodds(lo.size());
+	for (std::size_t i = 0; i < lo.size(); i++)
+		logodds[i] = static_cast<int8_t>(lo[i]);
+	// The contract images must be there and agree in size.
+	readImage(d, "occupancy.png", CV_8UC1, g);
+	readImage(d, "labels.png", CV_16UC1, g);
+
+	std::vector<ObjectInstance> objs = readObjects(sem, file);
 	const auto sweeps = as<std::size_t>(
 	    need(sem, "sweeps", file, "semnav."), file, "semnav.sweeps");
+	std::istringstream bt(d.read("octomap.bt"));
 	map.restore(g, std::move(layers), logodds, std::move(objs), sweeps);
-
-	const std::string bt = (fs::path(dir) / "octomap.bt").string();
-	std::ifstream f(bt, std::ios::binary);
 	bool ok = false;
 	{
 		const QuietStderr quiet;
-		ok = f && map.octree().readBinary(f);
+		ok = static_cast<bool>(map.octree().readBinary(bt));
 	}
-	if (!ok) throw IoError("cannot read OctoMap " + bt);
+	if (!ok) throw IoError("cannot read OctoMap " + d.path("octomap.bt"));
+}
+}  // namespace
+
+void MapIO::load(const std::string& dir, SemanticMap& map)
+{
+	// A save may swap the directory while we read it: read again then.
+	for (int attempt = 0;; attempt++)
+	{
+		const MapDirectory d(dir);
+		try
+		{
+			loadFrom(d, map);
+			return;
+		}
+		catch (const IoError&)
+		{
+			if (attempt >= 3 || !d.replaced()) throw;
+		}
+	}
 }
 
 }  // namespace semnav

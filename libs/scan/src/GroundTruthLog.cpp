@@ -1,4 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
+#include <semnav/common/DatasetCompletion.h>
 #include <semnav/common/Error.h>
 #include <semnav/scan/GroundTruthLog.h>
 
@@ -15,6 +16,7 @@ GroundTruthLog::GroundTruthLog(const std::string& dir, const std::string& name)
     : m_file((fs::path(dir) / (name + ".gt.txt")).string()),
       m_labelsDir((fs::path(dir) / (name + ".labels")).string())
 {
+	DatasetCompletion::require(dir, name);
 	std::ifstream f(m_file);
 	if (!f) throw IoError("cannot open ground truth " + m_file);
 	std::string line;

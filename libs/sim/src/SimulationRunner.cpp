@@ -2,7 +2,9 @@
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <semnav/common/AtomicFile.h>
+#include <semnav/common/DatasetCompletion.h>
 #include <semnav/common/Error.h>
+#include <semnav/common/StagedDirectory.h>
 #include <semnav/scan/RawlogWriter.h>
 #include <semnav/sim/OdometrySimulator.h>
 #include <semnav/sim/RayCaster.h>
@@ -41,6 +43,12 @@ std::string unixTime(int64_t ticksSinceEpoch)
 	return buf;
 }
 
+bool isLabelImage(const std::string& name)
+{
+	return name.rfind("sweep_", 0) == 0 && name.size() > 4 &&
+	       name.compare(name.size() - 4, 4, ".png") == 0;
+}
+
 std::string joinPath(const std::string& dir, const std::string& name)
 {
 	if (dir.empty()) return name;
@@ -75,7 +83,11 @@ SimulationResult SimulationRunner::run(
 	res.gtPath = joinPath(outDir, sc.name + ".gt.txt");
 	res.labelsDir = joinPath(outDir, sc.name + ".labels");
 	createDirectories(outDir);
-	createDirectories(res.labelsDir);
+	// Everything is written beside the dataset first (the label images to a
+	// directory swapped in as a whole); from the first file replaced to the
+	// last the marker says the dataset is incomplete.
+	StagedDirectory::checkReplaceable(res.labelsDir, isLabelImage);
+	StagedDirectory labels(res.labelsDir, isLabelImage);
 
 	RayCaster caster(sc, m_seed, m_options.terrainCell);
 	caster.setMode(
@@ -129,7 +141,7 @@ SimulationResult SimulationRunner::run(
 		char name[32];
 		std::snprintf(name, sizeof(name), "sweep_%04zu.png", i);
 		writeFileAtomically(
-		    joinPath(res.labelsDir, name), std::string(png.begin(), png.end()));
+		    joinPath(labels.path(), name), std::string(png.begin(), png.end()));
 
 		char line[160];
 		std::snprintf(
@@ -142,8 +154,11 @@ SimulationResult SimulationRunner::run(
 		res.sweeps++;
 		if (progress) progress(i + 1, n);
 	}
+	DatasetCompletion::begin(outDir, sc.name);
 	rawlog.commit();
 	writeFileAtomically(res.gtPath, gt.str());
+	labels.commit();
+	DatasetCompletion::end(outDir, sc.name);
 	return res;
 }
 

@@ -1,6 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <semnav/common/AtomicFile.h>
 #include <semnav/common/CommandLine.h>
+#include <semnav/common/DatasetCompletion.h>
 #include <semnav/common/Error.h>
 #include <semnav/perception/PerceptionImages.h>
 #include <semnav/scan/RawlogSweepReader.h>
@@ -53,14 +54,16 @@ cv::Mat drawDetections(
 }
 }  // namespace
 
-std::string PerceptionRun::findLabelsDir(
-    const std::string& gtDir, const std::string& stem)
+namespace
+{
+/** The labels directory of `gtDir`, not yet checked for completeness. */
+fs::path labelsDirIn(const std::string& gtDir, const std::string& stem)
 {
 	if (!fs::is_directory(gtDir))
 		throw IoError("ground-truth directory not found: " + gtDir);
 	if (fs::exists(fs::path(gtDir) / "sweep_0000.png")) return gtDir;
 	if (!stem.empty() && fs::is_directory(fs::path(gtDir) / (stem + ".labels")))
-		return (fs::path(gtDir) / (stem + ".labels")).string();
+		return fs::path(gtDir) / (stem + ".labels");
 	std::vector<fs::path> found;
 	for (const auto& e : fs::directory_iterator(gtDir))
 		if (e.is_directory() && e.path().extension() == ".labels")
@@ -69,7 +72,20 @@ std::string PerceptionRun::findLabelsDir(
 		throw IoError(
 		    "no unique <name>.labels/ directory in " + gtDir + " (found " +
 		    std::to_string(found.size()) + ")");
-	return found.front().string();
+	return found.front();
+}
+}  // namespace
+
+std::string PerceptionRun::findLabelsDir(
+    const std::string& gtDir, const std::string& stem)
+{
+	const fs::path dir = labelsDirIn(gtDir, stem).lexically_normal();
+	const fs::path named = dir.filename().empty() ? dir.parent_path() : dir;
+	if (named.extension() == ".labels")
+		DatasetCompletion::require(
+		    named.has_parent_path() ? named.parent_path().string() : ".",
+		    named.stem().string());
+	return dir.string();
 }
 
 PerceptionRun::PerceptionRun(const Settings& settings)

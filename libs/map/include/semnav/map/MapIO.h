@@ -19,11 +19,17 @@ namespace semnav
  * (16-bit instance id), cost.png (16-bit, u / L * 65535), map.png (colour
  * rendering), octomap.bt, and under layers/ the exact state (log-odds
  * occupancy and every float layer as PFM) so that load(save(m)) == m.
- * Every file is written atomically. */
+ * The directory is replaced as a whole (StagedDirectory; docs/design.md,
+ * "Map directory"): a kill leaves the complete old or new map, and a load
+ * concurrent with a save reads one of them. */
 class MapIO
 {
 public:
+	/** Throws IoError when `dir` holds anything but a map's files (save()
+	 * would refuse to replace it). */
 	static void save(const SemanticMap& map, const std::string& dir);
+	/** What save() would refuse, checked before long work. */
+	static void checkTarget(const std::string& dir);
 	/** Loads into `map` (whose options are kept); throws IoError naming the
 	 * file (and the line for map.yaml) on anything missing or corrupt. */
 	static void load(const std::string& dir, SemanticMap& map);

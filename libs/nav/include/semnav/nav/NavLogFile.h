@@ -23,6 +23,15 @@ public:
 	 * no log). Throws IoError when MRPT wrote none. */
 	std::string finish();
 
+	/** The private directory of a log to `path`: `.navlog-<pid>` beside it. */
+	static std::string privateDirectory(const std::string& path);
+
+	/** For apps with no signal handlers of their own: SIGINT, SIGTERM or
+	 * SIGHUP first remove the private directory of a log to `path` (which the
+	 * destructor, not run then, would have), then end the process as the
+	 * signal would have. */
+	static void removeOnTermination(const std::string& path);
+
 private:
 	SemanticNavigator& m_nav;
 	std::string m_path, m_dir;

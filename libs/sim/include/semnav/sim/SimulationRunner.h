@@ -33,10 +33,12 @@ struct SimulationResult
  * are linePeriod apart; a sweep lasts lineCount * linePeriod, then the robot
  * travels for distance / robotSpeed + |heading change| / robotTurnRate.
  *
- * Files, each written atomically (a failed run leaves no partial file under
- * a final name): `<out>/<name>.rawlog`, `<out>/<name>.gt.txt` (a `#` header
- * line, then per sweep `index timestamp x y yaw_rad` with the timestamp of
- * its first line in seconds since 1970, 6 decimals, and the true pose) and
+ * Files (written beside the dataset, then each swapped in atomically, the
+ * labels directory as a whole; from the first swap to the last
+ * `<out>/<name>.incomplete` marks the dataset incomplete, see
+ * DatasetCompletion): `<out>/<name>.rawlog`, `<out>/<name>.gt.txt` (a `#`
+ * header line, then per sweep `index timestamp x y yaw_rad` with the timestamp
+ * of its first line in seconds since 1970, 6 decimals, and the true pose) and
  * `<out>/<name>.labels/sweep_NNNN.png` (16-bit, SimulatedSweep::labels).
  * Seeds: terrain, range noise and odometry noise all derive from `seed`. */
 class SimulationRunner
