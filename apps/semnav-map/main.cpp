@@ -203,10 +203,10 @@ int main(int argc, char** argv)
 			    throw semnav::RawlogError(
 			        !builder.readError().empty()
 			            ? builder.readError() + " (no map written)"
-			            : "no complete sweeps in " + s.rawlog + " (" +
+			            : "no sweeps in " + s.rawlog + " (" +
 			                  std::to_string(
 			                      builder.sweepsSkippedIncomplete()) +
-			                  " incomplete, " +
+			                  " incomplete skipped, " +
 			                  std::to_string(builder.sweepsFailed()) +
 			                  " failed; no map written)");
 		    semnav::MapIO::save(builder.map(), argOut.getValue());

@@ -185,12 +185,25 @@ TEST(RawlogSweepReader, EmptyAndOdometryOnlyRawlogsHaveNoSweeps)
 		for (int i = 0; i < 3; i++) w.write(*makeOdometry(i, 0, 0));
 		w.commit();
 	}
-	EXPECT_EQ(
-	    readUntilError(empty).second,
-	    "no sweeps in " + empty + " (0 objects, 0 scan lines)");
-	EXPECT_EQ(
-	    readUntilError(odo).second,
-	    "no sweeps in " + odo + " (3 objects, 0 scan lines)");
+	for (const auto& [path, objects] : {std::pair{empty, 0}, std::pair{odo, 3}})
+	{
+		// The reader just ends (a replay has nothing to replay) ...
+		EXPECT_EQ(readUntilError(path).first.size(), 0u);
+		EXPECT_EQ(readUntilError(path).second, "");
+		// ... readRawlogSweeps(), which needs sweeps, says so.
+		try
+		{
+			readRawlogSweeps(path);
+			ADD_FAILURE() << "no error for " << path;
+		}
+		catch (const RawlogError& e)
+		{
+			EXPECT_EQ(
+			    std::string(e.what()), "no sweeps in " + path + " (" +
+			                               std::to_string(objects) +
+			                               " objects, 0 scan lines)");
+		}
+	}
 	fs::remove_all(dir);
 }
 

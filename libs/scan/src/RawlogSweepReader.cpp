@@ -76,10 +76,13 @@ void RawlogSweepReader::readMore()
 	if (!error.empty())
 		m_error = error + " (" + std::to_string(m_assembler.sweepsEmitted()) +
 		          " sweeps read)";
-	else if (m_assembler.sweepsEmitted() == 0)
-		m_error = "no sweeps in " + m_path + " (" +
-		          std::to_string(m_in.objectsRead()) + " objects, " +
-		          std::to_string(m_lines) + " scan lines)";
+}
+
+std::string RawlogSweepReader::noSweepsMessage() const
+{
+	return "no sweeps in " + m_path + " (" +
+	       std::to_string(m_in.objectsRead()) + " objects, " +
+	       std::to_string(m_lines) + " scan lines)";
 }
 
 bool RawlogSweepReader::next(Sweep& out)
@@ -106,6 +109,7 @@ std::vector<Sweep> readRawlogSweeps(
 	std::vector<Sweep> out;
 	Sweep s;
 	while (reader.next(s)) out.push_back(std::move(s));
+	if (out.empty()) throw RawlogError(reader.noSweepsMessage());
 	return out;
 }
 

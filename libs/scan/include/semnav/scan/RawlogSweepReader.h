@@ -17,8 +17,8 @@ namespace semnav
  * deserialization). When the file is corrupt or truncated, next() first
  * returns every sweep that could be read (the last one flagged incomplete)
  * and then throws RawlogError naming the file and where the damage is. A
- * file that ends cleanly without a single sweep (empty, odometry only)
- * throws RawlogError "no sweeps in ...". */
+ * file without a sweep (empty, odometry only) just ends: callers that need
+ * sweeps say noSweepsMessage(). */
 class RawlogSweepReader
 {
 public:
@@ -35,6 +35,8 @@ public:
 	std::size_t objectsRead() const { return m_in.objectsRead(); }
 	const SweepAssembler& assembler() const { return m_assembler; }
 	const std::string& path() const { return m_path; }
+	/** "no sweeps in <path> (N objects, L scan lines)". */
+	std::string noSweepsMessage() const;
 
 private:
 	void readMore();
@@ -49,7 +51,8 @@ private:
 	mrpt::poses::CPose2D m_actionOdometry;
 };
 
-/** Reads all sweeps of a rawlog; throws RawlogError on a corrupt file. */
+/** Reads all sweeps of a rawlog; throws RawlogError on a corrupt file or
+ * one without a sweep. */
 std::vector<Sweep> readRawlogSweeps(
     const std::string& path,
     const SweepAssembler::TOptions& options = SweepAssembler::TOptions());
