@@ -20,19 +20,11 @@
 using namespace semnav;
 using semnav::test::makeLine;
 using semnav::test::makeOdometry;
+using semnav::test::tempDir;
 namespace fs = std::filesystem;
 
 namespace
 {
-fs::path tempDir(const std::string& name)
-{
-	const fs::path d = fs::temp_directory_path() /
-	                   ("semnav_" + name + "_" + std::to_string(::getpid()));
-	fs::remove_all(d);
-	fs::create_directories(d);
-	return d;
-}
-
 /** Two nodding sweeps of 211 lines (odometry before each), plain. */
 std::string writePlainLog(const fs::path& dir)
 {
