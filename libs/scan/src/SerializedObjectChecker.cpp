@@ -114,15 +114,11 @@ SerializedObjectChecker::Header SerializedObjectChecker::header()
 	const std::uint8_t lengthByte = m_firstByte >= 0 ? m_firstByte : u8();
 	m_firstByte = -1;
 	if (!(lengthByte & kNewFormat))
-		fail(
-		    "not an object header (byte 0x" +
-		    [&]
-		    {
-			    char hex[3];
-			    std::snprintf(hex, sizeof(hex), "%02x", lengthByte);
-			    return std::string(hex);
-		    }() +
-		    ")");
+	{
+		char hex[8];
+		std::snprintf(hex, sizeof(hex), "0x%02x", lengthByte);
+		fail(std::string("not an object header (byte ") + hex + ")");
+	}
 	const std::size_t length = lengthByte & ~kNewFormat;
 	if (length == 0 || length > kMaxClassName)
 		fail("class name of " + std::to_string(length) + " characters");
@@ -140,14 +136,6 @@ SerializedObjectChecker::Header SerializedObjectChecker::header()
 
 void SerializedObjectChecker::body(const Header& h, Slot slot)
 {
-	auto expect = [&](bool ok)
-	{
-		if (!ok)
-			fail(
-			    "unsupported class here (semnav reads "
-			    "CObservation2DRangeScan, CObservationOdometry, "
-			    "CSensoryFrame, CActionCollection)");
-	};
 	const bool observation =
 	    slot == Slot::TopLevel || slot == Slot::Observation;
 	if (h.name == "CObservation2DRangeScan" && observation)
@@ -174,13 +162,17 @@ void SerializedObjectChecker::body(const Header& h, Slot slot)
 		matrix(rows, count("matrix columns", 16));
 	}
 	else
-		expect(false);
+		fail(
+		    "unsupported class here (semnav reads CObservation2DRangeScan, "
+		    "CObservationOdometry, CSensoryFrame, CActionCollection)");
 }
 
 void SerializedObjectChecker::scan(int version)
 {
 	if (version > 7) fail("unsupported version " + std::to_string(version));
-	skip(kFloat + 1 + kFloat);  // aperture, rightToLeft, maxRange
+	skip(kFloat);  // aperture
+	flag("rightToLeft");
+	skip(kFloat);  // maxRange
 	object(Slot::Pose3D, false);
 	if (version < 6) object(Slot::Matrix, false);  // covSensorPose
 	const std::uint32_t n = count("beams", RawlogObjectReader::kMaxBeams);
