@@ -75,6 +75,7 @@ nlohmann::json checkJson(
 	j["sweeps"] = r.sweepsComplete;
 	j["sweeps_incomplete"] = r.sweepsIncomplete;
 	j["truncated"] = r.truncated;
+	j["truncation"] = r.truncation;
 	j["pixels"] = r.pixels;
 	j["median_abs_error_m"] = r.medianAbsError;
 	j["within_3sigma"] = r.within3Sigma;
@@ -269,6 +270,12 @@ int main(int argc, char** argv)
 	TCLAP::ValueArg<std::string> argCheck(
 	    "", "check", "Check mode: the captured rawlog to compare", false, "",
 	    "R.rawlog", cmd);
+	TCLAP::SwitchArg argTruncatedOk(
+	    "", "truncated-ok",
+	    "Check mode: a rawlog cut short (writer killed) is checked as far as "
+	    "it goes and exits 0 (default: exit 1 after the JSON, with a line "
+	    "saying where it ends)",
+	    cmd);
 	TCLAP::ValueArg<std::string> argStats(
 	    "", "stats", "Check mode: the driver's stats_file to merge", false, "",
 	    "F.json", cmd);
@@ -358,17 +365,21 @@ int main(int argc, char** argv)
 			    const semnav::SceneLineCaster caster(scene);
 			    const double res =
 			        semnav::TiltingScannerEmulator::tiltResolution();
+			    const auto check = semnav::checkCapture(
+			        argCheck.getValue(), caster, *pose, scene.sensor.rangeNoise,
+			        res, scene.sensor.thetaMax - scene.sensor.thetaMin);
 			    const auto j = checkJson(
-			        semnav::checkCapture(
-			            argCheck.getValue(), caster, *pose,
-			            scene.sensor.rangeNoise, res,
-			            scene.sensor.thetaMax - scene.sensor.thetaMin),
-			        argCheck.getValue(), argStats.getValue(),
+			        check, argCheck.getValue(), argStats.getValue(),
 			        argTruth.getValue());
 			    if (json)
 				    std::cout << j.dump() << std::endl;
 			    else
 				    std::cout << j.dump(2) << std::endl;
+			    if (check.truncated && !argTruncatedOk.getValue())
+				    throw semnav::RawlogError(
+				        check.truncation + " (" +
+				        std::to_string(check.objects) +
+				        " objects before it checked)");
 			    return 0;
 		    }
 

@@ -200,6 +200,16 @@ int main(int argc, char** argv)
 		    semnav::ProgressBar bar(builder.expectedSweeps(), "mapping");
 		    builder.run([&](std::size_t done) { bar.update(done); });
 		    bar.finish();
+		    if (builder.map().sweepsInserted() == 0)  // no 0 x 0 map
+			    throw semnav::RawlogError(
+			        !builder.readError().empty()
+			            ? builder.readError() + " (no map written)"
+			            : "no sweeps in " + s.rawlog + " (" +
+			                  std::to_string(
+			                      builder.sweepsSkippedIncomplete()) +
+			                  " incomplete skipped, " +
+			                  std::to_string(builder.sweepsFailed()) +
+			                  " failed; no map written)");
 		    semnav::MapIO::save(builder.map(), argOut.getValue());
 
 		    const auto j = summary(builder, poses, argOut.getValue());

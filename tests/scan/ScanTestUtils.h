@@ -5,11 +5,24 @@
 #include <mrpt/obs/CObservationOdometry.h>
 #include <semnav/scan/RawlogWriter.h>
 #include <semnav/scan/TiltGeometry.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
+#include <string>
 
 namespace semnav::test
 {
+/** An empty directory semnav_<name>_<pid> under the temp directory. */
+inline std::filesystem::path tempDir(const std::string& name)
+{
+	const auto d = std::filesystem::temp_directory_path() /
+	               ("semnav_" + name + "_" + std::to_string(::getpid()));
+	std::filesystem::remove_all(d);
+	std::filesystem::create_directories(d);
+	return d;
+}
+
 /** Range of beam `c` on a synthetic line at tilt index `k`: unique per pixel
  * so tests can check where every value went. */
 inline float syntheticRange(int k, std::size_t c)

@@ -1,11 +1,9 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-#include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
-#include <mrpt/serialization/CArchive.h>
-#include <mrpt/system/filesystem.h>
 #include <semnav/common/Error.h>
 #include <semnav/emulation/CaptureCheck.h>
 #include <semnav/emulation/SceneLineCaster.h>
+#include <semnav/scan/RawlogObjectReader.h>
 #include <semnav/scan/TiltGeometry.h>
 
 #include <algorithm>
@@ -16,22 +14,12 @@ namespace semnav
 {
 namespace
 {
-std::string firstLine(const std::string& s)
-{
-	const auto e = s.find('\n');
-	return e == std::string::npos ? s : s.substr(0, e);
-}
-
 /** Every sweep of the rawlog at `path` (counting its objects and lines;
  * a read error ends it as truncated). */
 std::vector<Sweep> readCapturedSweeps(
     const std::string& path, double nominalSpan, CaptureCheckResult& res)
 {
-	if (!mrpt::system::fileExists(path))
-		throw RawlogError("rawlog " + path + " does not exist");
-	mrpt::io::CFileGZInputStream in;
-	if (!in.open(path)) throw RawlogError("cannot open rawlog " + path);
-	auto arch = mrpt::serialization::archiveFrom(in);
+	RawlogObjectReader in(path);
 	SweepAssembler::TOptions ao;
 	ao.nominalSpan = nominalSpan;
 	SweepAssembler assembler(ao);
@@ -46,16 +34,12 @@ std::vector<Sweep> readCapturedSweeps(
 		mrpt::serialization::CSerializable::Ptr obj;
 		try
 		{
-			obj = arch.ReadObject();
+			if (!in.next(obj)) break;
 		}
-		catch (const mrpt::serialization::CExceptionEOF&)
-		{
-			break;
-		}
-		catch (const std::exception& e)
+		catch (const RawlogError& e)
 		{
 			res.truncated = true;
-			res.truncation = firstLine(e.what());
+			res.truncation = e.what();
 			break;
 		}
 		res.objects++;
@@ -69,8 +53,9 @@ std::vector<Sweep> readCapturedSweeps(
 	drain();
 	if (res.lines == 0)
 		throw RawlogError(
-		    "rawlog " + path + " holds no scan line (" +
-		    std::to_string(res.objects) + " objects)");
+		    res.truncated ? res.truncation
+		                  : "rawlog " + path + " holds no scan line (" +
+		                        std::to_string(res.objects) + " objects)");
 	return sweeps;
 }
 
@@ -189,20 +174,18 @@ TiltCheckResult checkTilts(
 	std::vector<std::pair<double, double>> truth;
 	double t, th;
 	while (tf >> t >> th) truth.emplace_back(t, th);
-	mrpt::io::CFileGZInputStream in;
-	if (!in.open(rawlogPath)) throw RawlogError("cannot open " + rawlogPath);
-	auto arch = mrpt::serialization::archiveFrom(in);
+	RawlogObjectReader in(rawlogPath);
 	std::vector<double> errs, offsets;
 	for (;;)
 	{
 		mrpt::serialization::CSerializable::Ptr obj;
 		try
 		{
-			obj = arch.ReadObject();
+			if (!in.next(obj)) break;
 		}
-		catch (const std::exception&)
+		catch (const RawlogError&)
 		{
-			break;
+			break;  // checkCapture() reported it
 		}
 		auto scan =
 		    std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(obj);

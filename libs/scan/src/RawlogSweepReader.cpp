@@ -1,11 +1,8 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-#include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
-#include <mrpt/system/filesystem.h>
-#include <semnav/common/CommandLine.h>
 #include <semnav/common/Error.h>
 #include <semnav/scan/RawlogSweepReader.h>
 
@@ -15,7 +12,7 @@ namespace semnav
 {
 RawlogSweepReader::RawlogSweepReader(
     const std::string& path, const SweepAssembler::TOptions& options)
-    : m_path(path), m_assembler(options)
+    : m_path(path), m_in(path), m_assembler(options)
 {
 	// Notes on stderr: MRPT's console output is stdout, which may carry
 	// the apps' JSON.
@@ -24,60 +21,68 @@ RawlogSweepReader::RawlogSweepReader(
 	    [](std::string_view msg, mrpt::system::VerbosityLevel,
 	       std::string_view loggerName, mrpt::Clock::time_point)
 	    { std::cerr << loggerName << ": " << msg << std::endl; });
-	if (!mrpt::system::fileExists(path))
-		throw RawlogError("cannot open rawlog " + path + ": no such file");
-	m_in = std::make_unique<mrpt::io::CFileGZInputStream>();
-	std::string err;
-	if (!m_in->open(path, err))
-		throw RawlogError("cannot open rawlog " + path + ": " + err);
 }
 
 RawlogSweepReader::~RawlogSweepReader() = default;
 
+void RawlogSweepReader::push(const mrpt::serialization::CSerializable::Ptr& obj)
+{
+	if (auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation>(obj))
+	{
+		m_lines += IS_CLASS(*obs, mrpt::obs::CObservation2DRangeScan);
+		m_assembler.push(obs);
+	}
+	else if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(obj))
+	{
+		for (const auto& o : *sf)
+		{
+			m_lines += o && IS_CLASS(*o, mrpt::obs::CObservation2DRangeScan);
+			m_assembler.push(o);
+		}
+	}
+	else if (
+	    auto acts =
+	        std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(obj))
+	{
+		if (auto mv = acts->getBestMovementEstimation())
+		{
+			m_actionOdometry =
+			    m_actionOdometry + mv->rawOdometryIncrementReading;
+			m_assembler.pushOdometry(m_actionOdometry);
+		}
+	}
+}
+
 void RawlogSweepReader::readMore()
 {
-	auto arch = mrpt::serialization::archiveFrom(*m_in);
+	std::string error;
 	while (!m_eof && !m_assembler.hasSweep())
 	{
 		mrpt::serialization::CSerializable::Ptr obj;
 		try
 		{
-			obj = arch.ReadObject();
+			m_eof = !m_in.next(obj);
 		}
-		catch (const mrpt::serialization::CExceptionEOF&)
+		catch (const RawlogError& e)
 		{
+			error = e.what();
 			m_eof = true;
-			break;
 		}
-		catch (const std::exception& e)
-		{
-			const std::string what = CommandLine::firstLine(e.what());
-			m_error = "rawlog " + m_path + " is corrupt or truncated after " +
-			          std::to_string(m_objects) + " objects (" +
-			          std::to_string(m_assembler.sweepsEmitted()) +
-			          " sweeps read): " + what;
-			m_eof = true;
-			break;
-		}
-		m_objects++;
-		if (auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation>(obj))
-			m_assembler.push(obs);
-		else if (
-		    auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(obj))
-			for (const auto& o : *sf) m_assembler.push(o);
-		else if (
-		    auto acts =
-		        std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(obj))
-		{
-			if (auto mv = acts->getBestMovementEstimation())
-			{
-				m_actionOdometry =
-				    m_actionOdometry + mv->rawOdometryIncrementReading;
-				m_assembler.pushOdometry(m_actionOdometry);
-			}
-		}
+		if (!m_eof) push(obj);
 	}
-	if (m_eof) m_assembler.finish();
+	if (!m_eof) return;
+	m_assembler.finish();
+	// Counted after finish(): the sweep the damage cut short is read too.
+	if (!error.empty())
+		m_error = error + " (" + std::to_string(m_assembler.sweepsEmitted()) +
+		          " sweeps read)";
+}
+
+std::string RawlogSweepReader::noSweepsMessage() const
+{
+	return "no sweeps in " + m_path + " (" +
+	       std::to_string(m_in.objectsRead()) + " objects, " +
+	       std::to_string(m_lines) + " scan lines)";
 }
 
 bool RawlogSweepReader::next(Sweep& out)
@@ -104,6 +109,7 @@ std::vector<Sweep> readRawlogSweeps(
 	std::vector<Sweep> out;
 	Sweep s;
 	while (reader.next(s)) out.push_back(std::move(s));
+	if (out.empty()) throw RawlogError(reader.noSweepsMessage());
 	return out;
 }
 

@@ -190,5 +190,6 @@ void PerceptionRun::run(const std::function<void(std::size_t)>& progress)
 		m_done++;
 		if (progress) progress(m_done);
 	}
+	if (m_reader && m_done == 0) throw RawlogError(m_reader->noSweepsMessage());
 }
 }  // namespace semnav

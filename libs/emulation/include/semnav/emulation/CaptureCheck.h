@@ -18,9 +18,10 @@ struct CaptureCheckResult
 	std::size_t objects = 0;  ///< objects read
 	std::size_t lines = 0;    ///< CObservation2DRangeScan among them
 	std::size_t sweepsComplete = 0, sweepsIncomplete = 0;
-	/** The file ended in the middle of an object (e.g. writer killed). */
+	/** The file is cut short (e.g. writer killed) or corrupt from some
+	 * object on: what comes before it was read. */
 	bool truncated = false;
-	std::string truncation;  ///< what the reader said
+	std::string truncation;  ///< the reader's line: file, object, byte
 	/** Over the valid pixels of all sweeps. */
 	std::size_t pixels = 0;
 	/** Median |captured - true| (m). */
@@ -62,7 +63,9 @@ TiltCheckResult checkTilts(
  * its sweeps (SweepAssembler, default options) and compares every sweep
  * with the scene ray-cast from `robotPose` at each row's own tilt.
  * A sweep is complete when it spans 95 % of `nominalSpan` (rad).
- * A truncated file is not an error: what could be read is checked. Throws
+ * A truncated file is not an error here: what could be read is checked
+ * and `truncated` says where it ends (semnav-device-emulator --check then
+ * exits 1 unless --truncated-ok). Throws
  * RawlogError when the file cannot be opened or holds no scan line. */
 CaptureCheckResult checkCapture(
     const std::string& rawlogPath, const SceneLineCaster& caster,
