@@ -40,5 +40,8 @@ function(semnav_add_test name)
   target_compile_definitions(${name} PRIVATE
     SEMNAV_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     SEMNAV_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  # Test bodies at -O1 (the libraries they call keep the build type's flags):
+  # a quarter less compile time for a clean build.
+  target_compile_options(${name} PRIVATE $<$<CONFIG:Release>:-O1>)
   gtest_discover_tests(${name} WORKING_DIRECTORY ${PROJECT_BINARY_DIR} DISCOVERY_TIMEOUT 60 ${props})
 endfunction()
