@@ -417,13 +417,16 @@ TEST(MapAccuracy, DISABLED_TrainingSceneObjects)
 	// The cascade training scenes, for diagnosing map rules on more objects
 	// than the held-out and validation scenes hold (run with
 	// --gtest_also_run_disabled_tests; SEMNAV_MAP_DIAG=1 prints every
-	// instance; about a minute, so not in every ctest run). Measured: 174
-	// of 177 found once, 2 spurious of 179; margin of one.
+	// instance; minutes, so not in every ctest run). README "Objects in
+	// the map", measured with --gtest_also_run_disabled_tests
+	// --gtest_filter='*Training*': 177 seen, 177 found once, 1 spurious (of
+	// 179 instances). Asserts at most one object fewer and one more
+	// spurious instance.
 	std::vector<std::string> names;
 	for (char c = 'a'; c <= 't'; c++)
 		names.push_back(std::string("train_") + c);
 	const auto all = scoreCascadeScenes(names);
 	ASSERT_GE(all.seen, 176u);
-	EXPECT_GE(all.foundOnce, 173u);
-	EXPECT_LE(all.spurious, 3u);
+	EXPECT_GE(all.foundOnce, 176u);
+	EXPECT_LE(all.spurious, 2u);
 }
