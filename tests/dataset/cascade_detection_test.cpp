@@ -2,8 +2,8 @@
 // The shipped cascades (datasets/cascades/, scripts/train-cascades) on a
 // held-out simulated scene: they load in cv::CascadeClassifier, semnav's
 // evaluator agrees with OpenCV window by window on a real detection image,
-// detections fill LabeledSweep and score above a floor (the full figures
-// are in docs/detection.md).
+// and the search's settings each do what they claim. The README's accuracy
+// figures are held by detection_accuracy_test.cpp (twelve rooms).
 #include <gtest/gtest.h>
 #include <semnav/cascade/CascadeEvaluator.h>
 #include <semnav/cascade/CascadeXml.h>
@@ -141,43 +141,6 @@ TEST_F(CascadeDetection, ShippedCascadesAgreeWithOpenCvOnASweep)
 	}
 }
 
-TEST_F(CascadeDetection, HeldOutSceneScoresAboveAFloor)
-{
-	const Simulated& s = scene();
-	PerceptionPipeline p;
-	CascadeDetector det(opts);
-	ObjectScorer scorer;
-	const std::vector<Label> labels{
-	    Label::Washbasin, Label::Wastebasket, Label::Stairs};
-	std::size_t labelled = 0;
-	for (std::size_t i = 0; i < s.sweeps.size(); i++)
-	{
-		LabeledSweep ls = p.process(s.sweeps[i]);
-		det.detect(s.sweeps[i], ls);
-		for (const auto& d : ls.detections)
-		{
-			EXPECT_TRUE(
-			    d.label == Label::Washbasin || d.label == Label::Wastebasket ||
-			    d.label == Label::Stairs);
-			EXPECT_GT(d.imageBox.area(), 0);
-			EXPECT_GT(d.extent.z, 0.0);
-			labelled += ls.count(d.label) > 0;
-		}
-		scorer.add(ls.detections, s.groundTruth[i], labels);
-	}
-	for (Label l : labels)
-	{
-		const auto sc = scorer.score(l);
-		std::printf(
-		    "%-12s tp %zu fp %zu fn %zu precision %.3f recall %.3f\n",
-		    labelName(l).c_str(), sc.tp, sc.fp, sc.fn, sc.precision, sc.recall);
-		// A regression floor well below the measured figures.
-		EXPECT_GE(sc.precision, 0.5) << labelName(l);
-		EXPECT_GE(sc.recall, 0.4) << labelName(l);
-	}
-	EXPECT_GT(labelled, 0u) << "detections label their pixels";
-}
-
 TEST_F(CascadeDetection, ProposalsKeepMostOfTheWholeImageDetections)
 {
 	const Simulated& s = scene();
@@ -222,12 +185,14 @@ TEST_F(CascadeDetection, ProposalsKeepMostOfTheWholeImageDetections)
 		    labelName(l).c_str(), scoreWhole.score(l).tp,
 		    scoreWhole.score(l).fp, scoreProposed.score(l).tp,
 		    scoreProposed.score(l).fp);
-		EXPECT_GE(scoreProposed.score(l).precision, 0.5) << labelName(l);
+		// Measured: precision 0.95, 0.90, 1.00 (washbasin, wastebasket,
+		// stairs); asserts >= 0.8.
+		EXPECT_GE(scoreProposed.score(l).precision, 0.8) << labelName(l);
 	}
-	// Measured on val_a..f (semnav-detect, shipped settings): 229 of the
-	// 249 whole-image true positives (92 %); on this one scene 31 of 38;
-	// asserted with a margin.
-	EXPECT_GE(double(tpProposed), 0.8 * double(tpWhole));
+	// Measured on this scene (this test's output): 45 true positives with
+	// proposals, 45 on the whole image; asserts >= 90 % of the whole
+	// image's.
+	EXPECT_GE(double(tpProposed), 0.9 * double(tpWhole));
 	EXPECT_GT(tpProposed, 0u);
 }
 
@@ -353,9 +318,8 @@ TEST_F(CascadeDetection, RangeScalesKeepTheWholeImageDetections)
 		    labelName(l).c_str(), scoreWhole.score(l).tp,
 		    scoreWhole.score(l).fp, scoreGated.score(l).tp,
 		    scoreGated.score(l).fp);
-		// Measured on the three held-out scenes (semnav-detect): the same
-		// true positives, fewer false alarms; asserted with a margin of
-		// one for this one scene.
+		// Measured on this scene (this test's output): the same true
+		// positives and false alarms per class; asserts a margin of one.
 		EXPECT_GE(scoreGated.score(l).tp + 1, scoreWhole.score(l).tp)
 		    << labelName(l);
 		EXPECT_LE(scoreGated.score(l).fp, scoreWhole.score(l).fp + 1)

@@ -1,5 +1,5 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-// Localization on simulated runs whose odometry heading drifts 30-50 deg:
+// Localization on simulated runs whose odometry heading drifts 40-55 deg:
 // wall extraction against the scene, mapping with localization (main
 // directions on / off, odometry, MRPT's stock MCL), global localization and
 // kidnapped-robot recovery in a known map.
@@ -224,45 +224,81 @@ TEST(LocalizationAccuracy, KidnappedRobotIsDetectedAndRecovered)
 	    mrpt::DEG2RAD(2.0));
 }
 
-class DriftRun : public ::testing::TestWithParam<std::string>
+/** A drift run of the README's localization table and what
+ * `bench_localization_table --config config/localization.ini` measured on
+ * it: odometry's final heading error (deg), the shipped filter's final and
+ * largest heading error (deg) and its RMSE xy (m). The same on every run
+ * of one test alone, as ctest runs them (seeded simulation and filter);
+ * after other tests in one process the filter draws other numbers, within
+ * the margins. */
+struct DriftClaim
+{
+	const char* scene;
+	uint64_t seed;
+	double odometryDeg, finalDeg, maxDeg, rmse;
+};
+
+std::ostream& operator<<(std::ostream& o, const DriftClaim& c)
+{
+	return o << c.scene << ":" << c.seed;
+}
+
+class DriftRun : public ::testing::TestWithParam<DriftClaim>
 {
 };
 
 TEST_P(DriftRun, MainDirectionsBoundTheHeadingError)
 {
-	const SimRun& r = run(GetParam(), 1);
+	const DriftClaim& c = GetParam();
+	const SimRun& r = run(c.scene, c.seed);
 	const auto odo = mapRun(r, MappingLocalizer::Method::Odometry, false);
 	const auto on = mapRun(r, MappingLocalizer::Method::Walls, true);
 	const auto off = mapRun(r, MappingLocalizer::Method::Walls, false);
-	std::cerr << GetParam() << ": odometry final yaw "
-	          << mrpt::RAD2DEG(odo.finalYaw()) << " deg, rmse " << odo.rmseXY()
-	          << " m; main directions on " << mrpt::RAD2DEG(on.finalYaw())
-	          << " / " << mrpt::RAD2DEG(on.maxYaw()) << " deg, " << on.rmseXY()
+	std::cerr << c << ": odometry final yaw " << mrpt::RAD2DEG(odo.finalYaw())
+	          << " deg, rmse " << odo.rmseXY() << " m; main directions on "
+	          << mrpt::RAD2DEG(on.finalYaw()) << " / "
+	          << mrpt::RAD2DEG(on.maxYaw()) << " deg, " << on.rmseXY()
 	          << " m; off " << mrpt::RAD2DEG(off.finalYaw()) << " / "
 	          << mrpt::RAD2DEG(off.maxYaw()) << " deg, " << off.rmseXY()
 	          << " m\n";
-	// A real drift run: odometry heading off by more than 30 deg.
-	EXPECT_GE(odo.finalYaw(), mrpt::DEG2RAD(30));
-	EXPECT_LE(on.finalYaw(), mrpt::DEG2RAD(2));
-	EXPECT_LE(on.maxYaw(), mrpt::DEG2RAD(3));
-	EXPECT_LE(on.rmseXY(), 0.08);
+	// The simulated drift itself.
+	EXPECT_NEAR(mrpt::RAD2DEG(odo.finalYaw()), c.odometryDeg, 1.0);
+	// Asserts <= measured + 0.1 deg final, + 0.15 deg largest, + 0.02 m
+	// RMSE: every run stays <= 0.4 deg where the README says <= 0.23, so
+	// a heading 10x the README's fails.
+	EXPECT_LE(mrpt::RAD2DEG(on.finalYaw()), c.finalDeg + 0.1);
+	EXPECT_LE(mrpt::RAD2DEG(on.maxYaw()), c.maxDeg + 0.15);
+	EXPECT_LE(on.rmseXY(), c.rmse + 0.02);
 	// The correction is what bounds the heading: without it the error is
 	// larger (still far below odometry's).
 	EXPECT_LT(on.maxYaw(), off.maxYaw());
 	EXPECT_LT(off.finalYaw(), odo.finalYaw() / 3);
 }
 
+// README "Localization", the row "wall PF, main directions on (shipped)".
 INSTANTIATE_TEST_SUITE_P(
     Scenes, DriftRun,
     ::testing::Values(
-        "datasets/localization/corridor.yaml",
-        "datasets/localization/rooms.yaml", "datasets/office/office.yaml"));
+        DriftClaim{
+            "datasets/localization/corridor.yaml", 1, 49.59, 0.00, 0.05, 0.036},
+        DriftClaim{
+            "datasets/localization/corridor.yaml", 3, 42.47, 0.02, 0.09, 0.029},
+        DriftClaim{
+            "datasets/localization/rooms.yaml", 1, 46.23, 0.05, 0.11, 0.050},
+        DriftClaim{
+            "datasets/localization/rooms.yaml", 3, 39.92, 0.06, 0.10, 0.048},
+        DriftClaim{"datasets/office/office.yaml", 1, 50.55, 0.09, 0.24, 0.037},
+        DriftClaim{
+            "datasets/office/office.yaml", 3, 55.15, 0.05, 0.24, 0.058}));
 
 TEST(LocalizationAccuracy, StockMclBaselineTracksTheRooms)
 {
 	const SimRun& r = run("datasets/localization/rooms.yaml", 1);
 	const auto stock = mapRun(r, MappingLocalizer::Method::OccupancyMcl, false);
 	const auto odo = mapRun(r, MappingLocalizer::Method::Odometry, false);
+	std::cerr << "stock MCL, rooms seed 1: final yaw "
+	          << mrpt::RAD2DEG(stock.finalYaw()) << " deg, rmse "
+	          << stock.rmseXY() << " m\n";
 	EXPECT_LT(stock.rmseXY(), odo.rmseXY() / 3);
 	EXPECT_LT(stock.finalYaw(), mrpt::DEG2RAD(5));
 }

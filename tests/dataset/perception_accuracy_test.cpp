@@ -1,128 +1,133 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-// Rule-based classification against the simulator's ground truth (issue 3):
-// pixel F1 per class over valid-range pixels, on the two datasets and on
-// the four evaluation scenes of tests/dataset/scenes/ (made after the
-// rules were fixed). The sweeps are simulated in memory (ray caster and
-// tilting-LMS200 model of libs/sim), as semnav-sim would write them.
+// Pixel F1 per class against the simulator's ground truth (README
+// "Perception", docs/perception.md "Accuracy"), each scene run as the
+// README runs it:
+//   semnav-sim --scene S --out D --seed 1
+//   semnav-perceive --rawlog D/<name>.rawlog --out O --gt-dir D --json
+// (SimulationRunner and PerceptionRun, the two apps' cores: rules and the
+// shipped cascades). The figures are the same on every run (seeded
+// simulation, deterministic perception). Each is asserted >= measured -
+// kMargin.
 #include <gtest/gtest.h>
-#include <semnav/perception/GroundTruthScorer.h>
-#include <semnav/perception/PerceptionPipeline.h>
-#include <semnav/sim/RayCaster.h>
+#include <semnav/detection/CascadeDetector.h>
 #include <semnav/sim/SceneLoader.h>
-#include <semnav/sim/TiltingLaserSimulator.h>
+#include <semnav/sim/SimulationRunner.h>
+#include <semnav/training/PerceptionRun.h>
+#include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <string>
 
 using namespace semnav;
+namespace fs = std::filesystem;
 
 namespace
 {
 const std::string kSource = SEMNAV_SOURCE_DIR;
 
-/** Simulates every trajectory pose of a scene (seed 1) and scores the
- * pipeline's labels. */
-GroundTruthScorer score(const std::string& scenePath)
-{
-	const Scene scene = SceneLoader::loadFile(scenePath);
-	const RayCaster caster(scene, 1, 0.1);
-	TiltingLaserSimulator sim(caster, scene.sensor, 1);
-	PerceptionPipeline pipeline;
-	GroundTruthScorer scorer;
-	LabeledSweep ls;
-	for (std::size_t k = 0; k < scene.trajectory.size(); k++)
-	{
-		const SimulatedSweep s =
-		    sim.simulate(scene.trajectory[k], k, mrpt::Clock::now(), 1 / 37.5);
-		const Sweep sweep = s.toSweep();
-		pipeline.process(sweep, ls);
-		scorer.add(ls.labels, s.labels, ls.validMask);
-	}
-	return scorer;
-}
+/** A drop a few pixels' worth below the measured F1 (about a tenth of
+ * the gap between a measured figure and the targets of issue 3). */
+constexpr double kMargin = 0.015;
 
+/** Simulates a scene (seed 1), perceives it as semnav-perceive does and
+ * checks every F1 of `measured` within kMargin. */
 void expectF1(
-    const GroundTruthScorer& s, const std::map<Label, double>& atLeast)
+    const std::string& scenePath, const std::map<Label, double>& measured)
 {
-	for (const auto& [label, min] : atLeast)
+	const Scene scene = SceneLoader::loadFile(kSource + "/" + scenePath);
+	const fs::path dir =
+	    fs::temp_directory_path() /
+	    ("semnav_percacc_" + scene.name + "_" + std::to_string(::getpid()));
+	fs::remove_all(dir);
+	const auto sim = SimulationRunner(scene, SimulationRunner::TOptions(), 1)
+	                     .run((dir / "sim").string());
+	PerceptionRun::Settings s;
+	s.cascades =
+	    CascadeDetector::TOptions::fromIniFile(kSource + "/config/cascade.ini");
+	s.rawlog = sim.rawlogPath;
+	s.out = (dir / "perceive").string();
+	s.gtDir = (dir / "sim").string();
+	PerceptionRun run(s);
+	run.run();
+	fs::remove_all(dir);
+	ASSERT_TRUE(run.scored());
+	for (const auto& [label, f1] : measured)
 	{
-		const auto sc = s.score(label);
+		const auto sc = run.labelScores().score(label);
 		std::printf(
-		    "  %-9s F1 %.4f (precision %.4f, recall %.4f, %zu px)\n",
-		    labelName(label).c_str(), sc.f1, sc.precision, sc.recall,
-		    sc.groundTruthPixels);
+		    "[ MEASURED ] %s %-11s F1 %.4f (precision %.4f, recall %.4f, %zu "
+		    "px)\n",
+		    scene.name.c_str(), labelName(label).c_str(), sc.f1, sc.precision,
+		    sc.recall, sc.groundTruthPixels);
 		EXPECT_GT(sc.groundTruthPixels, 500u) << labelName(label);
-		EXPECT_GE(sc.f1, min) << labelName(label) << ": precision "
-		                      << sc.precision << " recall " << sc.recall;
+		EXPECT_GE(sc.f1, f1 - kMargin)
+		    << scene.name << " " << labelName(label) << ": precision "
+		    << sc.precision << " recall " << sc.recall;
 	}
 }
 }  // namespace
 
-// The issue's bars: floor, wall, ceiling >= 0.95; door >= 0.85; sidewalk,
-// grass >= 0.9.
+// The measured F1s (README and docs/perception.md tables).
 TEST(PerceptionAccuracy, OfficeDataset)
 {
+	// With the detector's objects (docs/perception.md): stairs 0.978,
+	// washbasin 0.967, wastebasket 0.766.
 	expectF1(
-	    score(kSource + "/datasets/office/office.yaml"),
-	    {{Label::Floor, 0.95},
-	     {Label::Wall, 0.95},
-	     {Label::Ceiling, 0.95},
-	     {Label::Door, 0.85}});
+	    "datasets/office/office.yaml", {{Label::Floor, 0.975},
+	                                    {Label::Ceiling, 0.995},
+	                                    {Label::Wall, 0.988},
+	                                    {Label::Door, 0.944},
+	                                    {Label::Stairs, 0.978},
+	                                    {Label::Washbasin, 0.967},
+	                                    {Label::Wastebasket, 0.766}});
 }
 
 TEST(PerceptionAccuracy, OutdoorDataset)
 {
 	expectF1(
-	    score(kSource + "/datasets/outdoor/outdoor.yaml"),
-	    {{Label::Wall, 0.95},
-	     {Label::Door, 0.85},
-	     {Label::Sidewalk, 0.9},
-	     {Label::Grass, 0.9}});
+	    "datasets/outdoor/outdoor.yaml", {{Label::Wall, 0.998},
+	                                      {Label::Door, 0.974},
+	                                      {Label::Sidewalk, 0.948},
+	                                      {Label::Grass, 0.967}});
 }
 
-// Made after the rules were frozen (v2), evaluated once: meet the bars.
+// Made after the rules were frozen (v2), scored once.
 TEST(PerceptionAccuracy, LabScene)
 {
 	expectF1(
-	    score(kSource + "/tests/dataset/scenes/lab.yaml"),
-	    {{Label::Floor, 0.95},
-	     {Label::Wall, 0.95},
-	     {Label::Ceiling, 0.95},
-	     {Label::Door, 0.85}});
+	    "tests/dataset/scenes/lab.yaml", {{Label::Floor, 0.964},
+	                                      {Label::Ceiling, 0.997},
+	                                      {Label::Wall, 0.958},
+	                                      {Label::Door, 0.961}});
 }
 
 TEST(PerceptionAccuracy, ParkScene)
 {
 	expectF1(
-	    score(kSource + "/tests/dataset/scenes/park.yaml"),
-	    {{Label::Wall, 0.94},
-	     {Label::Door, 0.85},
-	     {Label::Sidewalk, 0.88},
-	     {Label::Grass, 0.9}});
+	    "tests/dataset/scenes/park.yaml", {{Label::Wall, 0.950},
+	                                       {Label::Door, 0.921},
+	                                       {Label::Sidewalk, 0.901},
+	                                       {Label::Grass, 0.936}});
 }
 
-// Made after the first freeze (v1); their failures led to rules v2 (FOV
-// truncation at slanted image borders, height spread where R-bar is
-// missing). They do NOT meet the door bar (corridor, ~0.81-0.83) and the
-// sidewalk bar (campus, ~0.89): these floors guard against regressions
-// only (see docs/perception.md).
-TEST(PerceptionAccuracy, CorridorSceneRegression)
+// Made after the first freeze (v1), used to fix the rules (v2): below the
+// door target (corridor) and the sidewalk target (campus).
+TEST(PerceptionAccuracy, CorridorScene)
 {
 	expectF1(
-	    score(kSource + "/tests/dataset/scenes/corridor.yaml"),
-	    {{Label::Floor, 0.95},
-	     {Label::Wall, 0.95},
-	     {Label::Ceiling, 0.95},
-	     {Label::Door, 0.78}});
+	    "tests/dataset/scenes/corridor.yaml", {{Label::Floor, 0.984},
+	                                           {Label::Ceiling, 0.995},
+	                                           {Label::Wall, 0.985},
+	                                           {Label::Door, 0.834}});
 }
 
-TEST(PerceptionAccuracy, CampusSceneRegression)
+TEST(PerceptionAccuracy, CampusScene)
 {
 	expectF1(
-	    score(kSource + "/tests/dataset/scenes/campus.yaml"),
-	    {{Label::Wall, 0.95},
-	     {Label::Door, 0.85},
-	     {Label::Sidewalk, 0.85},
-	     {Label::Grass, 0.9}});
+	    "tests/dataset/scenes/campus.yaml", {{Label::Wall, 0.995},
+	                                         {Label::Door, 0.940},
+	                                         {Label::Sidewalk, 0.887},
+	                                         {Label::Grass, 0.932}});
 }
