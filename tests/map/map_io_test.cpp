@@ -216,6 +216,57 @@ TEST(MapIO, CorruptOrMissingFilesGiveClearErrors)
 	fs::remove_all(dir);
 }
 
+namespace
+{
+/** map.yaml of `dir` with its first `from` replaced by `to`. */
+void editMapYaml(
+    const fs::path& dir, const std::string& from, const std::string& to)
+{
+	std::ifstream in(dir / "map.yaml");
+	std::stringstream ss;
+	ss << in.rdbuf();
+	std::string t = ss.str();
+	const auto at = t.find(from);
+	ASSERT_NE(at, std::string::npos) << from;
+	t.replace(at, from.size(), to);
+	std::ofstream(dir / "map.yaml") << t;
+}
+
+/** The message of the IoError that loading `dir` throws ("" if none). */
+std::string loadError(const fs::path& dir)
+{
+	try
+	{
+		SemanticMap m;
+		MapIO::load(dir.string(), m);
+	}
+	catch (const IoError& e)
+	{
+		return e.what();
+	}
+	return "";
+}
+}  // namespace
+
+TEST(MapIO, BadGeometryNamesItsKey)
+{
+	SemanticMap a;
+	buildMap(a);
+	const auto dir = tempDir("mapio_geometry");
+	MapIO::save(a, dir.string());
+	editMapYaml(dir, "resolution: 0.05", "resolution: -0.05");
+	std::string e = loadError(dir);
+	EXPECT_NE(
+	    e.find("map.yaml:2: resolution: must be a positive"), std::string::npos)
+	    << e;
+	MapIO::save(a, dir.string());
+	editMapYaml(dir, "size: [", "size: [99999999, 9]\n  was: [");
+	e = loadError(dir);
+	EXPECT_NE(e.find("semnav.size: "), std::string::npos) << e;
+	EXPECT_NE(e.find("no map size"), std::string::npos) << e;
+	fs::remove_all(dir);
+}
+
 TEST(MapIO, ConcurrentLoadsSeeOneWholeMapWhileSavesReplaceIt)
 {
 	// Two maps that differ in every file: one and two sweeps.

@@ -25,6 +25,9 @@ namespace fs = std::filesystem;
 namespace
 {
 constexpr int kFormatVersion = 1;
+/** The largest map side a directory may hold (819 m at 5 cm): bounds what
+ * a corrupt map.yaml or image header can make the loader allocate. */
+constexpr int kMaxSide = 1 << 14;
 
 /** Debian's liboctomap is built with debug output on stderr ("Reading
  * binary octree type OcTree", " done."); silence it so that errors stay
@@ -412,6 +415,10 @@ GridGeometry readGeometry(
 	GridGeometry g;
 	g.resolution =
 	    as<double>(need(root, "resolution", file, ""), file, "resolution");
+	if (!(g.resolution > 0) || !std::isfinite(g.resolution))
+		throw IoError(
+		    where(file, root["resolution"], "resolution") +
+		    ": must be a positive number of metres per cell");
 	const YAML::Node origin = need(root, "origin", file, "");
 	if (!origin.IsSequence() || origin.size() < 2)
 		throw IoError(where(file, origin, "origin") + ": expected [x, y, yaw]");
@@ -430,11 +437,16 @@ GridGeometry readGeometry(
 		throw IoError(where(file, size, "semnav.size") + ": expected [sx, sy]");
 	g.cols = as<int>(size[0], file, "semnav.size");
 	g.rows = as<int>(size[1], file, "semnav.size");
-	if (!(g.resolution > 0) || g.cols < 0 || g.rows < 0)
-		throw IoError(where(file, size, "semnav.size") + ": bad geometry");
+	if (!std::isfinite(g.originX) || !std::isfinite(g.originY))
+		throw IoError(where(file, origin, "origin") + ": must be finite");
+	if (g.cols < 0 || g.rows < 0 || g.cols > kMaxSide || g.rows > kMaxSide)
+		throw IoError(
+		    where(file, size, "semnav.size") + ": " + std::to_string(g.cols) +
+		    " x " + std::to_string(g.rows) + " cells is no map size (0 to " +
+		    std::to_string(kMaxSide) + " a side)");
 	if (std::abs(g.resolution - resolution) > 1e-9)
 		throw IoError(
-		    where(file, root, "resolution") +
+		    where(file, root["resolution"], "resolution") +
 		    ": map resolution differs from the configured one");
 	return g;
 }
