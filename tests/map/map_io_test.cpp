@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <opencv2/imgcodecs.hpp>
 #include <thread>
 
@@ -264,6 +265,56 @@ TEST(MapIO, BadGeometryNamesItsKey)
 	e = loadError(dir);
 	EXPECT_NE(e.find("semnav.size: "), std::string::npos) << e;
 	EXPECT_NE(e.find("no map size"), std::string::npos) << e;
+	fs::remove_all(dir);
+}
+
+TEST(MapIO, CorruptImageHeadersAreOneLineNamingTheFile)
+{
+	SemanticMap a;
+	buildMap(a);
+	const auto dir = tempDir("mapio_headers");
+	const auto bytesOf = [](const fs::path& p)
+	{
+		std::ifstream in(p, std::ios::binary);
+		return std::string(std::istreambuf_iterator<char>(in), {});
+	};
+	struct Case
+	{
+		std::string file, needle;
+		std::function<std::string(std::string)> corrupt;
+	};
+	const Case cases[] = {
+	    {"layers/cost.pfm", "map.yaml says",
+	     [](std::string) { return "Pf\n99999999 99999999\n-1\n\0\0\0\0"; }},
+	    {"layers/cost.pfm", "bad header",
+	     [](std::string) { return "Pf\n12 abc\n-1\n"; }},
+	    {"layers/roughness.pfm", "bytes of pixels",
+	     [](std::string b) { return b.substr(0, b.size() / 2); }},
+	    {"labels.png", "cannot decode",
+	     [](std::string b)
+	     {
+		     for (std::size_t i = 60; i < b.size() - 20; i++) b[i] ^= 0x55;
+		     return b;
+	     }},
+	    {"occupancy.png", "map.yaml says",
+	     [](std::string b)
+	     {
+		     b[16] = '\x7f';  // IHDR width: 2^31 - ...
+		     return b;
+	     }},
+	};
+	for (const auto& c : cases)
+	{
+		MapIO::save(a, dir.string());
+		const std::string bytes = c.corrupt(bytesOf(dir / c.file));
+		std::ofstream(dir / c.file, std::ios::binary) << bytes;
+		testing::internal::CaptureStderr();
+		const std::string e = loadError(dir);
+		const std::string printed = testing::internal::GetCapturedStderr();
+		EXPECT_NE(e.find((dir / c.file).string()), std::string::npos) << e;
+		EXPECT_NE(e.find(c.needle), std::string::npos) << e;
+		EXPECT_EQ(printed, "") << c.file << ": OpenCV or libpng printed";
+	}
 	fs::remove_all(dir);
 }
 

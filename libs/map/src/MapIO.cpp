@@ -18,6 +18,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "LayerImage.h"
+#include "QuietStderr.h"
+
 namespace semnav
 {
 namespace fs = std::filesystem;
@@ -28,39 +31,6 @@ constexpr int kFormatVersion = 1;
 /** The largest map side a directory may hold (819 m at 5 cm): bounds what
  * a corrupt map.yaml or image header can make the loader allocate. */
 constexpr int kMaxSide = 1 << 14;
-
-/** Debian's liboctomap is built with debug output on stderr ("Reading
- * binary octree type OcTree", " done."); silence it so that errors stay
- * one line. */
-class QuietStderr
-{
-public:
-	QuietStderr()
-	{
-		std::fflush(stderr);
-		std::cerr.flush();
-		m_saved = ::dup(2);
-		const int devnull = ::open("/dev/null", O_WRONLY);
-		if (devnull >= 0)
-		{
-			::dup2(devnull, 2);
-			::close(devnull);
-		}
-	}
-	~QuietStderr()
-	{
-		std::fflush(stderr);
-		std::cerr.flush();
-		if (m_saved >= 0)
-		{
-			::dup2(m_saved, 2);
-			::close(m_saved);
-		}
-	}
-
-private:
-	int m_saved = -1;
-};
 
 /** Layer vector -> image with map_server orientation (row 0 = top). */
 template <typename T>
@@ -153,29 +123,9 @@ cv::Mat readImage(
     const MapDirectory& d, const std::string& rel, int type,
     const GridGeometry& g)
 {
-	const std::string path = d.path(rel);
-	const std::string bytes = d.read(rel);
-	cv::Mat img;
-	try
-	{
-		img = cv::imdecode(
-		    cv::Mat(
-		        1, static_cast<int>(bytes.size()), CV_8UC1,
-		        const_cast<char*>(bytes.data())),
-		    cv::IMREAD_UNCHANGED);
-	}
-	catch (const cv::Exception&)
-	{
-	}
-	if (img.empty()) throw IoError("cannot decode map image " + path);
-	if (img.type() != type)
-		throw IoError("map image " + path + " has the wrong pixel type");
-	if (img.cols != std::max(g.cols, 1) || img.rows != std::max(g.rows, 1))
-		throw IoError(
-		    "map image " + path + " is " + std::to_string(img.cols) + "x" +
-		    std::to_string(img.rows) + ", map.yaml says " +
-		    std::to_string(g.cols) + "x" + std::to_string(g.rows));
-	return img;
+	return decodeLayerImage(
+	    d.read(rel), d.path(rel), type, std::max(g.cols, 1),
+	    std::max(g.rows, 1));
 }
 
 template <typename T>
