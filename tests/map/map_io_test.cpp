@@ -318,6 +318,46 @@ TEST(MapIO, CorruptImageHeadersAreOneLineNamingTheFile)
 	fs::remove_all(dir);
 }
 
+TEST(MapIO, NonFiniteOrNegativeLayerValuesNameTheFileAndPixel)
+{
+	SemanticMap a;
+	buildMap(a);
+	const auto dir = tempDir("mapio_values");
+	const float nan = std::numeric_limits<float>::quiet_NaN(),
+	            inf = std::numeric_limits<float>::infinity();
+	struct Case
+	{
+		std::string layer;
+		float value;
+		std::string shown;
+	};
+	const Case cases[] = {
+	    {"cost", nan, "nan"},
+	    {"labels", -3.0f, "-3"},
+	    {"observations", inf, "inf"},
+	    {"roughness", -inf, "-inf"},
+	    {"occupancy_logodds", 1e6f, "1e+06"},
+	};
+	for (const auto& c : cases)
+	{
+		MapIO::save(a, dir.string());
+		const fs::path pfm = dir / "layers" / (c.layer + ".pfm");
+		cv::Mat img = cv::imread(pfm.string(), cv::IMREAD_UNCHANGED);
+		ASSERT_EQ(img.type(), CV_32FC1);
+		img.at<float>(2, 5) = c.value;
+		cv::imwrite(pfm.string(), img);
+		const std::string e = loadError(dir);
+		EXPECT_NE(
+		    e.find(pfm.string() + ": pixel (5, 2) is " + c.shown),
+		    std::string::npos)
+		    << e;
+	}
+	// NaN is roughness's "no data"; the saved maps hold it.
+	MapIO::save(a, dir.string());
+	EXPECT_EQ(loadError(dir), "");
+	fs::remove_all(dir);
+}
+
 TEST(MapIO, ConcurrentLoadsSeeOneWholeMapWhileSavesReplaceIt)
 {
 	// Two maps that differ in every file: one and two sweeps.

@@ -140,4 +140,25 @@ cv::Mat decodeLayerImage(
 	return decodePng(bytes, path, type, cols, rows);
 }
 
+void checkLayerValues(
+    const cv::Mat& img, const std::string& path, const LayerRange& range)
+{
+	for (int r = 0; r < img.rows; r++)
+		for (int c = 0; c < img.cols; c++)
+		{
+			const float v = img.at<float>(r, c);
+			if (std::isnan(v) ? range.nanMeansNoData
+			                  : v >= range.lowest && v <= range.highest)
+				continue;
+			std::ostringstream os;
+			os << "map layer " << path << ": pixel (" << c << ", " << r
+			   << ") is " << v << "; values must be "
+			   << (range.nanMeansNoData ? "NaN (no data) or " : "")
+			   << "finite and >= " << range.lowest;
+			if (range.highest < std::numeric_limits<float>::max())
+				os << " and <= " << range.highest;
+			throw IoError(os.str());
+		}
+}
+
 }  // namespace semnav

@@ -1,6 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #pragma once
 
+#include <limits>
 #include <opencv2/core.hpp>
 #include <string>
 
@@ -14,5 +15,19 @@ namespace semnav
 cv::Mat decodeLayerImage(
     const std::string& bytes, const std::string& path, int type, int cols,
     int rows);
+
+/** The values a float layer may hold: [lowest, highest], and NaN when
+ * `nanMeansNoData`. */
+struct LayerRange
+{
+	float lowest = 0;
+	float highest = std::numeric_limits<float>::max();
+	bool nanMeansNoData = false;
+};
+
+/** Throws IoError naming `path` and the first pixel (column, row of the
+ * image) whose value is outside `range` (NaN, infinite, negative...). */
+void checkLayerValues(
+    const cv::Mat& img, const std::string& path, const LayerRange& range);
 
 }  // namespace semnav

@@ -128,6 +128,23 @@ cv::Mat readImage(
 	    std::max(g.rows, 1));
 }
 
+/** A float layer under layers/, its values checked: log-odds are int8,
+ * roughness is NaN where nothing was seen, every other layer (labels,
+ * costs, ids, counts, and any added) is finite and >= 0. */
+cv::Mat readLayer(
+    const MapDirectory& d, const std::string& name, const GridGeometry& g)
+{
+	const std::string rel = "layers/" + name + ".pfm";
+	const cv::Mat img = readImage(d, rel, CV_32FC1, g);
+	LayerRange range;
+	if (name == "occupancy_logodds")
+		range = {-128.0f, 127.0f, false};
+	else if (name == "roughness")
+		range.nanMeansNoData = true;
+	checkLayerValues(img, d.path(rel), range);
+	return img;
+}
+
 template <typename T>
 std::vector<float> fromImage(const GridGeometry& g, const cv::Mat& img)
 {
@@ -463,11 +480,9 @@ void loadFrom(const MapDirectory& d, SemanticMap& map)
 	for (const auto& n : names)
 	{
 		const std::string name = as<std::string>(n, file, "semnav.layers");
-		layers[name] = fromImage<float>(
-		    g, readImage(d, "layers/" + name + ".pfm", CV_32FC1, g));
+		layers[name] = fromImage<float>(g, readLayer(d, name, g));
 	}
-	const auto lo = fromImage<float>(
-	    g, readImage(d, "layers/occupancy_logodds.pfm", CV_32FC1, g));
+	const auto lo = fromImage<float>(g, readLayer(d, "occupancy_logodds", g));
 	std::vector<int8_t> logodds(lo.size());
 	for (std::size_t i = 0; i < lo.size(); i++)
 		logodds[i] = static_cast<int8_t>(lo[i]);
