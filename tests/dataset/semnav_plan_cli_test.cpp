@@ -128,6 +128,8 @@ TEST(SemnavPlanCli, ErrorsAreOneLineWithExitCodes)
 	    {map + " --from 500,500 --goal door", "outside", 1},
 	    {map + " --from 1.2 --goal door", "--from", 2},
 	    {map + " --from 1.2,1.2", "exactly one", 2},
+	    {map + " --from 1.2,1.2 --goal door --profile fastest",
+	     "--profile: unknown cost profile 'fastest'", 2},
 	    {"--map /nonexistent --from 1,1 --goal door", "/nonexistent", 1},
 	};
 	for (const auto& c : cases)
