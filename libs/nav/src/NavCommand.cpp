@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <vector>
 
@@ -13,18 +16,20 @@ namespace semnav
 {
 namespace
 {
+/** A number token: false when `s` is no number; throws NavCommandError for
+ * a number out of range (1e400) or not finite (nan, inf). */
 bool parseNumber(const std::string& s, double& v)
 {
-	try
-	{
-		std::size_t n = 0;
-		v = std::stod(s, &n);
-		return n == s.size();
-	}
-	catch (const std::exception&)
-	{
-		return false;
-	}
+	if (s.empty()) return false;
+	char* end = nullptr;
+	errno = 0;
+	v = std::strtod(s.c_str(), &end);
+	if (end != s.c_str() + s.size()) return false;
+	if (!std::isfinite(v))
+		throw NavCommandError(
+		    "coordinate " + s +
+		    (errno == ERANGE ? " is out of range" : " is not a finite number"));
+	return true;
 }
 
 bool parseId(const std::string& s, int& id)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <iterator>
 #include <set>
 
@@ -19,6 +20,18 @@ using detail::owned;
 
 namespace
 {
+/** A point goal must lie on the map: say where the map is. */
+void checkGoalOnMap(const GridGeometry& g, double x, double y)
+{
+	if (g.cellOf(x, y)) return;
+	char buf[200];
+	std::snprintf(
+	    buf, sizeof(buf),
+	    "goal (%.3f, %.3f) is outside the map [%.3f, %.3f] x [%.3f, %.3f]", x,
+	    y, g.originX, g.maxX(), g.originY, g.maxY());
+	throw PlanningError(buf);
+}
+
 /** Bounding box of the cells in exactly one of two sorted lists. */
 CellRect differingCells(
     const std::vector<std::size_t>& a, const std::vector<std::size_t>& b,
@@ -257,10 +270,7 @@ GoalCells SemanticPlanner::goalCellsOf(const GoalKey& key) const
 	GoalCells cells;
 	if (key.kind == GoalKey::Kind::Point)
 	{
-		if (!g.cellOf(key.x, key.y))
-			throw PlanningError(
-			    "goal (" + std::to_string(key.x) + ", " +
-			    std::to_string(key.y) + ") is outside the map");
+		checkGoalOnMap(g, key.x, key.y);
 		GoalLayer disc(g);
 		disc.addDisc(key.x, key.y, m_builder.options().goalReach);
 		for (std::size_t i = 0; i < g.cellCount(); i++)
@@ -575,10 +585,7 @@ GoalKey SemanticPlanner::objectKey(int objectId, CostProfile profile) const
 GoalKey SemanticPlanner::pointKey(
     double gx, double gy, CostProfile profile) const
 {
-	if (!m_map.geometry().cellOf(gx, gy))
-		throw PlanningError(
-		    "goal (" + std::to_string(gx) + ", " + std::to_string(gy) +
-		    ") is outside the map");
+	checkGoalOnMap(m_map.geometry(), gx, gy);
 	GoalKey key;
 	key.kind = GoalKey::Kind::Point;
 	key.x = gx;
