@@ -88,3 +88,19 @@ TEST(NavCommand, CoordinatesOutOfRangeAreNoLabels)
 		}
 	}
 }
+
+TEST(NavCommand, BinaryGarbageIsEchoedEscaped)
+{
+	try
+	{
+		NavCommand::parse("go to \x01\xff\x1b[2J now please");
+		FAIL() << "no error";
+	}
+	catch (const NavCommandError& e)
+	{
+		const std::string m = e.what();
+		EXPECT_NE(
+		    m.find("'go to \\x01\\xFF\\x1B[2J now please'"), std::string::npos)
+		    << m;
+	}
+}

@@ -1,5 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <semnav/common/Error.h>
+#include <semnav/common/Printable.h>
 #include <semnav/nav/NavCommand.h>
 #include <semnav/nav/NavigationErrors.h>
 
@@ -27,7 +28,7 @@ bool parseNumber(const std::string& s, double& v)
 	if (end != s.c_str() + s.size()) return false;
 	if (!std::isfinite(v))
 		throw NavCommandError(
-		    "coordinate " + s +
+		    "coordinate " + printable(s) +
 		    (errno == ERANGE ? " is out of range" : " is not a finite number"));
 	return true;
 }
@@ -44,7 +45,7 @@ bool parseId(const std::string& s, int& id)
 [[noreturn]] void badCommand(const std::string& text)
 {
 	throw NavCommandError(
-	    "cannot understand the command '" + text +
+	    "cannot understand the command '" + printable(text) +
 	    "'; expected \"go to the nearest <label>\", \"go to <label> <id>\" "
 	    "or \"go to <x> <y>\"");
 }
