@@ -145,3 +145,26 @@ TEST(SemnavPlanCli, ErrorsAreOneLineWithExitCodes)
 		    << c.args << ": " << r.err;
 	}
 }
+
+TEST(SemnavPlanCli, ObjectsAreTheOnesTheSummaryReports)
+{
+	// The office map with a 4 cm "door" (a wall fragment) added: a
+	// candidate, not an object.
+	SemanticMap map;
+	MapIO::load(officeMap().string(), map);
+	const int tiny =
+	    map.addInstance(Label::Door, {2.0, 1.0, 0.40}, {2.04, 1.1, 0.44});
+	ASSERT_FALSE(map.reported(map.instance(tiny)));
+	const fs::path dir = officeMap().parent_path() / "map_with_candidate";
+	MapIO::save(map, dir.string());
+	const AppRun r = runPlan(
+	    "--map " + dir.string() + " --from 1.2,1.2 --object " +
+	    std::to_string(tiny));
+	EXPECT_EQ(r.code, 1) << r.err;
+	EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+	EXPECT_NE(
+	    r.err.find(
+	        "the map has no object " + std::to_string(tiny) + " (objects: "),
+	    std::string::npos)
+	    << r.err;
+}

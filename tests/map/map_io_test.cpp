@@ -11,6 +11,7 @@
 #include <fstream>
 #include <functional>
 #include <opencv2/imgcodecs.hpp>
+#include <set>
 #include <thread>
 
 #include "MapTestUtils.h"
@@ -355,6 +356,44 @@ TEST(MapIO, NonFiniteOrNegativeLayerValuesNameTheFileAndPixel)
 	// NaN is roughness's "no data"; the saved maps hold it.
 	MapIO::save(a, dir.string());
 	EXPECT_EQ(loadError(dir), "");
+	fs::remove_all(dir);
+}
+
+TEST(MapIO, OnlyReportedObjectsAreSaved)
+{
+	SemanticMap a;
+	buildMap(a);
+	// A 4 cm "door" (a wall fragment): below door_min_height_m.
+	const int tiny =
+	    a.addInstance(Label::Door, {1.5, 1.0, 0.4}, {1.6, 1.1, 0.44});
+	ASSERT_FALSE(a.reported(a.instance(tiny)));
+	const int door =
+	    a.addInstance(Label::Door, {2.0, 1.0, 0.0}, {2.1, 1.6, 2.0});
+	ASSERT_TRUE(a.reported(a.instance(door)));
+	const auto dir = tempDir("mapio_reported");
+	MapIO::save(a, dir.string());
+
+	const YAML::Node objects =
+	    YAML::LoadFile((dir / "map.yaml").string())["semnav"]["objects"];
+	std::set<int> saved;
+	for (const auto& o : objects) saved.insert(o["id"].as<int>());
+	std::set<int> reported;
+	for (const auto& o : a.instances()) reported.insert(o.id);
+	EXPECT_EQ(saved, reported);
+	EXPECT_EQ(saved.count(tiny), 0u);
+	EXPECT_EQ(saved.count(door), 1u);
+	const cv::Mat ids =
+	    cv::imread((dir / "objects.png").string(), cv::IMREAD_UNCHANGED);
+	EXPECT_EQ(cv::countNonZero(ids == tiny), 0)
+	    << "objects.png keeps the candidate";
+	EXPECT_GT(cv::countNonZero(ids == door), 0);
+
+	SemanticMap b;
+	MapIO::load(dir.string(), b);
+	EXPECT_EQ(b.allInstances().size(), reported.size());
+	EXPECT_THROW(b.instance(tiny), Error);
+	for (const float id : b.get("objects"))
+		ASSERT_NE(static_cast<int>(id), tiny);
 	fs::remove_all(dir);
 }
 

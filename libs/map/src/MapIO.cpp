@@ -16,6 +16,7 @@
 #include <fstream>
 #include <iostream>
 #include <opencv2/imgcodecs.hpp>
+#include <set>
 #include <sstream>
 
 #include "LayerImage.h"
@@ -202,6 +203,20 @@ void emitPoint(YAML::Emitter& e, const mrpt::math::TPoint3D& p)
 
 namespace
 {
+/** A layer as saved: the "objects" layer keeps the ids of the objects the
+ * map reports (SemanticMap::reported) only; candidates are not saved. */
+std::vector<float> savedLayer(const SemanticMap& map, const std::string& name)
+{
+	std::vector<float> v = map.get(name);
+	if (name != "objects") return v;
+	std::set<float> reported;
+	for (const auto& o : map.instances())
+		reported.insert(static_cast<float>(o.id));
+	for (auto& id : v)
+		if (id != 0 && !reported.count(id)) id = 0;
+	return v;
+}
+
 /** occupancy.png (map_server trinary), labels.png, objects.png, cost.png
  * and map.png. */
 void saveImages(const SemanticMap& map, const fs::path& dir, double L)
@@ -238,7 +253,7 @@ void saveImages(const SemanticMap& map, const fs::path& dir, double L)
 	writeImage(
 	    (dir / "objects.png").string(),
 	    toImage<uint16_t>(
-	        g, CV_16UC1, map.get("objects"),
+	        g, CV_16UC1, savedLayer(map, "objects"),
 	        [](float f) { return static_cast<uint16_t>(f); }));
 	std::vector<float> scaled = map.get("cost");
 	for (auto& v : scaled)
@@ -267,7 +282,7 @@ void saveExactState(const SemanticMap& map, const fs::path& dir)
 		writeImage(
 		    (dir / "layers" / (name + ".pfm")).string(),
 		    toImage<float>(
-		        g, CV_32FC1, map.get(name), [](float f) { return f; }));
+		        g, CV_32FC1, savedLayer(map, name), [](float f) { return f; }));
 	writeAtomically(
 	    (dir / "octomap.bt").string(),
 	    [&](const std::string& tmp)
@@ -282,7 +297,7 @@ void saveExactState(const SemanticMap& map, const fs::path& dir)
 void emitObjects(YAML::Emitter& e, const SemanticMap& map)
 {
 	e << YAML::Key << "objects" << YAML::Value << YAML::BeginSeq;
-	for (const auto& o : map.allInstances())
+	for (const auto& o : map.instances())
 	{
 		e << YAML::BeginMap;
 		e << YAML::Key << "id" << YAML::Value << o.id;

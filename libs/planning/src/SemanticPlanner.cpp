@@ -20,6 +20,16 @@ using detail::owned;
 
 namespace
 {
+/** "objects: door 1, washbasin 3" (or "objects: none"). */
+std::string objectList(const SemanticMap& map)
+{
+	std::string known;
+	for (const auto& o : map.instances())
+		known += (known.empty() ? "" : ", ") + labelName(o.label) + " " +
+		         std::to_string(o.id);
+	return "objects: " + (known.empty() ? std::string("none") : known);
+}
+
 /** A point goal must lie on the map: say where the map is. */
 void checkGoalOnMap(const GridGeometry& g, double x, double y)
 {
@@ -556,15 +566,9 @@ GoalKey SemanticPlanner::labelKey(Label label, CostProfile profile) const
 		    labelName(label) + " is no goal class (goals: " + goals + ")");
 	}
 	if (m_map.instances(label).empty())
-	{
-		std::string known;
-		for (const auto& o : m_map.instances())
-			known += (known.empty() ? "" : ", ") + labelName(o.label) + " " +
-			         std::to_string(o.id);
 		throw NoInstanceError(
-		    "the map has no " + labelName(label) +
-		    " (objects: " + (known.empty() ? "none" : known) + ")");
-	}
+		    "the map has no " + labelName(label) + " (" + objectList(m_map) +
+		    ")");
 	GoalKey key;
 	key.kind = GoalKey::Kind::Label;
 	key.label = label;
@@ -576,7 +580,14 @@ GoalKey SemanticPlanner::objectKey(int objectId, CostProfile profile) const
 {
 	GoalKey key;
 	key.kind = GoalKey::Kind::Object;
-	key.label = m_map.instance(objectId).label;
+	// The objects of the map are those it reports (SemanticMap::reported):
+	// a candidate seen too seldom or of implausible size is no goal.
+	const ObjectInstance* o = m_map.object(objectId);
+	if (!o)
+		throw NoInstanceError(
+		    "the map has no object " + std::to_string(objectId) + " (" +
+		    objectList(m_map) + ")");
+	key.label = o->label;
 	key.objectId = objectId;
 	key.profile = profile;
 	return key;

@@ -468,10 +468,11 @@ NavCommand RobotSession::checkedGoal(const std::string& line)
 				planner.toLabel(p.x, p.y, c.label, profile);
 				break;
 			case NavCommand::Kind::Object:
-				if (m_map.instance(c.objectId).label != c.label)
+				if (const ObjectInstance* o = m_map.object(c.objectId);
+				    o && o->label != c.label)
 					throw NavigationError(
 					    "object " + std::to_string(c.objectId) + " is a " +
-					    labelName(m_map.instance(c.objectId).label));
+					    labelName(o->label));
 				planner.toObject(p.x, p.y, c.objectId, profile);
 				break;
 			case NavCommand::Kind::Point:
