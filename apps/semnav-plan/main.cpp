@@ -124,15 +124,26 @@ int main(int argc, char** argv)
 		return cli.usageError(
 		    "--to must be X,Y in metres, got '" + argTo.getValue() + "'");
 
+	std::optional<semnav::CostProfile> givenProfile;
+	if (!argProfile.getValue().empty())
+	{
+		try
+		{
+			givenProfile = semnav::costProfileFromName(argProfile.getValue());
+		}
+		catch (const semnav::PlanningError& e)
+		{
+			return cli.usageError(std::string("--profile: ") + e.what());
+		}
+	}
+
 	const bool json = argJson.getValue();
 	return cli.run(
 	    [&]
 	    {
 		    sections.loadIfGiven(argConfig.getValue());
 		    const semnav::CostProfile profile =
-		        argProfile.getValue().empty()
-		            ? travOpts.profile
-		            : semnav::costProfileFromName(argProfile.getValue());
+		        givenProfile.value_or(travOpts.profile);
 		    const semnav::Label label =
 		        argGoal.getValue().empty()
 		            ? semnav::Label::Unknown

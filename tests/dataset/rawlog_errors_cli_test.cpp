@@ -103,3 +103,23 @@ TEST(RawlogErrorsCli, CheckOfATruncatedCaptureIsNotSilent)
 	EXPECT_EQ(nlohmann::json::parse(ok.out).at("lines"), j.at("lines"));
 	fs::remove_all(kTmp);
 }
+
+TEST(RawlogErrorsCli, ADirectoryAsRawlogIsNamed)
+{
+	const fs::path dir = kTmp / "a_directory.rawlog";
+	fs::create_directories(dir);
+	for (const std::string app : {"semnav-map", "semnav-perceive"})
+	{
+		const AppRun r = runApp(
+		    app, "--no-cascades --rawlog " + dir.string() + " --out " +
+		             (kTmp / "out").string());
+		EXPECT_EQ(r.code, 1) << app << ": " << r.err;
+		EXPECT_EQ(lineCount(r.err), 1u) << app << ": " << r.err;
+		EXPECT_NE(
+		    r.err.find(
+		        "cannot open rawlog " + dir.string() + ": is a directory"),
+		    std::string::npos)
+		    << app << ": " << r.err;
+	}
+	fs::remove_all(kTmp);
+}

@@ -117,3 +117,29 @@ TEST(SemanticPlanner, GoalBehindAWallIsReachedAroundIt)
 	        .toLabel(2.4, 1.0, Label::Washbasin, CostProfile::Shortest),
 	    NoInstanceError);
 }
+
+TEST(SemanticPlanner, AnObjectTheMapDoesNotReportIsNoGoal)
+{
+	SemanticMap m;
+	buildRoom(m, false);
+	// A 4 cm "door": a candidate below door_min_height_m, not an object.
+	const int tiny =
+	    m.addInstance(Label::Door, {4.0, 2.0, 0.4}, {4.1, 2.1, 0.44});
+	ASSERT_FALSE(m.reported(m.instance(tiny)));
+	const SemanticPlanner planner(
+	    m, CnnPlanner::TOptions(), TraversabilityBuilder::TOptions());
+	try
+	{
+		planner.toObject(2.4, 1.0, tiny, CostProfile::Shortest);
+		FAIL() << "planned to a candidate";
+	}
+	catch (const NoInstanceError& e)
+	{
+		EXPECT_EQ(
+		    std::string(e.what()),
+		    "the map has no object " + std::to_string(tiny) +
+		        " (objects: wastebasket 1, wastebasket 2)");
+	}
+	EXPECT_EQ(
+	    planner.toObject(2.4, 1.0, 2, CostProfile::Shortest).goalObjectId, 2);
+}

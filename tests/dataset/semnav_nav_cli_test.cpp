@@ -398,6 +398,10 @@ TEST(SemnavNavCli, ErrorsAreOneLineWithExitCodes)
 	     "go to the nearest"},
 	    {base + " --start 5.5,1.95,0 --goal wastebasket", 1, "obstacle"},
 	    {base + " --start 60,2,0 --goal wastebasket", 1, "outside"},
+	    {base + " --start 6.2,2.6,0 --command 'go to 1e400 2'", 1,
+	     "coordinate 1e400 is out of range"},
+	    {base + " --start 6.2,2.6,0 --command 'go to 500 2'", 1,
+	     "goal (500.000, 2.000) is outside the map ["},
 	    {base + " --start 6.2,2.6,0 --goal wastebasket --config " +
 	         badIni.string(),
 	     1, "max_stalled_replanz"},

@@ -128,6 +128,12 @@ TEST(SemnavPlanCli, ErrorsAreOneLineWithExitCodes)
 	    {map + " --from 500,500 --goal door", "outside", 1},
 	    {map + " --from 1.2 --goal door", "--from", 2},
 	    {map + " --from 1.2,1.2", "exactly one", 2},
+	    {map + " --from 1.2,1.2 --goal \"$(printf 'so\\001\\377fa')\"",
+	     "unknown label 'so\\x01\\xFFfa'", 1},
+	    {map + " --from \"$(printf '1\\033[2J,2')\" --goal door",
+	     "got '1\\x1B[2J,2'", 2},
+	    {map + " --from 1.2,1.2 --goal door --profile fastest",
+	     "--profile: unknown cost profile 'fastest'", 2},
 	    {"--map /nonexistent --from 1,1 --goal door", "/nonexistent", 1},
 	};
 	for (const auto& c : cases)
@@ -138,4 +144,27 @@ TEST(SemnavPlanCli, ErrorsAreOneLineWithExitCodes)
 		EXPECT_NE(r.err.find(c.needle), std::string::npos)
 		    << c.args << ": " << r.err;
 	}
+}
+
+TEST(SemnavPlanCli, ObjectsAreTheOnesTheSummaryReports)
+{
+	// The office map with a 4 cm "door" (a wall fragment) added: a
+	// candidate, not an object.
+	SemanticMap map;
+	MapIO::load(officeMap().string(), map);
+	const int tiny =
+	    map.addInstance(Label::Door, {2.0, 1.0, 0.40}, {2.04, 1.1, 0.44});
+	ASSERT_FALSE(map.reported(map.instance(tiny)));
+	const fs::path dir = officeMap().parent_path() / "map_with_candidate";
+	MapIO::save(map, dir.string());
+	const AppRun r = runPlan(
+	    "--map " + dir.string() + " --from 1.2,1.2 --object " +
+	    std::to_string(tiny));
+	EXPECT_EQ(r.code, 1) << r.err;
+	EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+	EXPECT_NE(
+	    r.err.find(
+	        "the map has no object " + std::to_string(tiny) + " (objects: "),
+	    std::string::npos)
+	    << r.err;
 }

@@ -9,7 +9,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <opencv2/imgcodecs.hpp>
+#include <set>
 #include <thread>
 
 #include "MapTestUtils.h"
@@ -213,6 +215,185 @@ TEST(MapIO, CorruptOrMissingFilesGiveClearErrors)
 	}
 	expectError("trashcan");
 	EXPECT_THROW(MapIO::load((dir / "nothing").string(), a), IoError);
+	fs::remove_all(dir);
+}
+
+namespace
+{
+/** map.yaml of `dir` with its first `from` replaced by `to`. */
+void editMapYaml(
+    const fs::path& dir, const std::string& from, const std::string& to)
+{
+	std::ifstream in(dir / "map.yaml");
+	std::stringstream ss;
+	ss << in.rdbuf();
+	std::string t = ss.str();
+	const auto at = t.find(from);
+	ASSERT_NE(at, std::string::npos) << from;
+	t.replace(at, from.size(), to);
+	std::ofstream(dir / "map.yaml") << t;
+}
+
+/** The message of the IoError that loading `dir` throws ("" if none). */
+std::string loadError(const fs::path& dir)
+{
+	try
+	{
+		SemanticMap m;
+		MapIO::load(dir.string(), m);
+	}
+	catch (const IoError& e)
+	{
+		return e.what();
+	}
+	return "";
+}
+}  // namespace
+
+TEST(MapIO, BadGeometryNamesItsKey)
+{
+	SemanticMap a;
+	buildMap(a);
+	const auto dir = tempDir("mapio_geometry");
+	MapIO::save(a, dir.string());
+	editMapYaml(dir, "resolution: 0.05", "resolution: -0.05");
+	std::string e = loadError(dir);
+	EXPECT_NE(
+	    e.find("map.yaml:2: resolution: must be a positive"), std::string::npos)
+	    << e;
+	MapIO::save(a, dir.string());
+	editMapYaml(dir, "size: [", "size: [99999999, 9]\n  was: [");
+	e = loadError(dir);
+	EXPECT_NE(e.find("semnav.size: "), std::string::npos) << e;
+	EXPECT_NE(e.find("no map size"), std::string::npos) << e;
+	fs::remove_all(dir);
+}
+
+TEST(MapIO, CorruptImageHeadersAreOneLineNamingTheFile)
+{
+	SemanticMap a;
+	buildMap(a);
+	const auto dir = tempDir("mapio_headers");
+	const auto bytesOf = [](const fs::path& p)
+	{
+		std::ifstream in(p, std::ios::binary);
+		return std::string(std::istreambuf_iterator<char>(in), {});
+	};
+	struct Case
+	{
+		std::string file, needle;
+		std::function<std::string(std::string)> corrupt;
+	};
+	const Case cases[] = {
+	    {"layers/cost.pfm", "map.yaml says",
+	     [](std::string) { return "Pf\n99999999 99999999\n-1\n\0\0\0\0"; }},
+	    {"layers/cost.pfm", "bad header",
+	     [](std::string) { return "Pf\n12 abc\n-1\n"; }},
+	    {"layers/roughness.pfm", "bytes of pixels",
+	     [](std::string b) { return b.substr(0, b.size() / 2); }},
+	    {"labels.png", "cannot decode",
+	     [](std::string b)
+	     {
+		     for (std::size_t i = 60; i < b.size() - 20; i++) b[i] ^= 0x55;
+		     return b;
+	     }},
+	    {"occupancy.png", "map.yaml says",
+	     [](std::string b)
+	     {
+		     b[16] = '\x7f';  // IHDR width: 2^31 - ...
+		     return b;
+	     }},
+	};
+	for (const auto& c : cases)
+	{
+		MapIO::save(a, dir.string());
+		const std::string bytes = c.corrupt(bytesOf(dir / c.file));
+		std::ofstream(dir / c.file, std::ios::binary) << bytes;
+		testing::internal::CaptureStderr();
+		const std::string e = loadError(dir);
+		const std::string printed = testing::internal::GetCapturedStderr();
+		EXPECT_NE(e.find((dir / c.file).string()), std::string::npos) << e;
+		EXPECT_NE(e.find(c.needle), std::string::npos) << e;
+		EXPECT_EQ(printed, "") << c.file << ": OpenCV or libpng printed";
+	}
+	fs::remove_all(dir);
+}
+
+TEST(MapIO, NonFiniteOrNegativeLayerValuesNameTheFileAndPixel)
+{
+	SemanticMap a;
+	buildMap(a);
+	const auto dir = tempDir("mapio_values");
+	const float nan = std::numeric_limits<float>::quiet_NaN(),
+	            inf = std::numeric_limits<float>::infinity();
+	struct Case
+	{
+		std::string layer;
+		float value;
+		std::string shown;
+	};
+	const Case cases[] = {
+	    {"cost", nan, "nan"},
+	    {"labels", -3.0f, "-3"},
+	    {"observations", inf, "inf"},
+	    {"roughness", -inf, "-inf"},
+	    {"occupancy_logodds", 1e6f, "1e+06"},
+	};
+	for (const auto& c : cases)
+	{
+		MapIO::save(a, dir.string());
+		const fs::path pfm = dir / "layers" / (c.layer + ".pfm");
+		cv::Mat img = cv::imread(pfm.string(), cv::IMREAD_UNCHANGED);
+		ASSERT_EQ(img.type(), CV_32FC1);
+		img.at<float>(2, 5) = c.value;
+		cv::imwrite(pfm.string(), img);
+		const std::string e = loadError(dir);
+		EXPECT_NE(
+		    e.find(pfm.string() + ": pixel (5, 2) is " + c.shown),
+		    std::string::npos)
+		    << e;
+	}
+	// NaN is roughness's "no data"; the saved maps hold it.
+	MapIO::save(a, dir.string());
+	EXPECT_EQ(loadError(dir), "");
+	fs::remove_all(dir);
+}
+
+TEST(MapIO, OnlyReportedObjectsAreSaved)
+{
+	SemanticMap a;
+	buildMap(a);
+	// A 4 cm "door" (a wall fragment): below door_min_height_m.
+	const int tiny =
+	    a.addInstance(Label::Door, {1.5, 1.0, 0.4}, {1.6, 1.1, 0.44});
+	ASSERT_FALSE(a.reported(a.instance(tiny)));
+	const int door =
+	    a.addInstance(Label::Door, {2.0, 1.0, 0.0}, {2.1, 1.6, 2.0});
+	ASSERT_TRUE(a.reported(a.instance(door)));
+	const auto dir = tempDir("mapio_reported");
+	MapIO::save(a, dir.string());
+
+	const YAML::Node objects =
+	    YAML::LoadFile((dir / "map.yaml").string())["semnav"]["objects"];
+	std::set<int> saved;
+	for (const auto& o : objects) saved.insert(o["id"].as<int>());
+	std::set<int> reported;
+	for (const auto& o : a.instances()) reported.insert(o.id);
+	EXPECT_EQ(saved, reported);
+	EXPECT_EQ(saved.count(tiny), 0u);
+	EXPECT_EQ(saved.count(door), 1u);
+	const cv::Mat ids =
+	    cv::imread((dir / "objects.png").string(), cv::IMREAD_UNCHANGED);
+	EXPECT_EQ(cv::countNonZero(ids == tiny), 0)
+	    << "objects.png keeps the candidate";
+	EXPECT_GT(cv::countNonZero(ids == door), 0);
+
+	SemanticMap b;
+	MapIO::load(dir.string(), b);
+	EXPECT_EQ(b.allInstances().size(), reported.size());
+	EXPECT_THROW(b.instance(tiny), Error);
+	for (const float id : b.get("objects"))
+		ASSERT_NE(static_cast<int>(id), tiny);
 	fs::remove_all(dir);
 }
 

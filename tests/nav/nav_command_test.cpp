@@ -62,3 +62,45 @@ TEST(NavCommand, MalformedCommands)
 	      "go to door -1"})
 		EXPECT_THROW(NavCommand::parse(t), Error) << t;
 }
+
+TEST(NavCommand, CoordinatesOutOfRangeAreNoLabels)
+{
+	const std::pair<const char*, const char*> cases[] = {
+	    {"go to 1e400 2", "coordinate 1e400 is out of range"},
+	    {"go to 2 -1e999", "coordinate -1e999 is out of range"},
+	    {"go to nan 2", "coordinate nan is not a finite number"},
+	    {"go to 3,inf", "coordinate inf is not a finite number"},
+	};
+	for (const auto& [text, message] : cases)
+	{
+		try
+		{
+			NavCommand::parse(text);
+			FAIL() << text << ": no error";
+		}
+		catch (const NavCommandError& e)
+		{
+			EXPECT_EQ(std::string(e.what()), message) << text;
+		}
+		catch (const std::exception& e)
+		{
+			FAIL() << text << ": " << e.what();
+		}
+	}
+}
+
+TEST(NavCommand, BinaryGarbageIsEchoedEscaped)
+{
+	try
+	{
+		NavCommand::parse("go to \x01\xff\x1b[2J now please");
+		FAIL() << "no error";
+	}
+	catch (const NavCommandError& e)
+	{
+		const std::string m = e.what();
+		EXPECT_NE(
+		    m.find("'go to \\x01\\xFF\\x1B[2J now please'"), std::string::npos)
+		    << m;
+	}
+}

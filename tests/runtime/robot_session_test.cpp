@@ -3,6 +3,7 @@
 // as on the robot (base, sweeps, clock, localized pose; obstacles from the
 // sweeps), checked against the simulator's ground truth.
 #include <gtest/gtest.h>
+#include <semnav/common/Printable.h>
 #include <semnav/detection/CascadeDetector.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/navsim/SceneMapBuilder.h>
@@ -225,7 +226,8 @@ TEST(RobotSession, MalformedCommandsAreOneLineErrorsAndTheRunGoesOn)
 	    "go to x y",
 	    "go to the nearest wall",
 	    "go to 0.02 2.5",
-	    "save"};
+	    "save",
+	    "go to \x01\xff\x1b[2J"};
 	CommandQueue q;
 	for (const auto& b : bad) q.push(b);
 	q.push("go to 4.5 1.2");
@@ -235,10 +237,11 @@ TEST(RobotSession, MalformedCommandsAreOneLineErrorsAndTheRunGoesOn)
 	ASSERT_EQ(errors.size(), bad.size());
 	for (std::size_t i = 0; i < errors.size(); i++)
 	{
-		EXPECT_EQ(errors[i]["command"], bad[i]);
+		EXPECT_EQ(errors[i]["command"], printable(bad[i]));
 		const std::string why = errors[i]["error"];
 		EXPECT_FALSE(why.empty());
 		EXPECT_EQ(why.find('\n'), std::string::npos) << why;
+		EXPECT_EQ(why, printable(why)) << "input echoed raw";
 	}
 	ASSERT_EQ(run.all("arrived").size(), 1u);
 	EXPECT_LT(run.trueDistanceTo({4.5, 1.2}), 0.6);

@@ -1,6 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <semnav/common/CommandLine.h>
 #include <semnav/common/IniSections.h>
+#include <semnav/common/Printable.h>
 
 #include <cmath>
 #include <iostream>
@@ -123,7 +124,7 @@ std::optional<int> CommandLine::writeConfig() const
 
 int CommandLine::usageError(const std::string& what) const
 {
-	std::cerr << m_app << ": " << what << "; see --help\n";
+	std::cerr << m_app << ": " << printable(what) << "; see --help\n";
 	return 2;
 }
 
@@ -135,7 +136,7 @@ int CommandLine::run(const std::function<int()>& body) const
 	}
 	catch (const std::exception& e)
 	{
-		std::cerr << m_app << ": " << firstLine(e.what()) << "\n";
+		std::cerr << m_app << ": " << printable(firstLine(e.what())) << "\n";
 		return 1;
 	}
 }

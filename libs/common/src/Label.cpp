@@ -3,6 +3,7 @@
 #include <semnav/common/Error.h>
 #include <semnav/common/Label.h>
 #include <semnav/common/LabelSet.h>
+#include <semnav/common/Printable.h>
 
 namespace semnav
 {
@@ -32,7 +33,8 @@ Label labelFromName(const std::string& name)
 {
 	if (const auto l = ClassRegistry::instance().find(name)) return *l;
 	throw UnknownLabelError(
-	    "unknown label '" + name + "' (known: " + knownLabelNames() + ")");
+	    "unknown label '" + printable(name) + "' (known: " + knownLabelNames() +
+	    ")");
 }
 
 Label labelFromId(unsigned id)

@@ -16,7 +16,11 @@
 #include <fstream>
 #include <iostream>
 #include <opencv2/imgcodecs.hpp>
+#include <set>
 #include <sstream>
+
+#include "LayerImage.h"
+#include "QuietStderr.h"
 
 namespace semnav
 {
@@ -25,39 +29,9 @@ namespace fs = std::filesystem;
 namespace
 {
 constexpr int kFormatVersion = 1;
-
-/** Debian's liboctomap is built with debug output on stderr ("Reading
- * binary octree type OcTree", " done."); silence it so that errors stay
- * one line. */
-class QuietStderr
-{
-public:
-	QuietStderr()
-	{
-		std::fflush(stderr);
-		std::cerr.flush();
-		m_saved = ::dup(2);
-		const int devnull = ::open("/dev/null", O_WRONLY);
-		if (devnull >= 0)
-		{
-			::dup2(devnull, 2);
-			::close(devnull);
-		}
-	}
-	~QuietStderr()
-	{
-		std::fflush(stderr);
-		std::cerr.flush();
-		if (m_saved >= 0)
-		{
-			::dup2(m_saved, 2);
-			::close(m_saved);
-		}
-	}
-
-private:
-	int m_saved = -1;
-};
+/** The largest map side a directory may hold (819 m at 5 cm): bounds what
+ * a corrupt map.yaml or image header can make the loader allocate. */
+constexpr int kMaxSide = 1 << 14;
 
 /** Layer vector -> image with map_server orientation (row 0 = top). */
 template <typename T>
@@ -150,28 +124,25 @@ cv::Mat readImage(
     const MapDirectory& d, const std::string& rel, int type,
     const GridGeometry& g)
 {
-	const std::string path = d.path(rel);
-	const std::string bytes = d.read(rel);
-	cv::Mat img;
-	try
-	{
-		img = cv::imdecode(
-		    cv::Mat(
-		        1, static_cast<int>(bytes.size()), CV_8UC1,
-		        const_cast<char*>(bytes.data())),
-		    cv::IMREAD_UNCHANGED);
-	}
-	catch (const cv::Exception&)
-	{
-	}
-	if (img.empty()) throw IoError("cannot decode map image " + path);
-	if (img.type() != type)
-		throw IoError("map image " + path + " has the wrong pixel type");
-	if (img.cols != std::max(g.cols, 1) || img.rows != std::max(g.rows, 1))
-		throw IoError(
-		    "map image " + path + " is " + std::to_string(img.cols) + "x" +
-		    std::to_string(img.rows) + ", map.yaml says " +
-		    std::to_string(g.cols) + "x" + std::to_string(g.rows));
+	return decodeLayerImage(
+	    d.read(rel), d.path(rel), type, std::max(g.cols, 1),
+	    std::max(g.rows, 1));
+}
+
+/** A float layer under layers/, its values checked: log-odds are int8,
+ * roughness is NaN where nothing was seen, every other layer (labels,
+ * costs, ids, counts, and any added) is finite and >= 0. */
+cv::Mat readLayer(
+    const MapDirectory& d, const std::string& name, const GridGeometry& g)
+{
+	const std::string rel = "layers/" + name + ".pfm";
+	const cv::Mat img = readImage(d, rel, CV_32FC1, g);
+	LayerRange range;
+	if (name == "occupancy_logodds")
+		range = {-128.0f, 127.0f, false};
+	else if (name == "roughness")
+		range.nanMeansNoData = true;
+	checkLayerValues(img, d.path(rel), range);
 	return img;
 }
 
@@ -232,6 +203,20 @@ void emitPoint(YAML::Emitter& e, const mrpt::math::TPoint3D& p)
 
 namespace
 {
+/** A layer as saved: the "objects" layer keeps the ids of the objects the
+ * map reports (SemanticMap::reported) only; candidates are not saved. */
+std::vector<float> savedLayer(const SemanticMap& map, const std::string& name)
+{
+	std::vector<float> v = map.get(name);
+	if (name != "objects") return v;
+	std::set<float> reported;
+	for (const auto& o : map.instances())
+		reported.insert(static_cast<float>(o.id));
+	for (auto& id : v)
+		if (id != 0 && !reported.count(id)) id = 0;
+	return v;
+}
+
 /** occupancy.png (map_server trinary), labels.png, objects.png, cost.png
  * and map.png. */
 void saveImages(const SemanticMap& map, const fs::path& dir, double L)
@@ -268,7 +253,7 @@ void saveImages(const SemanticMap& map, const fs::path& dir, double L)
 	writeImage(
 	    (dir / "objects.png").string(),
 	    toImage<uint16_t>(
-	        g, CV_16UC1, map.get("objects"),
+	        g, CV_16UC1, savedLayer(map, "objects"),
 	        [](float f) { return static_cast<uint16_t>(f); }));
 	std::vector<float> scaled = map.get("cost");
 	for (auto& v : scaled)
@@ -297,7 +282,7 @@ void saveExactState(const SemanticMap& map, const fs::path& dir)
 		writeImage(
 		    (dir / "layers" / (name + ".pfm")).string(),
 		    toImage<float>(
-		        g, CV_32FC1, map.get(name), [](float f) { return f; }));
+		        g, CV_32FC1, savedLayer(map, name), [](float f) { return f; }));
 	writeAtomically(
 	    (dir / "octomap.bt").string(),
 	    [&](const std::string& tmp)
@@ -312,7 +297,7 @@ void saveExactState(const SemanticMap& map, const fs::path& dir)
 void emitObjects(YAML::Emitter& e, const SemanticMap& map)
 {
 	e << YAML::Key << "objects" << YAML::Value << YAML::BeginSeq;
-	for (const auto& o : map.allInstances())
+	for (const auto& o : map.instances())
 	{
 		e << YAML::BeginMap;
 		e << YAML::Key << "id" << YAML::Value << o.id;
@@ -412,6 +397,10 @@ GridGeometry readGeometry(
 	GridGeometry g;
 	g.resolution =
 	    as<double>(need(root, "resolution", file, ""), file, "resolution");
+	if (!(g.resolution > 0) || !std::isfinite(g.resolution))
+		throw IoError(
+		    where(file, root["resolution"], "resolution") +
+		    ": must be a positive number of metres per cell");
 	const YAML::Node origin = need(root, "origin", file, "");
 	if (!origin.IsSequence() || origin.size() < 2)
 		throw IoError(where(file, origin, "origin") + ": expected [x, y, yaw]");
@@ -430,11 +419,16 @@ GridGeometry readGeometry(
 		throw IoError(where(file, size, "semnav.size") + ": expected [sx, sy]");
 	g.cols = as<int>(size[0], file, "semnav.size");
 	g.rows = as<int>(size[1], file, "semnav.size");
-	if (!(g.resolution > 0) || g.cols < 0 || g.rows < 0)
-		throw IoError(where(file, size, "semnav.size") + ": bad geometry");
+	if (!std::isfinite(g.originX) || !std::isfinite(g.originY))
+		throw IoError(where(file, origin, "origin") + ": must be finite");
+	if (g.cols < 0 || g.rows < 0 || g.cols > kMaxSide || g.rows > kMaxSide)
+		throw IoError(
+		    where(file, size, "semnav.size") + ": " + std::to_string(g.cols) +
+		    " x " + std::to_string(g.rows) + " cells is no map size (0 to " +
+		    std::to_string(kMaxSide) + " a side)");
 	if (std::abs(g.resolution - resolution) > 1e-9)
 		throw IoError(
-		    where(file, root, "resolution") +
+		    where(file, root["resolution"], "resolution") +
 		    ": map resolution differs from the configured one");
 	return g;
 }
@@ -501,11 +495,9 @@ void loadFrom(const MapDirectory& d, SemanticMap& map)
 	for (const auto& n : names)
 	{
 		const std::string name = as<std::string>(n, file, "semnav.layers");
-		layers[name] = fromImage<float>(
-		    g, readImage(d, "layers/" + name + ".pfm", CV_32FC1, g));
+		layers[name] = fromImage<float>(g, readLayer(d, name, g));
 	}
-	const auto lo = fromImage<float>(
-	    g, readImage(d, "layers/occupancy_logodds.pfm", CV_32FC1, g));
+	const auto lo = fromImage<float>(g, readLayer(d, "occupancy_logodds", g));
 	std::vector<int8_t> logodds(lo.size());
 	for (std::size_t i = 0; i < lo.size(); i++)
 		logodds[i] = static_cast<int8_t>(lo[i]);

@@ -503,6 +503,13 @@ const ObjectInstance& SemanticMap::instance(int id) const
 	throw Error("semantic map has no object with id " + std::to_string(id));
 }
 
+const ObjectInstance* SemanticMap::object(int id) const
+{
+	for (const auto& o : m_instances)
+		if (o.id == id) return reported(o) ? &o : nullptr;
+	return nullptr;
+}
+
 const ObjectInstance* SemanticMap::nearestInstance(
     Label label, const mrpt::math::TPoint2D& p) const
 {

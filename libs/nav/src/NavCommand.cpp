@@ -1,11 +1,15 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <semnav/common/Error.h>
+#include <semnav/common/Printable.h>
 #include <semnav/nav/NavCommand.h>
 #include <semnav/nav/NavigationErrors.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <vector>
 
@@ -13,18 +17,20 @@ namespace semnav
 {
 namespace
 {
+/** A number token: false when `s` is no number; throws NavCommandError for
+ * a number out of range (1e400) or not finite (nan, inf). */
 bool parseNumber(const std::string& s, double& v)
 {
-	try
-	{
-		std::size_t n = 0;
-		v = std::stod(s, &n);
-		return n == s.size();
-	}
-	catch (const std::exception&)
-	{
-		return false;
-	}
+	if (s.empty()) return false;
+	char* end = nullptr;
+	errno = 0;
+	v = std::strtod(s.c_str(), &end);
+	if (end != s.c_str() + s.size()) return false;
+	if (!std::isfinite(v))
+		throw NavCommandError(
+		    "coordinate " + printable(s) +
+		    (errno == ERANGE ? " is out of range" : " is not a finite number"));
+	return true;
 }
 
 bool parseId(const std::string& s, int& id)
@@ -39,7 +45,7 @@ bool parseId(const std::string& s, int& id)
 [[noreturn]] void badCommand(const std::string& text)
 {
 	throw NavCommandError(
-	    "cannot understand the command '" + text +
+	    "cannot understand the command '" + printable(text) +
 	    "'; expected \"go to the nearest <label>\", \"go to <label> <id>\" "
 	    "or \"go to <x> <y>\"");
 }

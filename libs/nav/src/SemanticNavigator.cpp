@@ -284,11 +284,11 @@ SemanticPlanner::SharedPlan SemanticNavigator::planFrom(double x, double y)
 			return m_planner.toLabelShared(x, y, m_command.label, m_profile);
 		case NavCommand::Kind::Object:
 		{
-			const ObjectInstance& o = m_map.instance(m_command.objectId);
-			if (o.label != m_command.label)
+			const ObjectInstance* o = m_map.object(m_command.objectId);
+			if (o && o->label != m_command.label)
 				throw NavigationError(
-				    "object " + std::to_string(o.id) + " is a " +
-				    labelName(o.label) + ", not a " +
+				    "object " + std::to_string(o->id) + " is a " +
+				    labelName(o->label) + ", not a " +
 				    labelName(m_command.label));
 			return m_planner.toObjectShared(
 			    x, y, m_command.objectId, m_profile);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <iterator>
 #include <set>
 
@@ -19,6 +20,28 @@ using detail::owned;
 
 namespace
 {
+/** "objects: door 1, washbasin 3" (or "objects: none"). */
+std::string objectList(const SemanticMap& map)
+{
+	std::string known;
+	for (const auto& o : map.instances())
+		known += (known.empty() ? "" : ", ") + labelName(o.label) + " " +
+		         std::to_string(o.id);
+	return "objects: " + (known.empty() ? std::string("none") : known);
+}
+
+/** A point goal must lie on the map: say where the map is. */
+void checkGoalOnMap(const GridGeometry& g, double x, double y)
+{
+	if (g.cellOf(x, y)) return;
+	char buf[200];
+	std::snprintf(
+	    buf, sizeof(buf),
+	    "goal (%.3f, %.3f) is outside the map [%.3f, %.3f] x [%.3f, %.3f]", x,
+	    y, g.originX, g.maxX(), g.originY, g.maxY());
+	throw PlanningError(buf);
+}
+
 /** Bounding box of the cells in exactly one of two sorted lists. */
 CellRect differingCells(
     const std::vector<std::size_t>& a, const std::vector<std::size_t>& b,
@@ -257,10 +280,7 @@ GoalCells SemanticPlanner::goalCellsOf(const GoalKey& key) const
 	GoalCells cells;
 	if (key.kind == GoalKey::Kind::Point)
 	{
-		if (!g.cellOf(key.x, key.y))
-			throw PlanningError(
-			    "goal (" + std::to_string(key.x) + ", " +
-			    std::to_string(key.y) + ") is outside the map");
+		checkGoalOnMap(g, key.x, key.y);
 		GoalLayer disc(g);
 		disc.addDisc(key.x, key.y, m_builder.options().goalReach);
 		for (std::size_t i = 0; i < g.cellCount(); i++)
@@ -546,15 +566,9 @@ GoalKey SemanticPlanner::labelKey(Label label, CostProfile profile) const
 		    labelName(label) + " is no goal class (goals: " + goals + ")");
 	}
 	if (m_map.instances(label).empty())
-	{
-		std::string known;
-		for (const auto& o : m_map.instances())
-			known += (known.empty() ? "" : ", ") + labelName(o.label) + " " +
-			         std::to_string(o.id);
 		throw NoInstanceError(
-		    "the map has no " + labelName(label) +
-		    " (objects: " + (known.empty() ? "none" : known) + ")");
-	}
+		    "the map has no " + labelName(label) + " (" + objectList(m_map) +
+		    ")");
 	GoalKey key;
 	key.kind = GoalKey::Kind::Label;
 	key.label = label;
@@ -566,7 +580,14 @@ GoalKey SemanticPlanner::objectKey(int objectId, CostProfile profile) const
 {
 	GoalKey key;
 	key.kind = GoalKey::Kind::Object;
-	key.label = m_map.instance(objectId).label;
+	// The objects of the map are those it reports (SemanticMap::reported):
+	// a candidate seen too seldom or of implausible size is no goal.
+	const ObjectInstance* o = m_map.object(objectId);
+	if (!o)
+		throw NoInstanceError(
+		    "the map has no object " + std::to_string(objectId) + " (" +
+		    objectList(m_map) + ")");
+	key.label = o->label;
 	key.objectId = objectId;
 	key.profile = profile;
 	return key;
@@ -575,10 +596,7 @@ GoalKey SemanticPlanner::objectKey(int objectId, CostProfile profile) const
 GoalKey SemanticPlanner::pointKey(
     double gx, double gy, CostProfile profile) const
 {
-	if (!m_map.geometry().cellOf(gx, gy))
-		throw PlanningError(
-		    "goal (" + std::to_string(gx) + ", " + std::to_string(gy) +
-		    ") is outside the map");
+	checkGoalOnMap(m_map.geometry(), gx, gy);
 	GoalKey key;
 	key.kind = GoalKey::Kind::Point;
 	key.x = gx;

@@ -2,6 +2,7 @@
 #include <mrpt/core/bits_math.h>
 #include <semnav/common/Error.h>
 #include <semnav/common/OptionTable.h>
+#include <semnav/common/Printable.h>
 #include <semnav/common/Timing.h>
 #include <semnav/detection/SweepPerception.h>
 #include <semnav/map/SemanticMap.h>
@@ -140,7 +141,10 @@ void RobotSession::emit(nlohmann::json e) const
 void RobotSession::error(const std::string& line, const std::string& why)
 {
 	m_errors++;
-	emit({{"event", "error"}, {"command", line}, {"error", why}});
+	emit(
+	    {{"event", "error"},
+	     {"command", printable(line)},
+	     {"error", printable(why)}});
 }
 
 void RobotSession::notifyObservers()
@@ -464,10 +468,11 @@ NavCommand RobotSession::checkedGoal(const std::string& line)
 				planner.toLabel(p.x, p.y, c.label, profile);
 				break;
 			case NavCommand::Kind::Object:
-				if (m_map.instance(c.objectId).label != c.label)
+				if (const ObjectInstance* o = m_map.object(c.objectId);
+				    o && o->label != c.label)
 					throw NavigationError(
 					    "object " + std::to_string(c.objectId) + " is a " +
-					    labelName(m_map.instance(c.objectId).label));
+					    labelName(o->label));
 				planner.toObject(p.x, p.y, c.objectId, profile);
 				break;
 			case NavCommand::Kind::Point:

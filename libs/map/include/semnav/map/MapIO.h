@@ -11,7 +11,10 @@ namespace semnav
  *
  * `map.yaml` has the ROS map_server keys (image, resolution, origin,
  * occupied_thresh, free_thresh, negate) plus a `semnav:` section with the
- * layer files, the object list and the number of sweeps. Images have
+ * layer files, the object list and the number of sweeps. The objects are
+ * those the map reports (SemanticMap::instances()): candidates (seen too
+ * seldom, implausible size) are neither listed nor kept in the objects
+ * layers, so map.yaml, summaries and goals agree. Images have
  * map_server's orientation (row 0 = the largest y). Files:
  * occupancy.png (map_server trinary: 0 occupied, 254 free, 205 unknown,
  * otherwise 255 (1 - p)), labels.png (16-bit LabelSet mask:

@@ -282,8 +282,12 @@ public:
 	/** Instances that pass the reporting rules. */
 	std::vector<ObjectInstance> instances() const;
 	std::vector<ObjectInstance> instances(Label label) const;
-	/** Throws Error for an unknown id. */
+	/** Throws Error for an unknown id (candidates included). */
 	const ObjectInstance& instance(int id) const;
+	/** The object (a reported instance) with this id, or nullptr: goals
+	 * by id go through here (docs/mapping.md, "One rule for which objects
+	 * exist"). */
+	const ObjectInstance* object(int id) const;
 	/** Nearest reported instance of `label` to a point (Euclidean), or
 	 * nullptr. */
 	const ObjectInstance* nearestInstance(

@@ -133,7 +133,8 @@ public:
 	 * that is no goal), StartOutsideMapError, StartBlockedError,
 	 * EmptyGoalError, NoPathError. */
 	Plan toLabel(double x, double y, Label label, CostProfile profile) const;
-	/** Path to a given object of the map. */
+	/** Path to a given object of the map: one it reports
+	 * (SemanticMap::instances()); NoInstanceError for any other id. */
 	Plan toObject(double x, double y, int objectId, CostProfile profile) const;
 	/** Path to the cells within goal_reach_m of (gx, gy). */
 	Plan toPoint(
