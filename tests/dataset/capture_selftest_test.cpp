@@ -205,9 +205,14 @@ TEST(DeviceEmulatorCli, BadInputIsOneLineAndNonZeroExit)
 	EXPECT_EQ(r.code, 1);
 	EXPECT_EQ(lineCount(r.err), 1u) << r.err;
 	EXPECT_NE(r.err.find("/nonexistent/c.rawlog"), std::string::npos);
-	const auto s = shell(
-	    std::string(SEMNAV_SOURCE_DIR) +
-	    "/scripts/capture-selftest --seconds abc 2>&1");
-	EXPECT_EQ(s.code, 2);
-	EXPECT_EQ(lineCount(s.out), 1u) << s.out;
+	for (const std::string seconds : {"abc", "0", "0.0", "-1"})
+	{
+		const auto s = shell(
+		    std::string(SEMNAV_SOURCE_DIR) +
+		    "/scripts/capture-selftest --build /nonexistent --seconds " +
+		    seconds + " 2>&1");
+		EXPECT_EQ(s.code, 2) << seconds;
+		EXPECT_EQ(lineCount(s.out), 1u) << s.out;
+		EXPECT_NE(s.out.find("--seconds"), std::string::npos) << s.out;
+	}
 }
