@@ -160,7 +160,7 @@ struct BaseServer
 };
 
 /** Serves the emulated devices (and the base when given) until a signal or
- * `duration` s (> 0), printing their terminals, then their counters. */
+ * `duration` s (when > 0), printing their terminals, then their counters. */
 void emulate(
     const semnav::Scene& scene, semnav::LmsEmulator::Options lms,
     const std::string& ptuLink, double duration, bool json,
@@ -265,8 +265,8 @@ int main(int argc, char** argv)
 	TCLAP::ValueArg<std::string> argDiscFor(
 	    "", "disconnect-for", "... for D seconds", false, "2", "D", cmd);
 	TCLAP::ValueArg<std::string> argDuration(
-	    "", "duration", "Stop after S seconds (0 = until a signal)", false, "0",
-	    "S", cmd);
+	    "", "duration", "Stop after S seconds, S > 0 (default: at a signal)",
+	    false, "", "S", cmd);
 	TCLAP::ValueArg<std::string> argCheck(
 	    "", "check", "Check mode: the captured rawlog to compare", false, "",
 	    "R.rawlog", cmd);
@@ -323,8 +323,8 @@ int main(int argc, char** argv)
 	std::map<std::string, double> num;
 	for (auto* a :
 	     {&argSeed, &argCrc, &argDrop, &argStallAt, &argStallFor, &argDiscAt,
-	      &argDiscFor, &argDuration, &argWatchdog, &argOdomRate,
-	      &argOdomSilentAt, &argOdomSilentFor})
+	      &argDiscFor, &argWatchdog, &argOdomRate, &argOdomSilentAt,
+	      &argOdomSilentFor})
 	{
 		const auto v = parseNumber(a->getValue());
 		if (!v)
@@ -332,6 +332,16 @@ int main(int argc, char** argv)
 			    "--" + a->getName() + " must be a number, got '" +
 			    a->getValue() + "'");
 		num[a->getName()] = *v;
+	}
+	num["duration"] = 0;  // until a signal
+	if (!argDuration.getValue().empty())
+	{
+		const auto d = parseNumber(argDuration.getValue());
+		if (!d || !(*d > 0))
+			return cli.usageError(
+			    "--duration must be a number of seconds > 0, got '" +
+			    argDuration.getValue() + "'");
+		num["duration"] = *d;
 	}
 	for (const char* p : {"crc-error-rate", "drop-byte-rate"})
 		if (num[p] < 0 || num[p] > 1)

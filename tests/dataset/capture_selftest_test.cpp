@@ -216,3 +216,22 @@ TEST(DeviceEmulatorCli, BadInputIsOneLineAndNonZeroExit)
 		EXPECT_NE(s.out.find("--seconds"), std::string::npos) << s.out;
 	}
 }
+
+TEST(DeviceEmulatorCli, DurationMustBePositive)
+{
+	using semnav::test::lineCount;
+	const std::string office =
+	    std::string(SEMNAV_SOURCE_DIR) + "/datasets/office/office.yaml";
+	// Durations that would run forever or not at all (bounded here by
+	// timeout(1) in case they are accepted).
+	for (const std::string duration : {"-1", "0"})
+	{
+		const auto d = shell(
+		    "timeout 3 " + std::string(SEMNAV_BINARY_DIR) +
+		    "/apps/semnav-device-emulator/semnav-device-emulator --scene " +
+		    office + " --duration " + duration + " 2>&1 >/dev/null");
+		EXPECT_EQ(d.code, 2) << duration;
+		EXPECT_EQ(lineCount(d.out), 1u) << d.out;
+		EXPECT_NE(d.out.find("--duration"), std::string::npos) << d.out;
+	}
+}
