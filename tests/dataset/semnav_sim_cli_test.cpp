@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -82,4 +83,36 @@ TEST(SemnavSimCli, BadSceneIsOneLineNamingFileLineAndKey)
 	    runSim("--scene /nonexistent.yaml --out /tmp/semnav_never");
 	EXPECT_EQ(m.code, 1);
 	EXPECT_NE(m.err.find("/nonexistent.yaml"), std::string::npos) << m.err;
+}
+
+namespace
+{
+/** Writes `yaml` to a scene file named after the test and the process. */
+fs::path writeScene(const std::string& name, const std::string& yaml)
+{
+	const fs::path p =
+	    fs::temp_directory_path() /
+	    ("semnav_cli_" + name + "_" + std::to_string(::getpid()) + ".yaml");
+	std::ofstream(p) << yaml;
+	return p;
+}
+}  // namespace
+
+TEST(SemnavSimCli, AbsurdSizeIsOneLineNamingKeyAndLimit)
+{
+	const fs::path scene = writeScene(
+	    "huge",
+	    "name: x\nbounds: [0, 0, 4, 4]\nobjects:\n  - {label: wall, box: "
+	    "{center: [3, 3, 1], size: [1e30, 1, 2]}}\ntrajectory: [[1, 1, 0]]\n");
+	const AppRun r =
+	    runSim("--scene " + scene.string() + " --out /tmp/semnav_never");
+	fs::remove(scene);
+	EXPECT_EQ(r.code, 1);
+	EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+	EXPECT_NE(
+	    r.err.find(
+	        scene.string() + ":4: objects[0].box.size[0]: must be at "
+	                         "most 1000 m, got 1e+30"),
+	    std::string::npos)
+	    << r.err;
 }

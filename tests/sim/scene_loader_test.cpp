@@ -406,6 +406,41 @@ TEST(SceneLoaderErrors, NegativeOrZeroSize)
 	    4, "objects[0].stairs.steps", "must be >= 1, got 0");
 }
 
+TEST(SceneLoaderErrors, AbsurdSizesAndCoordinatesNameTheLimit)
+{
+	expectError(
+	    edited(
+	        4,
+	        "  - {label: wall, box: {center: [1, 1, 1], size: [1e30, 1, 2]}}"),
+	    4, "objects[0].box.size[0]", "must be at most 1000 m, got 1e+30");
+	expectError(
+	    edited(
+	        4,
+	        "  - {label: wastebasket, cylinder: {center: [1, 1, 0.2], radius: "
+	        "0.1, height: 5000}}"),
+	    4, "objects[0].cylinder.height", "must be at most 1000 m");
+	expectError(
+	    edited(
+	        4,
+	        "  - {label: wall, box: {center: [1, -1e30, 1], size: [1, 1, 2]}}"),
+	    4, "objects[0].box.center[1]", "must lie within +-10000 m, got -1e+30");
+	expectError(
+	    edited(2, "bounds: [0, 0, 1e30, 10]"), 2, "bounds[2]",
+	    "must lie within +-10000 m");
+	expectError(
+	    appended("ceiling_height: 1e12"), 7, "ceiling_height",
+	    "must be at most 1000 m");
+	expectError(
+	    appended("sensor: {max_range: 1e9}"), 7, "sensor.max_range",
+	    "must be at most 1000 m");
+	expectError(
+	    edited(
+	        4,
+	        "  - {label: grass, terrain: {polygon: [[0, 0], [1, 0], [1, 1]], "
+	        "roughness: 1e20}}"),
+	    4, "objects[0].terrain.roughness", "must be at most 1000 m");
+}
+
 TEST(SceneLoaderErrors, UnknownLabel)
 {
 	expectError(
