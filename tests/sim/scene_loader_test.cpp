@@ -403,7 +403,18 @@ TEST(SceneLoaderErrors, NegativeOrZeroSize)
 	        4,
 	        "  - {label: stairs, stairs: {origin: [1, 1], steps: 0, rise: "
 	        "0.2, run: 0.3, width: 1}}"),
-	    4, "objects[0].stairs.steps", "must be >= 1, got 0");
+	    4, "objects[0].stairs.steps", "must be in [1, 1000], got 0");
+}
+
+TEST(SceneLoaderErrors, HugeStairsAreBoundedBeforeAllocating)
+{
+	// 1e8 steps ran the simulator out of memory (std::bad_alloc) after 17 s.
+	expectError(
+	    edited(
+	        4,
+	        "  - {label: stairs, stairs: {origin: [5, 5], steps: 100000000, "
+	        "rise: 0.1, run: 0.3, width: 1}}"),
+	    4, "objects[0].stairs.steps", "must be in [1, 1000], got 100000000");
 }
 
 TEST(SceneLoaderErrors, AbsurdSizesAndCoordinatesNameTheLimit)

@@ -22,6 +22,8 @@ constexpr std::size_t kMaxObjects = 255;
 constexpr double kMaxLength = 1000;
 /** Largest coordinate magnitude (m): scenes are local frames. */
 constexpr double kMaxCoordinate = 10000;
+/** Most steps of one stairs object (each step is a ray-cast solid). */
+constexpr int kMaxSteps = 1000;
 
 const std::vector<std::string> kSceneKeys = {
     "name",   "bounds",   "ceiling_height", "objects",
@@ -392,8 +394,10 @@ private:
 		s.yaw = yaw(f);
 		const Field steps = required(f, "steps");
 		s.steps = integer(steps);
-		if (s.steps < 1)
-			fail(steps, "must be >= 1, got " + std::to_string(s.steps));
+		if (s.steps < 1 || s.steps > kMaxSteps)
+			fail(
+			    steps, "must be in [1, " + std::to_string(kMaxSteps) +
+			               "], got " + std::to_string(s.steps));
 		s.rise = length(required(f, "rise"));
 		s.run = length(required(f, "run"));
 		s.width = length(required(f, "width"));
