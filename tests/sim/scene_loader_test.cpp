@@ -521,7 +521,14 @@ TEST(SceneLoaderErrors, SensorAngleRanges)
 	    "must lie within [-180, 180] deg");
 	expectError(
 	    appended("sensor: {phi: [-90, 90, 0]}"), 7, "sensor.phi",
-	    "step must be > 0");
+	    "step must be >= 0.1 deg, got 0");
+	// A 1e-5 deg step failed later in an OpenCV allocation naming no key.
+	expectError(
+	    appended("sensor: {phi: [-90, 90, 0.00001]}"), 7, "sensor.phi",
+	    "step must be >= 0.1 deg, got 1e-05");
+	expectError(
+	    appended("sensor: {theta: [-10, 80, 0.001]}"), 7, "sensor.theta",
+	    "step must be >= 0.1 deg");
 	expectError(
 	    appended("sensor: {max_range: 0}"), 7, "sensor.max_range",
 	    "must be > 0");

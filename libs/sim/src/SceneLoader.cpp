@@ -24,6 +24,9 @@ constexpr double kMaxLength = 1000;
 constexpr double kMaxCoordinate = 10000;
 /** Most steps of one stairs object (each step is a ray-cast solid). */
 constexpr int kMaxSteps = 1000;
+/** Finest beam and tilt step (deg): finer than an LMS2xx's 0.25 deg; a
+ * sweep has at most 3601 x 1801 pixels. */
+constexpr double kMinAngleStepDeg = 0.1;
 
 const std::vector<std::string> kSceneKeys = {
     "name",   "bounds",   "ceiling_height", "objects",
@@ -326,7 +329,10 @@ private:
 			fail(
 			    f, "min must be < max, got min " + fmt(v[0]) + ", max " +
 			           fmt(v[1]));
-		if (!(v[2] > 0)) fail(f, "step must be > 0, got " + fmt(v[2]));
+		if (!(v[2] >= kMinAngleStepDeg))
+			fail(
+			    f, "step must be >= " + fmt(kMinAngleStepDeg) + " deg, got " +
+			           fmt(v[2]));
 		if (v[0] < -limitDeg || v[1] > limitDeg)
 			fail(
 			    f, "must lie within [" + fmt(-limitDeg) + ", " + fmt(limitDeg) +
