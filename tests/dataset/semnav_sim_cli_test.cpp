@@ -116,3 +116,24 @@ TEST(SemnavSimCli, AbsurdSizeIsOneLineNamingKeyAndLimit)
 	    std::string::npos)
 	    << r.err;
 }
+
+TEST(SemnavSimCli, PoseInsideAWallIsOneLineNamingIndexAndLine)
+{
+	const fs::path scene = writeScene(
+	    "inwall",
+	    "name: x\nbounds: [0, 0, 4, 4]\nobjects:\n  - {label: wall, box: "
+	    "{center: [2, 2, 1], size: [1, 1, 2]}}\ntrajectory:\n  - [1, 1, 0]\n"
+	    "  - [2, 2, 0]\n");
+	const AppRun r =
+	    runSim("--scene " + scene.string() + " --out /tmp/semnav_never");
+	fs::remove(scene);
+	EXPECT_EQ(r.code, 1);
+	EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+	EXPECT_NE(
+	    r.err.find(
+	        scene.string() +
+	        ":7: trajectory[1]: pose (2, 2) is inside objects[0] (wall, line "
+	        "4)"),
+	    std::string::npos)
+	    << r.err;
+}

@@ -550,6 +550,30 @@ TEST(SceneLoaderErrors, BadBoundsAndPoses)
 	expectError(edited(1, "name: a/b"), 1, "name", "not a valid file name");
 }
 
+TEST(SceneLoaderErrors, PoseInsideAnObstacle)
+{
+	// The base scene's wall spans x, y in [0.5, 1.5].
+	expectError(
+	    edited(6, "  - [1, 2, 0]\n  - [1.2, 0.9, 0]"), 7, "trajectory[1]",
+	    "pose (1.2, 0.9) is inside objects[0] (wall, line 4)");
+	const std::string wall = kBaseLines[3] + "\n";
+	std::string stairs = edited(
+	    4, wall +
+	           "  - {label: stairs, stairs: {origin: [5, 5], yaw: 90, "
+	           "steps: 3, rise: 0.2, run: 0.3, width: 1}}");
+	stairs.replace(stairs.find("[1, 2, 0]"), 9, "[5.2, 5.5, 0]");
+	expectError(
+	    stairs, 7, "trajectory[0]", "inside objects[1] (stairs, line 5)");
+	// Over a mat and under a table top the robot stands free.
+	EXPECT_EQ(
+	    errorOf(edited(
+	        4, wall + "  - {label: obstacle, box: {center: [1, 2, 0.01], size: "
+	                  "[1, 1, 0.02]}}\n"
+	                  "  - {label: obstacle, box: {center: [1, 2, 0.75], size: "
+	                  "[1, 1, 0.04]}}")),
+	    "(no error)");
+}
+
 TEST(SceneLoaderErrors, EmptyTrajectory)
 {
 	expectError(edited(6, ""), 5, "trajectory", "expected a list, got null");

@@ -586,6 +586,12 @@ Scene Parser::scene(const YAML::Node& rootNode) const
 			fail(
 			    pose, "pose (" + fmt(p[0]) + ", " + fmt(p[1]) +
 			              ") is outside the bounds");
+		if (const auto o = sc.obstacleAt(p[0], p[1]))
+			fail(
+			    pose, "pose (" + fmt(p[0]) + ", " + fmt(p[1]) + ") is inside " +
+			              item("objects", *o) + " (" +
+			              labelName(sc.objects[*o].label) + ", line " +
+			              std::to_string(sc.objects[*o].line) + ")");
 		sc.trajectory.emplace_back(p[0], p[1], p[2] * kDegToRad);
 	}
 	return sc;
