@@ -27,6 +27,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 #include <thread>
 
 namespace
@@ -105,6 +106,28 @@ nlohmann::json checkJson(
 	if (!j.contains("crc_errors")) j["crc_errors"] = nullptr;
 	return j;
 }
+/** Why the robot cannot stand at `p` in `scene`, if it cannot. */
+std::optional<std::string> poseProblem(
+    const semnav::Scene& scene, const mrpt::math::TPose2D& p)
+{
+	const auto& b = scene.bounds;
+	if (!b.contains(p.x, p.y))
+	{
+		std::ostringstream os;
+		os << "is outside the bounds [" << b.xmin << ", " << b.ymin << ", "
+		   << b.xmax << ", " << b.ymax << "]";
+		return os.str();
+	}
+	if (const auto i = scene.obstacleAt(p.x, p.y))
+	{
+		const auto& o = scene.objects[*i];
+		return "is inside objects[" + std::to_string(*i) + "] (" +
+		       semnav::labelName(o.label) + ", line " + std::to_string(o.line) +
+		       ")";
+	}
+	return std::nullopt;
+}
+
 /** The emulated base's summary. */
 nlohmann::json baseJson(const semnav::EmulatedDiffDriveBase& base)
 {
@@ -370,6 +393,10 @@ int main(int argc, char** argv)
 				        ": no trajectory pose; give --pose");
 			    pose = scene.trajectory.front();
 		    }
+		    if (const auto problem = poseProblem(scene, *pose))
+			    return cli.usageError(
+			        "--pose " + argPose.getValue() + " " + *problem + " of " +
+			        argScene.getValue());
 		    if (!argCheck.getValue().empty())
 		    {
 			    const semnav::SceneLineCaster caster(scene);

@@ -235,3 +235,22 @@ TEST(DeviceEmulatorCli, DurationMustBePositive)
 		EXPECT_NE(d.out.find("--duration"), std::string::npos) << d.out;
 	}
 }
+
+TEST(DeviceEmulatorCli, PoseOutsideTheSceneIsAUsageError)
+{
+	using semnav::test::lineCount;
+	using semnav::test::runApp;
+	const std::string outdoor =
+	    std::string(SEMNAV_SOURCE_DIR) + "/datasets/outdoor/outdoor.yaml";
+	// Off the 20 x 12 m scene, then inside the building wall (line 18).
+	for (const std::string pose : {"25,5,0", "3,9.6,0"})
+	{
+		const auto r = runApp(
+		    "semnav-device-emulator",
+		    "--scene " + outdoor + " --pose " + pose + " --duration 0.1");
+		EXPECT_EQ(r.code, 2) << pose;
+		EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+		EXPECT_NE(r.err.find("--pose " + pose + " is "), std::string::npos)
+		    << r.err;
+	}
+}
