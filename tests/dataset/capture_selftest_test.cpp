@@ -254,3 +254,32 @@ TEST(DeviceEmulatorCli, PoseOutsideTheSceneIsAUsageError)
 		    << r.err;
 	}
 }
+
+TEST(GrabberPlugin, ConfigErrorIsOneLineFirstAndExitNonZero)
+{
+	// The emulator's grabber config with a resolution no LMS2xx has.
+	const fs::path dir = fs::temp_directory_path() /
+	                     ("semnav_grabber_bad_" + std::to_string(::getpid()));
+	fs::create_directories(dir);
+	{
+		std::ifstream in(
+		    std::string(SEMNAV_SOURCE_DIR) + "/config/grabber-emulated.ini");
+		std::ofstream out(dir / "bad.ini");
+		for (std::string line; std::getline(in, line);)
+		{
+			if (line.rfind("resolution =", 0) == 0) line = "resolution = 33";
+			if (line.rfind("rawlog_prefix =", 0) == 0)
+				line = "rawlog_prefix = " + (dir / "capture").string();
+			out << line << "\n";
+		}
+	}
+	const auto r = shell(
+	    "rawlog-grabber -p " + std::string(SEMNAV_BINARY_DIR) +
+	    "/lib/libsemnav_hwdrivers.so " + (dir / "bad.ini").string() +
+	    " 2>&1 >/dev/null");
+	EXPECT_EQ(r.code, 1) << r.out;
+	const std::string first = r.out.substr(0, r.out.find('\n'));
+	EXPECT_EQ(first.rfind("CTiltingLMS2xx: [TILT_LMS] ", 0), 0u) << r.out;
+	EXPECT_NE(first.find("resolution"), std::string::npos) << r.out;
+	fs::remove_all(dir);
+}
