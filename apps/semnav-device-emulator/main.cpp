@@ -27,6 +27,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 #include <thread>
 
 namespace
@@ -105,6 +106,28 @@ nlohmann::json checkJson(
 	if (!j.contains("crc_errors")) j["crc_errors"] = nullptr;
 	return j;
 }
+/** Why the robot cannot stand at `p` in `scene`, if it cannot. */
+std::optional<std::string> poseProblem(
+    const semnav::Scene& scene, const mrpt::math::TPose2D& p)
+{
+	const auto& b = scene.bounds;
+	if (!b.contains(p.x, p.y))
+	{
+		std::ostringstream os;
+		os << "is outside the bounds [" << b.xmin << ", " << b.ymin << ", "
+		   << b.xmax << ", " << b.ymax << "]";
+		return os.str();
+	}
+	if (const auto i = scene.obstacleAt(p.x, p.y))
+	{
+		const auto& o = scene.objects[*i];
+		return "is inside objects[" + std::to_string(*i) + "] (" +
+		       semnav::labelName(o.label) + ", line " + std::to_string(o.line) +
+		       ")";
+	}
+	return std::nullopt;
+}
+
 /** The emulated base's summary. */
 nlohmann::json baseJson(const semnav::EmulatedDiffDriveBase& base)
 {
@@ -160,7 +183,7 @@ struct BaseServer
 };
 
 /** Serves the emulated devices (and the base when given) until a signal or
- * `duration` s (> 0), printing their terminals, then their counters. */
+ * `duration` s (when > 0), printing their terminals, then their counters. */
 void emulate(
     const semnav::Scene& scene, semnav::LmsEmulator::Options lms,
     const std::string& ptuLink, double duration, bool json,
@@ -265,8 +288,8 @@ int main(int argc, char** argv)
 	TCLAP::ValueArg<std::string> argDiscFor(
 	    "", "disconnect-for", "... for D seconds", false, "2", "D", cmd);
 	TCLAP::ValueArg<std::string> argDuration(
-	    "", "duration", "Stop after S seconds (0 = until a signal)", false, "0",
-	    "S", cmd);
+	    "", "duration", "Stop after S seconds, S > 0 (default: at a signal)",
+	    false, "", "S", cmd);
 	TCLAP::ValueArg<std::string> argCheck(
 	    "", "check", "Check mode: the captured rawlog to compare", false, "",
 	    "R.rawlog", cmd);
@@ -323,8 +346,8 @@ int main(int argc, char** argv)
 	std::map<std::string, double> num;
 	for (auto* a :
 	     {&argSeed, &argCrc, &argDrop, &argStallAt, &argStallFor, &argDiscAt,
-	      &argDiscFor, &argDuration, &argWatchdog, &argOdomRate,
-	      &argOdomSilentAt, &argOdomSilentFor})
+	      &argDiscFor, &argWatchdog, &argOdomRate, &argOdomSilentAt,
+	      &argOdomSilentFor})
 	{
 		const auto v = parseNumber(a->getValue());
 		if (!v)
@@ -332,6 +355,16 @@ int main(int argc, char** argv)
 			    "--" + a->getName() + " must be a number, got '" +
 			    a->getValue() + "'");
 		num[a->getName()] = *v;
+	}
+	num["duration"] = 0;  // until a signal
+	if (!argDuration.getValue().empty())
+	{
+		const auto d = parseNumber(argDuration.getValue());
+		if (!d || !(*d > 0))
+			return cli.usageError(
+			    "--duration must be a number of seconds > 0, got '" +
+			    argDuration.getValue() + "'");
+		num["duration"] = *d;
 	}
 	for (const char* p : {"crc-error-rate", "drop-byte-rate"})
 		if (num[p] < 0 || num[p] > 1)
@@ -360,6 +393,10 @@ int main(int argc, char** argv)
 				        ": no trajectory pose; give --pose");
 			    pose = scene.trajectory.front();
 		    }
+		    if (const auto problem = poseProblem(scene, *pose))
+			    return cli.usageError(
+			        "--pose " + argPose.getValue() + " " + *problem + " of " +
+			        argScene.getValue());
 		    if (!argCheck.getValue().empty())
 		    {
 			    const semnav::SceneLineCaster caster(scene);

@@ -122,6 +122,20 @@ void printSummary(const nlohmann::json& j, const std::string& poses)
 	std::cout << "  map: " << out << "/map.yaml, rendering " << out
 	          << "/map.png\n";
 }
+
+/** How the sweeps read add up to the map written, e.g. "the map of 4 of
+ * them written, 1 incomplete left out". */
+std::string mappedOfRead(const semnav::MapBuilder& b)
+{
+	std::string s = "the map of " + std::to_string(b.map().sweepsInserted()) +
+	                " of them written";
+	if (b.sweepsSkippedIncomplete() > 0)
+		s += ", " + std::to_string(b.sweepsSkippedIncomplete()) +
+		     " incomplete left out";
+	if (b.sweepsFailed() > 0)
+		s += ", " + std::to_string(b.sweepsFailed()) + " failed";
+	return s;
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -219,8 +233,7 @@ int main(int argc, char** argv)
 			    printSummary(j, poses);
 		    if (!builder.readError().empty())
 			    throw semnav::RawlogError(
-			        builder.readError() +
-			        " (map of the sweeps before it written)");
+			        builder.readError() + " (" + mappedOfRead(builder) + ")");
 		    return 0;
 	    });
 }

@@ -205,9 +205,81 @@ TEST(DeviceEmulatorCli, BadInputIsOneLineAndNonZeroExit)
 	EXPECT_EQ(r.code, 1);
 	EXPECT_EQ(lineCount(r.err), 1u) << r.err;
 	EXPECT_NE(r.err.find("/nonexistent/c.rawlog"), std::string::npos);
-	const auto s = shell(
-	    std::string(SEMNAV_SOURCE_DIR) +
-	    "/scripts/capture-selftest --seconds abc 2>&1");
-	EXPECT_EQ(s.code, 2);
-	EXPECT_EQ(lineCount(s.out), 1u) << s.out;
+	for (const std::string seconds : {"abc", "0", "0.0", "-1"})
+	{
+		const auto s = shell(
+		    std::string(SEMNAV_SOURCE_DIR) +
+		    "/scripts/capture-selftest --build /nonexistent --seconds " +
+		    seconds + " 2>&1");
+		EXPECT_EQ(s.code, 2) << seconds;
+		EXPECT_EQ(lineCount(s.out), 1u) << s.out;
+		EXPECT_NE(s.out.find("--seconds"), std::string::npos) << s.out;
+	}
+}
+
+TEST(DeviceEmulatorCli, DurationMustBePositive)
+{
+	using semnav::test::lineCount;
+	const std::string office =
+	    std::string(SEMNAV_SOURCE_DIR) + "/datasets/office/office.yaml";
+	// Durations that would run forever or not at all (bounded here by
+	// timeout(1) in case they are accepted).
+	for (const std::string duration : {"-1", "0"})
+	{
+		const auto d = shell(
+		    "timeout 3 " + std::string(SEMNAV_BINARY_DIR) +
+		    "/apps/semnav-device-emulator/semnav-device-emulator --scene " +
+		    office + " --duration " + duration + " 2>&1 >/dev/null");
+		EXPECT_EQ(d.code, 2) << duration;
+		EXPECT_EQ(lineCount(d.out), 1u) << d.out;
+		EXPECT_NE(d.out.find("--duration"), std::string::npos) << d.out;
+	}
+}
+
+TEST(DeviceEmulatorCli, PoseOutsideTheSceneIsAUsageError)
+{
+	using semnav::test::lineCount;
+	using semnav::test::runApp;
+	const std::string outdoor =
+	    std::string(SEMNAV_SOURCE_DIR) + "/datasets/outdoor/outdoor.yaml";
+	// Off the 20 x 12 m scene, then inside the building wall (line 18).
+	for (const std::string pose : {"25,5,0", "3,9.6,0"})
+	{
+		const auto r = runApp(
+		    "semnav-device-emulator",
+		    "--scene " + outdoor + " --pose " + pose + " --duration 0.1");
+		EXPECT_EQ(r.code, 2) << pose;
+		EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+		EXPECT_NE(r.err.find("--pose " + pose + " is "), std::string::npos)
+		    << r.err;
+	}
+}
+
+TEST(GrabberPlugin, ConfigErrorIsOneLineFirstAndExitNonZero)
+{
+	// The emulator's grabber config with a resolution no LMS2xx has.
+	const fs::path dir = fs::temp_directory_path() /
+	                     ("semnav_grabber_bad_" + std::to_string(::getpid()));
+	fs::create_directories(dir);
+	{
+		std::ifstream in(
+		    std::string(SEMNAV_SOURCE_DIR) + "/config/grabber-emulated.ini");
+		std::ofstream out(dir / "bad.ini");
+		for (std::string line; std::getline(in, line);)
+		{
+			if (line.rfind("resolution =", 0) == 0) line = "resolution = 33";
+			if (line.rfind("rawlog_prefix =", 0) == 0)
+				line = "rawlog_prefix = " + (dir / "capture").string();
+			out << line << "\n";
+		}
+	}
+	const auto r = shell(
+	    "rawlog-grabber -p " + std::string(SEMNAV_BINARY_DIR) +
+	    "/lib/libsemnav_hwdrivers.so " + (dir / "bad.ini").string() +
+	    " 2>&1 >/dev/null");
+	EXPECT_EQ(r.code, 1) << r.out;
+	const std::string first = r.out.substr(0, r.out.find('\n'));
+	EXPECT_EQ(first.rfind("CTiltingLMS2xx: [TILT_LMS] ", 0), 0u) << r.out;
+	EXPECT_NE(first.find("resolution"), std::string::npos) << r.out;
+	fs::remove_all(dir);
 }

@@ -123,3 +123,47 @@ TEST(RawlogErrorsCli, ADirectoryAsRawlogIsNamed)
 	}
 	fs::remove_all(kTmp);
 }
+
+TEST(RawlogErrorsCli, TruncatedRawlogCountsAgreeWithTheMap)
+{
+	// A small room, two coarse sweeps; the second cut short.
+	fs::create_directories(kTmp);
+	const fs::path scene = kTmp / "room.yaml";
+	std::ofstream(scene)
+	    << "name: room\nbounds: [0, 0, 4, 4]\nobjects:\n"
+	       "  - {label: wall, box: {center: [2, 0.05, 1], size: [4, 0.1, 2]}}\n"
+	       "  - {label: wall, box: {center: [2, 3.95, 1], size: [4, 0.1, 2]}}\n"
+	       "  - {label: wall, box: {center: [0.05, 2, 1], size: [0.1, 4, 2]}}\n"
+	       "  - {label: wall, box: {center: [3.95, 2, 1], size: [0.1, 4, 2]}}\n"
+	       "sensor: {phi: [-90, 90, 1], theta: [-15, 90, 1]}\n"
+	       "trajectory: [[1.5, 2, 0], [2.5, 2, 0]]\n";
+	const AppRun sim = runApp(
+	    "semnav-sim",
+	    "--scene " + scene.string() + " --out " + (kTmp / "room").string());
+	ASSERT_EQ(sim.code, 0) << sim.err;
+	const fs::path rawlog = kTmp / "room" / "room.rawlog";
+	fs::resize_file(rawlog, fs::file_size(rawlog) * 3 / 4);
+
+	const AppRun r = runApp(
+	    "semnav-map", "--no-cascades --json --rawlog " + rawlog.string() +
+	                      " --out " + (kTmp / "map").string());
+	EXPECT_EQ(r.code, 1) << r.err;
+	const auto j = nlohmann::json::parse(r.out);
+	const int mapped = j.at("sweeps").get<int>();
+	const int incomplete = j.at("sweeps_skipped_incomplete").get<int>();
+	EXPECT_GE(mapped, 1);
+	EXPECT_EQ(incomplete, 1);
+	const std::string last =
+	    r.err.substr(r.err.rfind('\n', r.err.size() - 2) + 1);
+	EXPECT_NE(
+	    last.find("(" + std::to_string(mapped + incomplete) + " sweeps read)"),
+	    std::string::npos)
+	    << last;
+	EXPECT_NE(
+	    last.find(
+	        "the map of " + std::to_string(mapped) + " of them written, " +
+	        std::to_string(incomplete) + " incomplete left out"),
+	    std::string::npos)
+	    << last;
+	fs::remove_all(kTmp);
+}

@@ -168,3 +168,25 @@ TEST_F(SemnavMapCli, WriteConfigWritesWhatConfigLoads)
 	EXPECT_EQ(
 	    runApp("semnav-map", "--write-config /nonexistent-dir/x.ini").code, 1);
 }
+
+TEST_F(SemnavMapCli, ThreeDtkScanWithoutPoseIsRefusedNamingTheFile)
+{
+	// Two scan lines of a wall 3 m ahead; no scan.pose beside them.
+	const fs::path scan = kTmp / "scan.3d";
+	{
+		std::ofstream f(scan);
+		for (int row = 0; row < 2; row++)
+			for (int c = 0; c < 360; c++)
+				f << (c - 180) * 0.5 << " " << row * 2.0 << " 300\n";
+	}
+	const AppRun r = runApp(
+	    "semnav-map", "--no-cascades --3dtk " + scan.string() + " --out " +
+	                      (kTmp / "map3dtk").string());
+	EXPECT_EQ(r.code, 1) << r.err;
+	EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+	EXPECT_NE(
+	    r.err.find("no pose file " + (kTmp / "scan.pose").string()),
+	    std::string::npos)
+	    << r.err;
+	EXPECT_FALSE(fs::exists(kTmp / "map3dtk" / "map.yaml"));
+}

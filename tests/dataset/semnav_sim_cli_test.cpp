@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -82,4 +83,44 @@ TEST(SemnavSimCli, BadSceneIsOneLineNamingFileLineAndKey)
 	    runSim("--scene /nonexistent.yaml --out /tmp/semnav_never");
 	EXPECT_EQ(m.code, 1);
 	EXPECT_NE(m.err.find("/nonexistent.yaml"), std::string::npos) << m.err;
+}
+
+namespace
+{
+/** Runs semnav-sim on the scene `yaml` (written to a file named after
+ * `name`): exit 1 and one line "<file>:<where>". */
+void expectSceneError(
+    const std::string& name, const std::string& yaml, const std::string& where)
+{
+	const fs::path scene =
+	    fs::temp_directory_path() /
+	    ("semnav_cli_" + name + "_" + std::to_string(::getpid()) + ".yaml");
+	std::ofstream(scene) << yaml;
+	const AppRun r =
+	    runSim("--scene " + scene.string() + " --out /tmp/semnav_never");
+	fs::remove(scene);
+	EXPECT_EQ(r.code, 1);
+	EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+	EXPECT_NE(r.err.find(scene.string() + ":" + where), std::string::npos)
+	    << r.err;
+}
+}  // namespace
+
+TEST(SemnavSimCli, AbsurdSizeIsOneLineNamingKeyAndLimit)
+{
+	expectSceneError(
+	    "huge",
+	    "name: x\nbounds: [0, 0, 4, 4]\nobjects:\n  - {label: wall, box: "
+	    "{center: [3, 3, 1], size: [1e30, 1, 2]}}\ntrajectory: [[1, 1, 0]]\n",
+	    "4: objects[0].box.size[0]: must be at most 1000 m, got 1e+30");
+}
+
+TEST(SemnavSimCli, PoseInsideAWallIsOneLineNamingIndexAndLine)
+{
+	expectSceneError(
+	    "inwall",
+	    "name: x\nbounds: [0, 0, 4, 4]\nobjects:\n  - {label: wall, box: "
+	    "{center: [2, 2, 1], size: [1, 1, 2]}}\ntrajectory:\n  - [1, 1, 0]\n"
+	    "  - [2, 2, 0]\n",
+	    "7: trajectory[1]: pose (2, 2) is inside objects[0] (wall, line 4)");
 }

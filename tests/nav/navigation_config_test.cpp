@@ -105,3 +105,17 @@ TEST(NavigationConfig, BadInputIsAnError)
 	EXPECT_NE(errorOf("/nonexistent/navigation.ini"), "");
 	EXPECT_EQ(errorOf(kNav), "");
 }
+
+TEST(NavigationConfig, EmptyFileNamesTheFileAndTheMissingKey)
+{
+	const fs::path p =
+	    fs::temp_directory_path() /
+	    ("semnav_navcfg_empty_" + std::to_string(::getpid()) + ".ini");
+	std::ofstream(p).close();
+	const std::string e = errorOf(p.string());
+	fs::remove(p);
+	EXPECT_EQ(e.find('\n'), std::string::npos) << "one line: " << e;
+	EXPECT_EQ(e.rfind(p.string() + ": [", 0), 0u) << e;
+	EXPECT_NE(e.find(" is missing"), std::string::npos) << e;
+	EXPECT_EQ(e.find("===="), std::string::npos) << e;
+}

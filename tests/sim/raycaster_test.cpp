@@ -412,6 +412,31 @@ TEST(RayCaster, RejectsDegeneratePrimitives)
 	EXPECT_THROW(RayCaster{s}, SceneError);
 }
 
+TEST(RayCaster, TooLargeTerrainNamesObjectAndCellBeforeAllocating)
+{
+	Scene s;
+	s.bounds = {0, 0, 9000, 9000};
+	SceneObject o;
+	o.label = Label::Grass;
+	o.id = 1;
+	o.line = 7;
+	o.parts.push_back(
+	    TerrainShape{{{0, 0}, {9000, 0}, {9000, 9000}, {0, 9000}}, 0.01});
+	s.objects.push_back(o);
+	try
+	{
+		RayCaster c(s);
+		ADD_FAILURE() << "a 9 km terrain patch at 0.1 m cells was accepted";
+	}
+	catch (const SceneError& e)
+	{
+		const std::string m = e.what();
+		EXPECT_NE(m.find("line 7"), std::string::npos) << m;
+		EXPECT_NE(m.find("terrain_cell_m = 0.1 m"), std::string::npos) << m;
+		EXPECT_NE(m.find("at most 2e+07"), std::string::npos) << m;
+	}
+}
+
 TEST(RayCaster, AcceleratedEqualsBruteForce)
 {
 	const Scene s = test::clutteredScene();

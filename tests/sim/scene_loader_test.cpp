@@ -403,7 +403,53 @@ TEST(SceneLoaderErrors, NegativeOrZeroSize)
 	        4,
 	        "  - {label: stairs, stairs: {origin: [1, 1], steps: 0, rise: "
 	        "0.2, run: 0.3, width: 1}}"),
-	    4, "objects[0].stairs.steps", "must be >= 1, got 0");
+	    4, "objects[0].stairs.steps", "must be in [1, 1000], got 0");
+}
+
+TEST(SceneLoaderErrors, HugeStairsAreBoundedBeforeAllocating)
+{
+	// 1e8 steps ran the simulator out of memory (std::bad_alloc) after 17 s.
+	expectError(
+	    edited(
+	        4,
+	        "  - {label: stairs, stairs: {origin: [5, 5], steps: 100000000, "
+	        "rise: 0.1, run: 0.3, width: 1}}"),
+	    4, "objects[0].stairs.steps", "must be in [1, 1000], got 100000000");
+}
+
+TEST(SceneLoaderErrors, AbsurdSizesAndCoordinatesNameTheLimit)
+{
+	expectError(
+	    edited(
+	        4,
+	        "  - {label: wall, box: {center: [1, 1, 1], size: [1e30, 1, 2]}}"),
+	    4, "objects[0].box.size[0]", "must be at most 1000 m, got 1e+30");
+	expectError(
+	    edited(
+	        4,
+	        "  - {label: wastebasket, cylinder: {center: [1, 1, 0.2], radius: "
+	        "0.1, height: 5000}}"),
+	    4, "objects[0].cylinder.height", "must be at most 1000 m");
+	expectError(
+	    edited(
+	        4,
+	        "  - {label: wall, box: {center: [1, -1e30, 1], size: [1, 1, 2]}}"),
+	    4, "objects[0].box.center[1]", "must lie within +-10000 m, got -1e+30");
+	expectError(
+	    edited(2, "bounds: [0, 0, 1e30, 10]"), 2, "bounds[2]",
+	    "must lie within +-10000 m");
+	expectError(
+	    appended("ceiling_height: 1e12"), 7, "ceiling_height",
+	    "must be at most 1000 m");
+	expectError(
+	    appended("sensor: {max_range: 1e9}"), 7, "sensor.max_range",
+	    "must be at most 1000 m");
+	expectError(
+	    edited(
+	        4,
+	        "  - {label: grass, terrain: {polygon: [[0, 0], [1, 0], [1, 1]], "
+	        "roughness: 1e20}}"),
+	    4, "objects[0].terrain.roughness", "must be at most 1000 m");
 }
 
 TEST(SceneLoaderErrors, UnknownLabel)
@@ -475,7 +521,14 @@ TEST(SceneLoaderErrors, SensorAngleRanges)
 	    "must lie within [-180, 180] deg");
 	expectError(
 	    appended("sensor: {phi: [-90, 90, 0]}"), 7, "sensor.phi",
-	    "step must be > 0");
+	    "step must be >= 0.1 deg, got 0");
+	// A 1e-5 deg step failed later in an OpenCV allocation naming no key.
+	expectError(
+	    appended("sensor: {phi: [-90, 90, 0.00001]}"), 7, "sensor.phi",
+	    "step must be >= 0.1 deg, got 1e-05");
+	expectError(
+	    appended("sensor: {theta: [-10, 80, 0.001]}"), 7, "sensor.theta",
+	    "step must be >= 0.1 deg");
 	expectError(
 	    appended("sensor: {max_range: 0}"), 7, "sensor.max_range",
 	    "must be > 0");
@@ -495,6 +548,30 @@ TEST(SceneLoaderErrors, BadBoundsAndPoses)
 	expectError(
 	    appended("ceiling_height: -2"), 7, "ceiling_height", "must be > 0");
 	expectError(edited(1, "name: a/b"), 1, "name", "not a valid file name");
+}
+
+TEST(SceneLoaderErrors, PoseInsideAnObstacle)
+{
+	// The base scene's wall spans x, y in [0.5, 1.5].
+	expectError(
+	    edited(6, "  - [1, 2, 0]\n  - [1.2, 0.9, 0]"), 7, "trajectory[1]",
+	    "pose (1.2, 0.9) is inside objects[0] (wall, line 4)");
+	const std::string wall = kBaseLines[3] + "\n";
+	std::string stairs = edited(
+	    4, wall +
+	           "  - {label: stairs, stairs: {origin: [5, 5], yaw: 90, "
+	           "steps: 3, rise: 0.2, run: 0.3, width: 1}}");
+	stairs.replace(stairs.find("[1, 2, 0]"), 9, "[5.2, 5.5, 0]");
+	expectError(
+	    stairs, 7, "trajectory[0]", "inside objects[1] (stairs, line 5)");
+	// Over a mat and under a table top the robot stands free.
+	EXPECT_EQ(
+	    errorOf(edited(
+	        4, wall + "  - {label: obstacle, box: {center: [1, 2, 0.01], size: "
+	                  "[1, 1, 0.02]}}\n"
+	                  "  - {label: obstacle, box: {center: [1, 2, 0.75], size: "
+	                  "[1, 1, 0.04]}}")),
+	    "(no error)");
 }
 
 TEST(SceneLoaderErrors, EmptyTrajectory)

@@ -14,6 +14,10 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <mutex>
 #include <nlohmann/json.hpp>
 
 IMPLEMENTS_GENERIC_SENSOR(CTiltingLMS2xx, semnav)
@@ -70,6 +74,28 @@ std::string firstLine(const std::string& msg)
 		b = e + 1;
 	}
 	return msg;
+}
+
+std::atomic<bool> g_exitNonZeroOnStartupError{false};
+
+/** At exit: the status becomes 1 (stdio flushed; later exit handlers and
+ * static destructors are skipped: the grabber has closed its rawlog). */
+void exitWithFailure()
+{
+	std::fflush(nullptr);
+	std::_Exit(1);
+}
+
+/** One line naming the section, before MRPT's multi-line report. */
+void reportStartupError(const std::string& section, const std::exception& e)
+{
+	std::string what = firstLine(e.what());
+	if (what.rfind("[" + section + "]", 0) != 0)
+		what = "[" + section + "] " + what;
+	std::cerr << "CTiltingLMS2xx: " << what << std::endl;
+	static std::once_flag once;
+	if (g_exitNonZeroOnStartupError)
+		std::call_once(once, [] { std::atexit(exitWithFailure); });
 }
 
 using O = CTiltingLMS2xx::TOptions;
@@ -245,16 +271,29 @@ CTiltingLMS2xx::~CTiltingLMS2xx()
 	}
 }
 
+void CTiltingLMS2xx::exitNonZeroOnStartupError()
+{
+	g_exitNonZeroOnStartupError = true;
+}
+
 void CTiltingLMS2xx::loadConfig_sensorSpecific(
     const mrpt::config::CConfigFileBase& c, const std::string& section)
 {
-	TOptions o;
-	o.loadFromConfigFile(c, section);
-	if (o.lmsPort.empty())
-		throw ConfigError(where(section, "COM_port_LIN") + " is missing");
-	if (o.ptuPort.empty())
-		throw ConfigError(where(section, "ptu_port") + " is missing");
-	m_options = o;
+	try
+	{
+		TOptions o;
+		o.loadFromConfigFile(c, section);
+		if (o.lmsPort.empty())
+			throw ConfigError(where(section, "COM_port_LIN") + " is missing");
+		if (o.ptuPort.empty())
+			throw ConfigError(where(section, "ptu_port") + " is missing");
+		m_options = o;
+	}
+	catch (const std::exception& e)
+	{
+		reportStartupError(section, e);
+		throw;
+	}
 }
 
 double CTiltingLMS2xx::lineRateLimit() const
@@ -269,6 +308,19 @@ double CTiltingLMS2xx::lineRateLimit() const
 }
 
 void CTiltingLMS2xx::initialize()
+{
+	try
+	{
+		start();
+	}
+	catch (const std::exception& e)
+	{
+		reportStartupError(m_sensorLabel, e);
+		throw;
+	}
+}
+
+void CTiltingLMS2xx::start()
 {
 	if (m_options.ptuType == "tumicos")
 		m_ptu = std::make_unique<mrpt::hwdrivers::CTuMicos>();

@@ -48,6 +48,15 @@ MapBuilder::MapBuilder(const Settings& settings)
 		    std::filesystem::path(rawlog).parent_path().string(), rawlog);
 	if (m_settings.poses == PoseSource::GroundTruth && !m_gt)
 		throw Error("--poses gt needs a rawlog from semnav-sim (or --gt-dir)");
+	// A 3DTK scan without its pose would land at the origin, on top of the
+	// others: refuse (docs/mapping.md, "The real 3DTK scans").
+	for (const auto& scan : m_settings.scans3dtk)
+		if (const auto pose = ThreeDtkReader::posePath(scan);
+		    !std::filesystem::exists(pose))
+			throw IoError(
+			    scan + ": no pose file " + pose +
+			    " (each 3DTK scan is placed by its .pose; for the map origin "
+			    "write '0 0 0' and '0 0 0' into it)");
 	if (!rawlog.empty())
 		m_reader =
 		    std::make_unique<RawlogSweepReader>(rawlog, m_settings.assembler);

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <regex>
 #include <set>
 
 namespace semnav
@@ -36,6 +37,28 @@ bool dynamicKey(const std::string& section, const std::string& key)
 	    std::isdigit(static_cast<unsigned char>(key[3])))
 		return true;
 	return false;
+}
+
+/** What MRPT's exception `what` says, in one line: its "Message:" line,
+ * and a missing required key as "[section] key is missing". */
+std::string mrptComplaint(const std::string& what)
+{
+	std::string msg = what;
+	if (const auto m = what.find("Message:"); m != std::string::npos)
+	{
+		const auto b = what.find_first_not_of(' ', m + 8);
+		msg = what.substr(b, what.find('\n', b) - b);
+	}
+	else
+		msg = msg.substr(0, msg.find('\n'));
+	static const std::regex missing(
+	    "Value for '([^']*)' not found in config file in section '([^']*)'");
+	std::smatch k;
+	if (std::regex_search(msg, k, missing))
+		return "[" + k[2].str() + "] " + k[1].str() +
+		       " is missing (MRPT's navigator requires it; the shipped "
+		       "config/navigation.ini has every key)";
+	return "MRPT rejects the navigation sections: " + msg.substr(0, 300);
 }
 
 /** Keys MRPT writes back for the sections of `cfg`: every key it reads.
@@ -156,9 +179,7 @@ NavigationConfig NavigationConfig::load(
 	}
 	catch (const std::exception& e)
 	{
-		throw ConfigError(
-		    navigationIni + ": MRPT rejects the navigation sections: " +
-		    std::string(e.what()).substr(0, 300));
+		throw ConfigError(navigationIni + ": " + mrptComplaint(e.what()));
 	}
 	c.mrptSections = std::move(mrptSections);
 	if (!planningIni.empty())

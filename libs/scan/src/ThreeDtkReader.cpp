@@ -142,14 +142,17 @@ Sweep ThreeDtkReader::read(const std::string& path) const
 	sw.setSensorLabel("3DTK");
 	sw.quality().ascending = ascending;
 
-	const auto posePath =
-	    std::filesystem::path(path).replace_extension(".pose").string();
-	if (std::filesystem::exists(posePath))
+	if (const std::string pose = posePath(path); std::filesystem::exists(pose))
 	{
-		const auto p = readPose(posePath);
+		const auto p = readPose(pose);
 		sw.setOdometry(mrpt::poses::CPose2D(p.x(), p.y(), p.yaw()));
 	}
 	return sw;
+}
+
+std::string ThreeDtkReader::posePath(const std::string& scanPath)
+{
+	return std::filesystem::path(scanPath).replace_extension(".pose").string();
 }
 
 mrpt::poses::CPose3D ThreeDtkReader::readPose(const std::string& path)

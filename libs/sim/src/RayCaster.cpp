@@ -9,6 +9,7 @@
 #include <limits>
 #include <numeric>
 #include <random>
+#include <sstream>
 #include <string>
 
 #include "RayGeometry.h"
@@ -20,6 +21,8 @@ namespace
 using namespace detail;
 /** Padding of bounding boxes, so culling never rejects an exact hit. */
 constexpr double kPad = 1e-6;
+/** Most cells of one terrain height field (about 25 bytes each). */
+constexpr double kMaxTerrainCells = 2e7;
 
 uint64_t splitMix64(uint64_t x)
 {
@@ -129,8 +132,10 @@ struct RayCaster::Impl
 		prims.push_back(pr);
 	}
 
+	/** `name` names the object in errors. */
 	void addTerrain(
-	    const TerrainShape& t, Label l, int inst, double cell, uint64_t seed)
+	    const TerrainShape& t, Label l, int inst, double cell, uint64_t seed,
+	    const std::string& name)
 	{
 		TerrainPrim T;
 		T.poly = t.polygon;
@@ -151,10 +156,16 @@ struct RayCaster::Impl
 		    1, static_cast<int>(std::ceil((T.pxmax - T.pxmin) / cell)));
 		T.cy = std::max(
 		    1, static_cast<int>(std::ceil((T.pymax - T.pymin) / cell)));
-		if (static_cast<double>(T.cx) * T.cy > 2e8)
-			throw Error(
-			    "terrain patch too large for a grid of " +
-			    std::to_string(cell) + " m");
+		if (static_cast<double>(T.cx) * T.cy > kMaxTerrainCells)
+		{
+			std::ostringstream os;
+			os << name << ": terrain patch " << T.pxmax - T.pxmin << " x "
+			   << T.pymax - T.pymin << " m needs " << double(T.cx) * T.cy
+			   << " cells of terrain_cell_m = " << cell << " m, at most "
+			   << kMaxTerrainCells
+			   << " (a smaller polygon or a larger terrain_cell_m)";
+			throw SceneError(os.str());
+		}
 
 		// Node heights: i.i.d. Gaussian, std 1.5 * roughness (see header).
 		std::mt19937_64 rng(seed);
@@ -355,7 +366,7 @@ RayCaster::RayCaster(const Scene& scene, uint64_t seed, double terrainCell)
 					    what(o, oi) + ": terrain roughness must be >= 0");
 				const uint64_t s =
 				    splitMix64(splitMix64(splitMix64(seed) ^ oi) ^ pi);
-				I.addTerrain(*t, o.label, o.id, terrainCell, s);
+				I.addTerrain(*t, o.label, o.id, terrainCell, s, what(o, oi));
 			}
 		}
 	}

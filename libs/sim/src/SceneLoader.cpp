@@ -18,6 +18,15 @@ namespace
 constexpr double kDegToRad = M_PI / 180;
 /** Instance ids go in the high byte of the ground-truth label images. */
 constexpr std::size_t kMaxObjects = 255;
+/** Largest length (sizes, heights, ranges; m): a building, not a planet. */
+constexpr double kMaxLength = 1000;
+/** Largest coordinate magnitude (m): scenes are local frames. */
+constexpr double kMaxCoordinate = 10000;
+/** Most steps of one stairs object (each step is a ray-cast solid). */
+constexpr int kMaxSteps = 1000;
+/** Finest beam and tilt step (deg): finer than an LMS2xx's 0.25 deg; a
+ * sweep has at most 3601 x 1801 pixels. */
+constexpr double kMinAngleStepDeg = 0.1;
 
 const std::vector<std::string> kSceneKeys = {
     "name",   "bounds",   "ceiling_height", "objects",
@@ -230,6 +239,42 @@ private:
 		return v;
 	}
 
+	/** A length `v` read from `f`, at most kMaxLength. */
+	double bounded(const Field& f, double v) const
+	{
+		if (v > kMaxLength)
+			fail(f, "must be at most " + fmt(kMaxLength) + " m, got " + fmt(v));
+		return v;
+	}
+
+	double length(const Field& f) const { return bounded(f, positive(f)); }
+
+	double nonNegativeLength(const Field& f) const
+	{
+		return bounded(f, nonNegative(f));
+	}
+
+	/** A coordinate `v` read from `f`, within +-kMaxCoordinate. */
+	double coordinate(const Field& f, double v) const
+	{
+		if (std::abs(v) > kMaxCoordinate)
+			fail(
+			    f, "must lie within +-" + fmt(kMaxCoordinate) + " m, got " +
+			           fmt(v));
+		return v;
+	}
+
+	/** `count` numbers of the list `f`, the first `coords` of them
+	 * coordinates. */
+	std::vector<double> coordinates(
+	    const Field& f, std::size_t count, std::size_t coords) const
+	{
+		const auto v = numbers(f, count);
+		for (std::size_t i = 0; i < coords; i++)
+			coordinate(element(f, i), v[i]);
+		return v;
+	}
+
 	int integer(const Field& f) const
 	{
 		const double v = number(f);
@@ -257,13 +302,13 @@ private:
 
 	mrpt::math::TPoint3D point3(const Field& f) const
 	{
-		const auto v = numbers(f, 3);
+		const auto v = coordinates(f, 3, 3);
 		return {v[0], v[1], v[2]};
 	}
 
 	mrpt::math::TPoint2D point2(const Field& f) const
 	{
-		const auto v = numbers(f, 2);
+		const auto v = coordinates(f, 2, 2);
 		return {v[0], v[1]};
 	}
 
@@ -284,7 +329,10 @@ private:
 			fail(
 			    f, "min must be < max, got min " + fmt(v[0]) + ", max " +
 			           fmt(v[1]));
-		if (!(v[2] > 0)) fail(f, "step must be > 0, got " + fmt(v[2]));
+		if (!(v[2] >= kMinAngleStepDeg))
+			fail(
+			    f, "step must be >= " + fmt(kMinAngleStepDeg) + " deg, got " +
+			           fmt(v[2]));
 		if (v[0] < -limitDeg || v[1] > limitDeg)
 			fail(
 			    f, "must lie within [" + fmt(-limitDeg) + ", " + fmt(limitDeg) +
@@ -322,8 +370,11 @@ private:
 		const Field size = required(f, "size");
 		const auto s = numbers(size, 3);
 		for (std::size_t i = 0; i < 3; i++)
+		{
 			if (!(s[i] > 0))
 				fail(element(size, i), "must be > 0, got " + fmt(s[i]));
+			bounded(element(size, i), s[i]);
+		}
 		b.size = {s[0], s[1], s[2]};
 		b.yaw = yaw(f);
 		return b;
@@ -335,8 +386,8 @@ private:
 		checkKeys(f, {"center", "radius", "height"});
 		CylinderShape c;
 		c.center = point3(required(f, "center"));
-		c.radius = positive(required(f, "radius"));
-		c.height = positive(required(f, "height"));
+		c.radius = length(required(f, "radius"));
+		c.height = length(required(f, "height"));
 		return c;
 	}
 
@@ -349,11 +400,13 @@ private:
 		s.yaw = yaw(f);
 		const Field steps = required(f, "steps");
 		s.steps = integer(steps);
-		if (s.steps < 1)
-			fail(steps, "must be >= 1, got " + std::to_string(s.steps));
-		s.rise = positive(required(f, "rise"));
-		s.run = positive(required(f, "run"));
-		s.width = positive(required(f, "width"));
+		if (s.steps < 1 || s.steps > kMaxSteps)
+			fail(
+			    steps, "must be in [1, " + std::to_string(kMaxSteps) +
+			               "], got " + std::to_string(s.steps));
+		s.rise = length(required(f, "rise"));
+		s.run = length(required(f, "run"));
+		s.width = length(required(f, "width"));
 		return s;
 	}
 
@@ -372,7 +425,7 @@ private:
 			t.polygon.push_back(point2(element(poly, i)));
 		if (!(polygonArea(t.polygon) > 1e-9))
 			fail(poly, "degenerate polygon (zero area)");
-		t.roughness = nonNegative(required(f, "roughness"));
+		t.roughness = nonNegativeLength(required(f, "roughness"));
 		return t;
 	}
 
@@ -445,9 +498,9 @@ private:
 		if (const Field v = field(f, "theta"); v.present())
 			angleRange(v, 90, s.thetaMin, s.thetaMax, s.thetaStep);
 		if (const Field v = field(f, "max_range"); v.present())
-			s.maxRange = positive(v);
+			s.maxRange = length(v);
 		if (const Field v = field(f, "range_noise"); v.present())
-			s.rangeNoise = nonNegative(v);
+			s.rangeNoise = nonNegativeLength(v);
 	}
 
 	void odometry(const Field& f, OdometrySpec& o) const
@@ -489,7 +542,7 @@ Scene Parser::scene(const YAML::Node& rootNode) const
 		        "' is not a valid file name (use letters, digits, _ - .)");
 
 	const Field bounds = required(root, "bounds");
-	const auto b = numbers(bounds, 4);
+	const auto b = coordinates(bounds, 4, 4);
 	sc.bounds = {b[0], b[1], b[2], b[3]};
 	if (!(b[2] > b[0]) || !(b[3] > b[1]))
 		fail(
@@ -498,7 +551,7 @@ Scene Parser::scene(const YAML::Node& rootNode) const
 		                "]");
 
 	if (const Field c = field(root, "ceiling_height"); c.present())
-		sc.ceilingHeight = positive(c);
+		sc.ceilingHeight = length(c);
 
 	if (const Field objs = field(root, "objects"); objs.present())
 	{
@@ -528,11 +581,17 @@ Scene Parser::scene(const YAML::Node& rootNode) const
 	for (std::size_t i = 0; i < traj.node.size(); i++)
 	{
 		const Field pose = element(traj, i);
-		const auto p = numbers(pose, 3);
+		const auto p = coordinates(pose, 3, 2);
 		if (!sc.bounds.contains(p[0], p[1]))
 			fail(
 			    pose, "pose (" + fmt(p[0]) + ", " + fmt(p[1]) +
 			              ") is outside the bounds");
+		if (const auto o = sc.obstacleAt(p[0], p[1]))
+			fail(
+			    pose, "pose (" + fmt(p[0]) + ", " + fmt(p[1]) + ") is inside " +
+			              item("objects", *o) + " (" +
+			              labelName(sc.objects[*o].label) + ", line " +
+			              std::to_string(sc.objects[*o].line) + ")");
 		sc.trajectory.emplace_back(p[0], p[1], p[2] * kDegToRad);
 	}
 	return sc;

@@ -7,7 +7,11 @@ namespace
 {
 struct RegisterSemnavSensors
 {
-	RegisterSemnavSensors() { semnav::CTiltingLMS2xx::doRegister(); }
+	RegisterSemnavSensors()
+	{
+		semnav::CTiltingLMS2xx::doRegister();
+		semnav::CTiltingLMS2xx::exitNonZeroOnStartupError();
+	}
 };
 const RegisterSemnavSensors registerSemnavSensors;
 }  // namespace

@@ -134,6 +134,13 @@ public:
 	void initialize() override;
 	void doProcess() override;
 
+	/** Called by the rawlog-grabber plugin: a configuration or start-up
+	 * error then also makes the process exit with status 1 when it ends
+	 * (MRPT 2.5's rawlog-grabber logs a sensor thread's exception, stops
+	 * and exits 0). Either way the error is first printed as one line,
+	 * "CTiltingLMS2xx: [SECTION] what", before MRPT's report. */
+	static void exitNonZeroOnStartupError();
+
 	const TOptions& options() const { return m_options; }
 	Stats stats() const;
 	/** Measured lines per second since the first line. */
@@ -153,6 +160,8 @@ private:
 		mrpt::Clock::time_point t;
 		mrpt::obs::CObservation2DRangeScan::Ptr scan;
 	};
+	/** initialize()'s work. */
+	void start();
 	void laserThread();
 	void headThread();
 	/** Head angle (PTU units) of tilt theta. */

@@ -52,6 +52,9 @@ public:
 	 * (x forward, y left, z up; metres, radians). */
 	static mrpt::poses::CPose3D readPose(const std::string& path);
 
+	/** The pose file of the scan `scanPath`: same stem, `.pose`. */
+	static std::string posePath(const std::string& scanPath);
+
 private:
 	TOptions m_options;
 };

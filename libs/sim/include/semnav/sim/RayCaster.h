@@ -67,7 +67,8 @@ public:
 
 	/** Builds the primitives; `seed` drives the terrain heights. Throws
 	 * SceneError for degenerate primitives (non-positive sizes, polygons
-	 * with < 3 vertices) and Error for terrainCell <= 0. */
+	 * with < 3 vertices) and terrain patches of more than 2e7 cells (before
+	 * allocating them), and Error for terrainCell <= 0. */
 	explicit RayCaster(
 	    const Scene& scene, uint64_t seed = 0, double terrainCell = 0.1);
 	~RayCaster();

@@ -118,6 +118,16 @@ struct Scene
 	OdometrySpec odometry;
 	/** Stop-and-scan poses (x, y, yaw in rad); one sweep at each. */
 	std::vector<mrpt::math::TPose2D> trajectory;
+
+	/** Lowest height (m) of the robot's body: solids below it (thresholds,
+	 * mats) are driven over. */
+	static constexpr double kBodyBottom = 0.05;
+
+	/** Index in `objects` of the first object with a solid part (box,
+	 * cylinder, stairs step; terrain is ground) where a robot centred at
+	 * (x, y) would stand: a part reaching into the robot's body, from
+	 * kBodyBottom up to the sensor's mount height. Nothing if none. */
+	std::optional<std::size_t> obstacleAt(double x, double y) const;
 };
 
 }  // namespace semnav
