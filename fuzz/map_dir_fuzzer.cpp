@@ -6,13 +6,11 @@
 #include <semnav/common/Error.h>
 #include <semnav/map/MapIO.h>
 #include <semnav/map/SemanticMap.h>
-#include <semnav/perception/LabeledSweep.h>
-#include <semnav/scan/TiltGeometry.h>
 
 #include <algorithm>
-#include <cmath>
 #include <vector>
 
+#include "../tests/map/MapTestUtils.h"
 #include "FuzzFiles.h"
 
 using namespace semnav;
@@ -23,36 +21,19 @@ namespace
 /** Two sweeps of a floor fan with a box and a wastebasket detection. */
 void buildMap(SemanticMap& m)
 {
-	std::vector<std::pair<cv::Vec3f, Label>> pts;
-	for (double a = -0.6; a <= 0.6; a += 0.05)
-		for (double r = 0.3; r <= 2.0; r += 0.08)
-			pts.push_back(
-			    {cv::Vec3f(r * std::cos(a), r * std::sin(a), 0), Label::Floor});
+	auto pts = test::floorFan(2.0, 0.08);
 	for (double y = -0.3; y <= 0.3; y += 0.04)
-		pts.push_back({cv::Vec3f(1.5, y, 0.3), Label::Obstacle});
-	const int n = static_cast<int>(pts.size());
-	Sweep sweep(1, pts.size());
-	sweep.setRow(0, 0.0, tiltedSensorPose({0, 0, 0.45}, 0.0));
-	LabeledSweep ls;
-	ls.labels = cv::Mat(1, n, CV_8U, cv::Scalar(0));
-	ls.validMask = cv::Mat(1, n, CV_8U, cv::Scalar(1));
-	ls.points = cv::Mat(1, n, CV_32FC3);
-	ls.regionIds = cv::Mat(1, n, CV_32S, cv::Scalar(-1));
-	ls.roughnessBar = cv::Mat(1, n, CV_32F, cv::Scalar(1.0f));
-	for (int i = 0; i < n; i++)
-	{
-		ls.points.at<cv::Vec3f>(0, i) = pts[i].first;
-		ls.labels.at<uint8_t>(0, i) = static_cast<uint8_t>(pts[i].second);
-	}
+		pts.push_back({1.5, y, 0.3, Label::Obstacle});
+	auto f = test::makeFakeSweep(pts);
 	Detection d;
 	d.label = Label::Wastebasket;
 	d.imageBox = cv::Rect(0, 0, 3, 1);
 	d.centroid = {1.2, 0.5, 0.2};
 	d.extent = {0.3, 0.3, 0.4};
 	d.shapeScore = 0.75;
-	ls.detections = {d};
-	m.insert(sweep, ls, mrpt::poses::CPose2D(1, 1, 0.3));
-	m.insert(sweep, ls, mrpt::poses::CPose2D(1.2, 1, 0.35));
+	f.labeled.detections = {d};
+	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(1, 1, 0.3));
+	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(1.2, 1, 0.35));
 }
 
 struct Fixture
