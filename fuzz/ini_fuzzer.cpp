@@ -1,10 +1,13 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-// libFuzzer harness: INI text through the loadFromConfigFile() of the
+// libFuzzer harness: INI text through openIniFile() (as the apps read
+// their configs), then through the loadFromConfigFile() of the
 // options structs of the reading and mapping libraries (scan, perception,
 // map, cascade, robot, sim), each loaded from every section the text has.
 // Seeds: config/*.ini, copied by scripts/fuzz.
+#include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <semnav/cascade/CascadeTrainer.h>
+#include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
 #include <semnav/map/SemanticMap.h>
 #include <semnav/map/TravelCostModel.h>
@@ -19,6 +22,8 @@
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "FuzzFiles.h"
 
 using namespace semnav;
 
@@ -48,16 +53,35 @@ const std::vector<Make>& optionStructs()
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
-	const mrpt::config::CConfigFileMemory ini(
-	    std::string(reinterpret_cast<const char*>(data), size));
+	// As the apps open a file: MRPT's parser errors must be ConfigError
+	// (with no known section, a file with sections is one too).
+	static const auto path = fuzz::scratchDir("ini") / "input.ini";
+	fuzz::writeBytes(path, data, size);
+	try
+	{
+		openIniFile(path.string(), {});
+	}
+	catch (const ConfigError&)
+	{
+	}
+	std::unique_ptr<mrpt::config::CConfigFileMemory> ini;
+	try
+	{
+		ini = std::make_unique<mrpt::config::CConfigFileMemory>(
+		    std::string(reinterpret_cast<const char*>(data), size));
+	}
+	catch (const std::exception&)
+	{
+		return 0;  // the parse error openIniFile has just named
+	}
 	std::vector<std::string> sections;
-	ini.getAllSections(sections);
+	ini->getAllSections(sections);
 	for (const auto& section : sections)
 		for (const auto& makeOptions : optionStructs())
 		{
 			try
 			{
-				makeOptions()->loadFromConfigFile(ini, section);
+				makeOptions()->loadFromConfigFile(*ini, section);
 			}
 			catch (const Error&)
 			{
