@@ -166,3 +166,24 @@ TEST(CascadeXml, CorruptXmlGivesClearErrors)
 		    e.what(), "cannot open cascade file /nonexistent/dir/x.xml");
 	}
 }
+
+// Found by fuzz_cascade_xml (fuzz/): OpenCV's XML parser crashed (SEGV) on
+// NUL bytes; they are not XML.
+TEST(CascadeXml, NulBytesAreNotXml)
+{
+	const std::string good = CascadeXml::toString(smallCascade());
+	const std::string nul =
+	    replaced(good, "version=", "version=" + std::string(200, '\0'));
+	EXPECT_NE(
+	    errorOf(nul).find("test.xml: not XML: a NUL byte at byte 14"),
+	    std::string::npos)
+	    << errorOf(nul);
+	std::ifstream f(
+	    std::string(SEMNAV_SOURCE_DIR) +
+	        "/tests/cascade/data/fuzz-cascade-nul.xml",
+	    std::ios::binary);
+	ASSERT_TRUE(f.good());
+	const std::string crashed(std::istreambuf_iterator<char>(f), {});
+	EXPECT_EQ(errorOf(crashed).rfind("test.xml: not XML", 0), 0u)
+	    << errorOf(crashed);
+}

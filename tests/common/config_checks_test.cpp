@@ -76,3 +76,17 @@ TEST(ConfigChecks, OpenIniFileRejectsUnknownSectionsAndMissingFiles)
 	    std::string::npos);
 	std::filesystem::remove(p);
 }
+
+// Found by fuzz_ini (fuzz/): MRPT's INI parser throws its own multi-line
+// exception on an unclosed ${...}; openIniFile says it in one line.
+TEST(ConfigChecks, OpenIniFileNamesMrptParseErrors)
+{
+	const auto p = std::filesystem::temp_directory_path() /
+	               ("semnav_cfg_env_" + std::to_string(::getpid()) + ".ini");
+	std::ofstream(p) << "[Known]\nx = $env{ts.json\n";
+	const auto m = messageOf([&] { openIniFile(p.string(), {"Known"}); });
+	EXPECT_EQ(
+	    m, p.string() + ": Line 2: Expected closing `}` near: `$env{ts.json`")
+	    << m;
+	std::filesystem::remove(p);
+}

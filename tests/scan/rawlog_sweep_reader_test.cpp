@@ -143,3 +143,27 @@ TEST(RawlogWriter, UncommittedWriterLeavesNoFile)
 	EXPECT_TRUE(fs::is_empty(dir)) << "temporary file left behind";
 	fs::remove_all(dir);
 }
+
+// Inputs on which fuzz_rawlog (fuzz/) crashed: each must read to its end or
+// to a RawlogError, nothing else.
+TEST(RawlogSweepReader, FuzzCrashInputsEndInSweepsOrRawlogError)
+{
+	for (const char* name : {"fuzz-rawlog-nan-tilt.rawlog"})
+	{
+		SCOPED_TRACE(name);
+		const std::string path =
+		    std::string(SEMNAV_SOURCE_DIR) + "/tests/scan/data/" + name;
+		ASSERT_TRUE(fs::exists(path));
+		try
+		{
+			RawlogSweepReader reader(path);
+			Sweep s;
+			while (reader.next(s))
+			{
+			}
+		}
+		catch (const RawlogError&)
+		{
+		}
+	}
+}

@@ -128,6 +128,43 @@ TEST(SweepAssembler, RepeatedLinesAreDroppedAndCounted)
 	EXPECT_EQ(sweeps[0].quality().repeatedLines, 2u);
 }
 
+// Found by fuzz_rawlog: a corrupt pose gave a NaN tilt, and the sweep's
+// row count lround(NaN) made Sweep allocation throw std::length_error.
+TEST(SweepAssembler, LinesWithNonFiniteTiltAreIgnored)
+{
+	SweepAssembler a;
+	for (int k = 0; k < kLines; k++)
+	{
+		a.push(makeLine(k));
+		if (k == 40)
+		{
+			auto bad = makeLine(k);
+			bad->sensorPose.setYawPitchRoll(0, std::nan(""), 0);
+			a.push(bad);
+		}
+	}
+	a.finish();
+	const auto sweeps = drain(a);
+	ASSERT_EQ(sweeps.size(), 1u);
+	expectRowsAreTiltIndices(sweeps[0]);
+}
+
+TEST(SweepAssembler, TinyTiltGapsDoNotSizeTheSweepWithoutBound)
+{
+	SweepAssembler::TOptions o;
+	o.sameTiltTolerance = 0;
+	SweepAssembler a(o);
+	// Lines 1e-12 rad apart, then one 0.2 rad further: the median gap
+	// alone would give 2e11 rows.
+	for (int k = 0; k < 10; k++) a.push(makeLine(k, 0, 1e-12));
+	a.push(makeLine(1, 0.1, 0.1));
+	a.finish();
+	const auto sweeps = drain(a);
+	ASSERT_EQ(sweeps.size(), 1u);
+	EXPECT_LE(sweeps[0].rows(), 4u * 11);
+	EXPECT_GE(sweeps[0].rows(), 2u);
+}
+
 TEST(SweepAssembler, IncompleteLastSweepIsReportedNotDropped)
 {
 	SweepAssembler a;

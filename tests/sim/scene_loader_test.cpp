@@ -616,6 +616,18 @@ TEST(SceneLoaderErrors, NotASceneMap)
 	expectError(edited(0, "") + "---\nname: x\n", 8, "", "one YAML document");
 }
 
+// Found by fuzz_scene (fuzz/): on this text (a stray '}') yaml-cpp's
+// LoadAll() made empty documents without end, until memory ran out.
+TEST(SceneLoaderErrors, StrayBraceEndsInAnError)
+{
+	std::ifstream f(
+	    std::string(SEMNAV_SOURCE_DIR) +
+	    "/tests/sim/data/fuzz-scene-stray-brace.yaml");
+	ASSERT_TRUE(f.good());
+	const std::string text(std::istreambuf_iterator<char>(f), {});
+	EXPECT_EQ(errorOf(text).rfind("t.yaml:", 0), 0u) << errorOf(text);
+}
+
 TEST(SceneLoaderErrors, MissingFile)
 {
 	try

@@ -362,6 +362,10 @@ HaarCascade CascadeXml::fromString(
 	const Reader rd(source);
 	if (xml.find_first_not_of(" \t\r\n") == std::string::npos)
 		rd.fail("", "empty file");
+	// OpenCV's XML parser dereferences null on a NUL byte (4.6).
+	const std::size_t nul = xml.find('\0');
+	if (nul != std::string::npos)
+		rd.fail("", "not XML: a NUL byte at byte " + std::to_string(nul));
 	try
 	{
 		cv::FileStorage fs(

@@ -1,6 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/system/filesystem.h>
+#include <semnav/common/CommandLine.h>
 #include <semnav/common/ConfigChecks.h>
 #include <semnav/common/Error.h>
 
@@ -112,7 +113,16 @@ std::unique_ptr<mrpt::config::CConfigFile> openIniFile(
 {
 	if (!mrpt::system::fileExists(path))
 		throw ConfigError("config file not found: " + path);
-	auto cfg = std::make_unique<mrpt::config::CConfigFile>(path);
+	std::unique_ptr<mrpt::config::CConfigFile> cfg;
+	try
+	{
+		cfg = std::make_unique<mrpt::config::CConfigFile>(path);
+	}
+	catch (const std::exception& e)
+	{
+		// MRPT's INI parser (an unclosed ${...}, a bad @include): one line.
+		throw ConfigError(path + ": " + CommandLine::firstLine(e.what()));
+	}
 	std::vector<std::string> sections;
 	cfg->getAllSections(sections);
 	for (const auto& s : sections)

@@ -471,9 +471,12 @@ void SemanticMap::insertDetections(
 		toWorldBox(robot, d.centroid - half, d.centroid + half, lo, hi);
 		robot.composePoint(d.centroid, wc);
 		int id = 0;
+		// By value: MRPT packs TPoint3D, so a double& to its members is
+		// misaligned (UBSan).
+		const double ex = d.extent.x, ey = d.extent.y;
 		mergeObject(
-		    d.label, wc, {std::max(d.extent.x, d.extent.y), 0, d.extent.z}, lo,
-		    hi, d.shapeScore, seenThisSweep, id);
+		    d.label, wc, {std::max(ex, ey), 0, d.extent.z}, lo, hi,
+		    d.shapeScore, seenThisSweep, id);
 		if (std::find(viewedThisSweep.begin(), viewedThisSweep.end(), id) ==
 		    viewedThisSweep.end())
 		{

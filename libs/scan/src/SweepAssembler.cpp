@@ -108,6 +108,11 @@ void SweepAssembler::pushLine(
     const mrpt::obs::CObservation2DRangeScan::Ptr& scan)
 {
 	const Line line{tiltOfSensorPose(scan->sensorPose), scan};
+	if (!std::isfinite(line.theta))
+	{
+		MRPT_LOG_WARN("scan line with a non-finite sensor pose: ignored");
+		return;
+	}
 	if (m_lines.empty())
 	{
 		startSweep({line});
@@ -233,6 +238,10 @@ Sweep SweepAssembler::build(const std::vector<Line>& lines, EndReason why)
 		    gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
 		step = gaps[gaps.size() / 2];
 	}
+	// At most 4 rows per line: a tiny median gap (same_tilt_tolerance_deg
+	// = 0) would otherwise size the sweep without bound.
+	const double maxRows = 4.0 * sorted.size();
+	if (step > 0 && span / step + 1 > maxRows) step = span / (maxRows - 1);
 	const std::size_t rows =
 	    step > 0 ? static_cast<std::size_t>(std::lround(span / step)) + 1 : 1;
 

@@ -1,6 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <semnav/common/Error.h>
 #include <semnav/sim/SceneLoader.h>
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -597,6 +598,62 @@ Scene Parser::scene(const YAML::Node& rootNode) const
 	return sc;
 }
 
+/** Where the YAML documents of a text start (their first node), the first
+ * `max` of them: yaml-cpp 0.7's LoadAll() never ends on some malformed text
+ * (a stray '}' starts an empty document again and again). */
+class DocumentStarts : public YAML::EventHandler
+{
+public:
+	static std::vector<YAML::Mark> of(const std::string& text, std::size_t max)
+	{
+		std::istringstream in(text);
+		YAML::Parser p(in);
+		DocumentStarts h;
+		while (h.m_marks.size() < max && p.HandleNextDocument(h))
+		{
+		}
+		return h.m_marks;
+	}
+
+	void OnDocumentStart(const YAML::Mark& m) override
+	{
+		m_marks.push_back(m);
+		m_fresh = true;
+	}
+	void OnDocumentEnd() override {}
+	void OnNull(const YAML::Mark& m, YAML::anchor_t) override { node(m); }
+	void OnAlias(const YAML::Mark& m, YAML::anchor_t) override { node(m); }
+	void OnScalar(
+	    const YAML::Mark& m, const std::string&, YAML::anchor_t,
+	    const std::string&) override
+	{
+		node(m);
+	}
+	void OnSequenceStart(
+	    const YAML::Mark& m, const std::string&, YAML::anchor_t,
+	    YAML::EmitterStyle::value) override
+	{
+		node(m);
+	}
+	void OnSequenceEnd() override {}
+	void OnMapStart(
+	    const YAML::Mark& m, const std::string&, YAML::anchor_t,
+	    YAML::EmitterStyle::value) override
+	{
+		node(m);
+	}
+	void OnMapEnd() override {}
+
+private:
+	void node(const YAML::Mark& m)
+	{
+		if (m_fresh && !m.is_null()) m_marks.back() = m;
+		m_fresh = false;
+	}
+	std::vector<YAML::Mark> m_marks;
+	bool m_fresh = false;
+};
+
 }  // namespace
 
 Scene SceneLoader::loadFile(const std::string& path)
@@ -616,10 +673,16 @@ Scene SceneLoader::parse(
     const std::string& yamlText, const std::string& sourceName)
 {
 	const Parser parser(sourceName);
-	std::vector<YAML::Node> docs;
+	YAML::Node doc;
 	try
 	{
-		docs = YAML::LoadAll(yamlText);
+		const auto starts = DocumentStarts::of(yamlText, 2);
+		if (starts.empty()) parser.fail(1, "", "empty scene file");
+		if (starts.size() > 1)
+			parser.fail(
+			    starts[1].line + 1, "",
+			    "expected one YAML document, a second one starts here");
+		doc = YAML::Load(yamlText);
 	}
 	catch (const YAML::Exception& e)
 	{
@@ -627,14 +690,9 @@ Scene SceneLoader::parse(
 		    e.mark.is_null() ? 0 : e.mark.line + 1, "",
 		    "YAML syntax error: " + e.msg);
 	}
-	if (docs.empty()) parser.fail(1, "", "empty scene file");
-	if (docs.size() > 1)
-		parser.fail(
-		    Parser::lineOf(docs[1], 0), "",
-		    "expected one YAML document, got " + std::to_string(docs.size()));
 	try
 	{
-		return parser.scene(docs.front());
+		return parser.scene(doc);
 	}
 	catch (const YAML::Exception& e)
 	{
