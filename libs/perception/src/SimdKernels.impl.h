@@ -4,6 +4,7 @@
 // cv::v_float32 and vx_* are the widest vectors of the including unit.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <opencv2/core/hal/intrin.hpp>
 #include <vector>
@@ -382,8 +383,12 @@ void roughnessRow(
 		const cv::v_float32 cnt = cv::vx_load(C + c) - vOne;
 		const cv::v_float32 ns = nx * sx + ny * sy + nz * sz;
 		const cv::v_float32 nn = nx * nx + ny * ny + nz * nz;
+		// OpenCV's SSE v_load_expand_q reads the bytes as one int: copy them
+		// to an aligned place first (UBSan: misaligned load).
+		alignas(16) uint8_t mask[kLanes];
+		std::memcpy(mask, NM + c, kLanes);
 		const cv::v_float32 ok =
-		    cv::v_reinterpret_as_f32(cv::vx_load_expand_q(NM + c) != vZero) &
+		    cv::v_reinterpret_as_f32(cv::vx_load_expand_q(mask) != vZero) &
 		    (cnt >= vHalf);
 		cv::v_store(R + c, cv::v_select(ok, (ns - nn) / cnt, vNan));
 	}
