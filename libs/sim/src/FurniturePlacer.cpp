@@ -11,6 +11,8 @@ namespace
 constexpr double kDeg = M_PI / 180;
 /** Gap kept between generated objects. */
 constexpr double kMargin = 0.05;
+/** Kept between furniture and the wall it stands against. */
+constexpr double kWallGap = 0.002;
 
 /** (x, y) + local (lx, ly) turned by yawDeg. */
 mrpt::math::TPoint2D local(
@@ -26,7 +28,7 @@ FurniturePlacer::Spot FurniturePlacer::wallSpot(
 {
 	auto& g = m_draft.rng();
 	const int side = g.uniformInt(0, 3);
-	const double off = depth / 2 + gap;
+	const double off = depth / 2 + gap + kWallGap;
 	if (side < 2)
 	{
 		const double x = g.uniform(r.x0 + width / 2, r.x1 - width / 2);
@@ -85,7 +87,7 @@ bool FurniturePlacer::wastebasket(const RoomRect& r, int where)
 		    }
 		    else if (where == 1)
 		    {
-			    const double e = rad + 0.02;
+			    const double e = rad + 0.02 + kWallGap;
 			    x = g.chance(0.5) ? r.x0 + e : r.x1 - e;
 			    y = g.chance(0.5) ? r.y0 + e : r.y1 - e;
 		    }
@@ -214,16 +216,16 @@ bool FurniturePlacer::stairs(const RoomRect& r, int side)
 		    {
 			    case 0:
 				    return std::vector<DraftPart>{DraftPart::stairs(
-				        a, r.y0 + L, -90, steps, rise, run, width)};
+				        a, r.y0 + kWallGap + L, -90, steps, rise, run, width)};
 			    case 1:
 				    return std::vector<DraftPart>{DraftPart::stairs(
-				        a, r.y1 - L, 90, steps, rise, run, width)};
+				        a, r.y1 - kWallGap - L, 90, steps, rise, run, width)};
 			    case 2:
 				    return std::vector<DraftPart>{DraftPart::stairs(
-				        r.x0 + L, a, 180, steps, rise, run, width)};
+				        r.x0 + kWallGap + L, a, 180, steps, rise, run, width)};
 			    default:
 				    return std::vector<DraftPart>{DraftPart::stairs(
-				        r.x1 - L, a, 0, steps, rise, run, width)};
+				        r.x1 - kWallGap - L, a, 0, steps, rise, run, width)};
 		    }
 	    });
 }

@@ -57,9 +57,11 @@ void GeneratedWall::addBox(
 	const double c = 0.5 * (a0 + a1), len = a1 - a0;
 	const double zc = 0.5 * (z0 + z1), h = z1 - z0;
 	if (alongX)
-		d.add(l, {DraftPart::box(c, acrossCenter, zc, len, acrossSize, h)});
+		d.add(
+		    l, {DraftPart::box(c, acrossCenter, zc, len, acrossSize, h)}, true);
 	else
-		d.add(l, {DraftPart::box(acrossCenter, c, zc, acrossSize, len, h)});
+		d.add(
+		    l, {DraftPart::box(acrossCenter, c, zc, acrossSize, len, h)}, true);
 }
 
 void GeneratedWall::addTo(SceneDraft& draft) const
@@ -99,7 +101,7 @@ void GeneratedWall::addTo(SceneDraft& draft) const
 			              leafAcross, c, zc, kLeafThickness, len,
 			              o.leafHeight));
 		}
-		draft.add(Label::Door, leaves);
+		draft.add(Label::Door, leaves, true);
 	}
 	if (to - start > 0.01)
 		addBox(draft, Label::Wall, start, to, 0, height, across, thickness);

@@ -218,7 +218,7 @@ void furnish(SceneDraft& d, const Plan& p)
 	auto& g = d.rng();
 	FurniturePlacer f(d);
 	// Stairs in one room, climbing toward its outer wall.
-	if (g.chance(0.75))
+	if (g.chance(0.85))
 	{
 		const auto& r = p.rooms[static_cast<std::size_t>(
 		    g.uniformInt(0, static_cast<int>(p.rooms.size()) - 1))];
@@ -226,7 +226,7 @@ void furnish(SceneDraft& d, const Plan& p)
 	}
 	for (const auto& r : p.rooms)
 	{
-		if (g.chance(0.5)) f.washbasin(r.rect);
+		if (g.chance(0.6)) f.washbasin(r.rect);
 		for (int k = g.uniformInt(1, 2); k > 0; k--)
 			f.wastebasket(r.rect, g.uniformInt(0, 2));
 		for (int k = g.uniformInt(0, 2); k > 0; k--) f.cabinet(r.rect);

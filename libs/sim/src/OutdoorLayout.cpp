@@ -132,9 +132,11 @@ std::vector<double> addBuildings(SceneDraft& d, GeneratorRandom& g, Plan& p)
 		facade.addTo(d);
 		for (const double x : {a + t / 2, b - t / 2})
 			d.add(
-			    Label::Wall, {DraftPart::box(
-			                     x, 0.5 * (p.facadeY + p.height), h / 2, t,
-			                     p.height - p.facadeY, h)});
+			    Label::Wall,
+			    {DraftPart::box(
+			        x, 0.5 * (p.facadeY + p.height), h / 2, t,
+			        p.height - p.facadeY, h)},
+			    true);
 	}
 	return doors;
 }

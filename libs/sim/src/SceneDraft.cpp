@@ -131,7 +131,8 @@ void SceneDraft::setBounds(double xmin, double ymin, double xmax, double ymax)
 	m_bounds[2] = xmax, m_bounds[3] = ymax;
 }
 
-void SceneDraft::add(Label label, const std::vector<DraftPart>& parts)
+void SceneDraft::add(
+    Label label, const std::vector<DraftPart>& parts, bool structural)
 {
 	const std::string l = labelName(label);
 	if (parts.size() == 1)
@@ -145,7 +146,10 @@ void SceneDraft::add(Label label, const std::vector<DraftPart>& parts)
 	}
 	for (const auto& p : parts)
 		if (auto fp = p.footprint(kObstacleTop); !fp.empty())
+		{
 			m_footprints.push_back(std::move(fp));
+			m_structural.push_back(structural);
+		}
 }
 
 void SceneDraft::addTerrain(
@@ -166,8 +170,12 @@ void SceneDraft::addKeepOut(const TPoint2D& a, const TPoint2D& b, double radius)
 
 bool SceneDraft::isFree(const Polygon2D& fp, double margin) const
 {
-	for (const auto& o : m_footprints)
-		if (distPolygons(fp, o) < margin) return false;
+	// Furniture stands against walls: a structural footprint only must not
+	// be entered (FurniturePlacer keeps 2 mm off it).
+	for (std::size_t i = 0; i < m_footprints.size(); i++)
+		if (distPolygons(fp, m_footprints[i]) <
+		    (m_structural[i] ? 0.001 : margin))
+			return false;
 	for (const auto& k : m_keepOuts)
 		if (distSegmentPolygon(k.a, k.b, fp) < k.radius) return false;
 	return true;

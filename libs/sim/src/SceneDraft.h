@@ -73,8 +73,11 @@ public:
 	void setCeiling(double h) { m_ceiling = h; }
 	void setOdometryBias(double degPerM) { m_rotBias = degPerM; }
 
-	/** Adds an object of one or more parts. */
-	void add(Label label, const std::vector<DraftPart>& parts);
+	/** Adds an object of one or more parts. A `structural` one (walls,
+	 * doors) keeps poses clear but furniture may touch it. */
+	void add(
+	    Label label, const std::vector<DraftPart>& parts,
+	    bool structural = false);
 	void addTerrain(Label label, const Polygon2D& polygon, double roughness);
 	/** A lane (capsule of `radius` around segment ab) furniture stays out of.
 	 */
@@ -82,8 +85,9 @@ public:
 	    const mrpt::math::TPoint2D& a, const mrpt::math::TPoint2D& b,
 	    double radius);
 
-	/** Whether `fp` is at least `margin` from every obstacle footprint and
-	 * outside every keep-out lane. */
+	/** Whether `fp` is at least `margin` from every non-structural obstacle
+	 * footprint, does not overlap a structural one, and is outside every
+	 * keep-out lane. */
 	bool isFree(const Polygon2D& fp, double margin) const;
 	/** Whether every part of `parts` is free (isFree). */
 	bool isFree(const std::vector<DraftPart>& parts, double margin) const;
@@ -121,6 +125,7 @@ private:
 	double m_rotBias = 0;
 	std::vector<std::string> m_objects;
 	std::vector<Polygon2D> m_footprints;
+	std::vector<bool> m_structural;  ///< per footprint
 	std::vector<KeepOut> m_keepOuts;
 	std::vector<Pose> m_poses;
 };
