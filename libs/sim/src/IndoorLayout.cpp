@@ -272,8 +272,8 @@ void addTrajectory(SceneDraft& d, const Plan& p)
 		d.addPose(x, cy, in + g.uniform(-15, 15));
 		const auto stop = roomStop(*r);
 		d.addPose(stop.x, stop.y, in + g.uniform(-30, 30));
-		d.addPose(
-		    stop.x, stop.y, in + (g.chance(0.5) ? 1 : -1) * g.uniform(70, 110));
+		const int turn = g.chance(0.5) ? 1 : -1;
+		d.addPose(stop.x, stop.y, in + turn * g.uniform(70, 110));
 		d.addPose(x, cy, g.uniform(-30, 30));
 	}
 	walkTo(xEnd);

@@ -194,6 +194,34 @@ void addBench(SceneDraft& d, GeneratorRandom& g, const Plan& p)
 	}
 }
 
+/** A vertical cylinder (post or bin) `off` beyond a sidewalk edge. */
+struct RoadsideCylinder
+{
+	double rMin, rMax, hMin, hMax, offMin, offMax;
+	bool offFromRim;  ///< `off` from the cylinder's rim, not its axis
+};
+
+template <typename TryAdd>
+void addRoadsideCylinder(
+    GeneratorRandom& g, const Plan& p, Label l, const RoadsideCylinder& c,
+    TryAdd tryAdd)
+{
+	const double r = g.uniform(c.rMin, c.rMax), h = g.uniform(c.hMin, c.hMax);
+	tryAdd(
+	    l,
+	    [&]
+	    {
+		    // One draw per statement: argument order is unspecified.
+		    const double x = g.uniform(1, p.width - 1);
+		    const int side = g.chance(0.5) ? 1 : -1;
+		    const double off =
+		        g.uniform(c.offMin, c.offMax) + (c.offFromRim ? r : 0);
+		    const auto at = besideWalk(p, x, side, off);
+		    return std::vector<DraftPart>{
+		        DraftPart::cylinder(at.x, at.y, h / 2, r, h)};
+	    });
+}
+
 void addStreetFurniture(SceneDraft& d, GeneratorRandom& g, const Plan& p)
 {
 	auto tryAdd = [&](Label l, auto make)
@@ -202,35 +230,13 @@ void addStreetFurniture(SceneDraft& d, GeneratorRandom& g, const Plan& p)
 			if (const auto parts = make(); d.isFree(parts, 0.1))
 				return d.add(l, parts);
 	};
+	const RoadsideCylinder post{0.04, 0.08, 0.8, 1.2, 0.3, 0.7, false};
+	const RoadsideCylinder bin{0.13, 0.2, 0.32, 0.55, 0.3, 0.6, true};
 	for (int n = g.uniformInt(3, 8); n > 0; n--)
-	{
-		const double r = g.uniform(0.04, 0.08), h = g.uniform(0.8, 1.2);
-		tryAdd(
-		    Label::Obstacle,
-		    [&]
-		    {
-			    const auto c = besideWalk(
-			        p, g.uniform(1, p.width - 1), g.chance(0.5) ? 1 : -1,
-			        g.uniform(0.3, 0.7));
-			    return std::vector<DraftPart>{
-			        DraftPart::cylinder(c.x, c.y, h / 2, r, h)};
-		    });
-	}
+		addRoadsideCylinder(g, p, Label::Obstacle, post, tryAdd);
 	for (int n = g.uniformInt(1, 2); n > 0; n--) addBench(d, g, p);
 	for (int n = g.uniformInt(1, 3); n > 0; n--)
-	{
-		const double r = g.uniform(0.13, 0.2), h = g.uniform(0.32, 0.55);
-		tryAdd(
-		    Label::Wastebasket,
-		    [&]
-		    {
-			    const auto c = besideWalk(
-			        p, g.uniform(1, p.width - 1), g.chance(0.5) ? 1 : -1,
-			        g.uniform(0.3, 0.6) + r);
-			    return std::vector<DraftPart>{
-			        DraftPart::cylinder(c.x, c.y, h / 2, r, h)};
-		    });
-	}
+		addRoadsideCylinder(g, p, Label::Wastebasket, bin, tryAdd);
 	// Low walls on the grass, along the sidewalk (label wall).
 	for (int n = g.uniformInt(0, 2); n > 0; n--)
 	{
@@ -241,8 +247,8 @@ void addStreetFurniture(SceneDraft& d, GeneratorRandom& g, const Plan& p)
 		    [&]
 		    {
 			    const double x = g.uniform(L / 2 + 0.5, p.width - L / 2 - 0.5);
-			    const auto c = besideWalk(
-			        p, x, g.chance(0.5) ? 1 : -1, g.uniform(1.5, 3.0));
+			    const int side = g.chance(0.5) ? 1 : -1;
+			    const auto c = besideWalk(p, x, side, g.uniform(1.5, 3.0));
 			    return std::vector<DraftPart>{DraftPart::box(
 			        c.x, c.y, h / 2, L, t, h, p.walk.headingDeg(x))};
 		    });
