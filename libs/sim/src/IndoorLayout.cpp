@@ -217,12 +217,16 @@ void furnish(SceneDraft& d, const Plan& p)
 {
 	auto& g = d.rng();
 	FurniturePlacer f(d);
-	// Stairs in one room, climbing toward its outer wall.
-	if (g.chance(0.85))
+	// Stairs in one of the rooms the robot enters (an open gap), climbing
+	// toward its outer wall.
+	std::vector<const Room*> open;
+	for (const auto& r : p.rooms)
+		if (!r.entrance.isDoor()) open.push_back(&r);
+	if (g.chance(0.85) && !open.empty())
 	{
-		const auto& r = p.rooms[static_cast<std::size_t>(
-		    g.uniformInt(0, static_cast<int>(p.rooms.size()) - 1))];
-		f.stairs(r.rect, r.south ? 0 : 1);
+		const Room* r = open[static_cast<std::size_t>(
+		    g.uniformInt(0, static_cast<int>(open.size()) - 1))];
+		f.stairs(r->rect, r->south ? 0 : 1);
 	}
 	for (const auto& r : p.rooms)
 	{
