@@ -1,10 +1,12 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // semnav-sim: simulates a tilting LMS200 in a scene and writes a rawlog
 // with ground truth (docs/design.md, "Apps").
+#include <semnav/common/AtomicFile.h>
 #include <semnav/common/CommandLine.h>
 #include <semnav/common/Error.h>
 #include <semnav/common/IniSections.h>
 #include <semnav/common/ProgressBar.h>
+#include <semnav/sim/SceneGenerator.h>
 #include <semnav/sim/SceneLoader.h>
 #include <semnav/sim/SimulatedRobotOptions.h>
 #include <semnav/sim/SimulationRunner.h>
@@ -21,13 +23,22 @@ int main(int argc, char** argv)
 	semnav::CommandLine cli(
 	    "semnav-sim",
 	    "Simulates a SICK LMS200 on a tilting head (stop-and-scan) in a scene "
-	    "and writes <out>/<name>.rawlog, <name>.gt.txt and <name>.labels/.");
+	    "and writes <out>/<name>.rawlog, <name>.gt.txt and <name>.labels/. "
+	    "With --generate, writes a procedural scene file to --out instead "
+	    "(docs/generated-scenes.md).");
 	auto& cmd = cli.cmd();
 	TCLAP::ValueArg<std::string> argScene(
 	    "", "scene", "Scene file (YAML); required", false, "", "S.yaml", cmd);
 	TCLAP::ValueArg<std::string> argOut(
-	    "", "out", "Output directory (created if needed); required", false, "",
-	    "DIR", cmd);
+	    "", "out",
+	    "Output directory (created if needed); with --generate the scene "
+	    "file to write; required",
+	    false, "", "DIR", cmd);
+	TCLAP::ValueArg<std::string> argGenerate(
+	    "", "generate",
+	    "Write a procedural scene of this kind (indoor or outdoor) for --seed "
+	    "to --out instead of simulating",
+	    false, "", "KIND", cmd);
 	TCLAP::ValueArg<std::string> argSeed(
 	    "", "seed",
 	    "Random seed (terrain, range and odometry noise); default 0", false,
@@ -41,15 +52,39 @@ int main(int argc, char** argv)
 	    cli.addConfig(sections, "INI file (see config/sim.ini)");
 	TCLAP::SwitchArg& argJson = cli.addJson();
 	if (const auto code = cli.parse(argc, argv)) return *code;
-	for (auto* a : {&argScene, &argOut})
-		if (a->getValue().empty())
-			return cli.usageError("missing --" + a->getName());
 	const auto seedValue =
 	    semnav::CommandLine::parseUnsigned(argSeed.getValue());
 	if (!seedValue)
 		return cli.usageError(
 		    "--seed must be a non-negative integer, got '" +
 		    argSeed.getValue() + "'");
+	if (argGenerate.isSet())
+	{
+		if (argScene.isSet())
+			return cli.usageError("give --generate or --scene, not both");
+		if (argOut.getValue().empty()) return cli.usageError("missing --out");
+		semnav::SceneGenerator::TOptions gen;
+		gen.seed = *seedValue;
+		try
+		{
+			gen.kind =
+			    semnav::SceneGenerator::kindFromName(argGenerate.getValue());
+		}
+		catch (const std::exception& e)
+		{
+			return cli.usageError(std::string("--generate: ") + e.what());
+		}
+		return cli.run(
+		    [&]
+		    {
+			    semnav::writeFileAtomically(
+			        argOut.getValue(), semnav::SceneGenerator(gen).generate());
+			    return 0;
+		    });
+	}
+	for (auto* a : {&argScene, &argOut})
+		if (a->getValue().empty())
+			return cli.usageError("missing --" + a->getName());
 	const std::string scenePath = argScene.getValue();
 	const std::string outDir = argOut.getValue();
 	const std::string configPath = argConfig.getValue();
