@@ -242,6 +242,177 @@ void emulate(
 	else
 		std::cout << "emulator: " << j.dump() << std::endl;
 }
+/** The command line's arguments, registered with `cmd` in this order. */
+struct EmulatorArgs
+{
+	explicit EmulatorArgs(TCLAP::CmdLine& c) : cmd(c) {}
+	TCLAP::CmdLine& cmd;
+	TCLAP::ValueArg<std::string> argScene{
+	    "", "scene", "Scene file (YAML); required", false, "", "S.yaml", cmd};
+	TCLAP::ValueArg<std::string> argPose{
+	    "",
+	    "pose",
+	    "Robot pose X,Y,YAW_DEG (default: first trajectory pose)",
+	    false,
+	    "",
+	    "X,Y,YAW_DEG",
+	    cmd};
+	TCLAP::ValueArg<std::string> argLmsLink{
+	    "",    "lms-link", "Symlink kept pointing at the LMS terminal",
+	    false, "",         "PATH",
+	    cmd};
+	TCLAP::ValueArg<std::string> argPtuLink{
+	    "",    "ptu-link", "Symlink kept pointing at the PTU terminal",
+	    false, "",         "PATH",
+	    cmd};
+	TCLAP::ValueArg<int> argBaud{
+	    "",    "lms-baud", "LMS power-on baud rate (9600, 38400, 500000)",
+	    false, 9600,       "N",
+	    cmd};
+	TCLAP::ValueArg<std::string> argSeed{
+	    "", "seed", "Range-noise seed; default 1", false, "1", "N", cmd};
+	TCLAP::ValueArg<std::string> argCrc{
+	    "",
+	    "crc-error-rate",
+	    "Fraction of scan telegrams with a bad CRC",
+	    false,
+	    "0",
+	    "P",
+	    cmd};
+	TCLAP::ValueArg<std::string> argDrop{
+	    "",
+	    "drop-byte-rate",
+	    "Fraction of scan telegrams missing one byte",
+	    false,
+	    "0",
+	    "P",
+	    cmd};
+	TCLAP::ValueArg<std::string> argStallAt{
+	    "",
+	    "stall-at",
+	    "LMS goes silent S seconds after its continuous output started",
+	    false,
+	    "-1",
+	    "S",
+	    cmd};
+	TCLAP::ValueArg<std::string> argStallFor{
+	    "", "stall-for", "... for D seconds", false, "2", "D", cmd};
+	TCLAP::ValueArg<std::string> argDiscAt{
+	    "",
+	    "disconnect-at",
+	    "LMS unplugged S seconds after its continuous output started",
+	    false,
+	    "-1",
+	    "S",
+	    cmd};
+	TCLAP::ValueArg<std::string> argDiscFor{
+	    "", "disconnect-for", "... for D seconds", false, "2", "D", cmd};
+	TCLAP::ValueArg<std::string> argDuration{
+	    "",    "duration", "Stop after S seconds, S > 0 (default: at a signal)",
+	    false, "",         "S",
+	    cmd};
+	TCLAP::ValueArg<std::string> argCheck{
+	    "",    "check", "Check mode: the captured rawlog to compare",
+	    false, "",      "R.rawlog",
+	    cmd};
+	TCLAP::SwitchArg argTruncatedOk{
+	    "", "truncated-ok",
+	    "Check mode: a rawlog cut short (writer killed) is checked as far as "
+	    "it goes and exits 0 (default: exit 1 after the JSON, with a line "
+	    "saying where it ends)",
+	    cmd};
+	TCLAP::ValueArg<std::string> argStats{
+	    "",    "stats", "Check mode: the driver's stats_file to merge",
+	    false, "",      "F.json",
+	    cmd};
+	TCLAP::ValueArg<std::string> argTruth{
+	    "",
+	    "truth-log",
+	    "Emulate: write each scan's time and true tilt here; check: compare "
+	    "the lines' tilts with it",
+	    false,
+	    "",
+	    "F.txt",
+	    cmd};
+	TCLAP::SwitchArg argBase{
+	    "", "base",
+	    "Emulate: the devices ride a differential-drive base from --pose, "
+	    "speaking ROS 1 (cmd_vel in; odom and base_pose_ground_truth out) "
+	    "on ROS_MASTER_URI",
+	    cmd};
+	TCLAP::ValueArg<std::string> argWatchdog{
+	    "",    "base-watchdog", "The base stops after S s without cmd_vel",
+	    false, "0.3",           "S",
+	    cmd};
+	TCLAP::ValueArg<std::string> argOdomRate{
+	    "",   "odom-rate", "Odometry messages per second", false, "50",
+	    "HZ", cmd};
+	TCLAP::ValueArg<std::string> argOdomSilentAt{
+	    "",
+	    "odom-silent-at",
+	    "The base's odometry goes silent S s after the first cmd_vel",
+	    false,
+	    "-1",
+	    "S",
+	    cmd};
+	TCLAP::ValueArg<std::string> argOdomSilentFor{
+	    "", "odom-silent-for", "... for D seconds", false, "2", "D", cmd};
+	TCLAP::ValueArg<std::string> argTrajectory{
+	    "",
+	    "trajectory",
+	    "The base's true trajectory: one line per step (time x y phi v w)",
+	    false,
+	    "",
+	    "F.txt",
+	    cmd};
+	TCLAP::ValueArg<std::string> argNode{"",
+	                                     "node-name",
+	                                     "ROS node name of the base",
+	                                     false,
+	                                     "semnav_emulated_base",
+	                                     "NAME",
+	                                     cmd};
+};
+
+/** The numeric options into `num` by name; the first problem as a usage
+ * error message. */
+std::optional<std::string> readNumbers(
+    EmulatorArgs& a, std::map<std::string, double>& num)
+{
+	for (auto* arg :
+	     {&a.argSeed, &a.argCrc, &a.argDrop, &a.argStallAt, &a.argStallFor,
+	      &a.argDiscAt, &a.argDiscFor, &a.argWatchdog, &a.argOdomRate,
+	      &a.argOdomSilentAt, &a.argOdomSilentFor})
+	{
+		const auto v = parseNumber(arg->getValue());
+		if (!v)
+			return std::string(
+			    "--" + arg->getName() + " must be a number, got '" +
+			    arg->getValue() + "'");
+		num[arg->getName()] = *v;
+	}
+	num["duration"] = 0;  // until a signal
+	if (!a.argDuration.getValue().empty())
+	{
+		const auto d = parseNumber(a.argDuration.getValue());
+		if (!d || !(*d > 0))
+			return std::string(
+			    "--duration must be a number of seconds > 0, got '" +
+			    a.argDuration.getValue() + "'");
+		num["duration"] = *d;
+	}
+	for (const char* p : {"crc-error-rate", "drop-byte-rate"})
+		if (num[p] < 0 || num[p] > 1)
+			return std::string("--") + p + " must be in [0, 1]";
+	if (num["base-watchdog"] < 0.02 || num["base-watchdog"] > 10)
+		return std::string("--base-watchdog must be in [0.02, 10]");
+	if (num["odom-silent-for"] < 0)
+		return std::string("--odom-silent-for must be >= 0");
+	if (num["odom-rate"] < 1 || num["odom-rate"] > 1000)
+		return std::string("--odom-rate must be in [1, 1000]");
+	return std::nullopt;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -252,130 +423,24 @@ int main(int argc, char** argv)
 	    "PTU (ASCII) on pseudo-terminals, scanning a scene; prints their "
 	    "paths and runs until SIGINT/SIGTERM or --duration. With --check R, "
 	    "compares a captured rawlog with the scene instead.");
-	auto& cmd = cli.cmd();
-	TCLAP::ValueArg<std::string> argScene(
-	    "", "scene", "Scene file (YAML); required", false, "", "S.yaml", cmd);
-	TCLAP::ValueArg<std::string> argPose(
-	    "", "pose", "Robot pose X,Y,YAW_DEG (default: first trajectory pose)",
-	    false, "", "X,Y,YAW_DEG", cmd);
-	TCLAP::ValueArg<std::string> argLmsLink(
-	    "", "lms-link", "Symlink kept pointing at the LMS terminal", false, "",
-	    "PATH", cmd);
-	TCLAP::ValueArg<std::string> argPtuLink(
-	    "", "ptu-link", "Symlink kept pointing at the PTU terminal", false, "",
-	    "PATH", cmd);
-	TCLAP::ValueArg<int> argBaud(
-	    "", "lms-baud", "LMS power-on baud rate (9600, 38400, 500000)", false,
-	    9600, "N", cmd);
-	TCLAP::ValueArg<std::string> argSeed(
-	    "", "seed", "Range-noise seed; default 1", false, "1", "N", cmd);
-	TCLAP::ValueArg<std::string> argCrc(
-	    "", "crc-error-rate", "Fraction of scan telegrams with a bad CRC",
-	    false, "0", "P", cmd);
-	TCLAP::ValueArg<std::string> argDrop(
-	    "", "drop-byte-rate", "Fraction of scan telegrams missing one byte",
-	    false, "0", "P", cmd);
-	TCLAP::ValueArg<std::string> argStallAt(
-	    "", "stall-at",
-	    "LMS goes silent S seconds after its continuous output started", false,
-	    "-1", "S", cmd);
-	TCLAP::ValueArg<std::string> argStallFor(
-	    "", "stall-for", "... for D seconds", false, "2", "D", cmd);
-	TCLAP::ValueArg<std::string> argDiscAt(
-	    "", "disconnect-at",
-	    "LMS unplugged S seconds after its continuous output started", false,
-	    "-1", "S", cmd);
-	TCLAP::ValueArg<std::string> argDiscFor(
-	    "", "disconnect-for", "... for D seconds", false, "2", "D", cmd);
-	TCLAP::ValueArg<std::string> argDuration(
-	    "", "duration", "Stop after S seconds, S > 0 (default: at a signal)",
-	    false, "", "S", cmd);
-	TCLAP::ValueArg<std::string> argCheck(
-	    "", "check", "Check mode: the captured rawlog to compare", false, "",
-	    "R.rawlog", cmd);
-	TCLAP::SwitchArg argTruncatedOk(
-	    "", "truncated-ok",
-	    "Check mode: a rawlog cut short (writer killed) is checked as far as "
-	    "it goes and exits 0 (default: exit 1 after the JSON, with a line "
-	    "saying where it ends)",
-	    cmd);
-	TCLAP::ValueArg<std::string> argStats(
-	    "", "stats", "Check mode: the driver's stats_file to merge", false, "",
-	    "F.json", cmd);
-	TCLAP::ValueArg<std::string> argTruth(
-	    "", "truth-log",
-	    "Emulate: write each scan's time and true tilt here; check: compare "
-	    "the lines' tilts with it",
-	    false, "", "F.txt", cmd);
-	TCLAP::SwitchArg argBase(
-	    "", "base",
-	    "Emulate: the devices ride a differential-drive base from --pose, "
-	    "speaking ROS 1 (cmd_vel in; odom and base_pose_ground_truth out) "
-	    "on ROS_MASTER_URI",
-	    cmd);
-	TCLAP::ValueArg<std::string> argWatchdog(
-	    "", "base-watchdog", "The base stops after S s without cmd_vel", false,
-	    "0.3", "S", cmd);
-	TCLAP::ValueArg<std::string> argOdomRate(
-	    "", "odom-rate", "Odometry messages per second", false, "50", "HZ",
-	    cmd);
-	TCLAP::ValueArg<std::string> argOdomSilentAt(
-	    "", "odom-silent-at",
-	    "The base's odometry goes silent S s after the first cmd_vel", false,
-	    "-1", "S", cmd);
-	TCLAP::ValueArg<std::string> argOdomSilentFor(
-	    "", "odom-silent-for", "... for D seconds", false, "2", "D", cmd);
-	TCLAP::ValueArg<std::string> argTrajectory(
-	    "", "trajectory",
-	    "The base's true trajectory: one line per step (time x y phi v w)",
-	    false, "", "F.txt", cmd);
-	TCLAP::ValueArg<std::string> argNode(
-	    "", "node-name", "ROS node name of the base", false,
-	    "semnav_emulated_base", "NAME", cmd);
+	EmulatorArgs args(cli.cmd());
 	TCLAP::SwitchArg& argJson = cli.addJson();
 	if (const auto code = cli.parse(argc, argv)) return *code;
-	if (argScene.getValue().empty()) return cli.usageError("missing --scene");
+	if (args.argScene.getValue().empty())
+		return cli.usageError("missing --scene");
 	std::optional<mrpt::math::TPose2D> pose;
-	if (!argPose.getValue().empty())
+	if (!args.argPose.getValue().empty())
 	{
-		pose = semnav::CommandLine::parsePose(argPose.getValue());
+		pose = semnav::CommandLine::parsePose(args.argPose.getValue());
 		if (!pose)
 			return cli.usageError(
-			    "--pose must be X,Y,YAW_DEG, got '" + argPose.getValue() + "'");
+			    "--pose must be X,Y,YAW_DEG, got '" + args.argPose.getValue() +
+			    "'");
 	}
 	std::map<std::string, double> num;
-	for (auto* a :
-	     {&argSeed, &argCrc, &argDrop, &argStallAt, &argStallFor, &argDiscAt,
-	      &argDiscFor, &argWatchdog, &argOdomRate, &argOdomSilentAt,
-	      &argOdomSilentFor})
-	{
-		const auto v = parseNumber(a->getValue());
-		if (!v)
-			return cli.usageError(
-			    "--" + a->getName() + " must be a number, got '" +
-			    a->getValue() + "'");
-		num[a->getName()] = *v;
-	}
-	num["duration"] = 0;  // until a signal
-	if (!argDuration.getValue().empty())
-	{
-		const auto d = parseNumber(argDuration.getValue());
-		if (!d || !(*d > 0))
-			return cli.usageError(
-			    "--duration must be a number of seconds > 0, got '" +
-			    argDuration.getValue() + "'");
-		num["duration"] = *d;
-	}
-	for (const char* p : {"crc-error-rate", "drop-byte-rate"})
-		if (num[p] < 0 || num[p] > 1)
-			return cli.usageError(std::string("--") + p + " must be in [0, 1]");
-	if (num["base-watchdog"] < 0.02 || num["base-watchdog"] > 10)
-		return cli.usageError("--base-watchdog must be in [0.02, 10]");
-	if (num["odom-silent-for"] < 0)
-		return cli.usageError("--odom-silent-for must be >= 0");
-	if (num["odom-rate"] < 1 || num["odom-rate"] > 1000)
-		return cli.usageError("--odom-rate must be in [1, 1000]");
-	const int baud = argBaud.getValue();
+	if (const auto problem = readNumbers(args, num))
+		return cli.usageError(*problem);
+	const int baud = args.argBaud.getValue();
 	if (baud != 9600 && baud != 38400 && baud != 500000)
 		return cli.usageError("--lms-baud must be 9600, 38400 or 500000");
 	const bool json = argJson.getValue();
@@ -384,35 +449,36 @@ int main(int argc, char** argv)
 	    [&]
 	    {
 		    const semnav::Scene scene =
-		        semnav::SceneLoader::loadFile(argScene.getValue());
+		        semnav::SceneLoader::loadFile(args.argScene.getValue());
 		    if (!pose)
 		    {
 			    if (scene.trajectory.empty())
 				    throw semnav::Error(
-				        argScene.getValue() +
+				        args.argScene.getValue() +
 				        ": no trajectory pose; give --pose");
 			    pose = scene.trajectory.front();
 		    }
 		    if (const auto problem = poseProblem(scene, *pose))
 			    return cli.usageError(
-			        "--pose " + argPose.getValue() + " " + *problem + " of " +
-			        argScene.getValue());
-		    if (!argCheck.getValue().empty())
+			        "--pose " + args.argPose.getValue() + " " + *problem +
+			        " of " + args.argScene.getValue());
+		    if (!args.argCheck.getValue().empty())
 		    {
 			    const semnav::SceneLineCaster caster(scene);
 			    const double res =
 			        semnav::TiltingScannerEmulator::tiltResolution();
 			    const auto check = semnav::checkCapture(
-			        argCheck.getValue(), caster, *pose, scene.sensor.rangeNoise,
-			        res, scene.sensor.thetaMax - scene.sensor.thetaMin);
+			        args.argCheck.getValue(), caster, *pose,
+			        scene.sensor.rangeNoise, res,
+			        scene.sensor.thetaMax - scene.sensor.thetaMin);
 			    const auto j = checkJson(
-			        check, argCheck.getValue(), argStats.getValue(),
-			        argTruth.getValue());
+			        check, args.argCheck.getValue(), args.argStats.getValue(),
+			        args.argTruth.getValue());
 			    if (json)
 				    std::cout << j.dump() << std::endl;
 			    else
 				    std::cout << j.dump(2) << std::endl;
-			    if (check.truncated && !argTruncatedOk.getValue())
+			    if (check.truncated && !args.argTruncatedOk.getValue())
 				    throw semnav::RawlogError(
 				        check.truncation + " (" +
 				        std::to_string(check.objects) +
@@ -424,7 +490,7 @@ int main(int argc, char** argv)
 		    // runs: raise our priority when allowed (the threads inherit it).
 		    ::setpriority(PRIO_PROCESS, 0, -10);
 		    semnav::LmsEmulator::Options lo;
-		    lo.linkPath = argLmsLink.getValue();
+		    lo.linkPath = args.argLmsLink.getValue();
 		    lo.powerOnBaud = baud;
 		    lo.robotPose = *pose;
 		    lo.seed = static_cast<uint64_t>(num["seed"]);
@@ -434,22 +500,22 @@ int main(int argc, char** argv)
 		    lo.stallFor = num["stall-for"];
 		    lo.disconnectAt = num["disconnect-at"];
 		    lo.disconnectFor = num["disconnect-for"];
-		    lo.truthLog = argTruth.getValue();
+		    lo.truthLog = args.argTruth.getValue();
 		    std::unique_ptr<semnav::EmulatedDiffDriveBase> base;
-		    if (argBase.getValue())
+		    if (args.argBase.getValue())
 		    {
 			    semnav::EmulatedDiffDriveBase::Options bo;
 			    bo.watchdog = num["base-watchdog"];
 			    bo.seed = lo.seed;
-			    bo.trajectoryFile = argTrajectory.getValue();
+			    bo.trajectoryFile = args.argTrajectory.getValue();
 			    base = std::make_unique<semnav::EmulatedDiffDriveBase>(
 			        scene, *pose, bo);
 		    }
 		    emulate(
-		        scene, lo, argPtuLink.getValue(), num["duration"], json,
+		        scene, lo, args.argPtuLink.getValue(), num["duration"], json,
 		        base.get(),
-		        {num["odom-rate"], argNode.getValue(), num["odom-silent-at"],
-		         num["odom-silent-for"]});
+		        {num["odom-rate"], args.argNode.getValue(),
+		         num["odom-silent-at"], num["odom-silent-for"]});
 		    return 0;
 	    });
 }
