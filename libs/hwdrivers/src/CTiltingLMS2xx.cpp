@@ -41,11 +41,11 @@ Clock::duration seconds(double s)
 	    std::chrono::duration<double>(s));
 }
 
-int64_t toNs(Clock::time_point t)
+/** MRPT's clock ticks (100 ns since 1601): nanoseconds since then overflow
+ * int64 (UBSan). */
+int64_t toTicks(Clock::time_point t)
 {
-	return std::chrono::duration_cast<std::chrono::nanoseconds>(
-	           t.time_since_epoch())
-	    .count();
+	return t.time_since_epoch().count();
 }
 
 std::string where(const std::string& section, const std::string& key)
@@ -556,7 +556,7 @@ void CTiltingLMS2xx::laserThread()
 			scan->setScanRangeValidity(i, ok);
 		}
 		m_laserOk = true;
-		m_lastLineNs = toNs(scan->timestamp);
+		m_lastLineTicks = toTicks(scan->timestamp);
 		std::lock_guard<std::mutex> lk(m_mtx);
 		m_pending.push_back({scan->timestamp, scan});
 	}
@@ -670,7 +670,7 @@ void CTiltingLMS2xx::headThread()
 		else if (!sweeping)
 		{
 			const bool lineSinceFault =
-			    m_laserOk && m_lastLineNs > toNs(faultTime);
+			    m_laserOk && m_lastLineTicks > toTicks(faultTime);
 			if (std::abs(theta - target) <= tol && lineSinceFault)
 			{
 				sweeping = true;

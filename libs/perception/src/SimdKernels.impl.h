@@ -13,6 +13,15 @@
 
 namespace semnav::detail::SEMNAV_KERNEL_NS
 {
+/** vx_load_expand_q through an aligned copy: OpenCV's SSE version reads the
+ * bytes as one int (UBSan: misaligned load). */
+inline cv::v_uint32 loadExpandBytes(const uint8_t* p)
+{
+	alignas(16) uint8_t bytes[cv::v_uint32::nlanes];
+	std::memcpy(bytes, p, sizeof bytes);
+	return cv::vx_load_expand_q(bytes);
+}
+
 std::size_t pointsRow(const PointRowArgs& a)
 {
 	constexpr int kLanes = cv::v_float32::nlanes;
@@ -298,8 +307,8 @@ void joinMask(const JoinArgs& a)
 	auto joinLanes = [&](int p, int step, unsigned* out)
 	{
 		const int q = p + step;
-		const cv::v_uint32 cp = cv::vx_load_expand_q(CL + p),
-		                   cq = cv::vx_load_expand_q(CL + q);
+		const cv::v_uint32 cp = loadExpandBytes(CL + p),
+		                   cq = loadExpandBytes(CL + q);
 		const cv::v_int32 ap = cv::vx_load(A + p), aq = cv::vx_load(A + q);
 		const cv::v_float32 rp = cv::vx_load(RG + p), rq = cv::vx_load(RG + q);
 		cv::v_float32 ax, ay, az, bx, by, bz;
@@ -383,12 +392,8 @@ void roughnessRow(
 		const cv::v_float32 cnt = cv::vx_load(C + c) - vOne;
 		const cv::v_float32 ns = nx * sx + ny * sy + nz * sz;
 		const cv::v_float32 nn = nx * nx + ny * ny + nz * nz;
-		// OpenCV's SSE v_load_expand_q reads the bytes as one int: copy them
-		// to an aligned place first (UBSan: misaligned load).
-		alignas(16) uint8_t mask[kLanes];
-		std::memcpy(mask, NM + c, kLanes);
 		const cv::v_float32 ok =
-		    cv::v_reinterpret_as_f32(cv::vx_load_expand_q(mask) != vZero) &
+		    cv::v_reinterpret_as_f32(loadExpandBytes(NM + c) != vZero) &
 		    (cnt >= vHalf);
 		cv::v_store(R + c, cv::v_select(ok, (ns - nn) / cnt, vNan));
 	}

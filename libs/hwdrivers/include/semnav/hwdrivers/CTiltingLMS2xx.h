@@ -192,7 +192,7 @@ private:
 	 * thread once it has handled it. */
 	std::atomic<bool> m_laserFault{false};
 	std::atomic<bool> m_laserOk{false};
-	std::atomic<int64_t> m_lastLineNs{0};
+	std::atomic<int64_t> m_lastLineTicks{0};
 
 	mutable std::mutex m_mtx;  // guards m_pending and m_stats
 	std::deque<RawLine> m_pending;
