@@ -356,6 +356,23 @@ TEST(MapIO, NonFiniteOrNegativeLayerValuesNameTheFileAndPixel)
 	// NaN is roughness's "no data"; the saved maps hold it.
 	MapIO::save(a, dir.string());
 	EXPECT_EQ(loadError(dir), "");
+	// Roughness is a mean dot product of normals, in [-1, 1]: negative
+	// values load (semnav-robot's office map had -0.166), 1.5 does not.
+	{
+		const fs::path pfm = dir / "layers" / "roughness.pfm";
+		cv::Mat img = cv::imread(pfm.string(), cv::IMREAD_UNCHANGED);
+		img.at<float>(2, 5) = -0.17f;
+		cv::imwrite(pfm.string(), img);
+		EXPECT_EQ(loadError(dir), "");
+		img.at<float>(2, 5) = 1.5f;
+		cv::imwrite(pfm.string(), img);
+		EXPECT_NE(
+		    loadError(dir).find("roughness.pfm: pixel (5, 2) is 1.5; values "
+		                        "must be NaN (no data) or finite and >= "
+		                        "-1.001 and <= 1.001"),
+		    std::string::npos)
+		    << loadError(dir);
+	}
 	fs::remove_all(dir);
 }
 

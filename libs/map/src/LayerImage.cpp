@@ -153,8 +153,9 @@ void checkLayerValues(
 			std::ostringstream os;
 			os << "map layer " << path << ": pixel (" << c << ", " << r
 			   << ") is " << v << "; values must be "
-			   << (range.nanMeansNoData ? "NaN (no data) or " : "")
-			   << "finite and >= " << range.lowest;
+			   << (range.nanMeansNoData ? "NaN (no data) or " : "") << "finite";
+			if (range.lowest > -std::numeric_limits<float>::max())
+				os << " and >= " << range.lowest;
 			if (range.highest < std::numeric_limits<float>::max())
 				os << " and <= " << range.highest;
 			throw IoError(os.str());

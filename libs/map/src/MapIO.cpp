@@ -28,6 +28,8 @@ namespace fs = std::filesystem;
 
 namespace
 {
+/** Roughness bound: 1 plus room for float rounding of the means. */
+constexpr float kRoughnessBound = 1.001f;
 constexpr int kFormatVersion = 1;
 /** The largest map side a directory may hold (819 m at 5 cm): bounds what
  * a corrupt map.yaml or image header can make the loader allocate. */
@@ -130,8 +132,9 @@ cv::Mat readImage(
 }
 
 /** A float layer under layers/, its values checked: log-odds are int8,
- * roughness is NaN where nothing was seen, every other layer (labels,
- * costs, ids, counts, and any added) is finite and >= 0. */
+ * roughness is NaN where nothing was seen and otherwise a mean of normals'
+ * dot products, in [-1, 1] (negative at edges and corners), every other
+ * layer (labels, costs, ids, counts, and any added) is finite and >= 0. */
 cv::Mat readLayer(
     const MapDirectory& d, const std::string& name, const GridGeometry& g)
 {
@@ -141,7 +144,7 @@ cv::Mat readLayer(
 	if (name == "occupancy_logodds")
 		range = {-128.0f, 127.0f, false};
 	else if (name == "roughness")
-		range.nanMeansNoData = true;
+		range = {-kRoughnessBound, kRoughnessBound, true};
 	checkLayerValues(img, d.path(rel), range);
 	return img;
 }
