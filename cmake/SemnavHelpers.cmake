@@ -22,18 +22,27 @@ endfunction()
 
 # semnav_add_test(<name> [SERIAL] [LABELS l] SOURCES ... DEPENDS ...): a GoogleTest executable
 # registered with ctest; SERIAL tests run alone (ctest RUN_SERIAL: timing against real-time
-# devices); LABELS for ctest -L.
+# devices) and carry the label `realtime` unless LABELS names another (scripts/sanitize runs
+# `realtime|ros1` apart); LABELS for ctest -L.
 function(semnav_add_test name)
   cmake_parse_arguments(ARG "SERIAL" "LABELS" "SOURCES;DEPENDS" ${ARGN})
   set(props "")
+  # (One label per test: gtest_discover_tests loses a list's separators.)
+  set(labels ${ARG_LABELS})
+  if(ARG_SERIAL AND NOT labels)
+    set(labels realtime)
+  endif()
   if(ARG_SERIAL OR ARG_LABELS)
     set(props PROPERTIES)
   endif()
   if(ARG_SERIAL)
     list(APPEND props RUN_SERIAL TRUE)
   endif()
+  if(labels)
+    list(APPEND props LABELS ${labels})
+  endif()
   if(ARG_LABELS)
-    list(APPEND props LABELS ${ARG_LABELS} TIMEOUT 120)
+    list(APPEND props TIMEOUT 120)
   endif()
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} GTest::gtest GTest::gtest_main)

@@ -51,7 +51,7 @@ public:
 	          (std::filesystem::temp_directory_path() /
 	           "semnav_capture_selftest.lock")
 	              .c_str(),
-	          O_CREAT | O_RDWR, 0666))
+	          O_CREAT | O_RDWR | O_CLOEXEC, 0666))
 	{
 		if (m_fd >= 0) ::flock(m_fd, LOCK_EX);
 	}
