@@ -48,7 +48,7 @@ protected:
 	{
 		chair = ClassRegistry::instance().add(chairClass());
 	}
-	const BuiltInsAfterwards m_builtIns;
+	BuiltInsAfterwards m_builtIns;
 
 	static SemanticMap::TOptions mapOptions()
 	{
