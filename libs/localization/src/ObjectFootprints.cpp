@@ -96,9 +96,12 @@ bool isStructureLabel(Label l)
 }
 
 using CellKey = long long;
+/** Both cell indices in one key (negative ones too: the shift is unsigned). */
 CellKey cellKey(long cx, long cy)
 {
-	return (static_cast<CellKey>(cx) << 32) ^ (cy & 0xffffffffLL);
+	const auto hi = static_cast<unsigned long long>(cx) << 32;
+	const auto lo = static_cast<unsigned long long>(cy) & 0xffffffffULL;
+	return static_cast<CellKey>(hi ^ lo);
 }
 
 int findRoot(std::vector<int>& parent, int i)
