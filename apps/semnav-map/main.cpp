@@ -44,13 +44,18 @@ nlohmann::json summary(
 	j["sweeps_failed"] = b.sweepsFailed();
 	j["objects"] = nlohmann::json::array();
 	for (const auto& o : b.map().instances())
+	{
+		// Copies: json's initializer lists bind references, and MRPT packs
+		// TPoint3D (misaligned doubles).
+		const double x = o.centroid.x, y = o.centroid.y, z = o.centroid.z;
 		j["objects"].push_back(
 		    {{"id", o.id},
 		     {"label", semnav::labelName(o.label)},
-		     {"x", o.centroid.x},
-		     {"y", o.centroid.y},
-		     {"z", o.centroid.z},
+		     {"x", x},
+		     {"y", y},
+		     {"z", z},
 		     {"observations", o.observations}});
+	}
 	j["classes"] = semnav::labelScoresJson(b.labelScores());
 	j["ms_per_sweep_median"] = semnav::median(b.msPerSweep());
 	if (b.poseError().size() > 0)

@@ -392,12 +392,16 @@ bool RobotSession::localize()
 void RobotSession::reportNewObjects()
 {
 	for (const auto& o : m_map.instances())
-		if (m_known.insert(o.id).second)
-			emit(
-			    {{"event", "new_object"},
-			     {"id", o.id},
-			     {"label", labelName(o.label)},
-			     {"xy", {o.centroid.x, o.centroid.y}}});
+	{
+		if (!m_known.insert(o.id).second) continue;
+		// Copies: json binds references; MRPT packs TPoint3D (misaligned).
+		const double x = o.centroid.x, y = o.centroid.y;
+		emit(
+		    {{"event", "new_object"},
+		     {"id", o.id},
+		     {"label", labelName(o.label)},
+		     {"xy", {x, y}}});
+	}
 }
 
 bool RobotSession::insertSweeps()
