@@ -375,16 +375,26 @@ void CascadeDetector::growObject(
 	c.measure->pixels = std::move(whole->pixels);
 }
 
-double CascadeDetector::continuingShare(
-    const cv::Mat& points, const cv::Mat& labels, const Measure& m)
+namespace
 {
-	// The highest object pixel of each column.
+/** The highest object pixel (row) of each column of the measured box; -1
+ * where the column has none. */
+std::vector<int> columnTops(const CascadeDetector::Measure& m)
+{
 	std::vector<int> top(std::size_t(std::max(0, m.box.width)), -1);
 	for (const auto& p : m.pixels)
 	{
 		int& t = top[std::size_t(p.x - m.box.x)];
 		t = std::max(t, p.y);
 	}
+	return top;
+}
+}  // namespace
+
+double CascadeDetector::continuingShare(
+    const cv::Mat& points, const cv::Mat& labels, const Measure& m)
+{
+	const std::vector<int> top = columnTops(m);
 	int columns = 0, continuing = 0;
 	for (std::size_t i = 0; i < top.size(); i++)
 	{
@@ -416,13 +426,11 @@ double CascadeDetector::overheadShare(
     const cv::Mat& points, const cv::Mat& labels, const Measure& m,
     double groundZ)
 {
-	// The highest object pixel of each column, and the object's front.
-	std::vector<int> top(std::size_t(std::max(0, m.box.width)), -1);
+	const std::vector<int> top = columnTops(m);
+	// The object's front: its nearest point (horizontally).
 	double front = std::numeric_limits<double>::infinity();
 	for (const auto& p : m.pixels)
 	{
-		int& t = top[std::size_t(p.x - m.box.x)];
-		t = std::max(t, p.y);
 		const cv::Vec3f a = points.at<cv::Vec3f>(p.y, p.x);
 		if (std::isfinite(a[0]))
 			front = std::min(front, std::hypot(double(a[0]), double(a[1])));
