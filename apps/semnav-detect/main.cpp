@@ -260,6 +260,10 @@ nlohmann::json summaryJson(const Evaluation& ev)
 	}
 	j["objects"] = objs;
 	j["objects_recognisable"] = objsRecognisable;
+	nlohmann::json views = nlohmann::json::object();
+	for (const auto& [id, n] : ev.recognisableViews())
+		views[std::to_string(id)] = n;
+	j["recognisable_views"] = views;
 	j["objects_distinct_points"] = objsDistinct;
 	j["sweeps"] = ev.scorer().sweeps();
 	j["ms_per_sweep_median"] = semnav::median(ev.msTotal());

@@ -18,6 +18,31 @@
 #include <optional>
 #include <string>
 
+namespace
+{
+/** The scene's objects with their centres and ground-truth pixels per sweep
+ * (how the map's objects are scored: scripts/eval-generated --map). */
+nlohmann::json objectsJson(
+    const semnav::Scene& scene, const semnav::SimulationResult& res)
+{
+	nlohmann::json objs = nlohmann::json::array();
+	for (const auto& o : scene.objects)
+	{
+		nlohmann::json pixels = nlohmann::json::array();
+		for (const auto& sweep : res.objectPixels)
+			pixels.push_back(sweep.at(o.id));
+		const auto c = o.centre();
+		objs.push_back(
+		    {{"id", o.id},
+		     {"label", semnav::labelName(o.label)},
+		     {"x", c.x},
+		     {"y", c.y},
+		     {"sweep_pixels", pixels}});
+	}
+	return objs;
+}
+}  // namespace
+
 int main(int argc, char** argv)
 {
 	semnav::CommandLine cli(
@@ -114,6 +139,7 @@ int main(int argc, char** argv)
 			    j["scans"] = res.scans;
 			    j["gt"] = res.gtPath;
 			    j["labels_dir"] = res.labelsDir;
+			    j["objects"] = objectsJson(scene, res);
 			    std::cout << j.dump() << std::endl;
 		    }
 		    else

@@ -160,7 +160,8 @@ max_stages = 10
 shape_model = ../datasets/cascades/wastebasket-shape.xml.gz
 segment_candidates = true
 cascade_support = true
-min_shape_score = 0.3
+max_overhead_share = 0.7
+min_shape_score = 0.4
 [CascadeDetector.stairs]
 cascade = ../datasets/cascades/stairs.xml
 max_elevation_deg = 60

@@ -134,6 +134,49 @@ TEST(CascadeDetector, ContinuingShareFindsTheLowerPartOfSomethingTaller)
 	EXPECT_DOUBLE_EQ(share(20, Label::Ceiling), 0.0);
 }
 
+TEST(CascadeDetector, OverheadShareFindsFoliageOverAPot)
+{
+	// A pot: 20 x 20 pixels 2 m ahead, 0.4 m wide, 1.7 cm per row (top 0.32
+	// m at row 19); in the 20 rows above it either foliage overhanging it
+	// (0.1 m nearer, over columns < split), a wall 0.1 m behind it, or the
+	// ceiling's label on the foliage.
+	const auto share = [](int split, Label above, float foliageX)
+	{
+		cv::Mat p(40, 20, CV_32FC3), labels(40, 20, CV_8U);
+		CascadeDetector::Measure m;
+		for (int r = 0; r < 40; r++)
+			for (int c = 0; c < 20; c++)
+			{
+				const float y = 0.02f * (10 - c), z = 0.017f * float(r);
+				const bool object = r < 20, foliage = !object && c < split;
+				p.at<cv::Vec3f>(r, c) = {
+				    object    ? 2.0f
+				    : foliage ? foliageX
+				              : 2.1f,
+				    y, z};
+				labels.at<uint8_t>(r, c) = static_cast<uint8_t>(
+				    object    ? Label::Obstacle
+				    : foliage ? above
+				              : Label::Wall);
+				if (object) m.pixels.emplace_back(c, r);
+			}
+		m.box = cv::Rect(0, 0, 20, 20);
+		m.top = 0.017 * 19;
+		m.width = 0.4;
+		m.centroid = {2.0, 0.0, 0.16};
+		return CascadeDetector::overheadShare(p, labels, m, 0.0);
+	};
+	EXPECT_DOUBLE_EQ(share(20, Label::Obstacle, 1.9f), 1.0);
+	EXPECT_DOUBLE_EQ(share(10, Label::Obstacle, 1.9f), 0.5);
+	// Only a wall behind: nothing overhead.
+	EXPECT_DOUBLE_EQ(share(0, Label::Obstacle, 1.9f), 0.0);
+	// Something above but not in front of the object's face, or far in
+	// front of it, or the ceiling: not over it.
+	EXPECT_DOUBLE_EQ(share(20, Label::Obstacle, 2.0f), 0.0);
+	EXPECT_DOUBLE_EQ(share(20, Label::Obstacle, 1.0f), 0.0);
+	EXPECT_DOUBLE_EQ(share(20, Label::Ceiling, 1.9f), 0.0);
+}
+
 TEST(CascadeDetector, PassesCoverNearAndFarObjects)
 {
 	CascadeDetector::TClassOptions k(Label::Wastebasket);
@@ -202,6 +245,10 @@ TEST(CascadeDetector, ShippedConfigLoads)
 	EXPECT_DOUBLE_EQ(o.classes[0].maxContinuingShare, 0.3);
 	EXPECT_DOUBLE_EQ(o.classes[1].maxContinuingShare, 1);
 	EXPECT_DOUBLE_EQ(o.classes[2].maxContinuingShare, 1);
+	// Wastebaskets: not under foliage (a plant pot, generated scenes).
+	EXPECT_DOUBLE_EQ(o.classes[0].maxOverheadShare, 1);
+	EXPECT_DOUBLE_EQ(o.classes[1].maxOverheadShare, 0.7);
+	EXPECT_DOUBLE_EQ(o.classes[2].maxOverheadShare, 1);
 	EXPECT_DOUBLE_EQ(o.classes[0].minSeparation, 0);
 	EXPECT_DOUBLE_EQ(o.classes[2].minSeparation, 2.0);
 	EXPECT_DOUBLE_EQ(o.classes[0].grow, 0);

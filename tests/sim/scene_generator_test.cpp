@@ -153,6 +153,38 @@ TEST(SceneGenerator, IndoorScenesLoadRepeatAndAreFree)
 		EXPECT_TRUE(seen.count(l)) << semnav::labelName(l);
 }
 
+TEST(SceneGenerator, PlantPotsCarryFoliageWiderThanThePot)
+{
+	// A pot of a wastebasket's size (a cylinder standing on the floor, top
+	// <= 0.6 m) labelled obstacle always has a plant above it: a cylinder of
+	// the same object, wider than the pot, starting at or above its top (the
+	// file rounds to 1 mm).
+	int pots = 0;
+	for (uint64_t seed = 0; seed < 30; seed++)
+	{
+		const Scene s = semnav::SceneLoader::parse(
+		    generate(SceneGenerator::Kind::Indoor, seed), "indoor.yaml");
+		for (const auto& o : s.objects)
+		{
+			if (o.label != Label::Obstacle) continue;
+			const auto* pot =
+			    std::get_if<semnav::CylinderShape>(&o.parts.front());
+			if (!pot || pot->center.z - pot->height / 2 > 0.01 ||
+			    pot->center.z + pot->height / 2 > 0.6)
+				continue;
+			pots++;
+			const double potTop = pot->center.z + pot->height / 2;
+			bool foliage = false;
+			for (const auto& p : o.parts)
+				if (const auto* c = std::get_if<semnav::CylinderShape>(&p))
+					foliage |= c->radius >= 1.5 * pot->radius - 2e-3 &&
+					           c->center.z - c->height / 2 >= potTop - 2e-3;
+			EXPECT_TRUE(foliage) << s.name << " object " << o.id;
+		}
+	}
+	EXPECT_GT(pots, 5) << "the buildings have plant pots";
+}
+
 TEST(SceneGenerator, OutdoorScenesLoadRepeatAndAreFree)
 {
 	std::set<Label> seen;

@@ -548,6 +548,18 @@ TEST(SimulationRunner, WritesRawlogGroundTruthAndLabels)
 		const auto sw =
 		    sim.simulate(s.trajectory[i], i, SimulationRunner::epoch(), 0.1);
 		EXPECT_EQ(cv::countNonZero(img != sw.labels), 0) << name;
+		// The pixels of each object, as the label image holds them.
+		ASSERT_EQ(res.objectPixels.size(), 3u);
+		ASSERT_EQ(res.objectPixels[i].size(), s.objects.size() + 1);
+		for (const auto& o : s.objects)
+		{
+			cv::Mat ids;
+			img.convertTo(ids, CV_32S);
+			const int n = cv::countNonZero(
+			    (ids >= (o.id << 8)) & (ids < ((o.id + 1) << 8)));
+			EXPECT_EQ(res.objectPixels[i][o.id], static_cast<std::size_t>(n))
+			    << name << " object " << o.id;
+		}
 	}
 	// Nothing else: no temporaries left behind.
 	std::size_t files = 0;
@@ -572,6 +584,32 @@ TEST(SimulationRunner, WritesRawlogGroundTruthAndLabels)
 	EXPECT_EQ(slurp(dir / "tiny.gt.txt"), slurp(dir2 / "tiny.gt.txt"));
 	fs::remove_all(dir);
 	fs::remove_all(dir2);
+}
+
+TEST(SceneObject, CentreOfADoubleDoorIsBetweenItsLeaves)
+{
+	SceneObject door;
+	door.label = Label::Door;
+	door.parts = {
+	    BoxShape{{1.0, 2.0, 1.0}, {0.5, 0.04, 2.0}, 0},
+	    BoxShape{{1.6, 2.0, 1.0}, {0.5, 0.04, 2.0}, 0}};
+	EXPECT_NEAR(door.centre().x, 1.3, 1e-12);
+	EXPECT_NEAR(door.centre().y, 2.0, 1e-12);
+	// Any other object: its first part (a washbasin's basin).
+	SceneObject basin = door;
+	basin.label = Label::Washbasin;
+	EXPECT_NEAR(basin.centre().x, 1.0, 1e-12);
+	SceneObject flight;
+	flight.label = Label::Stairs;
+	StairsShape st;
+	st.origin = {2.0, 0.0};
+	st.yaw = M_PI / 2;
+	st.steps = 4;
+	st.run = 0.3;
+	st.width = 1.0;
+	flight.parts = {st};
+	EXPECT_NEAR(flight.centre().x, 2.0, 1e-12);
+	EXPECT_NEAR(flight.centre().y, 0.6, 1e-12);
 }
 
 TEST(SimulationRunner, RejectsUnusableScenes)

@@ -419,6 +419,10 @@ double CascadeDetector::measureCandidate(
 	    k.maxContinuingShare < 1 &&
 	    continuingShare(points, labels, *c.measure) > k.maxContinuingShare)
 		c.rejection = "taller";
+	else if (
+	    k.maxOverheadShare < 1 &&
+	    overheadShare(points, labels, *c.measure, groundZ) > k.maxOverheadShare)
+		c.rejection = "under something";
 	else
 		c.accepted = true;
 	if (c.accepted && (m_impl->describeShapes || !m_impl->verifiers[i].empty()))

@@ -160,6 +160,10 @@ const OptionTable<C>& classTable()
 	            "max_continuing_share", &C::maxContinuingShare, 0, 1,
 	            "Rejected when more columns continue upwards (1: no check).")
 	        .real(
+	            "max_overhead_share", &C::maxOverheadShare, 0, 1,
+	            "Rejected when more columns have something over the object, "
+	            "e.g. a pot's foliage (1: no check).")
+	        .real(
 	            "min_separation_m", &C::minSeparation, 0, 100,
 	            "Detections closer than this are one object (0: no check).")
 	        .real(

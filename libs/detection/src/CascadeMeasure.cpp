@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <limits>
 
 namespace semnav
 {
@@ -374,16 +375,26 @@ void CascadeDetector::growObject(
 	c.measure->pixels = std::move(whole->pixels);
 }
 
-double CascadeDetector::continuingShare(
-    const cv::Mat& points, const cv::Mat& labels, const Measure& m)
+namespace
 {
-	// The highest object pixel of each column.
+/** The highest object pixel (row) of each column of the measured box; -1
+ * where the column has none. */
+std::vector<int> columnTops(const CascadeDetector::Measure& m)
+{
 	std::vector<int> top(std::size_t(std::max(0, m.box.width)), -1);
 	for (const auto& p : m.pixels)
 	{
 		int& t = top[std::size_t(p.x - m.box.x)];
 		t = std::max(t, p.y);
 	}
+	return top;
+}
+}  // namespace
+
+double CascadeDetector::continuingShare(
+    const cv::Mat& points, const cv::Mat& labels, const Measure& m)
+{
+	const std::vector<int> top = columnTops(m);
 	int columns = 0, continuing = 0;
 	for (std::size_t i = 0; i < top.size(); i++)
 	{
@@ -409,6 +420,49 @@ double CascadeDetector::continuingShare(
 		}
 	}
 	return columns ? double(continuing) / columns : 0;
+}
+
+double CascadeDetector::overheadShare(
+    const cv::Mat& points, const cv::Mat& labels, const Measure& m,
+    double groundZ)
+{
+	const std::vector<int> top = columnTops(m);
+	// The object's front: its nearest point (horizontally).
+	double front = std::numeric_limits<double>::infinity();
+	for (const auto& p : m.pixels)
+	{
+		const cv::Vec3f a = points.at<cv::Vec3f>(p.y, p.x);
+		if (std::isfinite(a[0]))
+			front = std::min(front, std::hypot(double(a[0]), double(a[1])));
+	}
+	const double zTop = groundZ + m.top;
+	const double reach = m.width / 2 + kOverheadReach / 2;
+	int columns = 0, covered = 0;
+	for (std::size_t i = 0; i < top.size(); i++)
+	{
+		if (top[i] < 0) continue;
+		columns++;
+		const int col = m.box.x + int(i);
+		for (int r = top[i] + 1; r < points.rows; r++)
+		{
+			const cv::Vec3f b = points.at<cv::Vec3f>(r, col);
+			if (!std::isfinite(b[0]) || b[2] < zTop + 0.03 ||
+			    b[2] > zTop + kOverheadReach)
+				continue;
+			if (!labels.empty() && static_cast<Label>(labels.at<uint8_t>(
+			                           r, col)) == Label::Ceiling)
+				continue;
+			const double h = std::hypot(double(b[0]), double(b[1]));
+			const double d =
+			    std::hypot(b[0] - m.centroid.x, b[1] - m.centroid.y);
+			if (h < front - 0.02 && d <= reach)
+			{
+				covered++;
+				break;
+			}
+		}
+	}
+	return columns ? double(covered) / columns : 0;
 }
 
 }  // namespace semnav

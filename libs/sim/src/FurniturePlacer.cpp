@@ -119,20 +119,42 @@ bool FurniturePlacer::cabinet(const RoomRect& r)
 bool FurniturePlacer::clutter(const RoomRect& r)
 {
 	auto& g = m_draft.rng();
-	const bool pot = g.chance(0.3);
+	if (g.chance(0.3)) return plantPot(r);
 	const double a = g.uniform(0.2, 0.45), b = g.uniform(0.2, 0.45);
-	const double h = pot ? g.uniform(0.5, 0.9) : g.uniform(0.2, 0.6);
+	const double h = g.uniform(0.2, 0.6);
 	const double turn = g.uniform(-20, 20);
 	return place(
 	    Label::Obstacle,
 	    [&]
 	    {
-		    const Spot s = wallSpot(r, a, pot ? a : b, g.uniform(0.02, 0.15));
-		    if (pot)
-			    return std::vector<DraftPart>{
-			        DraftPart::cylinder(s.x, s.y, h / 2, a / 2, h)};
+		    const Spot s = wallSpot(r, a, b, g.uniform(0.02, 0.15));
 		    return std::vector<DraftPart>{
 		        DraftPart::box(s.x, s.y, h / 2, a, b, h, s.yawDeg + turn)};
+	    });
+}
+
+bool FurniturePlacer::plantPot(const RoomRect& r)
+{
+	// The pot is a wastebasket's size; the plant in it is what tells them
+	// apart: foliage wider than the pot above it, on a short stem when
+	// `stem` > 0 (docs/generated-scenes.md).
+	auto& g = m_draft.rng();
+	const double pr = g.uniform(0.10, 0.22), ph = g.uniform(0.25, 0.55);
+	const double fr = pr * g.uniform(1.5, 2.5), fh = g.uniform(0.3, 0.8);
+	const double stem = g.chance(0.5) ? g.uniform(0.05, 0.25) : 0.0;
+	const double f0 = ph + stem;
+	return place(
+	    Label::Obstacle,
+	    [&]
+	    {
+		    const Spot s = wallSpot(r, 2 * fr, 2 * fr, g.uniform(0.02, 0.10));
+		    std::vector<DraftPart> parts{
+		        DraftPart::cylinder(s.x, s.y, ph / 2, pr, ph),
+		        DraftPart::cylinder(s.x, s.y, f0 + fh / 2, fr, fh)};
+		    if (stem > 0)
+			    parts.push_back(
+			        DraftPart::cylinder(s.x, s.y, ph + stem / 2, 0.025, stem));
+		    return parts;
 	    });
 }
 

@@ -38,8 +38,11 @@ public:
 	bool wastebasket(const RoomRect& r, int where);
 	/** Box 0.35-0.6 m deep, 0.5-1.3 m wide, 0.7-1.9 m high, against a wall. */
 	bool cabinet(const RoomRect& r);
-	/** A small box or pot close to a wall. */
+	/** A small box, or with p 0.3 a plantPot(), close to a wall. */
 	bool clutter(const RoomRect& r);
+	/** A pot of a wastebasket's size with a plant: foliage wider than the
+	 * pot above it (label obstacle). */
+	bool plantPot(const RoomRect& r);
 	/** A table on four legs with up to `chairs` chairs around it. */
 	bool tableWithChairs(const RoomRect& r, int chairs);
 	/** 3-7 steps climbing toward wall `side` (0 south, 1 north, 2 west,

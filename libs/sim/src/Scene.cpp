@@ -52,4 +52,37 @@ std::optional<std::size_t> Scene::obstacleAt(double x, double y) const
 	return std::nullopt;
 }
 
+namespace
+{
+mrpt::math::TPoint2D partCentre(const ScenePrimitive& part)
+{
+	if (const auto* b = std::get_if<BoxShape>(&part))
+		return {b->center.x, b->center.y};
+	if (const auto* c = std::get_if<CylinderShape>(&part))
+		return {c->center.x, c->center.y};
+	if (const auto* st = std::get_if<StairsShape>(&part))
+	{
+		const double len = st->steps * st->run;
+		return {
+		    st->origin.x + std::cos(st->yaw) * len / 2,
+		    st->origin.y + std::sin(st->yaw) * len / 2};
+	}
+	return {0, 0};
+}
+}  // namespace
+
+mrpt::math::TPoint2D SceneObject::centre() const
+{
+	if (parts.empty()) return {0, 0};
+	if (label != Label::Door) return partCentre(parts.front());
+	mrpt::math::TPoint2D sum{0, 0};
+	for (const auto& p : parts)
+	{
+		const auto c = partCentre(p);
+		sum.x += c.x;
+		sum.y += c.y;
+	}
+	return {sum.x / parts.size(), sum.y / parts.size()};
+}
+
 }  // namespace semnav

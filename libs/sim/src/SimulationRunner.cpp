@@ -49,6 +49,20 @@ bool isLabelImage(const std::string& name)
 	       name.compare(name.size() - 4, 4, ".png") == 0;
 }
 
+/** Pixels of each object id (the label image's high byte) in one sweep. */
+std::vector<std::size_t> countObjectPixels(
+    const cv::Mat& labels, const Scene& scene)
+{
+	std::vector<std::size_t> count(scene.objects.size() + 1, 0);
+	for (int r = 0; r < labels.rows; r++)
+		for (int c = 0; c < labels.cols; c++)
+		{
+			const std::size_t id = labels.at<uint16_t>(r, c) >> 8;
+			if (id < count.size()) count[id]++;
+		}
+	return count;
+}
+
 std::string joinPath(const std::string& dir, const std::string& name)
 {
 	if (dir.empty()) return name;
@@ -134,6 +148,7 @@ SimulationResult SimulationRunner::run(
 		for (const auto& line : sw.lines) rawlog.write(line);
 		res.scans += sw.lines.size();
 
+		res.objectPixels.push_back(countObjectPixels(sw.labels, sc));
 		std::vector<uchar> png;
 		if (!cv::imencode(".png", sw.labels, png))
 			throw IoError(

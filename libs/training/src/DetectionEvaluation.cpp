@@ -56,10 +56,13 @@ DetectionEvaluation::SweepResult DetectionEvaluation::add(const SimSweep& s)
 	m_scorer.add(dets, s.groundTruth, m_labels);
 	r.objects = GroundTruthObject::fromLabelImage(s.groundTruth, m_labels);
 	addToFunnels(r);
-	m_recognisable.add(
-	    dets, s.groundTruth, m_labels,
-	    m_recognisable.scorer.unrecognisable(
-	        s.groundTruth, ls.points, ls.groundZ, m_labels));
+	const auto unrecognisable = m_recognisable.scorer.unrecognisable(
+	    s.groundTruth, ls.points, ls.groundZ, m_labels);
+	m_recognisable.add(dets, s.groundTruth, m_labels, unrecognisable);
+	for (const auto& g : r.objects)
+		if (g.pixels >= kCountedPixels &&
+		    !unrecognisable.count({g.label, g.instance}))
+			m_recognisableViews[g.instance]++;
 	m_distinct.add(
 	    dets, s.groundTruth, m_labels,
 	    m_distinct.scorer.fewDistinctPoints(

@@ -140,6 +140,10 @@ public:
 		 * (continuingShare(): the lower part of a cabinet or a pillar whose
 		 * upper part the rules call wall); 1: no check. */
 		double maxContinuingShare = 1;
+		/** max_overhead_share: rejected ("under something") when more
+		 * than this share of the object's columns have something over it
+		 * (overheadShare(): a pot's foliage); 1: no check. */
+		double maxOverheadShare = 1;
 		/** min_separation_m: accepted detections of the class whose
 		 * centroids are closer than this (horizontally) are one object
 		 * (boxes on two parts of a flight of stairs): the one with the
@@ -503,6 +507,20 @@ public:
 	 * (may be empty). 0 for an object with nothing on top of it. */
 	static double continuingShare(
 	    const cv::Mat& points, const cv::Mat& labels, const Measure& m);
+
+	/** The share of the measured object's columns with a point above its
+	 * top that overhangs it: higher than its top by 3 cm to kOverheadReach,
+	 * not labelled ceiling in `labels` (may be empty), nearer to the sensor
+	 * (horizontally) than the object's front by 2 cm, and at most
+	 * kOverheadReach / 2 beyond its half width from its centroid. A plant's
+	 * foliage, wider than its pot, is such a thing; the wall behind a
+	 * wastebasket is not. `groundZ`: the floor's height in the points'
+	 * frame. */
+	static double overheadShare(
+	    const cv::Mat& points, const cv::Mat& labels, const Measure& m,
+	    double groundZ);
+	/** How far above and in front of an object overheadShare() looks, m. */
+	static constexpr double kOverheadReach = 0.8;
 
 	/** The range-gated search evaluates windows with AVX2 where the CPU has
 	 * it (default) or, with false, with the portable loop: the same

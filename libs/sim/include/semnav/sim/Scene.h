@@ -68,6 +68,12 @@ struct SceneObject
 	int id = 0;
 	/** Line of the object in the scene file (1-based; 0 if unknown). */
 	int line = 0;
+
+	/** Floor position (x, y) of the object, as the map's objects are scored:
+	 * a door's is the mean of its parts' centres (both leaves of a double
+	 * door); any other object's is its first part's footprint centre (a
+	 * washbasin's basin, a staircase's flight). (0, 0) for terrain. */
+	mrpt::math::TPoint2D centre() const;
 };
 
 /** The LMS200 on a tilting head; defaults are the paper's. */

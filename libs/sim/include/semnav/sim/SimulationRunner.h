@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace semnav
 {
@@ -20,6 +21,9 @@ struct SimulationResult
 	std::size_t sweeps = 0;    ///< sweeps (= trajectory poses)
 	std::size_t scans = 0;     ///< CObservation2DRangeScan lines in the rawlog
 	std::size_t odometry = 0;  ///< CObservationOdometry entries in the rawlog
+	/** Ground-truth pixels per sweep and object: objectPixels[sweep][id],
+	 * id as in the label images (0: no object, e.g. floor). */
+	std::vector<std::vector<std::size_t>> objectPixels;
 };
 
 /** Simulates a whole scene, stop-and-scan, and writes the rawlog and the

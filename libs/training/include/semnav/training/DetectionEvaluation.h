@@ -77,6 +77,13 @@ public:
 	/** Without views beside the robot or seen over less than half their
 	 * height. */
 	const OtherCount& recognisable() const { return m_recognisable; }
+	/** Per ground-truth instance id: the sweeps where it was a recognisable
+	 * view (counted and not left out by recognisable()). Ids are per
+	 * scene: over several datasets the counts of equal ids add up. */
+	const std::map<int, std::size_t>& recognisableViews() const
+	{
+		return m_recognisableViews;
+	}
 	/** Objects counted by their distinct points, not pixels. */
 	const OtherCount& distinct() const { return m_distinct; }
 	const std::map<Label, Funnel>& funnels() const { return m_funnels; }
@@ -98,6 +105,7 @@ private:
 	PerceptionPipeline m_pipeline;
 	ObjectScorer m_scorer{kCountedPixels, kMatchIou};
 	OtherCount m_recognisable, m_distinct;
+	std::map<int, std::size_t> m_recognisableViews;
 	std::map<std::string, std::size_t> m_rejections;
 	std::map<Label, Funnel> m_funnels;
 	std::vector<double> m_ms, m_msCascades;
