@@ -13,6 +13,13 @@ namespace semnav
 {
 using namespace detail::rules;
 
+namespace
+{
+/** A surface within this many rows of the image's bottom edge is cut by
+ * the field of view there (the outermost rows have no normals). */
+constexpr int kBorderRows = 3;
+}  // namespace
+
 std::size_t RuleClassifier::applyRules(double zg, LabeledSweep& out)
 {
 	std::vector<uint8_t> isCeiling;
@@ -24,6 +31,7 @@ std::size_t RuleClassifier::applyRules(double zg, LabeledSweep& out)
 		if (s.label == kNoLabel && s.count >= o.minSurfacePixels &&
 		    s.maxP[2] > zg + o.groundTolerance)
 			s.label = lab(Label::Obstacle);
+	joinWallPlanes();
 	unlabelPlaneFragments();
 	return ceilPixels;
 }
@@ -61,13 +69,24 @@ std::vector<int> RuleClassifier::findWalls(const LabeledSweep& out) const
 	const std::size_t ns = m_surfaces.size();
 	// Wall size rules on each vertical surface and on its loose group (the
 	// pieces of one wall that noise or a plane step cut apart).
+	// The field of view cuts surfaces near the robot at the image's bottom
+	// rows (theta -15 deg); the height seen there is a lower bound, so
+	// such a surface counts from the ground. A long one must rise above
+	// what a robot sees over: a low garden wall is an obstacle.
+	const double zg = out.groundZ;
 	auto wallSized = [&](const Surface& s)
 	{
-		if (s.width < o.wallMinWidth) return false;
-		const bool tall = s.height >= o.wallMinHeight;
+		const bool cutAtBottom = s.minR <= kBorderRows;
+		const double height =
+		    cutAtBottom ? std::max<double>(s.height, s.maxP[2] - zg) : s.height;
+		const bool tall = height >= o.wallMinHeight;
 		const bool toCeiling =
 		    out.ceilingZ && s.maxP[2] >= *out.ceilingZ - o.wallCeilingGap;
-		const bool longWall = s.width >= o.wallMinLength;
+		// A narrow one only when tall: the end face of a wall at an
+		// opening, not a pole or a chair's leg.
+		if (s.width < o.wallMinWidth) return tall || toCeiling;
+		const bool longWall =
+		    s.width >= o.wallMinLength && s.maxP[2] >= zg + o.wallLongMinReach;
 		return tall || toCeiling || longWall;
 	};
 	// (Indexed through looseIdx: few of the loose groups are used.)
@@ -97,6 +116,7 @@ std::vector<int> RuleClassifier::findWalls(const LabeledSweep& out) const
 			g.minP[k] = std::min(g.minP[k], s.minP[k]);
 			g.maxP[k] = std::max(g.maxP[k], s.maxP[k]);
 		}
+		g.minR = std::min(g.minR, s.minR);
 	}
 	std::vector<uint8_t> looseWall(loose.size(), 0);
 	for (std::size_t k = 0; k < loose.size(); k++)
@@ -160,6 +180,39 @@ void RuleClassifier::labelDoorsAndWalls(
 			s.label = lab(Label::Door);
 		else if (wallCandidate[i])
 			s.label = lab(Label::Wall);
+	}
+}
+
+void RuleClassifier::joinWallPlanes()
+{
+	const TOptions& o = m_options;
+	const double cosMax = std::cos(o.wallGroupAngle);
+	const double tol = o.wallGroupTolerance;
+	std::vector<int> walls;
+	for (std::size_t i = 0; i < m_surfaces.size(); i++)
+		if (m_surfaces[i].label == lab(Label::Wall)) walls.push_back(int(i));
+	// A flat vertical piece on a wall's plane is a piece of that wall seen
+	// apart from it (below a table, between chairs), not an obstacle.
+	for (Surface& s : m_surfaces)
+	{
+		if (s.label != lab(Label::Obstacle) || s.orient != kVertical) continue;
+		const double n = s.count, cx = s.centroid[0], cy = s.centroid[1];
+		const double a = s.sxx / n - cx * cx, b = s.sxy / n - cx * cy,
+		             d = s.syy / n - cy * cy;
+		const double lmin =
+		    0.5 * (a + d) -
+		    std::sqrt(std::max(0.0, 0.25 * (a - d) * (a - d) + b * b));
+		if (lmin > 0.25 * tol * tol) continue;  // not flat
+		for (const int w : walls)
+		{
+			const Surface& ws = m_surfaces[w];
+			if (ws.normal.dot(s.normal) >= cosMax &&
+			    std::abs(ws.normal.dot(s.centroid) - ws.planeD()) <= tol)
+			{
+				s.label = lab(Label::Wall);
+				break;
+			}
+		}
 	}
 }
 
