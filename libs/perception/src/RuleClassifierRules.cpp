@@ -230,8 +230,13 @@ void RuleClassifier::unlabelPlaneFragments()
 	std::vector<uint8_t> tested(ns, 0);
 	auto onPlane = [&](const Surface& a, const Surface& w)
 	{
-		if (a.normal.dot(w.normal) < std::cos(o.doorMaxAngle * 2)) return false;
 		const double d = w.planeD();
+		// A vertical sliver narrower than a wall (the corner where two
+		// walls meet) by its centroid, whatever its normal.
+		if (a.orient == kVertical && a.width < o.wallMinWidth &&
+		    std::abs(w.normal.dot(a.centroid) - d) <= o.leftoverPlaneTolerance)
+			return true;
+		if (a.normal.dot(w.normal) < std::cos(o.doorMaxAngle * 2)) return false;
 		for (int k = 0; k < 8; k++)
 		{
 			const cv::Vec3d c(
