@@ -165,6 +165,16 @@ void RuleClassifier::growLeftovers(double zg)
 	const int* A = m_areas->ptr<int>(0);
 	const float tolG = static_cast<float>(o.groundTolerance);
 	const double tolP = o.leftoverPlaneTolerance;
+	// Range areas that hold the floor, a wall or the ceiling: an obstacle
+	// in one of them (a cabinet against a wall) is not apart from them by
+	// range, so it claims the points on its plane, not its whole area.
+	int maxArea = 0;
+	for (const Surface& S : m_surfaces) maxArea = std::max(maxArea, S.area);
+	std::vector<uint8_t> structural(maxArea + 1, 0);
+	for (const Surface& S : m_surfaces)
+		if (S.label != kNoLabel && S.label != lab(Label::Obstacle) &&
+		    S.area > 0)
+			structural[S.area] = 1;
 	// What each labelled surface accepts, compact (read per pixel).
 	m_claim.resize(ns);
 	for (std::size_t i = 0; i < ns; i++)
@@ -172,9 +182,10 @@ void RuleClassifier::growLeftovers(double zg)
 		const Surface& S = m_surfaces[i];
 		Claim& cl = m_claim[i];
 		cl.label = S.label;
-		cl.kind = isGround(S.label)                 ? Claim::kGround
-		          : S.label == lab(Label::Obstacle) ? Claim::kArea
-		                                            : Claim::kPlane;
+		const bool apart = S.area > 0 && !structural[S.area];
+		cl.kind = isGround(S.label)                          ? Claim::kGround
+		          : S.label == lab(Label::Obstacle) && apart ? Claim::kArea
+		                                                     : Claim::kPlane;
 		cl.area = S.area;
 		cl.nx = S.normal[0];
 		cl.ny = S.normal[1];
