@@ -166,8 +166,9 @@ void RuleClassifier::growLeftovers(double zg)
 	const float tolG = static_cast<float>(o.groundTolerance);
 	const double tolP = o.leftoverPlaneTolerance;
 	// Range areas that hold the floor, a wall or the ceiling: an obstacle
-	// in one of them (a cabinet against a wall) is not apart from them by
-	// range, so it claims the points on its plane, not its whole area.
+	// in one of them is not apart from them by range. Standing on the
+	// ground (a cabinet against a wall) it claims the points on its plane,
+	// not its whole area; off the ground (a fragment of a wall) nothing.
 	int maxArea = 0;
 	for (const Surface& S : m_surfaces) maxArea = std::max(maxArea, S.area);
 	std::vector<uint8_t> structural(maxArea + 1, 0);
@@ -183,9 +184,12 @@ void RuleClassifier::growLeftovers(double zg)
 		Claim& cl = m_claim[i];
 		cl.label = S.label;
 		const bool apart = S.area > 0 && !structural[S.area];
-		cl.kind = isGround(S.label)                          ? Claim::kGround
-		          : S.label == lab(Label::Obstacle) && apart ? Claim::kArea
-		                                                     : Claim::kPlane;
+		const bool standing = S.minP[2] <= zg + o.groundTolerance;
+		cl.kind = isGround(S.label)                 ? Claim::kGround
+		          : S.label != lab(Label::Obstacle) ? Claim::kPlane
+		          : apart                           ? Claim::kArea
+		          : standing                        ? Claim::kPlane
+		                                            : Claim::kNothing;
 		cl.area = S.area;
 		cl.nx = S.normal[0];
 		cl.ny = S.normal[1];
@@ -197,6 +201,7 @@ void RuleClassifier::growLeftovers(double zg)
 		const cv::Vec3f& x = P[q];
 		if (cl.kind == Claim::kGround) return std::abs(x[2] - zg) <= tolG;
 		if (cl.kind == Claim::kArea) return A[q] >= 1 && A[q] == cl.area;
+		if (cl.kind == Claim::kNothing) return false;
 		return std::abs(cl.nx * x[0] + cl.ny * x[1] + cl.nz * x[2] - cl.d) <=
 		       tolP;
 	};

@@ -303,8 +303,9 @@ private:
 		enum Kind : int8_t
 		{
 			kGround,  ///< points at ground level
-			kArea,    ///< pixels of its range area (obstacles)
-			kPlane    ///< points on its plane
+			kArea,    ///< pixels of its range area (obstacles apart)
+			kPlane,   ///< points on its plane
+			kNothing  ///< none
 		};
 		double nx = 0, ny = 0, nz = 0, d = 0;
 		int area = 0;
