@@ -259,7 +259,8 @@ private:
 	DoorCheck checkDoor(
 	    int self, const std::vector<int>& wallCandidate,
 	    const std::vector<uint8_t>& isCeiling) const;
-	/** Flat vertical obstacle pieces on a wall's plane become wall. */
+	/** Obstacle pieces lying in a thin band around a wall's plane become
+	 * wall. */
 	void joinWallPlanes();
 	/** Obstacle pieces lying on an adjacent wall's plane lose their label. */
 	void unlabelPlaneFragments();
