@@ -436,7 +436,9 @@ std::vector<int> RuleClassifier::selectSplitCandidates(
 		const double lmin =
 		    0.5 * (a + d) -
 		    std::sqrt(std::max(0.0, 0.25 * (a - d) * (a - d) + b * b));
-		const double minSpread = 0.25 * m_options.planeSplitOffset;
+		const double minSpread =
+		    0.25 *
+		    std::min(m_options.planeSplitOffset, m_options.doorSeamSplitOffset);
 		if (lmin < minSpread * minSpread) continue;
 		cv::Vec3d m;
 		if (!horizontalNormal(a, b, d, m)) continue;
@@ -551,10 +553,28 @@ void RuleClassifier::splitByResiduals(
 		    k, normal[k][0], normal[k][1], offset[k], int(total),
 		    m0b * kBin - kRange, m1b * kBin - kRange, int(w0b),
 		    int(total - w0b));
-		if ((m1b - m0b) * kBin < m_options.planeSplitOffset ||
-		    std::min(w0b, total - w0b) < m_options.minSurfacePixels)
-			continue;
+		const double step = (m1b - m0b) * kBin;
+		const bool sized =
+		    std::min(w0b, total - w0b) >= m_options.minSurfacePixels;
 		const float thr = static_cast<float>((bestB + 1) * kBin - kRange);
+		// A smaller step splits where seams run along it (a nearly flush
+		// door), or between seams.
+		if (step < m_options.planeSplitOffset)
+		{
+			if (m_options.doorSeamSplitOffset <= 0) continue;
+			const bool seamed = sized &&
+			                    step >= m_options.doorSeamSplitOffset &&
+			                    seamShare(k, thr, normal[k], offset[k]) >=
+			                        m_options.doorSeamMinShare;
+			if (!seamed)
+			{
+				if (splitAtSeams(k, normal[k], offset[k]))
+					m_groupSplit[m_parent[m_surf[pix[start[k]]]]] = 1;
+				continue;
+			}
+		}
+		else if (!sized)
+			continue;
 		bool any = false;
 		for (int i = start[k]; i < start[k + 1]; i++)
 		{
