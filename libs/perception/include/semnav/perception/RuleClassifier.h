@@ -344,6 +344,7 @@ private:
 	 * surfaces, and their pixels (row-major per slot, slot k from
 	 * m_slotStart[k]). */
 	std::vector<int> m_slotGroup, m_slotStart, m_slotPix;
+	std::vector<uint8_t> m_slotSeamOnly;  ///< too flat for the plain split
 	std::vector<float> m_slotX, m_slotY;  ///< their points' x and y
 	std::vector<int> m_fillStack;         ///< pass 1's fill stack (n slots)
 	std::vector<int> m_finalOf;           ///< pass 2: new id per pass-1 id + 1
