@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -71,11 +72,20 @@ int count(const nlohmann::json& j, const char* key)
 	return j.contains(key) && j[key].is_number() ? j[key].get<int>() : -1;
 }
 
+/** A number of a summary, NaN when the run wrote none (a const json's
+ * operator[] on a missing key is undefined). */
+double number(const nlohmann::json& j, const char* key)
+{
+	return j.contains(key) && j[key].is_number()
+	           ? j[key].get<double>()
+	           : std::numeric_limits<double>::quiet_NaN();
+}
+
 /** Index of the first incomplete sweep followed by a fresh sweep from the
  * lowest tilt; -1 if none. */
 int interruptedThenRestarted(const nlohmann::json& check)
 {
-	const auto& l = check["sweep_list"];
+	const auto l = check.value("sweep_list", nlohmann::json::array());
 	for (std::size_t i = 0; i + 1 < l.size(); i++)
 		if (!l[i]["complete"].get<bool>() &&
 		    l[i + 1]["theta_min_deg"].get<double>() < -13.0 &&
@@ -94,23 +104,22 @@ TEST(CaptureSelftest, RecordsWholeSweepsThatMatchTheScene)
 	EXPECT_GE(count(c.check, "sweeps"), 1);
 	EXPECT_GE(count(c.check, "lines"), 150);
 	EXPECT_EQ(count(c.check, "crc_errors"), 0);
-	EXPECT_FALSE(c.check["truncated"].get<bool>());
+	EXPECT_FALSE(c.check.value("truncated", true));
 	// Ranges within the noise (sigma 5 mm) of the ray-cast truth; on a quiet
 	// machine 99.7 % of the pixels, lower when CI's other tests hold up the
 	// reader threads (late timestamps, wrong tilt).
-	EXPECT_LT(c.check["median_abs_error_m"].get<double>(), 0.005);
-	EXPECT_GT(c.check["within_3sigma_1step"].get<double>(), 0.9);
+	EXPECT_LT(number(c.check, "median_abs_error_m"), 0.005);
+	EXPECT_GT(number(c.check, "within_3sigma_1step"), 0.9);
 	// Tilt of each line against the emulator's truth (0.02 deg quiet).
-	EXPECT_LT(c.check["tilt_median_abs_error_deg"].get<double>(), 0.1);
-	EXPECT_LT(
-	    c.check["spurious"].get<int>(), c.check["pixels"].get<int>() / 200);
+	EXPECT_LT(number(c.check, "tilt_median_abs_error_deg"), 0.1);
+	EXPECT_LT(count(c.check, "spurious"), count(c.check, "pixels") / 200);
 	// Near the LMS200's 37.5 lines/s at 500 kbaud.
 	// (loose bound: CI runs other tests on the same two cores)
-	EXPECT_GT(c.check["lines_per_s"].get<double>(), 0.6 * 37.5);
-	EXPECT_LE(c.check["lines_per_s"].get<double>(), 1.02 * 37.5);
+	EXPECT_GT(number(c.check, "lines_per_s"), 0.6 * 37.5);
+	EXPECT_LE(number(c.check, "lines_per_s"), 1.02 * 37.5);
 	// MRPT's own tool reads it.
-	const auto info =
-	    shell("rawlog-edit --info -i " + c.check["rawlog"].get<std::string>());
+	const auto info = shell(
+	    "rawlog-edit --info -i " + c.check.value("rawlog", std::string()));
 	EXPECT_EQ(info.code, 0);
 	EXPECT_NE(info.out.find("TILT_LMS"), std::string::npos);
 	EXPECT_NE(
@@ -136,7 +145,7 @@ TEST(CaptureFaults, CorruptTelegramsAreDroppedAndCounted)
 	EXPECT_LE(counted, injected);
 	EXPECT_GE(count(c.check, "lines"), 80);
 	// No corrupted line reached the rawlog.
-	EXPECT_GT(c.check["within_3sigma_1step"].get<double>(), 0.9);
+	EXPECT_GT(number(c.check, "within_3sigma_1step"), 0.9);
 	if (!::testing::Test::HasFailure()) fs::remove_all(c.dir);
 }
 
@@ -150,7 +159,7 @@ TEST(CaptureFaults, StallEndsTheSweepIncompleteAndCaptureGoesOn)
 	EXPECT_GE(count(c.check, "reconnects"), 1);
 	EXPECT_GE(count(c.check, "sweeps_incomplete"), 1);
 	EXPECT_GE(interruptedThenRestarted(c.check), 0) << c.check.dump();
-	EXPECT_GT(c.check["within_3sigma_1step"].get<double>(), 0.9);
+	EXPECT_GT(number(c.check, "within_3sigma_1step"), 0.9);
 	if (!::testing::Test::HasFailure()) fs::remove_all(c.dir);
 }
 
@@ -175,8 +184,8 @@ TEST(CaptureFaults, SigkillOfTheGrabberLeavesAReadableRawlog)
 	EXPECT_GE(count(c.check, "objects"), 10);
 	EXPECT_GE(count(c.check, "objects"), count(c.check, "driver_lines") - 60);
 	EXPECT_EQ(count(c.check, "objects"), count(c.check, "lines"));
-	const auto info =
-	    shell("rawlog-edit --info -i " + c.check["rawlog"].get<std::string>());
+	const auto info = shell(
+	    "rawlog-edit --info -i " + c.check.value("rawlog", std::string()));
 	EXPECT_EQ(info.code, 0);
 	EXPECT_NE(info.out.find("TILT_LMS"), std::string::npos);
 	if (!::testing::Test::HasFailure()) fs::remove_all(c.dir);
