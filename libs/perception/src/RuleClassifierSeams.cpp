@@ -79,10 +79,30 @@ double RuleClassifier::seamShare(
 {
 	// Where a row crosses from one side of the step to the other, the
 	// boundary is a seam when a pixel within two columns of it leaves the
-	// plane by door_seam_depth_m or has no point. Noise on a flat wall
-	// gives random boundaries without seams.
+	// plane by door_seam_depth_m or has no point, with pixels of the group
+	// on both sides of it in the row (a gap inside the group: beyond the
+	// group's edge every pixel breaks, and a strip along the edge, where
+	// the smoothed residuals are biased, would be "seamed"). Noise on a
+	// flat wall gives random boundaries without seams.
 	constexpr int kMaxGap = 3, kMargin = 2;
 	const int cols = m_cols;
+	const int group = m_slotGroup[slot];
+	auto inGroup = [&](int p)
+	{
+		const int s = m_surf[p];
+		return s >= 0 && m_parent[s] == group;
+	};
+	// A group pixel within kMaxGap + 1 columns of column c, on side dir.
+	auto flank = [&](int rowStart, int c, int dir)
+	{
+		for (int k = 1; k <= kMaxGap + 1; k++)
+		{
+			const int cc = c + dir * k;
+			if (cc < 0 || cc >= cols) return false;
+			if (inGroup(rowStart + cc)) return true;
+		}
+		return false;
+	};
 	const auto* P = m_points->ptr<cv::Vec3f>(0);
 	const auto* PM = m_pointMask->ptr<uint8_t>(0);
 	const float* RS = m_resSum.ptr<float>(0);
@@ -108,7 +128,8 @@ double RuleClassifier::seamShare(
 		const int rowStart = p - c0;
 		for (int c = std::max(0, c0 - kMargin);
 		     c <= std::min(cols - 1, c1 + kMargin); c++)
-			if (breaks(rowStart + c))
+			if (breaks(rowStart + c) && flank(rowStart, c, -1) &&
+			    flank(rowStart, c, 1))
 			{
 				seams++;
 				break;
