@@ -121,6 +121,30 @@ TEST(RuleClassifier, CorridorWithADoor)
 	for (const auto& reg : ls.regions) EXPECT_EQ(n[reg.id], reg.pixels);
 }
 
+TEST(RuleClassifier, NearlyFlushDoorIsCutAlongItsSeams)
+{
+	// The corridor's door 6 mm behind the wall face (below the plain
+	// 1.2 cm plane split), 2 cm gaps on either side of it.
+	SynthScene sc = corridor();
+	for (auto& b : sc.boxes)
+		if (b.label == Label::Door)
+		{
+			b.lo[1] = 1.206;
+			b.hi[1] = 1.246;
+		}
+	sc.mount[0] = 2.6;  // (in front of it: the gaps seen in depth)
+	cv::Mat truth;
+	const Sweep sw = renderSweep(sc, &truth);
+	PerceptionPipeline::TOptions o;
+	const LabeledSweep ls = PerceptionPipeline(o).process(sw);
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Door), 0.85);
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Wall), 0.95);
+	// Without the seams the leaf is part of its wall.
+	o.classifier.doorSeamSplitOffset = 0;
+	const LabeledSweep plain = PerceptionPipeline(o).process(sw);
+	EXPECT_LT(pixelF1(plain.labels, truth, sw, Label::Door), 0.5);
+}
+
 TEST(RuleClassifier, SidewalkAndGrassByRoughness)
 {
 	// No ceiling: outdoor. A smooth path along x between rough grass, and a

@@ -139,10 +139,39 @@ const OptionTable<O>& optionTable()
 	            "A side cut by the field of view stands in for a wall.")
 	        .integer(
 	            "door_search_px", &O::doorSearchPixels, 1, 1000,
-	            "The walls around a door are searched this far.")
+	            "The walls around a door are searched this far...")
+	        .real(
+	            "door_search_m", &O::doorSearchDistance, 0, 10,
+	            "...or this far (at the door's pixel spacing), if farther,")
+	        .real(
+	            "door_search_min_size_m", &O::doorSearchMinSize, 0, 10,
+	            "...around a door that shows this much of its width and "
+	            "height.")
+	        .real(
+	            "door_seam_split_offset_m", &O::doorSeamSplitOffset, 0, 10,
+	            "A smaller plane step (a nearly flush door) splits between "
+	            "vertical seams...")
+	        .real(
+	            "door_seam_depth_m", &O::doorSeamDepth, 0, 10,
+	            "...lines of pixels this far off the plane (a gap, a "
+	            "frame)...")
+	        .real(
+	            "door_seam_min_height_m", &O::doorSeamMinHeight, 0, 10,
+	            "...this tall...")
+	        .integer(
+	            "door_seam_min_notches", &O::doorSeamMinNotches, 1, 100000,
+	            "...seen in this many rows; or where that share of its "
+	            "boundary is such a seam:")
+	        .real(
+	            "door_seam_min_share", &O::doorSeamMinShare, 0, 1,
+	            "(the share)")
 	        .real(
 	            "door_min_side_fraction", &O::doorMinSideFraction, 0, 1,
-	            "A side is a wall when this share of it is.")
+	            "A side is a wall when this share of it is...")
+	        .real(
+	            "door_single_side_fraction", &O::doorSingleSideFraction, 0, 1,
+	            "...and this share when it is the only wall side (the others "
+	            "cut by the field of view).")
 	        .real(
 	            "sidewalk_min_rbar", &O::sidewalkMinRbar, -1, 1,
 	            "Outdoor ground: sidewalk where R-bar is at least this, "

@@ -379,6 +379,7 @@ void RuleClassifier::splitPlanes()
 	m_side.assign(n, 0);
 	m_groupSplit.assign(m_surfaces.size(), 0);
 	m_slotGroup.clear();
+	m_slotSeamOnly.clear();
 	m_slotStart.assign(1, 0);
 	if (m_options.planeSplitOffset <= 0) return;
 	std::vector<cv::Vec3d> normal;
@@ -436,11 +437,17 @@ std::vector<int> RuleClassifier::selectSplitCandidates(
 		const double lmin =
 		    0.5 * (a + d) -
 		    std::sqrt(std::max(0.0, 0.25 * (a - d) * (a - d) + b * b));
+		// (Groups flatter than that are examined for seams only.)
 		const double minSpread = 0.25 * m_options.planeSplitOffset;
-		if (lmin < minSpread * minSpread) continue;
+		const double minSeamSpread = 0.25 * m_options.doorSeamSplitOffset;
+		if (lmin < minSeamSpread * minSeamSpread ||
+		    (lmin < minSpread * minSpread &&
+		     m_options.doorSeamSplitOffset <= 0))
+			continue;
 		cv::Vec3d m;
 		if (!horizontalNormal(a, b, d, m)) continue;
 		slot[i] = nSlots++;
+		m_slotSeamOnly.push_back(lmin < minSpread * minSpread);
 		m_slotGroup.push_back(i);
 		normal.push_back(m);
 		offset.push_back(m[0] * cx + m[1] * cy);
@@ -511,6 +518,8 @@ void RuleClassifier::splitByResiduals(
 	float* WT = m_wt.ptr<float>(0);
 	for (int k = 0; k < nSlots; k++)
 	{
+		// (Groups examined for seams only stay out of the smoothing.)
+		if (m_slotSeamOnly[k]) continue;
 		const float nx = static_cast<float>(normal[k][0]),
 		            ny = static_cast<float>(normal[k][1]),
 		            d0 = static_cast<float>(offset[k]);
@@ -530,6 +539,12 @@ void RuleClassifier::splitByResiduals(
 	std::vector<int> hist(kBins);
 	for (int k = 0; k < nSlots; k++)
 	{
+		if (m_slotSeamOnly[k])
+		{
+			if (splitAtSeams(k, normal[k], offset[k]))
+				m_groupSplit[m_parent[m_surf[pix[start[k]]]]] = 1;
+			continue;
+		}
 		std::fill(hist.begin(), hist.end(), 0);
 		for (int i = start[k]; i < start[k + 1]; i++)
 		{
@@ -551,10 +566,28 @@ void RuleClassifier::splitByResiduals(
 		    k, normal[k][0], normal[k][1], offset[k], int(total),
 		    m0b * kBin - kRange, m1b * kBin - kRange, int(w0b),
 		    int(total - w0b));
-		if ((m1b - m0b) * kBin < m_options.planeSplitOffset ||
-		    std::min(w0b, total - w0b) < m_options.minSurfacePixels)
-			continue;
+		const double step = (m1b - m0b) * kBin;
+		const bool sized =
+		    std::min(w0b, total - w0b) >= m_options.minSurfacePixels;
 		const float thr = static_cast<float>((bestB + 1) * kBin - kRange);
+		// A smaller step splits where seams run along it (a nearly flush
+		// door), or between seams.
+		if (step < m_options.planeSplitOffset)
+		{
+			if (m_options.doorSeamSplitOffset <= 0) continue;
+			const bool seamed = sized &&
+			                    step >= m_options.doorSeamSplitOffset &&
+			                    seamShare(k, thr, normal[k], offset[k]) >=
+			                        m_options.doorSeamMinShare;
+			if (!seamed)
+			{
+				if (splitAtSeams(k, normal[k], offset[k]))
+					m_groupSplit[m_parent[m_surf[pix[start[k]]]]] = 1;
+				continue;
+			}
+		}
+		else if (!sized)
+			continue;
 		bool any = false;
 		for (int i = start[k]; i < start[k + 1]; i++)
 		{

@@ -115,6 +115,19 @@ std::vector<int> RuleClassifier::findWalls(const LabeledSweep& out) const
 	return wallCandidate;
 }
 
+bool RuleClassifier::singleSideHolds(
+    const Surface& s, const DoorCheck& dc) const
+{
+	// With one wall side only (the others cut by the field of view), that
+	// one is all the evidence: it must hold along door_single_side_fraction
+	// (searched farther, see checkDoor(); slivers are searched as before).
+	if (!doorSized(s)) return true;
+	const double f = m_options.doorMinSideFraction;
+	const int walls = (dc.left >= f) + (dc.right >= f) + (dc.top >= f);
+	return walls != 1 || std::max({dc.left, dc.right, dc.top}) >=
+	                         m_options.doorSingleSideFraction;
+}
+
 void RuleClassifier::labelDoorsAndWalls(
     double zg, const std::vector<int>& wallCandidate,
     const std::vector<uint8_t>& isCeiling)
@@ -138,7 +151,8 @@ void RuleClassifier::labelDoorsAndWalls(
 			const bool sides = (dc.left >= f || (t && dc.leftFov)) &&
 			                   (dc.right >= f || (t && dc.rightFov)) &&
 			                   (dc.top >= f || (t && dc.topFov)) &&
-			                   (dc.left >= f || dc.right >= f);
+			                   (dc.left >= f || dc.right >= f) &&
+			                   singleSideHolds(s, dc);
 			const bool height = s.height >= o.doorMinHeight ||
 			                    (t && (dc.topFov || dc.bottomFov));
 			const bool width =
@@ -220,6 +234,9 @@ void RuleClassifier::unlabelPlaneFragments()
 
 namespace
 {
+/** The door rule's probes stop this many pixels away, however close. */
+constexpr int kMaxDoorSearchPixels = 60;
+
 /** A door candidate's outline in the image: per row of its box its first
  * and last column, per column its top row, and its lowest and highest
  * pixels. */
@@ -298,11 +315,31 @@ RuleClassifier::DoorCheck RuleClassifier::checkDoor(
 	      &colMax = o.colMax;
 	const int pLo = o.lowest, pHi = o.highest;
 	const int K = m_options.doorSearchPixels;
-	// Probes up to K pixels away; `border` when the probe runs out of the
-	// image (the field of view cuts the surface there).
+	const auto* P = m_points->ptr<cv::Vec3f>(0);
+	// The probe's reach in pixels: door_search_m at the spacing of the
+	// door's own pixels there (a door seen close up spans many pixels, and
+	// so do its frame and the gaps beside it), at least K.
+	// (Only for a candidate that shows door_search_min_size_m of its width
+	// and height: slivers at the field of view's edge keep K.)
+	const bool sized = doorSized(door);
+	auto reach = [&](int r, int c, int dr, int dc)
+	{
+		if (!sized) return K;
+		const int ri = r - dr, ci = c - dc;
+		if (ri < 0 || ri >= rows || ci < 0 || ci >= cols ||
+		    m_surf[ri * cols + ci] != self)
+			return K;
+		const double spacing = cv::norm(P[r * cols + c] - P[ri * cols + ci]);
+		if (spacing <= 1e-4) return K;
+		const double k = m_options.doorSearchDistance / spacing;
+		return std::clamp(static_cast<int>(k), K, kMaxDoorSearchPixels);
+	};
+	// Probes within reach; `border` when the probe runs out of the image
+	// (the field of view cuts the surface there).
 	auto probe = [&](int r, int c, int dr, int dc, bool ceilingOk, bool& border)
 	{
-		for (int k = 1; k <= K; k++)
+		const int reachPx = reach(r, c, dr, dc);
+		for (int k = 1; k <= reachPx; k++)
 		{
 			const int rr = r + k * dr, cc = c + k * dc;
 			if (rr < 0 || rr >= rows || cc < 0 || cc >= cols)

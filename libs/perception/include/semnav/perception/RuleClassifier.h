@@ -125,7 +125,15 @@ public:
 		double doorMinOffset = 0.005;
 		bool doorAllowTruncation = true;
 		int doorSearchPixels = 6;
+		double doorSearchDistance = 0.15;
+		double doorSearchMinSize = 0.3;
+		double doorSeamSplitOffset = 0.003;
+		double doorSeamDepth = 0.015;
+		double doorSeamMinHeight = 1.0;
+		int doorSeamMinNotches = 8;
+		double doorSeamMinShare = 0.5;
 		double doorMinSideFraction = 0.5;
+		double doorSingleSideFraction = 0.8;
 		// Ground type (outdoor)
 		double sidewalkMinRbar = 0.97;
 		double sidewalkMaxHeightStd = 0.012;
@@ -234,6 +242,16 @@ private:
 	void splitByResiduals(
 	    const std::vector<cv::Vec3d>& normal,
 	    const std::vector<double>& offset);
+	/** Share of the row crossings between the two sides of slot's step
+	 * (smoothed residual `threshold`) with a seam beside them (a pixel off
+	 * the plane by door_seam_depth_m, or none); 0 with few crossings. */
+	double seamShare(
+	    int slot, float threshold, const cv::Vec3d& normal,
+	    double offset) const;
+	/** Cuts slot's group (plane normal, offset) along vertical seams: a
+	 * stretch between seams whose plane steps by door_seam_split_offset_m
+	 * (a nearly flush leaf) gets side 1 in m_side; true when one does. */
+	bool splitAtSeams(int slot, const cv::Vec3d& normal, double offset);
 	/** Step 3, pass 2: pixels of one coplanar group (m_parent) and one side
 	 * of its plane step. */
 	void buildGroupSurfaces();
@@ -249,6 +267,15 @@ private:
 	void labelDoorsAndWalls(
 	    double zg, const std::vector<int>& wallCandidate,
 	    const std::vector<uint8_t>& isCeiling);
+	/** False when only one side of the door is a wall and it holds along
+	 * less than door_single_side_fraction. */
+	bool singleSideHolds(const Surface& s, const DoorCheck& dc) const;
+	/** True when s shows door_search_min_size_m of its width and height. */
+	bool doorSized(const Surface& s) const
+	{
+		return s.width >= m_options.doorSearchMinSize &&
+		       s.height >= m_options.doorSearchMinSize;
+	}
 	DoorCheck checkDoor(
 	    int self, const std::vector<int>& wallCandidate,
 	    const std::vector<uint8_t>& isCeiling) const;
@@ -317,6 +344,7 @@ private:
 	 * surfaces, and their pixels (row-major per slot, slot k from
 	 * m_slotStart[k]). */
 	std::vector<int> m_slotGroup, m_slotStart, m_slotPix;
+	std::vector<uint8_t> m_slotSeamOnly;  ///< too flat for the plain split
 	std::vector<float> m_slotX, m_slotY;  ///< their points' x and y
 	std::vector<int> m_fillStack;         ///< pass 1's fill stack (n slots)
 	std::vector<int> m_finalOf;           ///< pass 2: new id per pass-1 id + 1
