@@ -13,6 +13,13 @@ namespace semnav
 {
 using namespace detail::rules;
 
+namespace
+{
+/** A surface within this many rows of the image's bottom edge is cut by
+ * the field of view there (the outermost rows have no normals). */
+constexpr int kBorderRows = 3;
+}  // namespace
+
 std::size_t RuleClassifier::applyRules(double zg, LabeledSweep& out)
 {
 	std::vector<uint8_t> isCeiling;
@@ -24,6 +31,7 @@ std::size_t RuleClassifier::applyRules(double zg, LabeledSweep& out)
 		if (s.label == kNoLabel && s.count >= o.minSurfacePixels &&
 		    s.maxP[2] > zg + o.groundTolerance)
 			s.label = lab(Label::Obstacle);
+	joinWallPlanes();
 	unlabelPlaneFragments();
 	return ceilPixels;
 }
@@ -61,13 +69,24 @@ std::vector<int> RuleClassifier::findWalls(const LabeledSweep& out) const
 	const std::size_t ns = m_surfaces.size();
 	// Wall size rules on each vertical surface and on its loose group (the
 	// pieces of one wall that noise or a plane step cut apart).
+	// The field of view cuts surfaces near the robot at the image's bottom
+	// rows (theta -15 deg); the height seen there is a lower bound, so
+	// such a surface counts from the ground. A long one must rise above
+	// what a robot sees over: a low garden wall is an obstacle.
+	const double zg = out.groundZ;
 	auto wallSized = [&](const Surface& s)
 	{
-		if (s.width < o.wallMinWidth) return false;
-		const bool tall = s.height >= o.wallMinHeight;
+		const bool cutAtBottom = s.minR <= kBorderRows;
+		const double height =
+		    cutAtBottom ? std::max<double>(s.height, s.maxP[2] - zg) : s.height;
+		const bool tall = height >= o.wallMinHeight;
 		const bool toCeiling =
 		    out.ceilingZ && s.maxP[2] >= *out.ceilingZ - o.wallCeilingGap;
-		const bool longWall = s.width >= o.wallMinLength;
+		// A narrow one only when tall: the end face of a wall at an
+		// opening, not a pole or a chair's leg.
+		if (s.width < o.wallMinWidth) return tall || toCeiling;
+		const bool longWall =
+		    s.width >= o.wallMinLength && s.maxP[2] >= zg + o.wallLongMinReach;
 		return tall || toCeiling || longWall;
 	};
 	// (Indexed through looseIdx: few of the loose groups are used.)
@@ -97,6 +116,7 @@ std::vector<int> RuleClassifier::findWalls(const LabeledSweep& out) const
 			g.minP[k] = std::min(g.minP[k], s.minP[k]);
 			g.maxP[k] = std::max(g.maxP[k], s.maxP[k]);
 		}
+		g.minR = std::min(g.minR, s.minR);
 	}
 	std::vector<uint8_t> looseWall(loose.size(), 0);
 	for (std::size_t k = 0; k < loose.size(); k++)
@@ -163,6 +183,43 @@ void RuleClassifier::labelDoorsAndWalls(
 	}
 }
 
+void RuleClassifier::joinWallPlanes()
+{
+	const TOptions& o = m_options;
+	const double cosMax = std::cos(o.wallGroupAngle);
+	const double tol = o.wallGroupTolerance;
+	std::vector<int> walls;
+	for (std::size_t i = 0; i < m_surfaces.size(); i++)
+		if (m_surfaces[i].label == lab(Label::Wall)) walls.push_back(int(i));
+	// A piece whose points lie in a thin band around a wall's plane is a
+	// piece of that wall seen apart from it (below a table, between
+	// chairs) or with noisy normals (oblique, at a grazing angle), not an
+	// obstacle. A vertical one must also face as the wall does.
+	for (Surface& s : m_surfaces)
+	{
+		if (s.label != lab(Label::Obstacle) ||
+		    (s.orient != kVertical && s.orient != kOblique))
+			continue;
+		const double n = s.count, cx = s.centroid[0], cy = s.centroid[1];
+		const double a = s.sxx / n - cx * cx, b = s.sxy / n - cx * cy,
+		             d = s.syy / n - cy * cy;
+		for (const int w : walls)
+		{
+			const Surface& ws = m_surfaces[w];
+			const double nx = ws.normal[0], ny = ws.normal[1];
+			const double spread = nx * nx * a + 2 * nx * ny * b + ny * ny * d;
+			const double facing = s.orient == kVertical ? cosMax : 0.0;
+			if (ws.normal.dot(s.normal) >= facing &&
+			    spread <= 0.25 * tol * tol &&
+			    std::abs(ws.normal.dot(s.centroid) - ws.planeD()) <= tol)
+			{
+				s.label = lab(Label::Wall);
+				break;
+			}
+		}
+	}
+}
+
 void RuleClassifier::unlabelPlaneFragments()
 {
 	const TOptions& o = m_options;
@@ -177,8 +234,13 @@ void RuleClassifier::unlabelPlaneFragments()
 	std::vector<uint8_t> tested(ns, 0);
 	auto onPlane = [&](const Surface& a, const Surface& w)
 	{
-		if (a.normal.dot(w.normal) < std::cos(o.doorMaxAngle * 2)) return false;
 		const double d = w.planeD();
+		// A vertical sliver narrower than a wall (the corner where two
+		// walls meet) by its centroid, whatever its normal.
+		if (a.orient == kVertical && a.width < o.wallMinWidth &&
+		    std::abs(w.normal.dot(a.centroid) - d) <= o.leftoverPlaneTolerance)
+			return true;
+		if (a.normal.dot(w.normal) < std::cos(o.doorMaxAngle * 2)) return false;
 		for (int k = 0; k < 8; k++)
 		{
 			const cv::Vec3d c(
