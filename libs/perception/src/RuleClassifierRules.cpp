@@ -31,7 +31,6 @@ std::size_t RuleClassifier::applyRules(double zg, LabeledSweep& out)
 		if (s.label == kNoLabel && s.count >= o.minSurfacePixels &&
 		    s.maxP[2] > zg + o.groundTolerance)
 			s.label = lab(Label::Obstacle);
-	joinWallPlanes();
 	unlabelPlaneFragments();
 	return ceilPixels;
 }
@@ -180,43 +179,6 @@ void RuleClassifier::labelDoorsAndWalls(
 			s.label = lab(Label::Door);
 		else if (wallCandidate[i])
 			s.label = lab(Label::Wall);
-	}
-}
-
-void RuleClassifier::joinWallPlanes()
-{
-	const TOptions& o = m_options;
-	const double cosMax = std::cos(o.wallGroupAngle);
-	const double tol = o.wallGroupTolerance;
-	std::vector<int> walls;
-	for (std::size_t i = 0; i < m_surfaces.size(); i++)
-		if (m_surfaces[i].label == lab(Label::Wall)) walls.push_back(int(i));
-	// A piece whose points lie in a thin band around a wall's plane is a
-	// piece of that wall seen apart from it (below a table, between
-	// chairs) or with noisy normals (oblique, at a grazing angle), not an
-	// obstacle. A vertical one must also face as the wall does.
-	for (Surface& s : m_surfaces)
-	{
-		if (s.label != lab(Label::Obstacle) ||
-		    (s.orient != kVertical && s.orient != kOblique))
-			continue;
-		const double n = s.count, cx = s.centroid[0], cy = s.centroid[1];
-		const double a = s.sxx / n - cx * cx, b = s.sxy / n - cx * cy,
-		             d = s.syy / n - cy * cy;
-		for (const int w : walls)
-		{
-			const Surface& ws = m_surfaces[w];
-			const double nx = ws.normal[0], ny = ws.normal[1];
-			const double spread = nx * nx * a + 2 * nx * ny * b + ny * ny * d;
-			const double facing = s.orient == kVertical ? cosMax : 0.0;
-			if (ws.normal.dot(s.normal) >= facing &&
-			    spread <= 0.25 * tol * tol &&
-			    std::abs(ws.normal.dot(s.centroid) - ws.planeD()) <= tol)
-			{
-				s.label = lab(Label::Wall);
-				break;
-			}
-		}
 	}
 }
 

@@ -259,9 +259,6 @@ private:
 	DoorCheck checkDoor(
 	    int self, const std::vector<int>& wallCandidate,
 	    const std::vector<uint8_t>& isCeiling) const;
-	/** Obstacle pieces lying in a thin band around a wall's plane become
-	 * wall. */
-	void joinWallPlanes();
 	/** Obstacle pieces lying on an adjacent wall's plane lose their label. */
 	void unlabelPlaneFragments();
 	/** Step 5: m_label from the surfaces, then the leftover pixels. */
