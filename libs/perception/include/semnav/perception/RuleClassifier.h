@@ -44,9 +44,7 @@ namespace semnav
  *      (wall_min_length_m) and reaching wall_long_min_reach_m above the
  *      ground (a low garden wall is an obstacle), itself or with its wall
  *      group; one narrower than wall_min_width_m only when tall or
- *      reaching the ceiling (the end face of a wall at an opening). A
- *      piece lying in a thin band around a wall's plane (within
- *      wall_group_tolerance_m) is part of it: the wall seen below a table;
+ *      reaching the ceiling (the end face of a wall at an opening);
  *    - door: one vertical surface door_min/max_width_m wide,
  *      door_min/max_height_m high, bottom at the ground, with walls
  *      parallel and within door_max_offset_m of its plane on its left,
