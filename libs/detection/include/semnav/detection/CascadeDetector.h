@@ -123,8 +123,9 @@ public:
 		 * centroid lies at a bearing of side_bearing_deg or more (stored
 		 * in rad) is beside the robot, where the tilt axis points at it and
 		 * a sweep sees it as a thin slice: there the forest must also score
-		 * it side_min_shape_score (minShapeScoreAt()). 90 deg or 0: no
-		 * stricter check. */
+		 * it side_min_shape_score (minShapeScoreAt()). side_bearing_deg 90
+		 * or side_min_shape_score 0 (at most min_shape_score): no stricter
+		 * check. */
 		double sideBearing = M_PI / 2;
 		double sideMinShapeScore = 0;
 		/** The shape score a detection whose centroid lies at `bearing`
