@@ -129,12 +129,13 @@ void listMisses(
 		    stderr,
 		    "false %s sweep %zu %s box %dx%d+%d+%d, range %.2f m, bearing "
 		    "%.0f deg, width %.2f m, top %.2f m, %zu points, shape score "
-		    "%.2f, on %s\n",
+		    "%.2f, flat faces %.2f, on %s\n",
 		    std::filesystem::path(dir).filename().c_str(), sweep,
 		    semnav::labelName(c.label).c_str(), m.box.width, m.box.height,
 		    m.box.x, m.box.y, std::hypot(m.centroid.x, m.centroid.y),
 		    std::atan2(m.centroid.y, m.centroid.x) * 180 / M_PI, m.width, m.top,
-		    m.points, c.shapeScore, pointsOn(groundTruth, m.pixels).c_str());
+		    m.points, c.shapeScore, c.flatFaceShare.value_or(-1),
+		    pointsOn(groundTruth, m.pixels).c_str());
 	}
 	for (const auto& g : objects)
 	{

@@ -144,6 +144,7 @@ segment_candidates = true
 cascade_support = true
 back_wall_length_m = 0.8
 max_continuing_share = 0.3
+min_flat_face_share = 0.6
 min_shape_score = 0.4
 [CascadeDetector.wastebasket]
 cascade = ../datasets/cascades/wastebasket.xml
@@ -182,6 +183,8 @@ back_wall_length_m = 0.8
 min_separation_m = 2
 grow_m = 0.3
 min_shape_score = 0.3
+side_bearing_deg = 70
+side_min_shape_score = 0.45
 [SampleGenerator]
 positives = 3000
 min_object_pixels = 60

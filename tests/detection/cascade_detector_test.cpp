@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "../common/SavedAndLoaded.h"
 
@@ -177,6 +178,50 @@ TEST(CascadeDetector, OverheadShareFindsFoliageOverAPot)
 	EXPECT_DOUBLE_EQ(share(20, Label::Ceiling, 1.9f), 0.0);
 }
 
+TEST(CascadeDetector, FlatFaceShareTellsABasinFromFoliage)
+{
+	// The top band (rows 0-9, 0.8-0.9 m high) of an object 2 m ahead seen
+	// in 30 columns 2 cm apart across the line of sight: `depth(y)` is how
+	// far behind x = 2 m its front lies there. Below the band (rows 10-19,
+	// 0.5 m) a pedestal that must not count.
+	const auto share =
+	    [](const std::function<double(double)>& depth, int columns = 30)
+	{
+		cv::Mat p(20, columns, CV_32FC3);
+		CascadeDetector::Measure m;
+		for (int r = 0; r < 20; r++)
+			for (int c = 0; c < columns; c++)
+			{
+				const double y = 0.02 * (c - (columns - 1) / 2.0);
+				const bool band = r < 10;
+				// A little noise, alternating by row.
+				const double x = 2.0 + (band ? depth(y) : 0.3 * y * y) +
+				                 ((r + c) % 2 ? 0.002 : -0.002);
+				p.at<cv::Vec3f>(r, c) = cv::Vec3f(
+				    float(x), float(y), band ? 0.9f - 0.01f * r : 0.5f);
+				m.pixels.emplace_back(c, r);
+			}
+		m.box = cv::Rect(0, 0, columns, 20);
+		m.top = 0.9;
+		return CascadeDetector::flatFaceShare(p, m, 0.0);
+	};
+	// A basin's flat front, seen head on or turned 30 deg: every direction
+	// along one face.
+	EXPECT_DOUBLE_EQ(share([](double) { return 0.0; }).value(), 1.0);
+	EXPECT_DOUBLE_EQ(
+	    share([](double y) { return std::tan(M_PI / 6) * y; }).value(), 1.0);
+	// Seen across its corner (two faces at 45 deg to the line of sight):
+	// the faces are one direction folded; only the corner's may differ.
+	EXPECT_GE(share([](double y) { return std::abs(y); }).value(), 0.9);
+	// Foliage: a cylinder 0.3 m in radius, its front spread over +-60 deg.
+	const auto foliage =
+	    share([](double y) { return 0.3 - std::sqrt(0.09 - y * y); }, 27);
+	ASSERT_TRUE(foliage.has_value());
+	EXPECT_LT(*foliage, 0.6);
+	// Too few directions measured (3 columns): nothing to tell.
+	EXPECT_FALSE(share([](double) { return 0.0; }, 3).has_value());
+}
+
 TEST(CascadeDetector, PassesCoverNearAndFarObjects)
 {
 	CascadeDetector::TClassOptions k(Label::Wastebasket);
@@ -249,6 +294,18 @@ TEST(CascadeDetector, ShippedConfigLoads)
 	EXPECT_DOUBLE_EQ(o.classes[0].maxOverheadShare, 1);
 	EXPECT_DOUBLE_EQ(o.classes[1].maxOverheadShare, 0.7);
 	EXPECT_DOUBLE_EQ(o.classes[2].maxOverheadShare, 1);
+	// Washbasins: a flat-faced top (not a plant's round foliage).
+	EXPECT_DOUBLE_EQ(o.classes[0].minFlatFaceShare, 0.6);
+	EXPECT_DOUBLE_EQ(o.classes[1].minFlatFaceShare, 0);
+	EXPECT_DOUBLE_EQ(o.classes[2].minFlatFaceShare, 0);
+	// Stairs beside the robot (70 deg or more) need a shape score of 0.45,
+	// elsewhere 0.3; the other classes have no stricter side check.
+	EXPECT_DOUBLE_EQ(o.classes[2].minShapeScoreAt(0.0), 0.3);
+	EXPECT_DOUBLE_EQ(o.classes[2].minShapeScoreAt(-69 * M_PI / 180), 0.3);
+	EXPECT_DOUBLE_EQ(o.classes[2].minShapeScoreAt(-70 * M_PI / 180), 0.45);
+	EXPECT_DOUBLE_EQ(o.classes[2].minShapeScoreAt(88 * M_PI / 180), 0.45);
+	EXPECT_DOUBLE_EQ(o.classes[0].minShapeScoreAt(88 * M_PI / 180), 0.4);
+	EXPECT_DOUBLE_EQ(o.classes[1].minShapeScoreAt(88 * M_PI / 180), 0.4);
 	EXPECT_DOUBLE_EQ(o.classes[0].minSeparation, 0);
 	EXPECT_DOUBLE_EQ(o.classes[2].minSeparation, 2.0);
 	EXPECT_DOUBLE_EQ(o.classes[0].grow, 0);
@@ -323,6 +380,18 @@ TEST(CascadeDetector, OptionErrorsNameSectionAndKey)
 	EXPECT_THROW(
 	    load("[CascadeDetector]\nclasses = "
 	         "stairs\n[CascadeDetector.stairs]\nmax_continuing_share = 1.5\n"),
+	    ConfigError);
+	EXPECT_THROW(
+	    load("[CascadeDetector]\nclasses = "
+	         "stairs\n[CascadeDetector.stairs]\nmin_flat_face_share = -0.1\n"),
+	    ConfigError);
+	EXPECT_THROW(
+	    load("[CascadeDetector]\nclasses = "
+	         "stairs\n[CascadeDetector.stairs]\nside_bearing_deg = 95\n"),
+	    ConfigError);
+	EXPECT_THROW(
+	    load("[CascadeDetector]\nclasses = "
+	         "stairs\n[CascadeDetector.stairs]\nside_min_shape_score = 2\n"),
 	    ConfigError);
 	EXPECT_THROW(
 	    load("[CascadeDetector]\nclasses = "

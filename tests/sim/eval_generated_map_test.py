@@ -41,7 +41,7 @@ truth = [
 reported = [
     rep(1, "door", 0.1, 0.1), rep(2, "door", 5.1, 0), rep(3, "door", 4.9, 0),
     rep(4, "door", 10.6, 0), rep(5, "door", 20.2, 0),   # near the unseen one
-    rep(6, "door", 30, 0),                               # spurious
+    dict(rep(6, "door", 30, 0), observations=1),         # spurious, once
     rep(7, "wastebasket", 0.05, 5), rep(8, "wastebasket", 6, 5),  # spurious
 ]
 views = {"6": need, "7": 0}
@@ -57,7 +57,7 @@ def check(cls, **want):
 
 
 check("door", seen=4, found=1, duplicated=1, far=1, missed=1, spurious=1,
-      reported=6)
+      reported=6, reported_once=1)
 check("wastebasket", seen=1, found=1, missed=0, spurious=1, reported=2)
 check("stairs", seen=0, reported=0, spurious=0)
 whats = sorted(f["what"] for f in s["door"]["failures"])
@@ -67,7 +67,8 @@ if whats != ["duplicated", "far", "missed", "spurious"]:
 summary = ev.summarize_maps([{"map": s}, {"map": ev.score_map(
     truth[:1], reported[:1], {})}])
 if summary["buildings"] != 2 or summary["no_spurious_share"] != 0.5 or \
-        summary["all_seen_found_once_share"] != 0.5:
+        summary["all_seen_found_once_share"] != 0.5 or \
+        summary["classes"]["door"]["reported_once"] != 1:
     failed.append("summary: %s" % summary)
 
 for f in failed:

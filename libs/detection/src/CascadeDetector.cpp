@@ -423,6 +423,11 @@ double CascadeDetector::measureCandidate(
 	    k.maxOverheadShare < 1 &&
 	    overheadShare(points, labels, *c.measure, groundZ) > k.maxOverheadShare)
 		c.rejection = "under something";
+	else if (
+	    k.minFlatFaceShare > 0 &&
+	    (c.flatFaceShare = flatFaceShare(points, *c.measure, groundZ)) &&
+	    *c.flatFaceShare < k.minFlatFaceShare)
+		c.rejection = "round";
 	else
 		c.accepted = true;
 	if (c.accepted && (m_impl->describeShapes || !m_impl->verifiers[i].empty()))
@@ -465,7 +470,10 @@ void CascadeDetector::finishCandidates(
 	    out, sweep.points.size(),
 	    [&](Candidate& c)
 	    {
-		    if (m_impl->verifiers[i].empty() || c.shapeScore >= k.minShapeScore)
+		    if (m_impl->verifiers[i].empty() ||
+		        c.shapeScore >=
+		            k.minShapeScoreAt(std::atan2(
+		                c.measure->centroid.y, c.measure->centroid.x)))
 			    return true;
 		    c.accepted = false;
 		    c.rejection = "shape";

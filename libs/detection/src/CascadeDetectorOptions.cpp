@@ -143,6 +143,14 @@ const OptionTable<C>& classTable()
 	        .real(
 	            "min_shape_score", &C::minShapeScore, 0, 1,
 	            "Detections the forest scores lower are rejected.")
+	        .angle(
+	            "side_bearing_deg", &C::sideBearing, 0, 90,
+	            "Detections at this bearing or more are beside the robot (90: "
+	            "none).")
+	        .real(
+	            "side_min_shape_score", &C::sideMinShapeScore, 0, 1,
+	            "Beside the robot the forest must score at least this too (0: "
+	            "min_shape_score only).")
 	        .integer(
 	            "max_stages", &C::maxStages, 0, 1000,
 	            "Only the first this many stages are evaluated (0: all).")
@@ -163,6 +171,10 @@ const OptionTable<C>& classTable()
 	            "max_overhead_share", &C::maxOverheadShare, 0, 1,
 	            "Rejected when more columns have something over the object, "
 	            "e.g. a pot's foliage (1: no check).")
+	        .real(
+	            "min_flat_face_share", &C::minFlatFaceShare, 0, 1,
+	            "Rejected when less of the top's front runs along one box's "
+	            "faces, e.g. a plant's round foliage (0: no check).")
 	        .real(
 	            "min_separation_m", &C::minSeparation, 0, 100,
 	            "Detections closer than this are one object (0: no check).")

@@ -465,4 +465,72 @@ double CascadeDetector::overheadShare(
 	return columns ? double(covered) / columns : 0;
 }
 
+std::optional<double> CascadeDetector::flatFaceShare(
+    const cv::Mat& points, const Measure& m, double groundZ)
+{
+	// The front of the top band in each column: the points within 2 cm of
+	// the column's nearest (a vertical face puts every tilt line's point
+	// of a column at one place; the median of them is the laser's noise
+	// over their count).
+	const double zLow = groundZ + m.top - kFlatFaceBand;
+	std::vector<std::vector<cv::Vec2d>> columns(
+	    std::size_t(std::max(0, m.box.width)));
+	for (const auto& p : m.pixels)
+	{
+		const cv::Vec3f& a = points.at<cv::Vec3f>(p);
+		if (std::isfinite(a[0]) && a[2] >= zLow)
+			columns[std::size_t(p.x - m.box.x)].emplace_back(a[0], a[1]);
+	}
+	std::vector<cv::Vec2d> front;
+	std::vector<double> xs, ys;
+	for (auto& col : columns)
+	{
+		if (col.empty()) continue;
+		double nearest = std::numeric_limits<double>::infinity();
+		for (const auto& q : col) nearest = std::min(nearest, cv::norm(q));
+		xs.clear();
+		ys.clear();
+		for (const auto& q : col)
+			if (cv::norm(q) <= nearest + 0.02)
+			{
+				xs.push_back(q[0]);
+				ys.push_back(q[1]);
+			}
+		const auto median = [](std::vector<double>& v)
+		{
+			std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+			return v[v.size() / 2];
+		};
+		front.emplace_back(median(xs), median(ys));
+	}
+	// The directions of the front between points kFlatFaceBaseline apart
+	// (not across a gap), folded by 90 deg (4 x the angle): a box's faces
+	// become one direction; the mean of the folded unit vectors points at
+	// the one that holds the most.
+	std::vector<double> folded;
+	double sc = 0, ss = 0;
+	for (std::size_t k = 0; k < front.size(); k++)
+		for (std::size_t j = k + 1; j < front.size(); j++)
+		{
+			const cv::Vec2d d = front[j] - front[k];
+			const double len = cv::norm(d);
+			if (len < kFlatFaceBaseline) continue;
+			if (len <= 2 * kFlatFaceBaseline)
+			{
+				const double f = 4 * std::atan2(d[1], d[0]);
+				folded.push_back(f);
+				sc += std::cos(f);
+				ss += std::sin(f);
+			}
+			break;
+		}
+	if (int(folded.size()) < kFlatFaceMinSegments) return std::nullopt;
+	const double mode = std::atan2(ss, sc);
+	const double tol = 4 * kFlatFaceToleranceDeg * M_PI / 180;
+	std::size_t on = 0;
+	for (const double f : folded)
+		on += std::abs(std::remainder(f - mode, 2 * M_PI)) <= tol;
+	return double(on) / double(folded.size());
+}
+
 }  // namespace semnav

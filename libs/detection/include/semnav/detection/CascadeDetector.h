@@ -13,6 +13,8 @@
 #include <semnav/perception/LabeledSweep.h>
 #include <semnav/scan/Sweep.h>
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <map>
 #include <memory>
@@ -117,6 +119,23 @@ public:
 		 * lower are rejected ("shape"). */
 		std::string shapeModel;
 		double minShapeScore = 0.5;
+		/** side_bearing_deg, side_min_shape_score: a detection whose
+		 * centroid lies at a bearing of side_bearing_deg or more (stored
+		 * in rad) is beside the robot, where the tilt axis points at it and
+		 * a sweep sees it as a thin slice: there the forest must also score
+		 * it side_min_shape_score (minShapeScoreAt()). side_bearing_deg 90
+		 * or side_min_shape_score 0 (at most min_shape_score): no stricter
+		 * check. */
+		double sideBearing = M_PI / 2;
+		double sideMinShapeScore = 0;
+		/** The shape score a detection whose centroid lies at `bearing`
+		 * (rad, either side) needs. */
+		double minShapeScoreAt(double bearing) const
+		{
+			return std::abs(bearing) >= sideBearing && sideBearing < M_PI / 2
+			           ? std::max(minShapeScore, sideMinShapeScore)
+			           : minShapeScore;
+		}
 		/** max_stages: only the first this many stages of the cascade are
 		 * evaluated (0: all): a looser detector, whose false alarms the
 		 * shape check rejects; also for collecting shape-model samples. */
@@ -144,6 +163,11 @@ public:
 		 * than this share of the object's columns have something over it
 		 * (overheadShare(): a pot's foliage); 1: no check. */
 		double maxOverheadShare = 1;
+		/** min_flat_face_share: rejected ("round") when less than this
+		 * share of the front of the object's top band runs along the faces
+		 * of one box (flatFaceShare(): a basin's slab has flat faces, a
+		 * plant's foliage a round one); 0: no check. */
+		double minFlatFaceShare = 0;
 		/** min_separation_m: accepted detections of the class whose
 		 * centroids are closer than this (horizontally) are one object
 		 * (boxes on two parts of a flight of stairs): the one with the
@@ -350,6 +374,9 @@ public:
 		 * its box (ObjectShape::kCascadeSupport). */
 		int cascadeSupport = 0;
 		std::optional<Measure> measure;
+		/** flatFaceShare() of its object, when min_flat_face_share asked
+		 * for it and it could be measured. */
+		std::optional<double> flatFaceShare;
 		bool accepted = false;
 		std::string rejection;
 		/** Its ObjectShape and the shape model's score, when its class has
@@ -521,6 +548,25 @@ public:
 	    double groundZ);
 	/** How far above and in front of an object overheadShare() looks, m. */
 	static constexpr double kOverheadReach = 0.8;
+
+	/** The share of the measured object's front, in its top band (the
+	 * kFlatFaceBand highest metres of it; `groundZ` the floor's height),
+	 * that runs along the faces of one box: its direction between points
+	 * kFlatFaceBaseline apart lies within kFlatFaceToleranceDeg of one
+	 * direction or of one at 90 deg to it, the direction that holds the
+	 * most. The front of a column (sweep pixels `m.pixels`) is the median
+	 * of its band's points within 2 cm of its nearest. A box's faces give
+	 * about 1, also seen across a corner; a cylinder's round front spreads
+	 * the directions (0.3-0.5). nullopt when fewer than
+	 * kFlatFaceMinSegments directions are measured. */
+	static std::optional<double> flatFaceShare(
+	    const cv::Mat& points, const Measure& m, double groundZ);
+	/** flatFaceShare()'s band (m below the top), baseline (m), angle
+	 * tolerance (deg) and fewest directions. */
+	static constexpr double kFlatFaceBand = 0.1;
+	static constexpr double kFlatFaceBaseline = 0.06;
+	static constexpr double kFlatFaceToleranceDeg = 15;
+	static constexpr int kFlatFaceMinSegments = 4;
 
 	/** The range-gated search evaluates windows with AVX2 where the CPU has
 	 * it (default) or, with false, with the portable loop: the same
