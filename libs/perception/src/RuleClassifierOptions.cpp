@@ -175,8 +175,8 @@ const OptionTable<O>& optionTable()
 	        .flag(
 	            "door_lintel_one_side", &O::doorLintelOneSide,
 	            "A leaf with walls above it (a lintel) and on one side is a "
-	            "door "
-	            "(the other side hidden by a reveal, a corner or a far wall).")
+	            "door (the other side hidden by a reveal, a corner or a far "
+	            "wall).")
 	        .real(
 	            "sidewalk_min_rbar", &O::sidewalkMinRbar, -1, 1,
 	            "Outdoor ground: sidewalk where R-bar is at least this, "

@@ -124,7 +124,7 @@ public:
 		double doorBottomTolerance = 0.15;
 		double doorMaxOffset = 0.15;
 		double doorMaxAngle = 15.0 * M_PI / 180;
-		double doorMinOffset = 0.005;
+		double doorMinOffset = 0.003;
 		bool doorAllowTruncation = true;
 		int doorSearchPixels = 6;
 		double doorSearchDistance = 0.15;
