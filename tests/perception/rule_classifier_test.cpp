@@ -145,6 +145,25 @@ TEST(RuleClassifier, NearlyFlushDoorIsCutAlongItsSeams)
 	EXPECT_LT(pixelF1(plain.labels, truth, sw, Label::Door), 0.5);
 }
 
+TEST(RuleClassifier, DoorWithALintelAndOneSideWall)
+{
+	// The corridor turns left just after the door: beyond the leaf's far
+	// edge lies a wall across the corridor (a corner, perpendicular to the
+	// leaf), not the leaf's wall; the lintel and the wall before it are.
+	SynthScene sc = corridor();
+	sc.boxes[2] = {{4.0, 1.2, 0}, {4.1, 3.1, 2.6}, Label::Wall};
+	cv::Mat truth;
+	const Sweep sw = renderSweep(sc, &truth);
+	PerceptionPipeline::TOptions o;
+	const LabeledSweep ls = PerceptionPipeline(o).process(sw);
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Door), 0.85);
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Wall), 0.95);
+	// With walls required on both sides (or the field of view) it is wall.
+	o.classifier.doorLintelOneSide = false;
+	const LabeledSweep both = PerceptionPipeline(o).process(sw);
+	EXPECT_LT(pixelF1(both.labels, truth, sw, Label::Door), 0.5);
+}
+
 TEST(RuleClassifier, SidewalkAndGrassByRoughness)
 {
 	// No ceiling: outdoor. A smooth path along x between rough grass, and a

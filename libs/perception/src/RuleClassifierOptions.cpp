@@ -172,6 +172,11 @@ const OptionTable<O>& optionTable()
 	            "door_single_side_fraction", &O::doorSingleSideFraction, 0, 1,
 	            "...and this share when it is the only wall side (the others "
 	            "cut by the field of view).")
+	        .flag(
+	            "door_lintel_one_side", &O::doorLintelOneSide,
+	            "A leaf with walls above it (a lintel) and on one side is a "
+	            "door (the other side hidden by a reveal, a corner or a far "
+	            "wall).")
 	        .real(
 	            "sidewalk_min_rbar", &O::sidewalkMinRbar, -1, 1,
 	            "Outdoor ground: sidewalk where R-bar is at least this, "

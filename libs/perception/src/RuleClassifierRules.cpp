@@ -128,6 +128,19 @@ bool RuleClassifier::singleSideHolds(
 	                         m_options.doorSingleSideFraction;
 }
 
+bool RuleClassifier::lintelAndOneSide(
+    const Surface& s, const DoorCheck& dc) const
+{
+	// A leaf under a lintel with a wall on one side: the other side's wall
+	// may be hidden by the reveal of a thick wall seen at an angle, be a
+	// corner, or lie far behind. (Its size, bottom and offset are checked
+	// as for any candidate.)
+	const TOptions& o = m_options;
+	const double f = o.doorMinSideFraction;
+	return o.doorLintelOneSide && doorSized(s) && !dc.topFov && dc.top >= f &&
+	       (dc.left >= f || dc.right >= f);
+}
+
 void RuleClassifier::labelDoorsAndWalls(
     double zg, const std::vector<int>& wallCandidate,
     const std::vector<uint8_t>& isCeiling)
@@ -148,11 +161,12 @@ void RuleClassifier::labelDoorsAndWalls(
 			const DoorCheck dc =
 			    checkDoor(static_cast<int>(i), wallCandidate, isCeiling);
 			const bool t = o.doorAllowTruncation;
-			const bool sides = (dc.left >= f || (t && dc.leftFov)) &&
-			                   (dc.right >= f || (t && dc.rightFov)) &&
-			                   (dc.top >= f || (t && dc.topFov)) &&
-			                   (dc.left >= f || dc.right >= f) &&
-			                   singleSideHolds(s, dc);
+			const bool sides =
+			    ((dc.left >= f || (t && dc.leftFov)) &&
+			     (dc.right >= f || (t && dc.rightFov)) &&
+			     (dc.top >= f || (t && dc.topFov)) &&
+			     (dc.left >= f || dc.right >= f) && singleSideHolds(s, dc)) ||
+			    lintelAndOneSide(s, dc);
 			const bool height = s.height >= o.doorMinHeight ||
 			                    (t && (dc.topFov || dc.bottomFov));
 			const bool width =

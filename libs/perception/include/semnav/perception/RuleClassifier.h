@@ -49,7 +49,9 @@ namespace semnav
  *      off them by door_min_offset_m. A side cut by the field of view (the
  *      surface reaches the image border there) is accepted in place of a
  *      wall, and its extent there in place of the size, when
- *      door_allow_truncation; one side must still be a wall;
+ *      door_allow_truncation; one side must still be a wall. With
+ *      door_lintel_one_side, walls above it and on one side suffice (the
+ *      other side hidden by a reveal, a corner, or a far wall behind);
  *    - obstacle: any other surface reaching above the ground; a piece
  *      lying on an adjacent wall's plane is left to step 5 instead.
  * 5. Pixels left over (surface edges, oblique or missing normals, small
@@ -122,7 +124,7 @@ public:
 		double doorBottomTolerance = 0.15;
 		double doorMaxOffset = 0.15;
 		double doorMaxAngle = 15.0 * M_PI / 180;
-		double doorMinOffset = 0.005;
+		double doorMinOffset = 0.003;
 		bool doorAllowTruncation = true;
 		int doorSearchPixels = 6;
 		double doorSearchDistance = 0.15;
@@ -134,6 +136,7 @@ public:
 		double doorSeamMinShare = 0.5;
 		double doorMinSideFraction = 0.5;
 		double doorSingleSideFraction = 0.8;
+		bool doorLintelOneSide = true;
 		// Ground type (outdoor)
 		double sidewalkMinRbar = 0.97;
 		double sidewalkMaxHeightStd = 0.012;
@@ -270,6 +273,10 @@ private:
 	/** False when only one side of the door is a wall and it holds along
 	 * less than door_single_side_fraction. */
 	bool singleSideHolds(const Surface& s, const DoorCheck& dc) const;
+	/** True when door_lintel_one_side and s (door_search_min_size_m, its
+	 * top not cut by the field of view) has walls above it and on one
+	 * side. */
+	bool lintelAndOneSide(const Surface& s, const DoorCheck& dc) const;
 	/** True when s shows door_search_min_size_m of its width and height. */
 	bool doorSized(const Surface& s) const
 	{
