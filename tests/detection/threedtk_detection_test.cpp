@@ -2,9 +2,9 @@
 // The shipped cascades and shape forests on real tilting-LMS200 scans (3DTK,
 // ../shared/data/3dtk/): an outdoor arcade of floor, roof, wall, pillars,
 // arches and steps. What can be known without labels: every class gets
-// measured candidates and reaches the shape check on some scan, and no wastebasket is found. (A
-// washbasin is found on scan001, on a pillar with a railing: a known false
-// alarm, docs/detection.md.)
+// measured candidates and reaches the shape check on some scan, and no
+// wastebasket is found. (A washbasin is found on scan001, on a pillar with a
+// railing: a known false alarm, docs/detection.md.)
 #include <gtest/gtest.h>
 #include <semnav/detection/CascadeDetector.h>
 #include <semnav/perception/PerceptionPipeline.h>
