@@ -149,13 +149,14 @@ TEST(SemnavNavCli, TheTourMapAndPlansHoldTheReadmeFigures)
 	// README tour step 2 (the same on every run: seeded simulation,
 	// deterministic filter). Measured with
 	//   semnav-map --rawlog office.rawlog --out M --poses pf --gt-dir D --json
-	// odometry alone 50.6 deg / 1.87 m RMSE; the filter 0.080 deg / 0.063 m.
+	// odometry alone 50.6 deg / 1.87 m RMSE; the filter 0.053 deg / 0.038 m
+	// (0.080 deg / 0.063 m before the surface rules of issue 40).
 	const auto& l = officeMap().summary.at("localization");
 	EXPECT_NEAR(l.at("odometry_final_yaw_err_deg").get<double>(), 50.6, 2.0);
 	EXPECT_NEAR(l.at("odometry_rmse_xy_m").get<double>(), 1.87, 0.2);
 	// Asserts <= measured + 0.12 deg and + 0.03 m.
-	EXPECT_LE(l.at("final_yaw_err_deg").get<double>(), 0.2);
-	EXPECT_LE(l.at("rmse_xy_m").get<double>(), 0.093);
+	EXPECT_LE(l.at("final_yaw_err_deg").get<double>(), 0.17);
+	EXPECT_LE(l.at("rmse_xy_m").get<double>(), 0.068);
 	// The office's two doors, washbasin, two wastebaskets and stairs.
 	std::map<std::string, int> objects;
 	for (const auto& o : officeMap().summary.at("objects"))
@@ -208,8 +209,10 @@ TEST(SemnavNavCli, LocalizesGloballyInThePipelinesMapThenNavigates)
 	// and its drifting odometry. Measured (the same on every run) with
 	//   semnav-nav --map M --scene office.yaml --start 2.2,1.5,0
 	//     --localize global --command "go to the nearest wastebasket" --json
-	// 2 sweeps, 0.055 m / 0.019 deg off; wastebasket 6 reached, truly
-	// 0.73 m from it, 67.3 s simulated, 0 collisions.
+	// 2 sweeps, 0.050 m / 0.076 deg off (0.055 m / 0.019 deg before the
+	// surface rules of issue 40: another draw of the filter, whose heading
+	// spread there is 0.44 deg); wastebasket 6 reached, truly 0.73 m from
+	// it, 67.5 s simulated, 0 collisions.
 	const fs::path out = tmpDir("officeloc");
 	const std::string scene = kSrc + "/datasets/office/office.yaml";
 	const AppRun r = runApp(

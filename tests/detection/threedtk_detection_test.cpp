@@ -2,9 +2,9 @@
 // The shipped cascades and shape forests on real tilting-LMS200 scans (3DTK,
 // ../shared/data/3dtk/): an outdoor arcade of floor, roof, wall, pillars,
 // arches and steps. What can be known without labels: every class gets
-// candidates that reach the shape check, and no wastebasket is found. (A
-// washbasin is found on scan001, on a pillar with a railing: a known false
-// alarm, docs/detection.md.)
+// measured candidates and reaches the shape check on some scan, and no
+// wastebasket is found. (A washbasin is found on scan001, on a pillar with a
+// railing: a known false alarm, docs/detection.md.)
 #include <gtest/gtest.h>
 #include <semnav/detection/CascadeDetector.h>
 #include <semnav/perception/PerceptionPipeline.h>
@@ -42,14 +42,13 @@ protected:
 };
 }  // namespace
 
-TEST_P(ThreeDtkDetection, EveryClassReachesTheShapeCheck)
+TEST_P(ThreeDtkDetection, EveryClassGetsMeasuredCandidates)
 {
 	SKIP_WITHOUT_3DTK(GetParam());
-	std::map<Label, int> measured, scored;
+	std::map<Label, int> measured;
 	for (const auto& c : candidates())
 	{
 		measured[c.label] += c.measure.has_value();
-		scored[c.label] += c.shape.has_value();
 		if (c.accepted)
 			std::printf(
 			    "%s: %s accepted at %.2f, %.2f (shape score %.2f)\n",
@@ -57,12 +56,37 @@ TEST_P(ThreeDtkDetection, EveryClassReachesTheShapeCheck)
 			    c.measure->centroid.y, c.shapeScore);
 	}
 	for (Label l : {Label::Washbasin, Label::Wastebasket, Label::Stairs})
-	{
 		EXPECT_GT(measured[l], 0) << labelName(l);
+}
+
+/** The shape check runs on real scans for every class, on one scan at least
+ * (an arcade has no washbasin: with the wall rules of issue 40 scan000's
+ * washbasin candidates all fail the geometric checks before it). */
+TEST(ThreeDtkDetectionScans, EveryClassReachesTheShapeCheckOnSomeScan)
+{
+	std::map<Label, int> scored;
+	int scans = 0;
+	for (const char* scan : {"scan000.3d", "scan001.3d"})
+	{
+		const fs::path path = test::kThreeDtkDir / scan;
+		if (!fs::exists(path)) continue;
+		scans++;
+		const Sweep sw = ThreeDtkReader().read(path.string());
+		const LabeledSweep ls = PerceptionPipeline().process(sw);
+		CascadeDetector detector(CascadeDetector::TOptions::fromIniFile(
+		    (kSource / "config" / "cascade.ini").string()));
+		for (const auto& c : detector.detectCandidates(
+		         sw.phis(), sw.thetas(), ls.normals, ls.normalMask, ls.points,
+		         ls.groundZ, ls.labels, ls.areaIds))
+			scored[c.label] += c.shape.has_value();
+	}
+	if (scans == 0) GTEST_SKIP() << "3DTK data not found";
+	for (Label l : {Label::Washbasin, Label::Wastebasket, Label::Stairs})
+	{
 		EXPECT_GT(scored[l], 0) << labelName(l);
 		std::printf(
-		    "%s %s: %d measured, %d shape-scored\n", GetParam(),
-		    labelName(l).c_str(), measured[l], scored[l]);
+		    "%s: %d candidates shape-scored over %d scans\n",
+		    labelName(l).c_str(), scored[l], scans);
 	}
 }
 

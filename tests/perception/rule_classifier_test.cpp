@@ -200,6 +200,32 @@ TEST(RuleClassifier, SidewalkAndGrassByRoughness)
 	EXPECT_GT(li.count(Label::Floor), ls.count(Label::Sidewalk));
 }
 
+TEST(RuleClassifier, LowGardenWallIsAnObstacleNotAWall)
+{
+	// Outdoors: a low wall 4 m long and 0.6 m high 3 m ahead (long enough
+	// for the wall length rule), a building behind it.
+	SynthScene sc;
+	sc.noise = 0.005;
+	sc.groundLabel = [](double, double) { return Label::Sidewalk; };
+	sc.boxes.push_back({{3, -2, 0}, {3.25, 2, 0.6}, Label::Obstacle});
+	sc.boxes.push_back({{7, -8, 0}, {7.3, 8, 4.0}, Label::Wall});
+	cv::Mat truth;
+	const Sweep sw = renderSweep(sc, &truth);
+	PerceptionPipeline pipeline;
+	const LabeledSweep ls = pipeline.process(sw);
+	EXPECT_FALSE(ls.indoor);
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Obstacle), 0.9);
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Wall), 0.95);
+	// The reach is what tells them apart: lowered, the low wall is a wall.
+	RuleClassifier::TOptions o;
+	o.wallLongMinReach = 0.5;
+	PerceptionPipeline::TOptions po;
+	po.classifier = o;
+	const LabeledSweep lower = PerceptionPipeline(po).process(sw);
+	EXPECT_LT(pixelF1(lower.labels, truth, sw, Label::Obstacle), 0.5)
+	    << "with a 0.5 m reach the low wall passes as a wall";
+}
+
 TEST(RuleClassifier, GroundLevelIsEstimated)
 {
 	// A sensor-frame scan such as 3DTK's (tilt axis at the frame's origin,

@@ -210,8 +210,12 @@ Localizer::Localizer(const TOptions& options)
 {
 	m_pf.m_options = pfOptions(m_options);
 	kldOptions(m_options, m_pdf.options.KLD_params);
-	mrpt::random::getRandomGenerator().randomize(
-	    static_cast<uint32_t>(m_options.seed));
+	// A fresh generator, not randomize(seed) alone: that reseeds the
+	// engine but keeps the Gaussian the normal distribution has cached, so
+	// the same seed gave another run after an odd number of Gaussian draws
+	// in the process (a run's result depended on the runs before it).
+	mrpt::random::getRandomGenerator() =
+	    mrpt::random::CRandomGenerator(static_cast<uint32_t>(m_options.seed));
 	m_pdf.seed(static_cast<uint32_t>(m_options.seed) + 1);
 }
 

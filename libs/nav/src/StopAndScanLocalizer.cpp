@@ -436,7 +436,15 @@ void StopAndScanLocalizer::sweepUntilConverged(
 			keepStartSweeps(1);
 		}
 		if (r.converged) rep.ambiguous = rep.contradicted = false;
-		if (r.converged && m_options.uniquenessCheck && global)
+		// A global start is decided on two views at least: one sweep sees
+		// half the surroundings, and a place the map barely saw can fit a
+		// twin by that half alone. The uniqueness check waits for them too:
+		// on half the surroundings the best other place need not be the
+		// twin the filter keeps (a place where the far walls fall outside
+		// the map fits a half view as well).
+		const bool enoughViews =
+		    !global || rep.sweeps >= m_options.minGlobalSweeps;
+		if (r.converged && m_options.uniquenessCheck && global && enoughViews)
 		{
 			SweepRecord& rr = rep.records.back();
 			checkUniqueness(rr);
@@ -463,11 +471,6 @@ void StopAndScanLocalizer::sweepUntilConverged(
 				    {rr.rival}, kHypothesisStdXY, kHypothesisStdYaw);
 			}
 		}
-		// A global start is decided on two views at least: one sweep sees
-		// half the surroundings, and a place the map barely saw can fit a
-		// twin by that half alone.
-		const bool enoughViews =
-		    !global || rep.sweeps >= m_options.minGlobalSweeps;
 		if (r.converged && !rep.ambiguous && !rep.contradicted && enoughViews)
 		{
 			rep.converged = true;

@@ -93,16 +93,23 @@ const OptionTable<O>& optionTable()
 	            10000000, "auto: indoor when this many ceiling pixels.")
 	        .real(
 	            "wall_min_height_m", &O::wallMinHeight, 0, 100,
-	            "Wall: vertical and this tall...")
+	            "Wall: vertical and this tall (from the ground when the field "
+	            "of "
+	            "view cuts its bottom)...")
 	        .real(
 	            "wall_ceiling_gap_m", &O::wallCeilingGap, 0, 100,
 	            "...or reaching this close to the ceiling...")
 	        .real(
 	            "wall_min_length_m", &O::wallMinLength, 0, 1000,
-	            "...or this long.")
+	            "...or this long...")
+	        .real(
+	            "wall_long_min_reach_m", &O::wallLongMinReach, 0, 100,
+	            "...and reaching this high above the ground (a low garden "
+	            "wall is an obstacle).")
 	        .real(
 	            "wall_min_width_m", &O::wallMinWidth, 0, 100,
-	            "Narrower vertical surfaces are no wall.")
+	            "Narrower vertical surfaces are a wall only when tall or "
+	            "reaching the ceiling.")
 	        .real(
 	            "door_min_width_m", &O::doorMinWidth, 0, 100,
 	            "Door: one vertical surface this wide...")

@@ -165,6 +165,17 @@ void RuleClassifier::growLeftovers(double zg)
 	const int* A = m_areas->ptr<int>(0);
 	const float tolG = static_cast<float>(o.groundTolerance);
 	const double tolP = o.leftoverPlaneTolerance;
+	// Range areas that hold the floor, a wall or the ceiling: an obstacle
+	// in one of them is not apart from them by range. Standing on the
+	// ground (a cabinet against a wall) it claims the points on its plane,
+	// not its whole area; off the ground (a fragment of a wall) nothing.
+	int maxArea = 0;
+	for (const Surface& S : m_surfaces) maxArea = std::max(maxArea, S.area);
+	std::vector<uint8_t> structural(maxArea + 1, 0);
+	for (const Surface& S : m_surfaces)
+		if (S.label != kNoLabel && S.label != lab(Label::Obstacle) &&
+		    S.area > 0)
+			structural[S.area] = 1;
 	// What each labelled surface accepts, compact (read per pixel).
 	m_claim.resize(ns);
 	for (std::size_t i = 0; i < ns; i++)
@@ -172,9 +183,13 @@ void RuleClassifier::growLeftovers(double zg)
 		const Surface& S = m_surfaces[i];
 		Claim& cl = m_claim[i];
 		cl.label = S.label;
+		const bool apart = S.area > 0 && !structural[S.area];
+		const bool standing = S.minP[2] <= zg + o.groundTolerance;
 		cl.kind = isGround(S.label)                 ? Claim::kGround
-		          : S.label == lab(Label::Obstacle) ? Claim::kArea
-		                                            : Claim::kPlane;
+		          : S.label != lab(Label::Obstacle) ? Claim::kPlane
+		          : apart                           ? Claim::kArea
+		          : standing                        ? Claim::kPlane
+		                                            : Claim::kNothing;
 		cl.area = S.area;
 		cl.nx = S.normal[0];
 		cl.ny = S.normal[1];
@@ -186,6 +201,7 @@ void RuleClassifier::growLeftovers(double zg)
 		const cv::Vec3f& x = P[q];
 		if (cl.kind == Claim::kGround) return std::abs(x[2] - zg) <= tolG;
 		if (cl.kind == Claim::kArea) return A[q] >= 1 && A[q] == cl.area;
+		if (cl.kind == Claim::kNothing) return false;
 		return std::abs(cl.nx * x[0] + cl.ny * x[1] + cl.nz * x[2] - cl.d) <=
 		       tolP;
 	};

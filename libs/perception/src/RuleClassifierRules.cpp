@@ -13,6 +13,13 @@ namespace semnav
 {
 using namespace detail::rules;
 
+namespace
+{
+/** A surface within this many rows of the image's bottom edge is cut by
+ * the field of view there (the outermost rows have no normals). */
+constexpr int kBorderRows = 3;
+}  // namespace
+
 std::size_t RuleClassifier::applyRules(double zg, LabeledSweep& out)
 {
 	std::vector<uint8_t> isCeiling;
@@ -61,13 +68,24 @@ std::vector<int> RuleClassifier::findWalls(const LabeledSweep& out) const
 	const std::size_t ns = m_surfaces.size();
 	// Wall size rules on each vertical surface and on its loose group (the
 	// pieces of one wall that noise or a plane step cut apart).
+	// The field of view cuts surfaces near the robot at the image's bottom
+	// rows (theta -15 deg); the height seen there is a lower bound, so
+	// such a surface counts from the ground. A long one must rise above
+	// what a robot sees over: a low garden wall is an obstacle.
+	const double zg = out.groundZ;
 	auto wallSized = [&](const Surface& s)
 	{
-		if (s.width < o.wallMinWidth) return false;
-		const bool tall = s.height >= o.wallMinHeight;
+		const bool cutAtBottom = s.minR <= kBorderRows;
+		const double height =
+		    cutAtBottom ? std::max<double>(s.height, s.maxP[2] - zg) : s.height;
+		const bool tall = height >= o.wallMinHeight;
 		const bool toCeiling =
 		    out.ceilingZ && s.maxP[2] >= *out.ceilingZ - o.wallCeilingGap;
-		const bool longWall = s.width >= o.wallMinLength;
+		// A narrow one only when tall: the end face of a wall at an
+		// opening, not a pole or a chair's leg.
+		if (s.width < o.wallMinWidth) return tall || toCeiling;
+		const bool longWall =
+		    s.width >= o.wallMinLength && s.maxP[2] >= zg + o.wallLongMinReach;
 		return tall || toCeiling || longWall;
 	};
 	// (Indexed through looseIdx: few of the loose groups are used.)
@@ -97,6 +115,7 @@ std::vector<int> RuleClassifier::findWalls(const LabeledSweep& out) const
 			g.minP[k] = std::min(g.minP[k], s.minP[k]);
 			g.maxP[k] = std::max(g.maxP[k], s.maxP[k]);
 		}
+		g.minR = std::min(g.minR, s.minR);
 	}
 	std::vector<uint8_t> looseWall(loose.size(), 0);
 	for (std::size_t k = 0; k < loose.size(); k++)
@@ -205,8 +224,13 @@ void RuleClassifier::unlabelPlaneFragments()
 	std::vector<uint8_t> tested(ns, 0);
 	auto onPlane = [&](const Surface& a, const Surface& w)
 	{
-		if (a.normal.dot(w.normal) < std::cos(o.doorMaxAngle * 2)) return false;
 		const double d = w.planeD();
+		// A vertical sliver narrower than a wall (the corner where two
+		// walls meet) by its centroid, whatever its normal.
+		if (a.orient == kVertical && a.width < o.wallMinWidth &&
+		    std::abs(w.normal.dot(a.centroid) - d) <= o.leftoverPlaneTolerance)
+			return true;
+		if (a.normal.dot(w.normal) < std::cos(o.doorMaxAngle * 2)) return false;
 		for (int k = 0; k < 8; k++)
 		{
 			const cv::Vec3d c(

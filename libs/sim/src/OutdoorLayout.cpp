@@ -237,13 +237,14 @@ void addStreetFurniture(SceneDraft& d, GeneratorRandom& g, const Plan& p)
 	for (int n = g.uniformInt(1, 2); n > 0; n--) addBench(d, g, p);
 	for (int n = g.uniformInt(1, 3); n > 0; n--)
 		addRoadsideCylinder(g, p, Label::Wastebasket, bin, tryAdd);
-	// Low walls on the grass, along the sidewalk (label wall).
+	// Low walls on the grass, along the sidewalk: obstacles (a robot sees
+	// over them; no room or building wall, docs/generated-scenes.md).
 	for (int n = g.uniformInt(0, 2); n > 0; n--)
 	{
 		const double L = g.uniform(2, 5), t = g.uniform(0.15, 0.3);
 		const double h = g.uniform(0.4, 0.9);
 		tryAdd(
-		    Label::Wall,
+		    Label::Obstacle,
 		    [&]
 		    {
 			    const double x = g.uniform(L / 2 + 0.5, p.width - L / 2 - 0.5);

@@ -39,8 +39,12 @@ namespace semnav
  *    - ground: up-facing, mean height within ground_tolerance_m of the
  *      ground level;
  *    - ceiling: down-facing, at least ceiling_min_height_m above ground;
- *    - wall: vertical and tall (wall_min_height_m), reaching the ceiling
- *      or long (wall_min_length_m), itself or with its wall group;
+ *    - wall: vertical and tall (wall_min_height_m; from the ground when
+ *      the field of view cuts its bottom), reaching the ceiling, or long
+ *      (wall_min_length_m) and reaching wall_long_min_reach_m above the
+ *      ground (a low garden wall is an obstacle), itself or with its wall
+ *      group; one narrower than wall_min_width_m only when tall or
+ *      reaching the ceiling (the end face of a wall at an opening);
  *    - door: one vertical surface door_min/max_width_m wide,
  *      door_min/max_height_m high, bottom at the ground, with walls
  *      parallel and within door_max_offset_m of its plane on its left,
@@ -118,6 +122,7 @@ public:
 		double wallCeilingGap = 0.3;
 		double wallMinLength = 2.5;
 		double wallMinWidth = 0.1;
+		double wallLongMinReach = 1.4;
 		// Door
 		double doorMinWidth = 0.7, doorMaxWidth = 2.0;
 		double doorMinHeight = 1.5, doorMaxHeight = 2.5;
@@ -328,8 +333,9 @@ private:
 		enum Kind : int8_t
 		{
 			kGround,  ///< points at ground level
-			kArea,    ///< pixels of its range area (obstacles)
-			kPlane    ///< points on its plane
+			kArea,    ///< pixels of its range area (obstacles apart)
+			kPlane,   ///< points on its plane
+			kNothing  ///< none
 		};
 		double nx = 0, ny = 0, nz = 0, d = 0;
 		int area = 0;

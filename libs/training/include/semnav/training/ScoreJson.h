@@ -10,18 +10,29 @@
 
 namespace semnav
 {
-/** {"<label>": {precision, recall, f1, pixels}} of every label seen. */
+/** {"<label>": {precision, recall, f1, pixels, predicted_as}} of every
+ * label seen; predicted_as: {"<label>" or "unknown": ground-truth pixels of
+ * this label predicted so} for the other labels with any. */
 inline nlohmann::json labelScoresJson(const GroundTruthScorer& scorer)
 {
 	nlohmann::json j = nlohmann::json::object();
 	for (Label l : scorer.labelsSeen())
 	{
 		const auto s = scorer.score(l);
+		nlohmann::json as = nlohmann::json::object();
+		for (std::size_t k = 0; k < allLabels().size(); k++)
+		{
+			const auto p = static_cast<Label>(k);
+			const std::size_t n = scorer.confusion(l, p);
+			if (p != l && n > 0)
+				as[p == Label::Unknown ? "unknown" : labelName(p)] = n;
+		}
 		j[labelName(l)] = {
 		    {"precision", s.precision},
 		    {"recall", s.recall},
 		    {"f1", s.f1},
-		    {"pixels", s.groundTruthPixels}};
+		    {"pixels", s.groundTruthPixels},
+		    {"predicted_as", as}};
 	}
 	return j;
 }
