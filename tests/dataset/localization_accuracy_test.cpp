@@ -141,41 +141,56 @@ const SemanticMap& knownOffice()
 }
 }  // namespace
 
+// Global localization over several draws of the filter: a single seed says
+// little (over seeds 1-20 the office converges by the fourth update in 13 runs
+// and by the fifth in the other 7), so every draw must converge by the fifth
+// update and end on the true pose, and at least half by the fourth.
 TEST(LocalizationAccuracy, GlobalLocalizationConvergesInKnownMap)
 {
 	const SimRun& r = run("datasets/office/office.yaml", 2);
 	const auto o = shippedOptions();
-	Localizer loc(o.localizer);
-	loc.setKnownMap(knownOffice());
-	ASSERT_TRUE(loc.knownWallMap().mainDirection());
-	EXPECT_NEAR(*loc.knownWallMap().mainDirection(), 0.0, mrpt::DEG2RAD(1.0));
-	loc.initializeGlobal();
 	const WallExtractor ex(o.walls);
-	int convergedAt = -1;
-	for (std::size_t i = 0; i < r.sweeps.size(); i++)
+	constexpr int kSeeds = 8;
+	int byFourthUpdate = 0;
+	for (int seed = 1; seed <= kSeeds; seed++)
 	{
-		const auto incr =
-		    i == 0 ? mrpt::poses::CPose2D()
-		           : r.sweeps[i].odometry() - r.sweeps[i - 1].odometry();
-		const auto obs = ex.extract(r.labeled[i]);
-		const auto u = loc.update(incr, obs);
-		const double e = (u.pose.translation() - r.gt[i].translation()).norm();
-		std::cerr << "global localization, sweep " << i << ": error " << e
-		          << " m, spread " << u.stdXY << " m, " << u.particles
-		          << " particles, " << u.ms << " ms, converged " << u.converged
-		          << "\n";
-		if (u.converged && convergedAt < 0) convergedAt = int(i);
+		SCOPED_TRACE("filter seed " + std::to_string(seed));
+		auto options = o.localizer;
+		options.seed = seed;
+		Localizer loc(options);
+		loc.setKnownMap(knownOffice());
+		ASSERT_TRUE(loc.knownWallMap().mainDirection());
+		EXPECT_NEAR(
+		    *loc.knownWallMap().mainDirection(), 0.0, mrpt::DEG2RAD(1.0));
+		loc.initializeGlobal();
+		int convergedAt = -1;
+		for (std::size_t i = 0; i < r.sweeps.size(); i++)
+		{
+			const auto incr =
+			    i == 0 ? mrpt::poses::CPose2D()
+			           : r.sweeps[i].odometry() - r.sweeps[i - 1].odometry();
+			const auto u = loc.update(incr, ex.extract(r.labeled[i]));
+			const double e =
+			    (u.pose.translation() - r.gt[i].translation()).norm();
+			std::cerr << "global localization, seed " << seed << ", sweep " << i
+			          << ": error " << e << " m, spread " << u.stdXY << " m, "
+			          << u.particles << " particles, converged " << u.converged
+			          << "\n";
+			if (u.converged && convergedAt < 0) convergedAt = int(i);
+		}
+		EXPECT_GE(convergedAt, 0);
+		EXPECT_LE(convergedAt, 4);
+		if (convergedAt >= 0 && convergedAt <= 3) byFourthUpdate++;
+		EXPECT_EQ(loc.convergedAfter(), convergedAt + 1);
+		EXPECT_EQ(loc.globalUpdates(), convergedAt + 1);
+		EXPECT_EQ(loc.kidnappings(), 0);
+		const auto p = loc.pose();
+		EXPECT_LT((p.translation() - r.gt.back().translation()).norm(), 0.15);
+		EXPECT_LT(
+		    std::abs(mrpt::math::wrapToPi(p.phi() - r.gt.back().phi())),
+		    mrpt::DEG2RAD(2.0));
 	}
-	EXPECT_GE(convergedAt, 0);
-	EXPECT_LE(convergedAt, 3);
-	EXPECT_EQ(loc.convergedAfter(), convergedAt + 1);
-	EXPECT_EQ(loc.globalUpdates(), convergedAt + 1);
-	EXPECT_EQ(loc.kidnappings(), 0);
-	const auto p = loc.pose();
-	EXPECT_LT((p.translation() - r.gt.back().translation()).norm(), 0.15);
-	EXPECT_LT(
-	    std::abs(mrpt::math::wrapToPi(p.phi() - r.gt.back().phi())),
-	    mrpt::DEG2RAD(2.0));
+	EXPECT_GE(byFourthUpdate, kSeeds / 2);
 }
 
 TEST(LocalizationAccuracy, KidnappedRobotIsDetectedAndRecovered)
