@@ -5,6 +5,7 @@
 #include <semnav/perception/PerceptionPipeline.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <opencv2/core.hpp>
 
@@ -47,6 +48,23 @@ double noise(double x, double y)
 	return 0.012 * std::sin(61 * x + 3) * std::cos(53 * y) +
 	       0.01 * std::sin(37 * x + 71 * y) +
 	       0.008 * std::cos(97 * x - 29 * y + 1);
+}
+
+/** The scene's door found (and its walls kept) with the options as shipped,
+ * and lost once `withoutTheRule` switched the rule under test off. */
+void expectDoorOnlyWithTheRule(
+    const SynthScene& sc,
+    const std::function<void(PerceptionPipeline::TOptions&)>& withoutTheRule)
+{
+	cv::Mat truth;
+	const Sweep sw = renderSweep(sc, &truth);
+	PerceptionPipeline::TOptions o;
+	const LabeledSweep ls = PerceptionPipeline(o).process(sw);
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Door), 0.85);
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Wall), 0.95);
+	withoutTheRule(o);
+	const LabeledSweep without = PerceptionPipeline(o).process(sw);
+	EXPECT_LT(pixelF1(without.labels, truth, sw, Label::Door), 0.5);
 }
 }  // namespace
 
@@ -133,16 +151,9 @@ TEST(RuleClassifier, NearlyFlushDoorIsCutAlongItsSeams)
 			b.hi[1] = 1.246;
 		}
 	sc.mount[0] = 2.6;  // (in front of it: the gaps seen in depth)
-	cv::Mat truth;
-	const Sweep sw = renderSweep(sc, &truth);
-	PerceptionPipeline::TOptions o;
-	const LabeledSweep ls = PerceptionPipeline(o).process(sw);
-	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Door), 0.85);
-	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Wall), 0.95);
 	// Without the seams the leaf is part of its wall.
-	o.classifier.doorSeamSplitOffset = 0;
-	const LabeledSweep plain = PerceptionPipeline(o).process(sw);
-	EXPECT_LT(pixelF1(plain.labels, truth, sw, Label::Door), 0.5);
+	expectDoorOnlyWithTheRule(
+	    sc, [](auto& o) { o.classifier.doorSeamSplitOffset = 0; });
 }
 
 TEST(RuleClassifier, DoorWithALintelAndOneSideWall)
@@ -152,16 +163,9 @@ TEST(RuleClassifier, DoorWithALintelAndOneSideWall)
 	// leaf), not the leaf's wall; the lintel and the wall before it are.
 	SynthScene sc = corridor();
 	sc.boxes[2] = {{4.0, 1.2, 0}, {4.1, 3.1, 2.6}, Label::Wall};
-	cv::Mat truth;
-	const Sweep sw = renderSweep(sc, &truth);
-	PerceptionPipeline::TOptions o;
-	const LabeledSweep ls = PerceptionPipeline(o).process(sw);
-	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Door), 0.85);
-	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Wall), 0.95);
 	// With walls required on both sides (or the field of view) it is wall.
-	o.classifier.doorLintelOneSide = false;
-	const LabeledSweep both = PerceptionPipeline(o).process(sw);
-	EXPECT_LT(pixelF1(both.labels, truth, sw, Label::Door), 0.5);
+	expectDoorOnlyWithTheRule(
+	    sc, [](auto& o) { o.classifier.doorLintelOneSide = false; });
 }
 
 TEST(RuleClassifier, SidewalkAndGrassByRoughness)
