@@ -496,12 +496,7 @@ std::optional<double> CascadeDetector::flatFaceShare(
 				xs.push_back(q[0]);
 				ys.push_back(q[1]);
 			}
-		const auto median = [](std::vector<double>& v)
-		{
-			std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-			return v[v.size() / 2];
-		};
-		front.emplace_back(median(xs), median(ys));
+		front.emplace_back(percentile(xs, 0.5), percentile(ys, 0.5));
 	}
 	// The directions of the front between points kFlatFaceBaseline apart
 	// (not across a gap), folded by 90 deg (4 x the angle): a box's faces

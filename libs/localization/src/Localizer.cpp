@@ -205,17 +205,18 @@ LocalizationUpdate Localizer::summarize(
 
 Localizer::Localizer() : Localizer(TOptions()) {}
 
+void Localizer::seedRandomGenerator(int seed)
+{
+	mrpt::random::getRandomGenerator() =
+	    mrpt::random::CRandomGenerator(static_cast<uint32_t>(seed));
+}
+
 Localizer::Localizer(const TOptions& options)
     : mrpt::system::COutputLogger("Localizer"), m_options(options)
 {
 	m_pf.m_options = pfOptions(m_options);
 	kldOptions(m_options, m_pdf.options.KLD_params);
-	// A fresh generator, not randomize(seed) alone: that reseeds the
-	// engine but keeps the Gaussian the normal distribution has cached, so
-	// the same seed gave another run after an odd number of Gaussian draws
-	// in the process (a run's result depended on the runs before it).
-	mrpt::random::getRandomGenerator() =
-	    mrpt::random::CRandomGenerator(static_cast<uint32_t>(m_options.seed));
+	seedRandomGenerator(m_options.seed);
 	m_pdf.seed(static_cast<uint32_t>(m_options.seed) + 1);
 }
 

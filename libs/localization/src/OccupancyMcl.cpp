@@ -18,9 +18,7 @@ OccupancyMcl::OccupancyMcl(const Localizer::TOptions& options)
 {
 	m_pf.m_options = Localizer::pfOptions(m_options);
 	Localizer::kldOptions(m_options, m_pdf.options.KLD_params);
-	// A fresh generator, as Localizer's (randomize() keeps a cached Gaussian).
-	mrpt::random::getRandomGenerator() =
-	    mrpt::random::CRandomGenerator(static_cast<uint32_t>(m_options.seed));
+	Localizer::seedRandomGenerator(m_options.seed);
 }
 
 void OccupancyMcl::setMap(const mrpt::maps::COccupancyGridMap2D& grid)

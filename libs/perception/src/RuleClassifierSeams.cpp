@@ -27,6 +27,12 @@ struct Seam
 	double u, top;
 };
 
+/** Signed distance of q from the plane (normal, offset). */
+double planeResidual(const cv::Vec3d& normal, double offset, const cv::Vec3f& q)
+{
+	return normal[0] * q[0] + normal[1] * q[1] + normal[2] * q[2] - offset;
+}
+
 /** Vertical lines of notches (door_seam_min_height_m tall, notches within
  * kHalfWidth of their mean), left to right. */
 std::vector<Seam> findSeams(
@@ -109,11 +115,8 @@ double RuleClassifier::seamShare(
 	const int* CO = m_colOf.data();
 	auto breaks = [&](int p)
 	{
-		if (!PM[p]) return true;
-		const cv::Vec3f& q = P[p];
-		return std::abs(
-		           normal[0] * q[0] + normal[1] * q[1] + normal[2] * q[2] -
-		           offset) > m_options.doorSeamDepth;
+		return !PM[p] || std::abs(planeResidual(normal, offset, P[p])) >
+		                     m_options.doorSeamDepth;
 	};
 	int crossings = 0, seams = 0;
 	const int* pix = m_slotPix.data();
@@ -144,18 +147,13 @@ bool RuleClassifier::splitAtSeams(
     int slot, const cv::Vec3d& normal, double offset)
 {
 	const TOptions& o = m_options;
-	const int cols = m_cols;
 	const auto* P = m_points->ptr<cv::Vec3f>(0);
 	const auto* PM = m_pointMask->ptr<uint8_t>(0);
 	const int* CO = m_colOf.data();
 	const int* pix = m_slotPix.data();
 	const int i0 = m_slotStart[slot], i1 = m_slotStart[slot + 1];
 	const cv::Vec3d along(-normal[1], normal[0], 0);
-	auto residual = [&](int p)
-	{
-		const cv::Vec3f& q = P[p];
-		return normal[0] * q[0] + normal[1] * q[1] + normal[2] * q[2] - offset;
-	};
+	auto residual = [&](int p) { return planeResidual(normal, offset, P[p]); };
 	auto alongOf = [&](int p)
 	{ return along[0] * P[p][0] + along[1] * P[p][1]; };
 	// Notches: one to three pixels between two pixels of the group on its
@@ -181,7 +179,6 @@ bool RuleClassifier::splitAtSeams(
 		}
 		prev = p;
 	}
-	(void)cols;
 	std::vector<Seam> seams =
 	    findSeams(notches, o.doorSeamMinHeight, o.doorSeamMinNotches);
 	if (seams.empty()) return false;

@@ -179,6 +179,11 @@ public:
 	static mrpt::obs::CActionRobotMovement2D::TMotionModelOptions motionOptions(
 	    const TOptions& o);
 	static void kldOptions(const TOptions& o, mrpt::slam::TKLDParams& kld);
+	/** Installs a fresh MRPT random generator seeded with `seed` (shared
+	 * with the stock baseline). Not randomize(seed): that reseeds the engine
+	 * but keeps the Gaussian the normal distribution has cached, so a run's
+	 * result depended on the runs before it in the process. */
+	static void seedRandomGenerator(int seed);
 	/** Pose estimate and spread of a particle set: the weighted mean when
 	 * converged, else the weighted mean around the heaviest cell of a
 	 * coarse histogram (a mean between hypotheses is no pose). */
