@@ -128,6 +128,13 @@ void toWorldBox(
 }
 }  // namespace
 
+/** A sweep kept to count door views after it (countDoorViews()). */
+struct SemanticMap::PastSweep
+{
+	Sweep sweep;
+	mrpt::poses::CPose3D robot;
+};
+
 struct SemanticMap::WorldPoint
 {
 	float x, y, z;
@@ -203,7 +210,10 @@ void SemanticMap::insert(
 			    std::find(seenThisSweep.begin(), seenThisSweep.end(), o.id) !=
 			        seenThisSweep.end())
 				centreOnCells(o);
+	const std::size_t firstNew = m_instances.size();
 	insertRegions(ls, robot, e, seenThisSweep);
+	countDoorViews(firstNew, seenThisSweep, viewedThisSweep);
+	keepSweep(sweep, robot);
 
 	// 3D: every point into the OctoMap (endpoints; free space stays 2D).
 	if (m_options.octomap) insertIntoOctree(pts);
@@ -529,20 +539,74 @@ void SemanticMap::countViews(
 	const SweepView view(
 	    sweep, m_options.viewMaxBearingDeg * M_PI / 180,
 	    m_options.viewMinPixels);
-	// Region classes (doors) are found by the rules in every sweep that
-	// sees them: no views to count.
+	// Region classes (doors): door views (the rules find no door beside
+	// the robot, nor one half behind a corner).
 	const LabelSet fromRegions = ClassRegistry::instance().select(
 	    [](const ClassInfo& c)
 	    { return c.instances == ClassInfo::InstanceSource::Regions; });
 	for (auto& o : m_instances)
 	{
-		if (fromRegions.contains(o.label)) continue;
-		mrpt::math::TPoint3D p;
-		robot.inverseComposePoint(o.centroid, p);
-		if (!view.sees(p, o.typicalSize())) continue;
+		if (fromRegions.contains(o.label))
+		{
+			if (!doorInView(sweep, robot, o)) continue;
+		}
+		else
+		{
+			mrpt::math::TPoint3D p;
+			robot.inverseComposePoint(o.centroid, p);
+			if (!view.sees(p, o.typicalSize())) continue;
+		}
 		o.views++;
 		viewedThisSweep.push_back(o.id);
 	}
+}
+
+bool SemanticMap::doorInView(
+    const Sweep& sweep, const mrpt::poses::CPose3D& robot,
+    const ObjectInstance& o) const
+{
+	const SweepView view(
+	    sweep, m_options.doorViewMaxBearingDeg * M_PI / 180,
+	    m_options.viewMinPixels);
+	mrpt::math::TPoint3D p;
+	robot.inverseComposePoint(o.centroid, p);
+	return view.visibleShare(p, o.typicalSize()) >=
+	       m_options.doorViewMinVisibleShare - 1e-9;
+}
+
+void SemanticMap::countDoorViews(
+    std::size_t firstNew, const std::vector<int>& seenThisSweep,
+    std::vector<int>& viewedThisSweep)
+{
+	for (std::size_t k = 0; k < m_instances.size(); k++)
+	{
+		ObjectInstance& o = m_instances[k];
+		if (classInfo(o.label).instances != ClassInfo::InstanceSource::Regions)
+			continue;
+		if (k >= firstNew)
+			for (const auto& past : m_pastSweeps)
+				if (doorInView(past->sweep, past->robot, o)) o.views++;
+		// Detected, so in view.
+		if (std::find(seenThisSweep.begin(), seenThisSweep.end(), o.id) !=
+		        seenThisSweep.end() &&
+		    std::find(viewedThisSweep.begin(), viewedThisSweep.end(), o.id) ==
+		        viewedThisSweep.end())
+		{
+			o.views++;
+			viewedThisSweep.push_back(o.id);
+		}
+	}
+}
+
+void SemanticMap::keepSweep(
+    const Sweep& sweep, const mrpt::poses::CPose3D& robot)
+{
+	if (m_options.doorViewHistory <= 0) return;
+	m_pastSweeps.push_back(
+	    std::make_shared<const PastSweep>(PastSweep{sweep, robot}));
+	while (m_pastSweeps.size() >
+	       static_cast<std::size_t>(m_options.doorViewHistory))
+		m_pastSweeps.pop_front();
 }
 
 void SemanticMap::centreOnCells(ObjectInstance& o) const
