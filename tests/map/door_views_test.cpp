@@ -38,8 +38,9 @@ Sweep wallSweep(double wallRange, double occluderPhi = 10)
 }
 
 /** The classified sweep with a door region at (3, 0, 1) in the robot frame
- * (0.9 m wide, 2 m high), or without. */
-LabeledSweep labelled(bool door)
+ * (0.9 m wide, 2 m high, facing `normal`), or without. */
+LabeledSweep labelled(
+    bool door, const mrpt::math::TPoint3D& normal = {-1, 0, 0})
 {
 	auto f = test::makeFakeSweep(test::floorFan(2.5));
 	if (door)
@@ -53,6 +54,7 @@ LabeledSweep labelled(bool door)
 		reg.maxCorner = {3.05, 0.45, 2.0};
 		reg.width = 0.9;
 		reg.height = 2.0;
+		reg.meanNormal = normal;
 		f.labeled.regions = {reg};
 	}
 	return f.labeled;
@@ -62,11 +64,12 @@ LabeledSweep labelled(bool door)
  * says; returns the door candidates. */
 std::vector<ObjectInstance> mapDoor(
     const SemanticMap::TOptions& o, const std::vector<bool>& detected,
-    const Sweep& sweep, std::vector<ObjectInstance>* reported = nullptr)
+    const Sweep& sweep, std::vector<ObjectInstance>* reported = nullptr,
+    const mrpt::math::TPoint3D& normal = {-1, 0, 0})
 {
 	SemanticMap m(o);
 	for (bool d : detected)
-		m.insert(sweep, labelled(d), mrpt::poses::CPose2D(0, 0, 0));
+		m.insert(sweep, labelled(d, normal), mrpt::poses::CPose2D(0, 0, 0));
 	if (reported) *reported = m.instances(Label::Door);
 	return m.allInstances();
 }
@@ -120,6 +123,12 @@ TEST(SemanticMap, ADoorDetectedOnceInManyViewsIsNotReported)
 	ASSERT_EQ(m.allInstances().size(), 1u);
 	EXPECT_EQ(m.allInstances()[0].views, 1u);
 	EXPECT_EQ(m.instances(Label::Door).size(), 1u);
+	// Seen edge-on (its normal across the line of sight, as a door along
+	// a corridor): beyond doorViewMaxIncidenceDeg, no view but the
+	// detection.
+	all = mapDoor(o, {false, false, true, false, false}, open, &rep, {0, 1, 0});
+	EXPECT_EQ(all[0].views, 1u);
+	EXPECT_EQ(rep.size(), 1u);
 	// No history: only the views from its first detection on count.
 	o.doorViewHistory = 0;
 	all = mapDoor(o, {false, false, false, false, true}, open, &rep);

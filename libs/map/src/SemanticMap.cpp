@@ -82,7 +82,13 @@ const OptionTable<O>& optionTable()
 	            "in the field of view and unhidden...")
 	        .real(
 	            "door_view_max_bearing_deg", &O::doorViewMaxBearingDeg, 0, 180,
-	            "...within this bearing of the robot's heading.")
+	            "...within this bearing of the robot's heading...")
+	        .real(
+	            "door_view_max_incidence_deg", &O::doorViewMaxIncidenceDeg, 0,
+	            90, "...at most this far from straight on...")
+	        .integer(
+	            "door_view_min_pixels", &O::doorViewMinPixels, 0, 1000000,
+	            "...where the door would cover this many pixels.")
 	        .integer(
 	            "door_view_history", &O::doorViewHistory, 0, 10000,
 	            "Sweeps kept to count the views of a door before its first "

@@ -525,11 +525,33 @@ void SemanticMap::insertRegions(
 		mergeObject(
 		    reg.label, wc, {reg.width, 0, reg.height}, lo, hi, 1.0,
 		    seenThisSweep, id);
+		for (auto& o : m_instances)
+			if (o.id == id) addNormal(robot, reg.meanNormal, o);
 		paintObject(
 		    e, id, reg.imageBox,
 		    [&](int r, int c)
 		    { return ls.regionIds.at<int32_t>(r, c) == reg.id; });
 	}
+}
+
+void SemanticMap::addNormal(
+    const mrpt::poses::CPose3D& robot, const mrpt::math::TPoint3D& normal,
+    ObjectInstance& o)
+{
+	const double yaw = robot.yaw();
+	double nx = std::cos(yaw) * normal.x - std::sin(yaw) * normal.y,
+	       ny = std::sin(yaw) * normal.x + std::cos(yaw) * normal.y;
+	const double n = std::hypot(nx, ny);
+	if (n < 1e-6) return;
+	nx /= n;
+	ny /= n;
+	if (nx * o.normalSum.x + ny * o.normalSum.y < 0)
+	{
+		nx = -nx;
+		ny = -ny;
+	}
+	o.normalSum.x += nx;
+	o.normalSum.y += ny;
 }
 
 void SemanticMap::countViews(
@@ -567,10 +589,28 @@ bool SemanticMap::doorInView(
 {
 	const SweepView view(
 	    sweep, m_options.doorViewMaxBearingDeg * M_PI / 180,
-	    m_options.viewMinPixels);
+	    m_options.doorViewMinPixels);
 	mrpt::math::TPoint3D p;
 	robot.inverseComposePoint(o.centroid, p);
-	return view.visibleShare(p, o.typicalSize()) >=
+	mrpt::math::TPoint3D size = o.typicalSize();
+	const double nx = o.normalSum.x, ny = o.normalSum.y;
+	const double nn = std::hypot(nx, ny);
+	if (nn > 1e-9 && !sweep.empty())
+	{
+		// Foreshortened: the door's width across the line of sight.
+		const auto& axis = sweep.sensorPose(sweep.rows() / 2);
+		const double lx = p.x - axis.x(), ly = p.y - axis.y();
+		const double ln = std::max(std::hypot(lx, ly), 1e-9);
+		const double yaw = robot.yaw();
+		const double rx = std::cos(yaw) * nx + std::sin(yaw) * ny,
+		             ry = -std::sin(yaw) * nx + std::cos(yaw) * ny;
+		const double cosInc = std::abs(rx * lx + ry * ly) / (nn * ln);
+		if (cosInc <
+		    std::cos(m_options.doorViewMaxIncidenceDeg * M_PI / 180) - 1e-9)
+			return false;
+		size.x *= cosInc;
+	}
+	return view.visibleShare(p, size) >=
 	       m_options.doorViewMinVisibleShare - 1e-9;
 }
 

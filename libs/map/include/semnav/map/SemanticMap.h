@@ -92,16 +92,25 @@ public:
 		/** Doors detected in fewer than this fraction of the sweeps that
 		 * had their place in view (door views: SweepView::visibleShare()
 		 * at least doorViewMinVisibleShare, within doorViewMaxBearingDeg,
-		 * >= viewMinPixels) are not reported: a wall or furniture piece
+		 * >= doorViewMinPixels) are not reported: a wall or furniture piece
 		 * the door rules took for a door in one of several looks. 0: no
 		 * check. */
-		double doorMinDetectionRatio = 0.25;
+		double doorMinDetectionRatio = 0.35;
 		/** A sweep has a door in view when at least this share of the
 		 * points over its face is in the field of view and unhidden. */
 		double doorViewMinVisibleShare = 0.6;
 		/** Door views count only within this bearing of the robot's
-		 * heading (deg). */
+		 * heading (deg)... */
 		double doorViewMaxBearingDeg = 80;
+		/** ...seen at most this far from straight on (deg; the angle
+		 * between the line of sight and the door's normal, from its
+		 * regions' normals): the rules rarely find a door seen at a
+		 * grazing angle along a corridor... */
+		double doorViewMaxIncidenceDeg = 60;
+		/** ...and where the door would cover this many pixels (from its
+		 * typical size, foreshortened, and distance): the door rules rarely
+		 * find a door far away, where it is small. */
+		int doorViewMinPixels = 150;
 		/** Sweeps kept to count the views of a door first detected later
 		 * (the views before its first detection); 0: views from the first
 		 * detection on only. */
@@ -411,6 +420,10 @@ private:
 	void countDoorViews(
 	    std::size_t firstNew, const std::vector<int>& seenThisSweep,
 	    std::vector<int>& viewedThisSweep);
+	/** Adds a region's normal (robot frame) to a door's normalSum. */
+	static void addNormal(
+	    const mrpt::poses::CPose3D& robot, const mrpt::math::TPoint3D& normal,
+	    ObjectInstance& o);
 	/** Keeps the sweep for countDoorViews() (TOptions::doorViewHistory). */
 	void keepSweep(const Sweep& sweep, const mrpt::poses::CPose3D& robot);
 	/** Sets a staircase's centroid (x, y) from its labelled cells (see
