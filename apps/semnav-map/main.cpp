@@ -54,7 +54,8 @@ nlohmann::json summary(
 		     {"x", x},
 		     {"y", y},
 		     {"z", z},
-		     {"observations", o.observations}});
+		     {"observations", o.observations},
+		     {"views", o.views}});
 	}
 	j["classes"] = semnav::labelScoresJson(b.labelScores());
 	j["ms_per_sweep_median"] = semnav::median(b.msPerSweep());

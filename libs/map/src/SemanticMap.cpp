@@ -72,6 +72,28 @@ const OptionTable<O>& optionTable()
 	            "door_min_observations", &O::doorMinObservations, 1, 1000,
 	            "Doors seen in fewer sweeps are not reported.")
 	        .real(
+	            "door_min_detection_ratio", &O::doorMinDetectionRatio, 0, 1,
+	            "Doors detected in a smaller share of the sweeps that had "
+	            "their place in view are not reported (0: no check).")
+	        .real(
+	            "door_view_min_visible_share", &O::doorViewMinVisibleShare, 0,
+	            1,
+	            "A sweep has a door in view when this share of its face is "
+	            "in the field of view and unhidden...")
+	        .real(
+	            "door_view_max_bearing_deg", &O::doorViewMaxBearingDeg, 0, 180,
+	            "...within this bearing of the robot's heading...")
+	        .real(
+	            "door_view_max_incidence_deg", &O::doorViewMaxIncidenceDeg, 0,
+	            90, "...at most this far from straight on...")
+	        .integer(
+	            "door_view_min_pixels", &O::doorViewMinPixels, 0, 1000000,
+	            "...where the door would cover this many pixels.")
+	        .integer(
+	            "door_view_history", &O::doorViewHistory, 0, 10000,
+	            "Sweeps kept to count the views of a door before its first "
+	            "detection.")
+	        .real(
 	            "min_detection_ratio", &O::minDetectionRatio, 0, 1,
 	            "Cascade objects detected in a smaller share of the sweeps "
 	            "that saw them are not reported.")
@@ -436,7 +458,8 @@ ClassInfo::Plausibility SemanticMap::plausibility(Label l) const
 
 bool SemanticMap::reported(const ObjectInstance& o) const
 {
-	// Region classes (doors) are no detections: no shape score, no views.
+	// Region classes (doors) are no detections: no shape score; their
+	// views are door views (doorInView()).
 	const bool region =
 	    classInfo(o.label).instances == ClassInfo::InstanceSource::Regions;
 	const bool sure = o.bestShapeScore >= m_options.sureShapeScore;
@@ -448,8 +471,9 @@ bool SemanticMap::reported(const ObjectInstance& o) const
 	double ratio = o.label == Label::Stairs ? m_options.stairsMinDetectionRatio
 	                                        : m_options.minDetectionRatio;
 	if (sure) ratio = std::min(ratio, m_options.sureMinDetectionRatio);
-	if (!region && static_cast<double>(o.observations) <
-	                   ratio * static_cast<double>(o.views))
+	if (region) ratio = m_options.doorMinDetectionRatio;
+	if (static_cast<double>(o.observations) <
+	    ratio * static_cast<double>(o.views))
 		return false;
 	const ClassInfo::Plausibility p = plausibility(o.label);
 	if (o.extent().z < p.minHeight || o.minCorner.z > p.maxBottom ||
@@ -634,6 +658,7 @@ void SemanticMap::restore(
 		    logodds.begin() + static_cast<long>(g.index(cy, 0)), g.cols,
 		    m_occupancy.getRow(cy));
 	m_instances = std::move(objs);
+	m_pastSweeps.clear();
 	m_sweeps = sweeps;
 	markAllChanged();
 }

@@ -37,7 +37,31 @@ SweepView::SweepView(const Sweep& sweep, double maxBearing, double minPixels)
 {
 }
 
-bool SweepView::sees(
+bool SweepView::unhidden(const mrpt::math::TPoint3D& p) const
+{
+	const Sweep& s = m_sweep;
+	const auto& thetas = s.thetas();
+	const auto& phis = s.phis();
+	// The tilt axis (rows differ by a few cm: the laser's offset from it).
+	const auto& axis = s.sensorPose(s.rows() / 2);
+	const double dx = p.x - axis.x(), dy = p.y - axis.y(), dz = p.z - axis.z();
+	const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+	if (d < 0.2 || d > s.maxRange() - kObjectDepth) return false;
+	const double theta = std::atan2(dz, dx), phi = std::asin(dy / d);
+	if (theta < thetas.front() || theta > thetas.back() || phi < phis.front() ||
+	    phi > phis.back())
+		return false;
+	const std::size_t r0 = nearest(thetas, theta), c0 = nearest(phis, phi);
+	for (std::size_t r = r0 > 0 ? r0 - 1 : 0;
+	     r <= std::min(r0 + 1, s.rows() - 1); r++)
+		for (std::size_t c = c0 > 0 ? c0 - 1 : 0;
+		     c <= std::min(c0 + 1, s.cols() - 1); c++)
+			if (!s.valid(r, c) || s.range(r, c) >= d - kObjectDepth)
+				return true;
+	return false;
+}
+
+bool SweepView::inField(
     const mrpt::math::TPoint3D& centroid,
     const mrpt::math::TPoint3D& size) const
 {
@@ -45,7 +69,6 @@ bool SweepView::sees(
 	if (s.empty()) return false;
 	const auto& thetas = s.thetas();
 	const auto& phis = s.phis();
-	// The tilt axis (rows differ by a few cm: the laser's offset from it).
 	const auto& axis = s.sensorPose(s.rows() / 2);
 	const double dx = centroid.x - axis.x(), dy = centroid.y - axis.y(),
 	             dz = centroid.z - axis.z();
@@ -60,15 +83,36 @@ bool SweepView::sees(
 	// size: from where a real one is too small for the cascades, no view).
 	const double wide = std::max(size.x, 0.2), high = std::max(size.z, 0.3);
 	const double px = (wide / d) / m_phiStep * (high / d) / m_thetaStep;
-	if (px < m_minPixels) return false;
-	const std::size_t r0 = nearest(thetas, theta), c0 = nearest(phis, phi);
-	for (std::size_t r = r0 > 0 ? r0 - 1 : 0;
-	     r <= std::min(r0 + 1, s.rows() - 1); r++)
-		for (std::size_t c = c0 > 0 ? c0 - 1 : 0;
-		     c <= std::min(c0 + 1, s.cols() - 1); c++)
-			if (!s.valid(r, c) || s.range(r, c) >= d - kObjectDepth)
-				return true;
-	return false;
+	return px >= m_minPixels;
+}
+
+bool SweepView::sees(
+    const mrpt::math::TPoint3D& centroid,
+    const mrpt::math::TPoint3D& size) const
+{
+	return inField(centroid, size) && unhidden(centroid);
+}
+
+double SweepView::visibleShare(
+    const mrpt::math::TPoint3D& centroid,
+    const mrpt::math::TPoint3D& size) const
+{
+	if (!inField(centroid, size)) return 0;
+	const auto& axis = m_sweep.sensorPose(m_sweep.rows() / 2);
+	// Across the line of sight, horizontally.
+	const double lx = centroid.x - axis.x(), ly = centroid.y - axis.y();
+	const double ln = std::max(std::hypot(lx, ly), 1e-6);
+	const double ax = -ly / ln, ay = lx / ln;
+	int seen = 0;
+	for (int i = -1; i <= 1; i++)
+		for (int k = -1; k <= 1; k++)
+		{
+			const double u = i * size.x / 3, v = k * size.z / 3;
+			if (unhidden(
+			        {centroid.x + u * ax, centroid.y + u * ay, centroid.z + v}))
+				seen++;
+		}
+	return seen / 9.0;
 }
 
 }  // namespace semnav

@@ -32,8 +32,14 @@ struct ObjectInstance
 	/** Sweeps in which the object was detected. */
 	std::size_t observations = 0;
 	/** Sweeps that had it in view (line of sight to its centroid within
-	 * the sweep's field of view and range), detected or not. */
+	 * the sweep's field of view and range; doors: seen nearly straight on
+	 * and mostly unhidden, SemanticMap::TOptions::doorMinDetectionRatio),
+	 * detected or not. */
 	std::size_t views = 0;
+	/** Sum of the horizontal unit normals of its regions (doors; world
+	 * frame, each turned to agree with the sum so far: a door seen from
+	 * both sides), (0,0,0) when unknown (in memory only). */
+	mrpt::math::TPoint3D normalSum{0, 0, 0};
 	/** The best shape check score of its detections (Detection::shapeScore;
 	 * 1 for doors and classes without a shape model). */
 	double bestShapeScore = 1;

@@ -89,6 +89,32 @@ public:
 		int minObservations = 1;
 		/** The same for doors (found by the rules, not a cascade). */
 		int doorMinObservations = 1;
+		/** Doors detected in fewer than this fraction of the sweeps that
+		 * had their place in view (door views: SweepView::visibleShare()
+		 * at least doorViewMinVisibleShare, within doorViewMaxBearingDeg,
+		 * >= doorViewMinPixels) are not reported: a wall or furniture piece
+		 * the door rules took for a door in one of several looks. 0: no
+		 * check. */
+		double doorMinDetectionRatio = 0.35;
+		/** A sweep has a door in view when at least this share of the
+		 * points over its face is in the field of view and unhidden. */
+		double doorViewMinVisibleShare = 0.6;
+		/** Door views count only within this bearing of the robot's
+		 * heading (deg)... */
+		double doorViewMaxBearingDeg = 80;
+		/** ...seen at most this far from straight on (deg; the angle
+		 * between the line of sight and the door's normal, from its
+		 * regions' normals): the rules rarely find a door seen at a
+		 * grazing angle along a corridor... */
+		double doorViewMaxIncidenceDeg = 60;
+		/** ...and where the door would cover this many pixels (from its
+		 * typical size, foreshortened, and distance): the door rules rarely
+		 * find a door far away, where it is small. */
+		int doorViewMinPixels = 150;
+		/** Sweeps kept to count the views of a door first detected later
+		 * (the views before its first detection); 0: views from the first
+		 * detection on only. */
+		int doorViewHistory = 30;
 		/** Cascade objects detected in fewer than this fraction of the
 		 * sweeps that had them in view are not reported (furniture that a
 		 * cascade took for an object once in many looks). */
@@ -382,6 +408,24 @@ private:
 	void countViews(
 	    const Sweep& sweep, const mrpt::poses::CPose3D& robot,
 	    std::vector<int>& viewedThisSweep);
+	/** Whether the sweep, taken at `robot`, had the door `o` in view
+	 * (TOptions::doorMinDetectionRatio). */
+	bool doorInView(
+	    const Sweep& sweep, const mrpt::poses::CPose3D& robot,
+	    const ObjectInstance& o) const;
+	/** Door views: a view of the instances merged from this sweep's
+	 * regions that countViews() did not count (detected, so in view), and
+	 * for the doors first detected in it, their views in the sweeps kept
+	 * (m_pastSweeps). */
+	void countDoorViews(
+	    std::size_t firstNew, const std::vector<int>& seenThisSweep,
+	    std::vector<int>& viewedThisSweep);
+	/** Adds a region's normal (robot frame) to a door's normalSum. */
+	static void addNormal(
+	    const mrpt::poses::CPose3D& robot, const mrpt::math::TPoint3D& normal,
+	    ObjectInstance& o);
+	/** Keeps the sweep for countDoorViews() (TOptions::doorViewHistory). */
+	void keepSweep(const Sweep& sweep, const mrpt::poses::CPose3D& robot);
 	/** Sets a staircase's centroid (x, y) from its labelled cells (see
 	 * TOptions::stairsCentroidFromCells). */
 	void centreOnCells(ObjectInstance& o) const;
@@ -401,6 +445,10 @@ private:
 	std::map<std::string, std::vector<float>> m_layers;
 	mrpt::maps::COccupancyGridMap2D m_occupancy;
 	std::vector<ObjectInstance> m_instances;
+	struct PastSweep;
+	/** The last TOptions::doorViewHistory sweeps, oldest first (shared:
+	 * PastSweep is complete in SemanticMapInsert.cpp only). */
+	std::deque<std::shared_ptr<const PastSweep>> m_pastSweeps;
 	std::unique_ptr<octomap::OcTree> m_octree;
 	/** False after write access to the OctoMap from outside: its inner
 	 * nodes may not match their children. */
