@@ -142,6 +142,8 @@ public:
 		double doorMinSideFraction = 0.5;
 		double doorSingleSideFraction = 0.8;
 		bool doorLintelOneSide = true;
+		double doorOcclusionMargin = 0.05;
+		bool doorShapeSplit = true;
 		// Ground type (outdoor)
 		double sidewalkMinRbar = 0.97;
 		double sidewalkMaxHeightStd = 0.012;
@@ -206,6 +208,9 @@ private:
 		double left = 0, right = 0, top = 0;  ///< fraction with a wall
 		bool leftFov = false, rightFov = false, topFov = false,
 		     bottomFov = false;
+		/** Hidden by something in front along door_min_side_fraction of
+		 * the side (door_occlusion_margin_m). */
+		bool leftHidden = false, rightHidden = false, bottomHidden = false;
 		double maxOffset = 0;  ///< largest |offset| to an adjacent wall
 	};
 
@@ -260,6 +265,14 @@ private:
 	 * stretch between seams whose plane steps by door_seam_split_offset_m
 	 * (a nearly flush leaf) gets side 1 in m_side; true when one does. */
 	bool splitAtSeams(int slot, const cv::Vec3d& normal, double offset);
+	/** With door_shape_split: when one side of slot's step (smoothed
+	 * residual `threshold`) is a leaf-shaped box (door_search_min_size_m to
+	 * door_max_width_m wide, at most door_max_height_m high, from the
+	 * group's bottom, under the other side, which also flanks it) that it
+	 * fills (kDoorShapeMinPurity), gives the box side 1 in m_side; true
+	 * when it does. */
+	bool splitDoorShaped(
+	    int slot, float threshold, const cv::Vec3d& normal, double offset);
 	/** Step 3, pass 2: pixels of one coplanar group (m_parent) and one side
 	 * of its plane step. */
 	void buildGroupSurfaces();
