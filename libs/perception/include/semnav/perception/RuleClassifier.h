@@ -32,7 +32,10 @@ namespace semnav
  *    on one plane are grouped across areas (a wall seen at a grazing angle
  *    floods into column strips), and a group is split where its plane
  *    steps by plane_split_offset_m (a door recessed in its wall: dominant
- *    plane by RANSAC, smoothed residuals, Otsu). Looser groups (one wall
+ *    plane by RANSAC, smoothed residuals, Otsu). A smaller step
+ *    (door_seam_split_offset_m) splits along seams, or with
+ *    door_shape_split where one side, after refitting the plane on the
+ *    wall, is a leaf-shaped box under the other. Looser groups (one wall
  *    within wall_group_tolerance_m) serve the wall size rule.
  * 4. Rules on each surface (size, orientation, topology; thresholds in
  *    config/perception.ini):
@@ -55,7 +58,10 @@ namespace semnav
  *      wall, and its extent there in place of the size, when
  *      door_allow_truncation; one side must still be a wall. With
  *      door_lintel_one_side, walls above it and on one side suffice (the
- *      other side hidden by a reveal, a corner, or a far wall behind);
+ *      other side hidden by a reveal, a corner, or a far wall behind).
+ *      A side (left, right, bottom) whose neighbours are nearer to the
+ *      sensor by door_occlusion_margin_m is hidden: its width or bottom
+ *      there is a lower bound, as where the field of view cuts it;
  *    - obstacle: any other surface reaching above the ground; a piece
  *      lying on an adjacent wall's plane is left to step 5 instead.
  * 5. Pixels left over (surface edges, oblique or missing normals, small
