@@ -185,6 +185,15 @@ const OptionTable<O>& optionTable()
 	            "door (the other side hidden by a reveal, a corner or a far "
 	            "wall).")
 	        .real(
+	            "door_occlusion_margin_m", &O::doorOcclusionMargin, 0, 10,
+	            "A side of a leaf whose neighbours are nearer to the sensor by "
+	            "this is hidden: its width or bottom there is a lower bound "
+	            "(0: off).")
+	        .flag(
+	            "door_shape_split", &O::doorShapeSplit,
+	            "A plane step of door_seam_split_offset_m without seams splits "
+	            "when one side is a leaf-shaped box under the other.")
+	        .real(
 	            "sidewalk_min_rbar", &O::sidewalkMinRbar, -1, 1,
 	            "Outdoor ground: sidewalk where R-bar is at least this, "
 	            "else grass.")

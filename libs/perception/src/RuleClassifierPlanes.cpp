@@ -581,7 +581,11 @@ void RuleClassifier::splitByResiduals(
 			                        m_options.doorSeamMinShare;
 			if (!seamed)
 			{
-				if (splitAtSeams(k, normal[k], offset[k]))
+				// Else a leaf-shaped side under the other (the seams unseen
+				// at a grazing angle, or the frame flush).
+				if (splitAtSeams(k, normal[k], offset[k]) ||
+				    (sized && step >= m_options.doorSeamSplitOffset &&
+				     splitDoorShaped(k, thr, normal[k], offset[k])))
 					m_groupSplit[m_parent[m_surf[pix[start[k]]]]] = 1;
 				continue;
 			}

@@ -186,23 +186,37 @@ void RuleClassifier::labelDoorsAndWalls(
 			     (dc.top >= f || (t && dc.topFov)) &&
 			     (dc.left >= f || dc.right >= f) && singleSideHolds(s, dc)) ||
 			    lintelAndOneSide(s, dc);
-			const bool height = s.height >= o.doorMinHeight ||
-			                    (t && (dc.topFov || dc.bottomFov));
-			const bool width =
-			    s.width >= o.doorMinWidth || (t && (dc.leftFov || dc.rightFov));
-			const bool bottom =
-			    s.minP[2] <= zg + o.doorBottomTolerance || (t && dc.bottomFov);
+			// A side hidden by something nearer (a reveal, furniture)
+			// bounds the extent seen there as the field of view does.
+			const bool shown = doorSized(s);
+			const bool height =
+			    s.height >= o.doorMinHeight ||
+			    (t && (dc.topFov || dc.bottomFov)) ||
+			    (shown && dc.bottomHidden && s.maxP[2] >= zg + o.doorMinHeight);
+			const bool width = s.width >= o.doorMinWidth ||
+			                   (t && (dc.leftFov || dc.rightFov)) ||
+			                   (shown && (dc.leftHidden || dc.rightHidden));
+			const bool bottom = s.minP[2] <= zg + o.doorBottomTolerance ||
+			                    (t && dc.bottomFov) ||
+			                    (shown && dc.bottomHidden);
 			door = sides && height && width && bottom &&
 			       dc.maxOffset >= o.doorMinOffset;
 			MRPT_LOG_DEBUG_FMT(
 			    "door candidate %zu: %d px, rows %d-%d cols %d-%d, width %.2f "
 			    "height %.2f z %.2f..%.2f; walls left %.2f right %.2f top "
-			    "%.2f, fov %d%d%d%d, offset %.3f -> %s",
+			    "%.2f, fov %d%d%d%d, hidden %d%d%d, offset %.3f -> %s",
 			    i, s.count, s.minR, s.maxR, s.minC, s.maxC, s.width, s.height,
 			    s.minP[2], s.maxP[2], dc.left, dc.right, dc.top, dc.leftFov,
-			    dc.rightFov, dc.topFov, dc.bottomFov, dc.maxOffset,
+			    dc.rightFov, dc.topFov, dc.bottomFov, dc.leftHidden,
+			    dc.rightHidden, dc.bottomHidden, dc.maxOffset,
 			    door ? "door" : "no");
 		}
+		else
+			MRPT_LOG_DEBUG_FMT(
+			    "large surface %zu: %d px, rows %d-%d cols %d-%d, width %.2f "
+			    "height %.2f z %.2f..%.2f",
+			    i, s.count, s.minR, s.maxR, s.minC, s.maxC, s.width, s.height,
+			    s.minP[2], s.maxP[2]);
 		if (door)
 			s.label = lab(Label::Door);
 		else if (wallCandidate[i])
@@ -280,7 +294,7 @@ constexpr int kMaxDoorSearchPixels = 60;
  * pixels. */
 struct DoorOutline
 {
-	std::vector<int> rowMin, rowMax, colMax;
+	std::vector<int> rowMin, rowMax, colMin, colMax;
 	int lowest = -1, highest = -1;
 };
 
@@ -294,6 +308,7 @@ DoorOutline outlineOf(
 	DoorOutline o;
 	o.rowMin.assign(nr, cols);
 	o.rowMax.assign(nr, -1);
+	o.colMin.assign(nc, -1);
 	o.colMax.assign(nc, -1);
 	float zLo = std::numeric_limits<float>::max(), zHi = -zLo;
 	for (int r = minR; r <= maxR; r++)
@@ -313,9 +328,61 @@ DoorOutline outlineOf(
 			}
 			o.rowMin[r - minR] = std::min(o.rowMin[r - minR], c);
 			o.rowMax[r - minR] = std::max(o.rowMax[r - minR], c);
+			if (o.colMin[c - minC] < 0) o.colMin[c - minC] = r;
 			o.colMax[c - minC] = std::max(o.colMax[c - minC], r);
 		}
 	return o;
+}
+
+/** Shares of a door candidate's left, right and bottom edges hidden by
+ * something in front: beyond the edge pixel (stepping dr, dc), the first
+ * pixel with a point, of another surface, within `reach` pixels, is
+ * nearer to the sensor by `margin`. */
+struct DoorOcclusion
+{
+	double left = 0, right = 0, bottom = 0;
+};
+
+DoorOcclusion occlusionOf(
+    const DoorOutline& o, const int* surf, const float* ranges, int rows,
+    int cols, int minR, int minC, int self, int reach, float margin)
+{
+	auto hidden = [&](int r, int c, int dr, int dc)
+	{
+		const float d = ranges[r * cols + c];
+		if (!(d > 0)) return false;
+		for (int k = 1; k <= reach; k++)
+		{
+			const int rr = r + k * dr, cc = c + k * dc;
+			if (rr < 0 || rr >= rows || cc < 0 || cc >= cols) return false;
+			const int q = rr * cols + cc;
+			if (surf[q] == self) return false;
+			if (!(ranges[q] > 0)) continue;
+			return ranges[q] < d - margin;
+		}
+		return false;
+	};
+	DoorOcclusion res;
+	int left = 0, right = 0, bottom = 0, nRows = 0, nCols = 0;
+	for (std::size_t i = 0; i < o.rowMin.size(); i++)
+	{
+		if (o.rowMax[i] < 0) continue;
+		nRows++;
+		const int r = minR + static_cast<int>(i);
+		// Lower columns are on the robot's right.
+		right += hidden(r, o.rowMin[i], 0, -1);
+		left += hidden(r, o.rowMax[i], 0, 1);
+	}
+	for (std::size_t j = 0; j < o.colMin.size(); j++)
+	{
+		if (o.colMin[j] < 0) continue;
+		nCols++;
+		bottom += hidden(o.colMin[j], minC + static_cast<int>(j), -1, 0);
+	}
+	if (nRows > 0) res.left = double(left) / nRows;
+	if (nRows > 0) res.right = double(right) / nRows;
+	if (nCols > 0) res.bottom = double(bottom) / nCols;
+	return res;
 }
 }  // namespace
 
@@ -440,6 +507,17 @@ RuleClassifier::DoorCheck RuleClassifier::checkDoor(
 	};
 	res.topFov = topB > 0 || door.maxR >= rows - 1 - K || atBorder(pHi);
 	res.bottomFov = door.minR <= K || atBorder(pLo);
+	if (m_options.doorOcclusionMargin > 0)
+	{
+		const DoorOcclusion h = occlusionOf(
+		    o, m_surf.data(), m_ranges->ptr<float>(0), rows, cols, door.minR,
+		    door.minC, self, K,
+		    static_cast<float>(m_options.doorOcclusionMargin));
+		const double f = m_options.doorMinSideFraction;
+		res.leftHidden = h.left >= f;
+		res.rightHidden = h.right >= f;
+		res.bottomHidden = h.bottom >= f;
+	}
 	return res;
 }
 

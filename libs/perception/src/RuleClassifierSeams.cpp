@@ -78,6 +78,154 @@ std::vector<Seam> findSeams(
 	flushBest();
 	return seams;
 }
+/** Narrows [a0, a1] (along u) to where `side`'s pixels fill the box's
+ * slices (kTrimBin wide) between zLo and zHi (along z): the quantiles let
+ * in the other side's pixels at a grazing end. Called with u and z swapped
+ * it narrows the height. */
+void trimBox(
+    const std::vector<double> (&u)[2], const std::vector<double> (&z)[2],
+    int side, double zLo, double zHi, double& a0, double& a1)
+{
+	constexpr double kTrimBin = 0.05;
+	const int nb = std::max(1, static_cast<int>((a1 - a0) / kTrimBin) + 1);
+	std::vector<int> own(nb, 0), all(nb, 0);
+	for (int sd = 0; sd < 2; sd++)
+		for (std::size_t i = 0; i < u[sd].size(); i++)
+		{
+			if (u[sd][i] < a0 || u[sd][i] > a1 || z[sd][i] < zLo ||
+			    z[sd][i] > zHi)
+				continue;
+			const int b =
+			    std::min(nb - 1, static_cast<int>((u[sd][i] - a0) / kTrimBin));
+			all[b]++;
+			own[b] += sd == side;
+		}
+	auto filled = [&](int b) { return all[b] > 0 && 2 * own[b] >= all[b]; };
+	int lo = 0, hi = nb - 1;
+	while (lo < hi && !filled(lo)) lo++;
+	while (hi > lo && !filled(hi)) hi--;
+	const double b0 = a0;
+	a0 = b0 + lo * kTrimBin;
+	a1 = std::min(a1, b0 + (hi + 1) * kTrimBin);
+}
+
+/** Robust extents: these quantiles of a side's pixels. */
+constexpr double kBoxLo = 0.02, kBoxHi = 0.98;
+
+double quantile(std::vector<double> v, double q)
+{
+	const std::size_t k = static_cast<std::size_t>(q * (v.size() - 1));
+	std::nth_element(v.begin(), v.begin() + k, v.end());
+	return v[k];
+}
+
+/** The two sides of a group's step (`n` pixels `pix`, smoothed residuals
+ * `RS` to the plane normal, offset split at `threshold`) after refitting
+ * the plane on the wall. The least-squares plane leans towards a leaf set
+ * back over a large part of the group; the wall is the side that spans
+ * the wider stretch (it flanks the leaf). A pixel is on the other side
+ * when its residual to the wall's plane (the smoothed one shifted by the
+ * planes' difference) lies `halfStep` towards that side's mean. False
+ * when a side is empty. */
+bool refitSides(
+    const cv::Vec3f* P, const float* RS, const int* pix, int n, float threshold,
+    const cv::Vec3d& normal, double offset, double halfStep,
+    std::vector<uint8_t>& sideOf)
+{
+	const cv::Vec3d along(-normal[1], normal[0], 0);
+	sideOf.assign(n, 0);
+	std::vector<double> us[2];
+	double mean[2] = {0, 0};
+	for (int i = 0; i < n; i++)
+	{
+		const int p = pix[i], sd = RS[p] >= threshold;
+		sideOf[i] = static_cast<uint8_t>(sd);
+		us[sd].push_back(along[0] * P[p][0] + along[1] * P[p][1]);
+		mean[sd] += RS[p];
+	}
+	if (us[0].size() < 2 || us[1].size() < 2) return false;
+	for (int sd = 0; sd < 2; sd++) mean[sd] /= us[sd].size();
+	auto span = [&](int sd)
+	{ return quantile(us[sd], kBoxHi) - quantile(us[sd], kBoxLo); };
+	const int wall = span(0) >= span(1) ? 0 : 1;
+	double sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
+	int cnt = 0;
+	for (int i = 0; i < n; i++)
+	{
+		if (sideOf[i] != wall) continue;
+		const double x = P[pix[i]][0], y = P[pix[i]][1];
+		sx += x;
+		sy += y;
+		sxx += x * x;
+		sxy += x * y;
+		syy += y * y;
+		cnt++;
+	}
+	const double cx = sx / cnt, cy = sy / cnt;
+	const double a = sxx / cnt - cx * cx, b = sxy / cnt - cx * cy,
+	             d = syy / cnt - cy * cy;
+	// Normal: the covariance's smaller eigenvector, facing as before.
+	const double lmin =
+	    0.5 * (a + d) -
+	    std::sqrt(std::max(0.0, 0.25 * (a - d) * (a - d) + b * b));
+	cv::Vec2d m = std::abs(b) > 1e-12
+	                  ? cv::Vec2d(b, lmin - a)
+	                  : (a < d ? cv::Vec2d(1, 0) : cv::Vec2d(0, 1));
+	m /= cv::norm(m);
+	if (m[0] * normal[0] + m[1] * normal[1] < 0) m = -m;
+	const double off = m[0] * cx + m[1] * cy;
+	const double toward = mean[1 - wall] > mean[wall] ? 1 : -1;
+	for (int i = 0; i < n; i++)
+	{
+		const int p = pix[i];
+		const double x = P[p][0], y = P[p][1];
+		const double r = RS[p] - (normal[0] * x + normal[1] * y - offset) +
+		                 (m[0] * x + m[1] * y - off);
+		sideOf[i] =
+		    static_cast<uint8_t>(toward * r >= halfStep ? 1 - wall : wall);
+	}
+	return true;
+}
+
+/** A side's box along the plane (u) and in height (z), and how the other
+ * side lies around it. */
+struct LeafBox
+{
+	double a0 = 0, a1 = 0, zLo = 0, zHi = 0;
+	int above = 0, beside = 0;  ///< other side's pixels above, beside it
+	double purity = 0;          ///< share of the box's pixels on `side`
+};
+
+LeafBox leafBoxOf(
+    const std::vector<double> (&u)[2], const std::vector<double> (&z)[2],
+    int side)
+{
+	LeafBox b;
+	b.a0 = quantile(u[side], kBoxLo);
+	b.a1 = quantile(u[side], kBoxHi);
+	b.zLo = quantile(z[side], kBoxLo);
+	b.zHi = quantile(z[side], kBoxHi);
+	trimBox(u, z, side, b.zLo, b.zHi, b.a0, b.a1);
+	trimBox(z, u, side, b.a0, b.a1, b.zLo, b.zHi);
+	const int other = 1 - side;
+	int intruders = 0, own = 0;
+	for (std::size_t i = 0; i < u[other].size(); i++)
+	{
+		const double uu = u[other][i], zz = z[other][i];
+		const bool inU = uu > b.a0 && uu < b.a1;
+		if (inU && zz > b.zHi + 0.05)
+			b.above++;
+		else if (!inU)
+			b.beside++;
+		else if (zz >= b.zLo && zz <= b.zHi)
+			intruders++;
+	}
+	for (std::size_t i = 0; i < u[side].size(); i++)
+		own += u[side][i] > b.a0 && u[side][i] < b.a1 && z[side][i] >= b.zLo &&
+		       z[side][i] <= b.zHi;
+	b.purity = double(own) / std::max(1, own + intruders);
+	return b;
+}
 }  // namespace
 
 double RuleClassifier::seamShare(
@@ -249,6 +397,64 @@ bool RuleClassifier::splitAtSeams(
 		}
 	}
 	return any;
+}
+
+bool RuleClassifier::splitDoorShaped(
+    int slot, float threshold, const cv::Vec3d& normal, double offset)
+{
+	// A side fills its box when this share of the box's pixels are its
+	// own (the smoothing blurs the boundary; noise on a flat wall gives
+	// scattered sides, not a filled box).
+	constexpr double kDoorShapeMinPurity = 0.8;
+	const TOptions& o = m_options;
+	if (!o.doorShapeSplit) return false;
+	const auto* P = m_points->ptr<cv::Vec3f>(0);
+	const int* pix = m_slotPix.data();
+	const int i0 = m_slotStart[slot], i1 = m_slotStart[slot + 1];
+	const cv::Vec3d along(-normal[1], normal[0], 0);
+	auto alongOf = [&](int p)
+	{ return along[0] * P[p][0] + along[1] * P[p][1]; };
+	std::vector<uint8_t> sideOf;
+	if (!refitSides(
+	        P, m_resSum.ptr<float>(0), pix + i0, i1 - i0, threshold, normal,
+	        offset, 0.5 * o.doorSeamSplitOffset, sideOf))
+		return false;
+	std::vector<double> u[2], z[2];
+	for (int i = i0; i < i1; i++)
+	{
+		const int p = pix[i];
+		const int side = sideOf[i - i0];
+		u[side].push_back(alongOf(p));
+		z[side].push_back(P[p][2]);
+	}
+	const int minPx = o.minSurfacePixels;
+	for (int side = 0; side < 2; side++)
+	{
+		if (static_cast<int>(u[side].size()) < minPx ||
+		    static_cast<int>(u[1 - side].size()) < minPx)
+			continue;
+		const LeafBox b = leafBoxOf(u, z, side);
+		MRPT_LOG_DEBUG_FMT(
+		    "shape split %d: side %d box %.2f..%.2f m z %.2f..%.2f, above %d "
+		    "beside %d, purity %.2f",
+		    slot, side, b.a0, b.a1, b.zLo, b.zHi, b.above, b.beside, b.purity);
+		if (b.a1 - b.a0 < o.doorSearchMinSize || b.a1 - b.a0 > o.doorMaxWidth ||
+		    b.zHi - b.zLo < o.doorSearchMinSize ||
+		    b.zHi - b.zLo > o.doorMaxHeight || b.above < minPx ||
+		    b.beside < minPx || b.purity < kDoorShapeMinPurity)
+			continue;
+		bool any = false;
+		for (int i = i0; i < i1; i++)
+		{
+			const int p = pix[i];
+			const double uu = alongOf(p);
+			const bool in = uu > b.a0 && uu < b.a1 && P[p][2] <= b.zHi + 0.02;
+			m_side[p] = in ? 1 : 0;
+			any |= in;
+		}
+		return any;
+	}
+	return false;
 }
 
 }  // namespace semnav

@@ -32,7 +32,10 @@ namespace semnav
  *    on one plane are grouped across areas (a wall seen at a grazing angle
  *    floods into column strips), and a group is split where its plane
  *    steps by plane_split_offset_m (a door recessed in its wall: dominant
- *    plane by RANSAC, smoothed residuals, Otsu). Looser groups (one wall
+ *    plane by RANSAC, smoothed residuals, Otsu). A smaller step
+ *    (door_seam_split_offset_m) splits along seams, or with
+ *    door_shape_split where one side, after refitting the plane on the
+ *    wall, is a leaf-shaped box under the other. Looser groups (one wall
  *    within wall_group_tolerance_m) serve the wall size rule.
  * 4. Rules on each surface (size, orientation, topology; thresholds in
  *    config/perception.ini):
@@ -55,7 +58,10 @@ namespace semnav
  *      wall, and its extent there in place of the size, when
  *      door_allow_truncation; one side must still be a wall. With
  *      door_lintel_one_side, walls above it and on one side suffice (the
- *      other side hidden by a reveal, a corner, or a far wall behind);
+ *      other side hidden by a reveal, a corner, or a far wall behind).
+ *      A side (left, right, bottom) whose neighbours are nearer to the
+ *      sensor by door_occlusion_margin_m is hidden: its width or bottom
+ *      there is a lower bound, as where the field of view cuts it;
  *    - obstacle: any other surface reaching above the ground; a piece
  *      lying on an adjacent wall's plane is left to step 5 instead.
  * 5. Pixels left over (surface edges, oblique or missing normals, small
@@ -142,6 +148,8 @@ public:
 		double doorMinSideFraction = 0.5;
 		double doorSingleSideFraction = 0.8;
 		bool doorLintelOneSide = true;
+		double doorOcclusionMargin = 0.05;
+		bool doorShapeSplit = true;
 		// Ground type (outdoor)
 		double sidewalkMinRbar = 0.97;
 		double sidewalkMaxHeightStd = 0.012;
@@ -206,6 +214,9 @@ private:
 		double left = 0, right = 0, top = 0;  ///< fraction with a wall
 		bool leftFov = false, rightFov = false, topFov = false,
 		     bottomFov = false;
+		/** Hidden by something in front along door_min_side_fraction of
+		 * the side (door_occlusion_margin_m). */
+		bool leftHidden = false, rightHidden = false, bottomHidden = false;
 		double maxOffset = 0;  ///< largest |offset| to an adjacent wall
 	};
 
@@ -260,6 +271,14 @@ private:
 	 * stretch between seams whose plane steps by door_seam_split_offset_m
 	 * (a nearly flush leaf) gets side 1 in m_side; true when one does. */
 	bool splitAtSeams(int slot, const cv::Vec3d& normal, double offset);
+	/** With door_shape_split: when one side of slot's step (smoothed
+	 * residual `threshold`) is a leaf-shaped box (door_search_min_size_m to
+	 * door_max_width_m wide, at most door_max_height_m high, from the
+	 * group's bottom, under the other side, which also flanks it) that it
+	 * fills (kDoorShapeMinPurity), gives the box side 1 in m_side; true
+	 * when it does. */
+	bool splitDoorShaped(
+	    int slot, float threshold, const cv::Vec3d& normal, double offset);
 	/** Step 3, pass 2: pixels of one coplanar group (m_parent) and one side
 	 * of its plane step. */
 	void buildGroupSurfaces();
