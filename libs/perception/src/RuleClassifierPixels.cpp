@@ -282,6 +282,9 @@ void RuleClassifier::labelGroundTypes(
 		L[p] =
 		    static_cast<uint8_t>(sq[k] == 2 ? Label::Grass : Label::Sidewalk);
 	}
+	if (m_options.sidewalkBorderHalfWidth > 0 && roughness.r().rows == rows &&
+	    roughness.r().cols == cols)
+		refineGroundBorder(roughness.r(), G, w, sq, L);
 }
 
 void RuleClassifier::typeSquaresByHeight(

@@ -146,6 +146,7 @@ public:
 		double sidewalkMinRbar = 0.97;
 		double sidewalkMaxHeightStd = 0.012;
 		int minPatchSquares = 4;
+		int sidewalkBorderHalfWidth = 2;
 		// Leftover pixels
 		double leftoverPlaneTolerance = 0.05;
 		bool classifyLeftoverPixels = true;
@@ -305,6 +306,9 @@ private:
 	void typeSquaresByHeight(
 	    const int* groundMask, int w, int minSquarePixels,
 	    std::vector<int8_t>& squareTypes) const;
+	void refineGroundBorder(
+	    const cv::Mat& r, const int* groundMask, int w,
+	    const std::vector<int8_t>& squareTypes, uint8_t* labels);
 	void buildRegions(LabeledSweep& out, const cv::Mat& rBar);
 	void fillRegion(int seed, int id, const uint8_t* labels, int* regionIds);
 
@@ -365,6 +369,7 @@ private:
 	std::vector<int> m_owner;
 	std::vector<int> m_rowOf, m_colOf;
 	cv::Mat m_res, m_wt, m_resSum, m_wtSum;
+	cv::Mat m_groundR, m_groundN;  // refineGroundBorder
 	std::vector<float> m_tmp;
 };
 
