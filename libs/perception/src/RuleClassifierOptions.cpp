@@ -201,6 +201,11 @@ const OptionTable<O>& optionTable()
 	            "Squares on the sidewalk/grass border: each pixel by the "
 	            "mean R of the (2h+1)^2 window centred on it (0: off).")
 	        .real(
+	            "sidewalk_flat_max_height_std_m", &O::sidewalkFlatMaxHeightStd,
+	            0, 10,
+	            "Squares grass by R-bar: sidewalk when their heights spread "
+	            "at most this (0: off).")
+	        .real(
 	            "leftover_plane_tolerance_m", &O::leftoverPlaneTolerance, 0, 10,
 	            "Pixels left over join a neighbouring surface this close to "
 	            "its plane.")

@@ -270,6 +270,8 @@ void RuleClassifier::labelGroundTypes(
 			                                         : 2;
 		}
 	}
+	if (m_options.sidewalkFlatMaxHeightStd > 0)
+		typeFlatSquares(G, w, roughness.options().minSquarePixels, sq);
 	if (m_options.sidewalkMaxHeightStd > 0)
 		typeSquaresByHeight(G, w, roughness.options().minSquarePixels, sq);
 	spreadSquareTypes(sq, sr, sc);

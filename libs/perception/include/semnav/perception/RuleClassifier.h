@@ -67,8 +67,13 @@ namespace semnav
  *    outdoors each w' x w' square of ground is sidewalk when its R-bar >=
  *    sidewalk_min_rbar, else grass; squares without R-bar (far ground, no
  *    normals) by the spread of their heights (sidewalk_max_height_std_m);
- *    the rest take their nearest neighbour's type; patches under
- *    min_patch_squares are absorbed.
+ *    squares grass by R-bar whose heights spread at most
+ *    sidewalk_flat_max_height_std_m are sidewalk (R-bar is noise where the
+ *    rows nearly coincide, at the sweep's sides); the rest take their
+ *    nearest neighbour's type; patches under min_patch_squares are
+ *    absorbed. On the sidewalk / grass border each pixel is then typed by
+ *    the mean R of the window centred on it
+ *    (sidewalk_border_half_width_px), not by its square.
  *
  * classify() runs on the images of a NormalImage, the areas of a
  * RangeSegmentation and a Roughness; buffers are reused between calls. */
@@ -147,6 +152,7 @@ public:
 		double sidewalkMaxHeightStd = 0.012;
 		int minPatchSquares = 4;
 		int sidewalkBorderHalfWidth = 2;
+		double sidewalkFlatMaxHeightStd = 0.007;
 		// Leftover pixels
 		double leftoverPlaneTolerance = 0.05;
 		bool classifyLeftoverPixels = true;
@@ -304,6 +310,9 @@ private:
 	    std::size_t ceilPixels, const Roughness& roughness, LabeledSweep& out);
 	void labelGroundTypes(const Roughness& roughness, LabeledSweep& out);
 	void typeSquaresByHeight(
+	    const int* groundMask, int w, int minSquarePixels,
+	    std::vector<int8_t>& squareTypes) const;
+	void typeFlatSquares(
 	    const int* groundMask, int w, int minSquarePixels,
 	    std::vector<int8_t>& squareTypes) const;
 	void refineGroundBorder(
