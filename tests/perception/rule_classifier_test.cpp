@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <functional>
+#include <iostream>
 #include <limits>
 #include <opencv2/core.hpp>
 
@@ -202,6 +203,40 @@ TEST(RuleClassifier, SidewalkAndGrassByRoughness)
 	EXPECT_TRUE(li.indoor);
 	EXPECT_EQ(li.count(Label::Sidewalk) + li.count(Label::Grass), 0u);
 	EXPECT_GT(li.count(Label::Floor), ls.count(Label::Sidewalk));
+}
+
+TEST(RuleClassifier, SidewalkBorderPerPixelAndFlatSquares)
+{
+	// The scene of SidewalkAndGrassByRoughness: the border typed per pixel
+	// and the flat squares (sidewalk_border_half_width_px,
+	// sidewalk_flat_max_height_std_m, off as shipped) against squares only.
+	SynthScene sc;
+	sc.noise = 0.005;
+	auto onPath = [](double, double y) { return std::abs(y) < 1.0; };
+	sc.height = [onPath](double x, double y)
+	{ return onPath(x, y) ? 0.0005 * std::sin(13 * x) : 2.5 * noise(x, y); };
+	sc.groundLabel = [onPath](double x, double y)
+	{ return onPath(x, y) ? Label::Sidewalk : Label::Grass; };
+	sc.boxes.push_back({{7, -6, 0}, {7.3, 6, 3.0}, Label::Wall});
+	cv::Mat truth;
+	const Sweep sw = renderSweep(sc, &truth);
+	PerceptionPipeline::TOptions o;
+	o.classifier.sidewalkBorderHalfWidth = 2;
+	o.classifier.sidewalkFlatMaxHeightStd = 0.007;
+	const LabeledSweep ls = PerceptionPipeline(o).process(sw);
+	const LabeledSweep sq = PerceptionPipeline().process(sw);
+	const double swOn = pixelF1(ls.labels, truth, sw, Label::Sidewalk);
+	const double swOff = pixelF1(sq.labels, truth, sw, Label::Sidewalk);
+	const double grOn = pixelF1(ls.labels, truth, sw, Label::Grass);
+	const double grOff = pixelF1(sq.labels, truth, sw, Label::Grass);
+	std::cout << "sidewalk " << swOff << " -> " << swOn << ", grass " << grOff
+	          << " -> " << grOn << "\n";
+	EXPECT_GT(swOn, swOff);
+	EXPECT_GE(grOn, grOff - 0.002);
+	EXPECT_EQ(
+	    ls.count(Label::Sidewalk) + ls.count(Label::Grass),
+	    sq.count(Label::Sidewalk) + sq.count(Label::Grass))
+	    << "only the ground's type changes";
 }
 
 TEST(RuleClassifier, LowGardenWallIsAnObstacleNotAWall)

@@ -204,6 +204,16 @@ const OptionTable<O>& optionTable()
 	        .integer(
 	            "min_patch_squares", &O::minPatchSquares, 0, 1000000,
 	            "Smaller sidewalk/grass patches are absorbed.")
+	        .integer(
+	            "sidewalk_border_half_width_px", &O::sidewalkBorderHalfWidth, 0,
+	            20,
+	            "Squares on the sidewalk/grass border: each pixel by the "
+	            "mean R of the (2h+1)^2 window centred on it (0: off).")
+	        .real(
+	            "sidewalk_flat_max_height_std_m", &O::sidewalkFlatMaxHeightStd,
+	            0, 10,
+	            "Squares grass by R-bar: sidewalk when their heights spread "
+	            "at most this (0: off).")
 	        .real(
 	            "leftover_plane_tolerance_m", &O::leftoverPlaneTolerance, 0, 10,
 	            "Pixels left over join a neighbouring surface this close to "

@@ -270,6 +270,8 @@ void RuleClassifier::labelGroundTypes(
 			                                         : 2;
 		}
 	}
+	if (m_options.sidewalkFlatMaxHeightStd > 0)
+		typeFlatSquares(G, w, roughness.options().minSquarePixels, sq);
 	if (m_options.sidewalkMaxHeightStd > 0)
 		typeSquaresByHeight(G, w, roughness.options().minSquarePixels, sq);
 	spreadSquareTypes(sq, sr, sc);
@@ -282,6 +284,9 @@ void RuleClassifier::labelGroundTypes(
 		L[p] =
 		    static_cast<uint8_t>(sq[k] == 2 ? Label::Grass : Label::Sidewalk);
 	}
+	if (m_options.sidewalkBorderHalfWidth > 0 && roughness.r().rows == rows &&
+	    roughness.r().cols == cols)
+		refineGroundBorder(roughness.r(), G, w, sq, L);
 }
 
 void RuleClassifier::typeSquaresByHeight(

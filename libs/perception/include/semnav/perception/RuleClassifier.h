@@ -74,7 +74,12 @@ namespace semnav
  *    sidewalk_min_rbar, else grass; squares without R-bar (far ground, no
  *    normals) by the spread of their heights (sidewalk_max_height_std_m);
  *    the rest take their nearest neighbour's type; patches under
- *    min_patch_squares are absorbed.
+ *    min_patch_squares are absorbed. Off as shipped (they move the outdoor
+ *    localizer): squares grass by R-bar whose heights spread at most
+ *    sidewalk_flat_max_height_std_m are sidewalk (R-bar is noise where the
+ *    rows nearly coincide, at the sweep's sides), and on the sidewalk /
+ *    grass border each pixel is typed by the mean R of the window centred
+ *    on it (sidewalk_border_half_width_px), not by its square.
  *
  * classify() runs on the images of a NormalImage, the areas of a
  * RangeSegmentation and a Roughness; buffers are reused between calls. */
@@ -154,6 +159,9 @@ public:
 		double sidewalkMinRbar = 0.97;
 		double sidewalkMaxHeightStd = 0.012;
 		int minPatchSquares = 4;
+		// Off: both move the outdoor localizer (docs/perception.md).
+		int sidewalkBorderHalfWidth = 0;
+		double sidewalkFlatMaxHeightStd = 0;
 		// Leftover pixels
 		double leftoverPlaneTolerance = 0.05;
 		bool classifyLeftoverPixels = true;
@@ -324,6 +332,12 @@ private:
 	void typeSquaresByHeight(
 	    const int* groundMask, int w, int minSquarePixels,
 	    std::vector<int8_t>& squareTypes) const;
+	void typeFlatSquares(
+	    const int* groundMask, int w, int minSquarePixels,
+	    std::vector<int8_t>& squareTypes) const;
+	void refineGroundBorder(
+	    const cv::Mat& r, const int* groundMask, int w,
+	    const std::vector<int8_t>& squareTypes, uint8_t* labels);
 	void buildRegions(LabeledSweep& out, const cv::Mat& rBar);
 	void fillRegion(int seed, int id, const uint8_t* labels, int* regionIds);
 
@@ -384,6 +398,7 @@ private:
 	std::vector<int> m_owner;
 	std::vector<int> m_rowOf, m_colOf;
 	cv::Mat m_res, m_wt, m_resSum, m_wtSum;
+	cv::Mat m_groundR, m_groundN;  // refineGroundBorder
 	std::vector<float> m_tmp;
 };
 
