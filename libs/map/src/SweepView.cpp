@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace semnav
 {
@@ -26,6 +27,33 @@ double stepOf(const std::vector<double>& v)
 {
 	return v.size() > 1 ? (v.back() - v.front()) / double(v.size() - 1) : 1;
 }
+/** Where `p` lies from the sweep's tilt axis. */
+struct Direction
+{
+	double dx, dy, d, theta, phi;
+};
+
+/** The direction of `p`, when it is in range and in the field of view.
+ * (The tilt axis: rows differ by a few cm, the laser's offset from it.) */
+std::optional<Direction> directionIn(
+    const Sweep& s, const mrpt::math::TPoint3D& p)
+{
+	const auto& axis = s.sensorPose(s.rows() / 2);
+	Direction v;
+	v.dx = p.x - axis.x();
+	v.dy = p.y - axis.y();
+	const double dz = p.z - axis.z();
+	v.d = std::sqrt(v.dx * v.dx + v.dy * v.dy + dz * dz);
+	if (v.d < 0.2 || v.d > s.maxRange() - kObjectDepth) return std::nullopt;
+	v.theta = std::atan2(dz, v.dx);
+	v.phi = std::asin(v.dy / v.d);
+	const auto& thetas = s.thetas();
+	const auto& phis = s.phis();
+	if (v.theta < thetas.front() || v.theta > thetas.back() ||
+	    v.phi < phis.front() || v.phi > phis.back())
+		return std::nullopt;
+	return v;
+}
 }  // namespace
 
 SweepView::SweepView(const Sweep& sweep, double maxBearing, double minPixels)
@@ -40,18 +68,11 @@ SweepView::SweepView(const Sweep& sweep, double maxBearing, double minPixels)
 bool SweepView::unhidden(const mrpt::math::TPoint3D& p) const
 {
 	const Sweep& s = m_sweep;
-	const auto& thetas = s.thetas();
-	const auto& phis = s.phis();
-	// The tilt axis (rows differ by a few cm: the laser's offset from it).
-	const auto& axis = s.sensorPose(s.rows() / 2);
-	const double dx = p.x - axis.x(), dy = p.y - axis.y(), dz = p.z - axis.z();
-	const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
-	if (d < 0.2 || d > s.maxRange() - kObjectDepth) return false;
-	const double theta = std::atan2(dz, dx), phi = std::asin(dy / d);
-	if (theta < thetas.front() || theta > thetas.back() || phi < phis.front() ||
-	    phi > phis.back())
-		return false;
-	const std::size_t r0 = nearest(thetas, theta), c0 = nearest(phis, phi);
+	const auto v = directionIn(s, p);
+	if (!v) return false;
+	const double d = v->d;
+	const std::size_t r0 = nearest(s.thetas(), v->theta),
+	                  c0 = nearest(s.phis(), v->phi);
 	for (std::size_t r = r0 > 0 ? r0 - 1 : 0;
 	     r <= std::min(r0 + 1, s.rows() - 1); r++)
 		for (std::size_t c = c0 > 0 ? c0 - 1 : 0;
@@ -67,18 +88,9 @@ bool SweepView::inField(
 {
 	const Sweep& s = m_sweep;
 	if (s.empty()) return false;
-	const auto& thetas = s.thetas();
-	const auto& phis = s.phis();
-	const auto& axis = s.sensorPose(s.rows() / 2);
-	const double dx = centroid.x - axis.x(), dy = centroid.y - axis.y(),
-	             dz = centroid.z - axis.z();
-	const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
-	if (d < 0.2 || d > s.maxRange() - kObjectDepth) return false;
-	const double theta = std::atan2(dz, dx), phi = std::asin(dy / d);
-	if (theta < thetas.front() || theta > thetas.back() || phi < phis.front() ||
-	    phi > phis.back())
-		return false;
-	if (std::abs(std::atan2(dy, dx)) > m_maxBearing) return false;
+	const auto v = directionIn(s, centroid);
+	if (!v || std::abs(std::atan2(v->dy, v->dx)) > m_maxBearing) return false;
+	const double d = v->d;
 	// Pixels the object would cover at this distance (its typical detection
 	// size: from where a real one is too small for the cascades, no view).
 	const double wide = std::max(size.x, 0.2), high = std::max(size.z, 0.3);

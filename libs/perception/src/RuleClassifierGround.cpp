@@ -79,31 +79,11 @@ void RuleClassifier::typeFlatSquares(
 	// R-bar is low where the normals are noise: at the sweep's sides the
 	// rows nearly coincide. A grass square (by R-bar) whose ground points'
 	// heights spread at most sidewalk_flat_max_height_std_m is sidewalk.
-	const int* RO = m_rowOf.data();
-	const int* CO = m_colOf.data();
-	const int rows = m_rows, cols = m_cols, n = rows * cols;
-	const int sr = (rows + w - 1) / w, sc = (cols + w - 1) / w;
-	const auto* P = m_points->ptr<cv::Vec3f>(0);
-	std::vector<double> s1(sr * sc, 0.0), s2(sr * sc, 0.0);
-	std::vector<int> cnt(sr * sc, 0);
-	for (int p = 0; p < n; p++)
-	{
-		if (!G[p]) continue;
-		const int k = (RO[p] / w) * sc + CO[p] / w;
-		if (sq[k] != 2) continue;
-		const double z = P[p][2];
-		s1[k] += z;
-		s2[k] += z * z;
-		cnt[k]++;
-	}
+	const auto var = squareHeightVariances(G, w, minSquarePixels, sq, 2);
 	const double maxVar =
 	    m_options.sidewalkFlatMaxHeightStd * m_options.sidewalkFlatMaxHeightStd;
-	for (int k = 0; k < sr * sc; k++)
-	{
-		if (sq[k] != 2 || cnt[k] < minSquarePixels) continue;
-		const double m = s1[k] / cnt[k];
-		if (s2[k] / cnt[k] - m * m <= maxVar) sq[k] = 1;
-	}
+	for (size_t k = 0; k < sq.size(); k++)
+		if (var[k] >= 0 && var[k] <= maxVar) sq[k] = 1;
 }
 
 }  // namespace semnav

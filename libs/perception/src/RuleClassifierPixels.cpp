@@ -296,31 +296,41 @@ void RuleClassifier::typeSquaresByHeight(
 	// normals) are judged by the spread of their ground points' heights:
 	// sidewalk when its standard deviation is at most
 	// sidewalk_max_height_std_m (needs min_square_px points).
+	const auto var = squareHeightVariances(G, w, minSquarePixels, sq, 0);
+	const double maxVar =
+	    m_options.sidewalkMaxHeightStd * m_options.sidewalkMaxHeightStd;
+	for (size_t k = 0; k < sq.size(); k++)
+		if (var[k] >= 0) sq[k] = var[k] <= maxVar ? 1 : 2;
+}
+
+std::vector<double> RuleClassifier::squareHeightVariances(
+    const int* G, int w, int minSquarePixels, const std::vector<int8_t>& sq,
+    int8_t type) const
+{
 	const int* RO = m_rowOf.data();
 	const int* CO = m_colOf.data();
-	const int rows = m_rows, cols = m_cols, n = rows * cols;
-	const int sr = (rows + w - 1) / w, sc = (cols + w - 1) / w;
+	const int n = m_rows * m_cols, sc = (m_cols + w - 1) / w;
 	const auto* P = m_points->ptr<cv::Vec3f>(0);
-	std::vector<double> s1(sr * sc, 0.0), s2(sr * sc, 0.0);
-	std::vector<int> cnt(sr * sc, 0);
+	std::vector<double> s1(sq.size(), 0.0), s2(sq.size(), 0.0);
+	std::vector<int> cnt(sq.size(), 0);
 	for (int p = 0; p < n; p++)
 	{
 		if (!G[p]) continue;
 		const int k = (RO[p] / w) * sc + CO[p] / w;
-		if (sq[k] != 0) continue;
+		if (sq[k] != type) continue;
 		const double z = P[p][2];
 		s1[k] += z;
 		s2[k] += z * z;
 		cnt[k]++;
 	}
-	const double maxVar =
-	    m_options.sidewalkMaxHeightStd * m_options.sidewalkMaxHeightStd;
-	for (int k = 0; k < sr * sc; k++)
+	std::vector<double> var(sq.size(), -1.0);
+	for (size_t k = 0; k < sq.size(); k++)
 	{
-		if (sq[k] != 0 || cnt[k] < minSquarePixels) continue;
+		if (sq[k] != type || cnt[k] < minSquarePixels) continue;
 		const double m = s1[k] / cnt[k];
-		sq[k] = s2[k] / cnt[k] - m * m <= maxVar ? 1 : 2;
+		var[k] = std::max(0.0, s2[k] / cnt[k] - m * m);
 	}
+	return var;
 }
 
 }  // namespace semnav

@@ -335,6 +335,11 @@ private:
 	void typeFlatSquares(
 	    const int* groundMask, int w, int minSquarePixels,
 	    std::vector<int8_t>& squareTypes) const;
+	/** Per w' x w' square of type squareType with >= minSquarePixels
+	 * ground points: the variance of their heights (else -1). */
+	std::vector<double> squareHeightVariances(
+	    const int* groundMask, int w, int minSquarePixels,
+	    const std::vector<int8_t>& squareTypes, int8_t squareType) const;
 	void refineGroundBorder(
 	    const cv::Mat& r, const int* groundMask, int w,
 	    const std::vector<int8_t>& squareTypes, uint8_t* labels);
