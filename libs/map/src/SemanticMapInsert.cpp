@@ -487,15 +487,8 @@ void SemanticMap::insertDetections(
 		mergeObject(
 		    d.label, wc, {std::max(ex, ey), 0, d.extent.z}, lo, hi,
 		    d.shapeScore, seenThisSweep, id);
-		if (std::find(viewedThisSweep.begin(), viewedThisSweep.end(), id) ==
-		    viewedThisSweep.end())
-		{
-			// Detected, so in view (a new instance, or a centroid the
-			// view test missed).
-			for (auto& o : m_instances)
-				if (o.id == id) o.views++;
-			viewedThisSweep.push_back(id);
-		}
+		if (ObjectInstance* o = instanceWithId(id))
+			countDetectedView(*o, viewedThisSweep);
 		paintObject(
 		    e, id, d.imageBox,
 		    [&](int r, int c)
@@ -525,8 +518,8 @@ void SemanticMap::insertRegions(
 		mergeObject(
 		    reg.label, wc, {reg.width, 0, reg.height}, lo, hi, 1.0,
 		    seenThisSweep, id);
-		for (auto& o : m_instances)
-			if (o.id == id) addNormal(robot, reg.meanNormal, o);
+		if (ObjectInstance* o = instanceWithId(id))
+			addNormal(robot, reg.meanNormal, *o);
 		paintObject(
 		    e, id, reg.imageBox,
 		    [&](int r, int c)
@@ -626,16 +619,27 @@ void SemanticMap::countDoorViews(
 		if (k >= firstNew)
 			for (const auto& past : m_pastSweeps)
 				if (doorInView(past->sweep, past->robot, o)) o.views++;
-		// Detected, so in view.
 		if (std::find(seenThisSweep.begin(), seenThisSweep.end(), o.id) !=
-		        seenThisSweep.end() &&
-		    std::find(viewedThisSweep.begin(), viewedThisSweep.end(), o.id) ==
-		        viewedThisSweep.end())
-		{
-			o.views++;
-			viewedThisSweep.push_back(o.id);
-		}
+		    seenThisSweep.end())
+			countDetectedView(o, viewedThisSweep);
 	}
+}
+
+ObjectInstance* SemanticMap::instanceWithId(int id)
+{
+	for (auto& o : m_instances)
+		if (o.id == id) return &o;
+	return nullptr;
+}
+
+void SemanticMap::countDetectedView(
+    ObjectInstance& o, std::vector<int>& viewedThisSweep)
+{
+	if (std::find(viewedThisSweep.begin(), viewedThisSweep.end(), o.id) !=
+	    viewedThisSweep.end())
+		return;
+	o.views++;
+	viewedThisSweep.push_back(o.id);
 }
 
 void SemanticMap::keepSweep(

@@ -424,6 +424,12 @@ private:
 	static void addNormal(
 	    const mrpt::poses::CPose3D& robot, const mrpt::math::TPoint3D& normal,
 	    ObjectInstance& o);
+	/** The instance with this id, or nullptr. */
+	ObjectInstance* instanceWithId(int id);
+	/** A detected instance was in view: one view per sweep (a new instance,
+	 * or a centroid the view test missed). */
+	static void countDetectedView(
+	    ObjectInstance& o, std::vector<int>& viewedThisSweep);
 	/** Keeps the sweep for countDoorViews() (TOptions::doorViewHistory). */
 	void keepSweep(const Sweep& sweep, const mrpt::poses::CPose3D& robot);
 	/** Sets a staircase's centroid (x, y) from its labelled cells (see
