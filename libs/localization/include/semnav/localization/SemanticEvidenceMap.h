@@ -16,6 +16,7 @@ namespace semnav
 {
 class SemanticMap;
 class ObjectFootprints;
+class NearLabels;
 
 /** The semantic side of the localization likelihood: how well a sweep's
  * labels and objects (SemanticObservation) agree with a known semantic map
@@ -72,6 +73,13 @@ public:
 		 * poses, so matching them pulls each estimate back toward those
 		 * poses (by up to the object's depth), sweep after sweep. */
 		bool mappingFlatLabelsOnly = true;
+		/** mapping_label_range_m: while mapping, the points are scored
+		 * against the labels the map's cells received from pixels within
+		 * this range of the robot (NearLabels; cells without one are
+		 * unknown) and the sweep's points farther than this are left out:
+		 * far ground types are the least reliable. 0: the map's "labels"
+		 * layer and every point. */
+		double mappingLabelRange = 0;
 
 		bool enabled() const
 		{
@@ -83,13 +91,19 @@ public:
 	explicit SemanticEvidenceMap(const TOptions& o) : m_options(o) {}
 
 	/** Fields and object instances of a known map; `flatOnly`: the fields
-	 * of the flat labels only (what mapping scores, see observedPart). */
-	void build(const SemanticMap& map, bool flatOnly = false);
+	 * of the flat labels only (what mapping scores, see observedPart);
+	 * `near`: the labels come from it (over the map's grid) instead of the
+	 * map's "labels" layer, and a cell is unknown without one. */
+	void build(
+	    const SemanticMap& map, bool flatOnly = false,
+	    const NearLabels* near = nullptr);
 	/** The same for `map` grown since the last build() or update() from
 	 * it: only the cells near those whose labels or observed state changed
 	 * (SemanticMap::changesSince) are recomputed, with the result of
 	 * build(). A grown grid, another map or other labels build anew. */
-	void update(const SemanticMap& map, bool flatOnly = false);
+	void update(
+	    const SemanticMap& map, bool flatOnly = false,
+	    const NearLabels* near = nullptr);
 	bool empty() const { return m_geometry.cellCount() == 0; }
 
 	/** Log-likelihood of the observation seen from (x, y, yaw): the
@@ -113,7 +127,8 @@ public:
 	 * (x, y, yaw): class and ground points in cells the map observed and
 	 * holding a field of their label, detections of labels with
 	 * instances; with `mapping_flat_labels_only`, only floor, sidewalk
-	 * and grass points. Mapping scores this fixed subset at every
+	 * and grass points; built with NearLabels, only the points within its
+	 * range of the robot. Mapping scores this fixed subset at every
 	 * particle, so that no particle gains by pushing points into unseen
 	 * cells (nor loses: the frontier bias). */
 	SemanticObservation observedPart(
@@ -168,6 +183,8 @@ private:
 	const SemanticMap* m_source = nullptr;
 	std::uint64_t m_version = 0;
 	bool m_flatOnly = false;
+	/** Built from NearLabels: its range (0: from the map's labels). */
+	double m_nearRange = 0;
 	std::vector<float> m_labels;
 	uint32_t m_present = 0;
 };
