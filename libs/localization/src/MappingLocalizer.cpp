@@ -105,8 +105,7 @@ void MappingLocalizer::updateSemanticMap(const SemanticMap& map)
 {
 	if (!m_options.semantic.enabled()) return;
 	const auto t0 = std::chrono::steady_clock::now();
-	m_semantic.update(
-	    map, m_options.semantic.mappingFlatLabelsOnly, m_nearLabels.get());
+	m_semantic.update(map, m_options.semantic.mappingFlatLabelsOnly);
 	m_semanticMs = std::chrono::duration<double, std::milli>(
 	                   std::chrono::steady_clock::now() - t0)
 	                   .count();
@@ -153,22 +152,10 @@ mrpt::poses::CPose2D MappingLocalizer::process(
 	map.insert(sweep, labeled, pose);
 	if (m_method == Method::Walls)
 	{
-		// A heading the sweep left unknown: its far points may lie a metre
-		// off, and what later sweeps match them against would keep that.
-		const double maxYaw = m_options.guard.modelMaxStdYaw;
-		const bool trusted = maxYaw <= 0 || m_last.stdYaw <= maxYaw;
-		if (trusted) m_walls.addObservation(m_obs.segments, pose);
+		m_walls.addObservation(m_obs.segments, pose);
 		m_walls.update(map);
-		if (trusted && m_options.semantic.mappingLabelRange > 0)
-		{
-			if (!m_nearLabels)
-				m_nearLabels = std::make_unique<NearLabels>(
-				    m_options.semantic.mappingLabelRange,
-				    map.geometry().resolution);
-			m_nearLabels->insert(labeled, pose);
-		}
 		updateSemanticMap(map);
-		if (trusted) m_footprints.insert(m_sweepFootprints, pose);
+		m_footprints.insert(m_sweepFootprints, pose);
 	}
 	m_lastOdometry = odo;
 	m_pose = pose;

@@ -45,13 +45,7 @@ const OptionTable<O>& optionTable()
 	            "of the weight connect over gaps of up to two cells)...")
 	        .angle(
 	            "cluster_cell_yaw_deg", &O::clusterCellYaw, 0.1, 180,
-	            "...and their heading size.")
-	        .angle(
-	            "model_max_std_yaw_deg", &O::modelMaxStdYaw, 0, 180,
-	            "Mapping: a sweep whose estimate's heading std dev is above "
-	            "this adds nothing to the walls, near labels and footprints "
-	            "later sweeps are localized against (the map still gets it); "
-	            "0: every sweep adds.");
+	            "...and their heading size.");
 	return t;
 }
 

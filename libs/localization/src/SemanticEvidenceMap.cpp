@@ -1,7 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <semnav/common/LabelSet.h>
 #include <semnav/common/OptionTable.h>
-#include <semnav/localization/NearLabels.h>
 #include <semnav/localization/ObjectFootprints.h>
 #include <semnav/localization/SemanticEvidenceMap.h>
 #include <semnav/localization/SemanticExtractor.h>
@@ -61,13 +60,7 @@ const OptionTable<O>& optionTable()
 	            "mapping_flat_labels_only", &O::mappingFlatLabelsOnly,
 	            "Mapping: score only the flat labels (floor, sidewalk, "
 	            "grass); obstacle and class points are surfaces seen from one "
-	            "side and pull each estimate back toward earlier views.")
-	        .real(
-	            "mapping_label_range_m", &O::mappingLabelRange, 0, 100,
-	            "Mapping: points are scored against the labels map cells got "
-	            "from pixels within this range of the robot, and farther "
-	            "points are left out (far ground types are the least "
-	            "reliable); 0: the map's labels and every point.");
+	            "side and pull each estimate back toward earlier views.");
 	return t;
 }
 }  // namespace
@@ -80,8 +73,7 @@ float SemanticEvidenceMap::value(double d, double sigma, double maxD) const
 	    d, sigma, maxD, m_options.hitWeight, m_options.randomWeight);
 }
 
-void SemanticEvidenceMap::build(
-    const SemanticMap& map, bool flatOnly, const NearLabels* near)
+void SemanticEvidenceMap::build(const SemanticMap& map, bool flatOnly)
 {
 	m_geometry = map.geometry();
 	const float unknown = static_cast<float>(std::log(m_options.unknownWeight));
@@ -89,14 +81,12 @@ void SemanticEvidenceMap::build(
 	m_outside = std::max(far, unknown);
 	for (auto& f : m_fields) f.clear();
 	const std::vector<float>& observations = map.get("observations");
-	const std::vector<float> nearLabels =
-	    near ? near->layer(m_geometry) : std::vector<float>();
-	const std::vector<float>& labels = near ? nearLabels : map.get("labels");
+	const std::vector<float>& labels = map.get("labels");
 	m_unknown.assign(m_geometry.cellCount(), 0);
 	LabelSet::mask_t present = 0;
 	for (std::size_t i = 0; i < m_unknown.size(); i++)
 	{
-		m_unknown[i] = (near ? labels[i] > 0 : observations[i] > 0) ? 0 : 1;
+		m_unknown[i] = observations[i] > 0 ? 0 : 1;
 		present |= static_cast<LabelSet::mask_t>(labels[i]);
 	}
 	for (const Label l : allLabels())
@@ -109,7 +99,6 @@ void SemanticEvidenceMap::build(
 	m_source = &map;
 	m_version = map.version();
 	m_flatOnly = flatOnly;
-	m_nearRange = near ? near->range() : 0;
 	m_labels = labels;
 	m_present = present;
 }
@@ -180,16 +169,13 @@ SemanticObservation SemanticEvidenceMap::observedPart(
 	const bool flatOnly = m_options.mappingFlatLabelsOnly;
 	const auto isFlat = [](Label l)
 	{ return SemanticExtractor::isGroundLabel(l) && l != Label::Obstacle; };
-	const double r2 = m_nearRange * m_nearRange;
 	const auto keep = [&](const std::vector<SemanticSample>& in,
-	                      std::vector<SemanticSample>& dst, bool ground)
+	                      std::vector<SemanticSample>& dst)
 	{
 		for (const auto& p : in)
 		{
 			int cx = 0, cy = 0;
 			if (!hasField(p.label) || (flatOnly && !isFlat(p.label)) ||
-			    (ground && r2 > 0 &&
-			     double(p.x) * p.x + double(p.y) * p.y > r2) ||
 			    !m_geometry.worldToCell(
 			        x + c * p.x - s * p.y, y + s * p.x + c * p.y, cx, cy) ||
 			    m_unknown[m_geometry.index(cy, cx)])
@@ -197,8 +183,8 @@ SemanticObservation SemanticEvidenceMap::observedPart(
 			dst.push_back(p);
 		}
 	};
-	if (!flatOnly) keep(obs.classSamples, out.classSamples, false);
-	keep(obs.groundSamples, out.groundSamples, true);
+	if (!flatOnly) keep(obs.classSamples, out.classSamples);
+	keep(obs.groundSamples, out.groundSamples);
 	for (const auto& o : obs.objects)
 		if (!m_objects[static_cast<std::size_t>(o.label)].empty())
 			out.objects.push_back(o);

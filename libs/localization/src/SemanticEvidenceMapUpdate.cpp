@@ -7,16 +7,13 @@
 
 namespace semnav
 {
-void SemanticEvidenceMap::update(
-    const SemanticMap& map, bool flatOnly, const NearLabels* near)
+void SemanticEvidenceMap::update(const SemanticMap& map, bool flatOnly)
 {
 	const SemanticMap::Changes changes = map.changesSince(m_version);
-	// NearLabels: a new sweep's near labels need not change the map's, so
-	// the map's changes do not bound them; built anew (a few ms per sweep).
-	if (near || m_nearRange > 0 || m_source != &map || flatOnly != m_flatOnly ||
-	    changes.all || !(map.geometry() == m_geometry))
+	if (m_source != &map || flatOnly != m_flatOnly || changes.all ||
+	    !(map.geometry() == m_geometry))
 	{
-		build(map, flatOnly, near);
+		build(map, flatOnly);
 		return;
 	}
 	// Per label, the cells that gained or lost it; the cells observed for

@@ -5,7 +5,6 @@
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/system/COutputLogger.h>
 #include <semnav/localization/Localizer.h>
-#include <semnav/localization/NearLabels.h>
 #include <semnav/localization/ObjectFootprints.h>
 #include <semnav/localization/OccupancyMcl.h>
 #include <semnav/localization/PredictionGuard.h>
@@ -108,8 +107,6 @@ private:
 	ObjectFootprints m_footprints;
 	std::vector<ObjectFootprints::Footprint> m_sweepFootprints;
 	PredictionGuard m_guard;
-	/** The near labels (SemanticEvidence mapping_label_range_m > 0). */
-	std::unique_ptr<NearLabels> m_nearLabels;
 	WallObservation m_obs;
 	SemanticObservation m_semanticObs;
 	double m_semanticMs = 0;

@@ -71,12 +71,6 @@ public:
 		 * to two cells. */
 		double clusterCellM = 0.25;
 		double clusterCellYaw = mrpt::DEG2RAD(10.0);
-		/** model_max_std_yaw_deg: a sweep whose estimate's heading spreads
-		 * more (std dev of the particles) adds nothing to what later
-		 * sweeps are localized against (walls, near labels, footprints;
-		 * the map still gets it): its far points may lie a metre off. 0:
-		 * every sweep adds. */
-		double modelMaxStdYaw = 0;
 	};
 
 	/** What the guard decided for one update. */

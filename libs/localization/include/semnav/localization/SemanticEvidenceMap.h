@@ -16,7 +16,6 @@ namespace semnav
 {
 class SemanticMap;
 class ObjectFootprints;
-class NearLabels;
 
 /** The semantic side of the localization likelihood: how well a sweep's
  * labels and objects (SemanticObservation) agree with a known semantic map
@@ -73,13 +72,6 @@ public:
 		 * poses, so matching them pulls each estimate back toward those
 		 * poses (by up to the object's depth), sweep after sweep. */
 		bool mappingFlatLabelsOnly = true;
-		/** mapping_label_range_m: while mapping, the points are scored
-		 * against the labels the map's cells received from pixels within
-		 * this range of the robot (NearLabels; cells without one are
-		 * unknown) and the sweep's points farther than this are left out:
-		 * far ground types are the least reliable. 0: the map's "labels"
-		 * layer and every point. */
-		double mappingLabelRange = 0;
 
 		bool enabled() const
 		{
@@ -91,19 +83,13 @@ public:
 	explicit SemanticEvidenceMap(const TOptions& o) : m_options(o) {}
 
 	/** Fields and object instances of a known map; `flatOnly`: the fields
-	 * of the flat labels only (what mapping scores, see observedPart);
-	 * `near`: the labels come from it (over the map's grid) instead of the
-	 * map's "labels" layer, and a cell is unknown without one. */
-	void build(
-	    const SemanticMap& map, bool flatOnly = false,
-	    const NearLabels* near = nullptr);
+	 * of the flat labels only (what mapping scores, see observedPart). */
+	void build(const SemanticMap& map, bool flatOnly = false);
 	/** The same for `map` grown since the last build() or update() from
 	 * it: only the cells near those whose labels or observed state changed
 	 * (SemanticMap::changesSince) are recomputed, with the result of
 	 * build(). A grown grid, another map or other labels build anew. */
-	void update(
-	    const SemanticMap& map, bool flatOnly = false,
-	    const NearLabels* near = nullptr);
+	void update(const SemanticMap& map, bool flatOnly = false);
 	bool empty() const { return m_geometry.cellCount() == 0; }
 
 	/** Log-likelihood of the observation seen from (x, y, yaw): the
@@ -127,8 +113,7 @@ public:
 	 * (x, y, yaw): class and ground points in cells the map observed and
 	 * holding a field of their label, detections of labels with
 	 * instances; with `mapping_flat_labels_only`, only floor, sidewalk
-	 * and grass points; built with NearLabels, only the points within its
-	 * range of the robot. Mapping scores this fixed subset at every
+	 * and grass points. Mapping scores this fixed subset at every
 	 * particle, so that no particle gains by pushing points into unseen
 	 * cells (nor loses: the frontier bias). */
 	SemanticObservation observedPart(
@@ -183,8 +168,6 @@ private:
 	const SemanticMap* m_source = nullptr;
 	std::uint64_t m_version = 0;
 	bool m_flatOnly = false;
-	/** Built from NearLabels: its range (0: from the map's labels). */
-	double m_nearRange = 0;
 	std::vector<float> m_labels;
 	uint32_t m_present = 0;
 };
