@@ -193,6 +193,12 @@ const OptionTable<O>& optionTable()
 	            "door_shape_split", &O::doorShapeSplit,
 	            "A plane step of door_seam_split_offset_m without seams splits "
 	            "when one side is a leaf-shaped box under the other.")
+	        .flag(
+	            "door_lintel_split", &O::doorLintelSplit,
+	            "A stretch of a wall door_search_min_size_m to "
+	            "door_max_width_m wide whose lower part steps by "
+	            "door_seam_split_offset_m from the wall above it (a leaf under "
+	            "its lintel), while the wall beside it does not, splits off.")
 	        .real(
 	            "sidewalk_min_rbar", &O::sidewalkMinRbar, -1, 1,
 	            "Outdoor ground: sidewalk where R-bar is at least this, "

@@ -541,7 +541,8 @@ void RuleClassifier::splitByResiduals(
 	{
 		if (m_slotSeamOnly[k])
 		{
-			if (splitAtSeams(k, normal[k], offset[k]))
+			if (splitAtSeams(k, normal[k], offset[k]) ||
+			    splitUnderLintel(k, normal[k], offset[k]))
 				m_groupSplit[m_parent[m_surf[pix[start[k]]]]] = 1;
 			continue;
 		}
@@ -583,9 +584,12 @@ void RuleClassifier::splitByResiduals(
 			{
 				// Else a leaf-shaped side under the other (the seams unseen
 				// at a grazing angle, or the frame flush).
+				// Or a leaf under its lintel (the plane leaning towards
+				// a leaf that covers much of the group hides the step).
 				if (splitAtSeams(k, normal[k], offset[k]) ||
 				    (sized && step >= m_options.doorSeamSplitOffset &&
-				     splitDoorShaped(k, thr, normal[k], offset[k])))
+				     splitDoorShaped(k, thr, normal[k], offset[k])) ||
+				    splitUnderLintel(k, normal[k], offset[k]))
 					m_groupSplit[m_parent[m_surf[pix[start[k]]]]] = 1;
 				continue;
 			}

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 #include "RuleClassifierDetail.h"
 
@@ -225,6 +227,121 @@ LeafBox leafBoxOf(
 		       z[side][i] <= b.zHi;
 	b.purity = double(own) / std::max(1, own + intruders);
 	return b;
+}
+
+/** Raw residuals of a group summed in kLintelBin squares along the plane
+ * (column, u) and in height (row, z); per column, prefix sums over z. */
+struct ResidualGrid
+{
+	double u0 = 0, z0 = 0;
+	int nu = 0, nz = 0;
+	std::vector<double> sum;  ///< (nz + 1) x nu, prefix over z
+	std::vector<int> cnt;     ///< (nz + 1) x nu, prefix over z
+	/** Residual sum and pixel count of column c, rows [z0b, z1b). */
+	std::pair<double, int> band(int c, int z0b, int z1b) const
+	{
+		z0b = std::clamp(z0b, 0, nz);
+		z1b = std::clamp(z1b, 0, nz);
+		if (z1b <= z0b) return {0.0, 0};
+		return {
+		    sum[z1b * nu + c] - sum[z0b * nu + c],
+		    cnt[z1b * nu + c] - cnt[z0b * nu + c]};
+	}
+};
+
+/** Bins of the lintel split (m), and its bands: below a candidate height
+ * h, rows h - kBelow .. h - kGap; above it, h + kGap .. h + kGap + kAbove
+ * (the leaf's top gap and the smoothing stay out of both). */
+constexpr double kLintelBin = 0.05;
+constexpr int kLintelGap = 2, kLintelBelow = 12, kLintelAbove = 5;
+/** A column's band needs this many pixels. */
+constexpr int kLintelMinPixels = 5;
+
+/** Per column, the mean residual below height row h minus the mean above
+ * it (NaN where either band has too few pixels). */
+std::vector<double> lintelSteps(const ResidualGrid& g, int h)
+{
+	std::vector<double> d(g.nu, std::numeric_limits<double>::quiet_NaN());
+	for (int c = 0; c < g.nu; c++)
+	{
+		const auto lo = g.band(c, h - kLintelBelow, h - kLintelGap);
+		const auto hi =
+		    g.band(c, h + kLintelGap, h + kLintelGap + kLintelAbove);
+		if (lo.second >= kLintelMinPixels && hi.second >= kLintelMinPixels)
+			d[c] = lo.first / lo.second - hi.first / hi.second;
+	}
+	return d;
+}
+
+/** A stretch of columns [c0, c1] stepping under row h by `sign`. */
+struct LintelRun
+{
+	int c0 = -1, c1 = -1, h = -1, sign = 0;
+	double score = 0;
+};
+
+/** The best stretch of `d` (columns stepping by half `step` with the sign,
+ * single unseen columns inside allowed) minBins..maxBins wide, whose mean
+ * steps by `step`, with a flat flank (two columns within half `step`) on
+ * one side and a flat or unseen one on the other. */
+LintelRun bestLintelRun(
+    const std::vector<double>& d, int h, double step, int minBins, int maxBins)
+{
+	constexpr int kFlank = 3;
+	const int n = static_cast<int>(d.size());
+	LintelRun best;
+	for (int sign = -1; sign <= 1; sign += 2)
+	{
+		auto in = [&](int c) { return sign * d[c] >= 0.5 * step; };
+		int c = 0;
+		while (c < n)
+		{
+			if (std::isnan(d[c]) || !in(c))
+			{
+				c++;
+				continue;
+			}
+			int c1 = c;
+			double sum = 0;
+			int valid = 0;
+			for (int k = c; k < n; k++)
+			{
+				if (std::isnan(d[k]))
+				{
+					if (k + 1 < n && !std::isnan(d[k + 1]) && in(k + 1))
+						continue;
+					break;
+				}
+				if (!in(k)) break;
+				sum += sign * d[k];
+				valid++;
+				c1 = k;
+			}
+			auto flank = [&](int from, int dir, bool& open)
+			{
+				int flat = 0, seen = 0;
+				for (int k = 1; k <= kFlank; k++)
+				{
+					const int cc = from + dir * k;
+					if (cc < 0 || cc >= n || std::isnan(d[cc])) continue;
+					seen++;
+					flat += std::abs(d[cc]) < 0.5 * step;
+				}
+				open = seen == 0;
+				return flat >= 2;
+			};
+			bool openL = false, openR = false;
+			const bool flatL = flank(c, -1, openL), flatR = flank(c1, 1, openR);
+			const int w = c1 - c + 1;
+			const double mean = sum / valid;
+			if (w >= minBins && w <= maxBins && mean >= step &&
+			    ((flatL && (flatR || openR)) || (flatR && openL)) &&
+			    sum > best.score)
+				best = {c, c1, h, sign, sum};
+			c = c1 + 1;
+		}
+	}
+	return best;
 }
 }  // namespace
 
@@ -455,6 +572,86 @@ bool RuleClassifier::splitDoorShaped(
 		return any;
 	}
 	return false;
+}
+
+bool RuleClassifier::splitUnderLintel(
+    int slot, const cv::Vec3d& normal, double offset)
+{
+	const TOptions& o = m_options;
+	if (!o.doorLintelSplit || o.doorSeamSplitOffset <= 0) return false;
+	const auto* P = m_points->ptr<cv::Vec3f>(0);
+	const int* pix = m_slotPix.data();
+	const int i0 = m_slotStart[slot], i1 = m_slotStart[slot + 1];
+	const cv::Vec3d along(-normal[1], normal[0], 0);
+	auto alongOf = [&](int p)
+	{ return along[0] * P[p][0] + along[1] * P[p][1]; };
+	ResidualGrid g;
+	double uHi = -1e30, zHi = -1e30;
+	g.u0 = g.z0 = 1e30;
+	for (int i = i0; i < i1; i++)
+	{
+		const int p = pix[i];
+		g.u0 = std::min(g.u0, alongOf(p));
+		uHi = std::max(uHi, alongOf(p));
+		g.z0 = std::min(g.z0, double(P[p][2]));
+		zHi = std::max(zHi, double(P[p][2]));
+	}
+	const int minBins =
+	    static_cast<int>(std::ceil(o.doorSearchMinSize / kLintelBin));
+	const int maxBins = static_cast<int>(o.doorMaxWidth / kLintelBin);
+	g.nu = static_cast<int>((uHi - g.u0) / kLintelBin) + 1;
+	g.nz = static_cast<int>((zHi - g.z0) / kLintelBin) + 1;
+	if (g.nu < minBins || g.nz < kLintelBelow + kLintelGap + kLintelAbove)
+		return false;
+	g.sum.assign((g.nz + 1) * g.nu, 0.0);
+	g.cnt.assign((g.nz + 1) * g.nu, 0);
+	for (int i = i0; i < i1; i++)
+	{
+		const int p = pix[i];
+		const int c = static_cast<int>((alongOf(p) - g.u0) / kLintelBin);
+		const int r = static_cast<int>((P[p][2] - g.z0) / kLintelBin);
+		g.sum[(r + 1) * g.nu + c] += planeResidual(normal, offset, P[p]);
+		g.cnt[(r + 1) * g.nu + c]++;
+	}
+	for (int r = 1; r <= g.nz; r++)
+		for (int c = 0; c < g.nu; c++)
+		{
+			g.sum[r * g.nu + c] += g.sum[(r - 1) * g.nu + c];
+			g.cnt[r * g.nu + c] += g.cnt[(r - 1) * g.nu + c];
+		}
+	// Candidate heights: a leaf shows door_search_min_size_m of its height
+	// and is at most door_max_height_m high.
+	const int hLo = std::max(
+	    kLintelBelow,
+	    static_cast<int>(std::ceil(o.doorSearchMinSize / kLintelBin)));
+	const int hHi = std::min(
+	    g.nz - kLintelGap - kLintelAbove,
+	    static_cast<int>(o.doorMaxHeight / kLintelBin));
+	LintelRun best;
+	for (int h = hLo; h <= hHi; h++)
+	{
+		const LintelRun r = bestLintelRun(
+		    lintelSteps(g, h), h, o.doorSeamSplitOffset, minBins, maxBins);
+		if (r.score > best.score) best = r;
+	}
+	if (best.sign == 0) return false;
+	const double a0 = g.u0 + best.c0 * kLintelBin,
+	             a1 = g.u0 + (best.c1 + 1) * kLintelBin,
+	             top = g.z0 + best.h * kLintelBin;
+	MRPT_LOG_DEBUG_FMT(
+	    "lintel split %d: stretch %.2f..%.2f m below %.2f m, step %.4f", slot,
+	    a0, a1, top,
+	    best.sign * best.score / std::max(1, best.c1 - best.c0 + 1));
+	bool any = false;
+	for (int i = i0; i < i1; i++)
+	{
+		const int p = pix[i];
+		const double u = alongOf(p);
+		const bool in = u >= a0 && u < a1 && P[p][2] < top;
+		m_side[p] = in ? 1 : 0;
+		any |= in;
+	}
+	return any;
 }
 
 }  // namespace semnav

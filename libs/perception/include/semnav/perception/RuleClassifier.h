@@ -155,6 +155,7 @@ public:
 		bool doorLintelOneSide = true;
 		double doorOcclusionMargin = 0.05;
 		bool doorShapeSplit = true;
+		bool doorLintelSplit = true;
 		// Ground type (outdoor)
 		double sidewalkMinRbar = 0.97;
 		double sidewalkMaxHeightStd = 0.012;
@@ -287,6 +288,14 @@ private:
 	 * when it does. */
 	bool splitDoorShaped(
 	    int slot, float threshold, const cv::Vec3d& normal, double offset);
+	/** With door_lintel_split: where, below some height, a stretch of
+	 * slot's group (door_search_min_size_m to door_max_width_m wide) lies
+	 * door_seam_split_offset_m behind or before the same stretch above
+	 * that height (a lintel), and the group beside it does not, gives the
+	 * stretch below that height side 1 in m_side; true when it does. The
+	 * step is measured column by column against the wall above, so a
+	 * least-squares plane leaning towards the leaf does not hide it. */
+	bool splitUnderLintel(int slot, const cv::Vec3d& normal, double offset);
 	/** Step 3, pass 2: pixels of one coplanar group (m_parent) and one side
 	 * of its plane step. */
 	void buildGroupSurfaces();
