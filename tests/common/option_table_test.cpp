@@ -16,7 +16,7 @@ enum class Mode
 	Safe
 };
 
-struct Opts : public mrpt::config::CLoadableOptions
+struct AllKindsOpts : public mrpt::config::CLoadableOptions
 {
 	double lethal = 100, floor = 1, angle = 20.0 * M_PI / 180;
 	int count = 3;
@@ -25,22 +25,24 @@ struct Opts : public mrpt::config::CLoadableOptions
 	std::string path = "a.xml";
 	std::vector<double> heights{0.1, 0.5};
 
-	static const OptionTable<Opts>& table()
+	static const OptionTable<AllKindsOpts>& table()
 	{
 		static const auto t =
-		    OptionTable<Opts>()
-		        .real("lethal", &Opts::lethal, 1, 1e6, "Blocked cost.")
-		        .real("floor", &Opts::floor, 0, &Opts::lethal, "Floor cost.")
-		        .angle("angle_deg", &Opts::angle, 0, 90, "An angle.")
-		        .integer("count", &Opts::count, 1, 10, "A count.")
-		        .flag("flag", &Opts::flag, "A flag.")
+		    OptionTable<AllKindsOpts>()
+		        .real("lethal", &AllKindsOpts::lethal, 1, 1e6, "Blocked cost.")
+		        .real(
+		            "floor", &AllKindsOpts::floor, 0, &AllKindsOpts::lethal,
+		            "Floor cost.")
+		        .angle("angle_deg", &AllKindsOpts::angle, 0, 90, "An angle.")
+		        .integer("count", &AllKindsOpts::count, 1, 10, "A count.")
+		        .flag("flag", &AllKindsOpts::flag, "A flag.")
 		        .choice(
-		            "mode", &Opts::mode,
+		            "mode", &AllKindsOpts::mode,
 		            {{Mode::Fast, "fast"}, {Mode::Safe, "safe"}}, "A mode.")
-		        .text("path", &Opts::path, "A path.")
-		        .reals("heights_m", &Opts::heights, 0, 10, "Heights.")
+		        .text("path", &AllKindsOpts::path, "A path.")
+		        .reals("heights_m", &AllKindsOpts::heights, 0, 10, "Heights.")
 		        .check(
-		            [](const Opts& o) { return o.count != 7; },
+		            [](const AllKindsOpts& o) { return o.count != 7; },
 		            "count must not be 7");
 		return t;
 	}
@@ -59,7 +61,7 @@ struct Opts : public mrpt::config::CLoadableOptions
 std::string errorOf(const std::string& ini)
 {
 	mrpt::config::CConfigFileMemory c(ini);
-	Opts o;
+	AllKindsOpts o;
 	try
 	{
 		o.loadFromConfigFile(c, "S");
@@ -76,7 +78,7 @@ TEST(OptionTable, LoadsEveryKindAndKeepsAbsentKeys)
 {
 	mrpt::config::CConfigFileMemory c(
 	    "[S]\nfloor = 50\nangle_deg = 45\nmode = Safe\nheights_m = 1 2 3\n");
-	Opts o;
+	AllKindsOpts o;
 	o.loadFromConfigFile(c, "S");
 	EXPECT_DOUBLE_EQ(o.floor, 50);
 	EXPECT_DOUBLE_EQ(o.angle, M_PI / 4);
@@ -119,39 +121,39 @@ TEST(OptionTable, BoundOnAnotherKeyUsesTheValueRead)
 TEST(OptionTable, FailedLoadLeavesOptionsUnchanged)
 {
 	mrpt::config::CConfigFileMemory c("[S]\nfloor = 5\ncount = 99\n");
-	Opts o;
+	AllKindsOpts o;
 	EXPECT_THROW(o.loadFromConfigFile(c, "S"), ConfigError);
 	EXPECT_DOUBLE_EQ(o.floor, 1);
 }
 
 TEST(OptionTable, SavedAndLoadedBackEqual)
 {
-	Opts o;
+	AllKindsOpts o;
 	o.floor = 0.1 + 0.2;
 	o.angle = 0.123456789;
 	o.mode = Mode::Safe;
 	o.heights = {0.25};
 	mrpt::config::CConfigFileMemory mem;
 	o.saveToConfigFile(mem, "S");
-	Opts back;
+	AllKindsOpts back;
 	back.floor = 7;
 	back.loadFromConfigFile(mem, "S");
 	EXPECT_EQ(back.floor, o.floor);
 	EXPECT_NEAR(back.angle, o.angle, 1e-12);
 	EXPECT_EQ(back.mode, Mode::Safe);
 	EXPECT_EQ(back.heights, o.heights);
-	EXPECT_EQ(Opts::table().keys().size(), 8u);
+	EXPECT_EQ(AllKindsOpts::table().keys().size(), 8u);
 }
 
 TEST(OptionTable, ConfigTextHasEveryKeyBelowItsDoc)
 {
-	Opts o;
+	AllKindsOpts o;
 	const std::string t = configText({{"S", &o}}, "Header");
 	EXPECT_EQ(
 	    t.rfind("# Header\n\n[S]\n# Blocked cost.\nlethal = 100\n", 0), 0u)
 	    << t;
 	EXPECT_NE(t.find("# An angle.\nangle_deg = 20\n"), std::string::npos) << t;
 	mrpt::config::CConfigFileMemory back(t);
-	Opts loaded;
+	AllKindsOpts loaded;
 	EXPECT_NO_THROW(loaded.loadFromConfigFile(back, "S"));
 }

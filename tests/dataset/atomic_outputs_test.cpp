@@ -35,6 +35,7 @@
 #include <sstream>
 #include <thread>
 
+#include "../TestPaths.h"
 #include "AppRunner.h"
 
 using namespace semnav;
@@ -45,7 +46,6 @@ extern char** environ;
 
 namespace
 {
-const std::string kSrc = SEMNAV_SOURCE_DIR;
 const bool kVerbose = std::getenv("SEMNAV_KILL_VERBOSE") != nullptr;
 
 int envInt(const char* name, int fallback)
@@ -70,7 +70,7 @@ fs::path writeScene(
     const fs::path& dir, const std::string& name,
     const std::vector<std::string>& trajectory)
 {
-	std::ifstream in(kSrc + "/datasets/nav/utrap.yaml");
+	std::ifstream in(test::kSourceDir + "/datasets/nav/utrap.yaml");
 	std::stringstream ss;
 	ss << in.rdbuf();
 	std::string text = ss.str();
@@ -445,7 +445,7 @@ TEST(AtomicOutputs, KilledSemnavSimLeavesAWholeDatasetOrARefusedOne)
 TEST(AtomicOutputs, SemnavNavLeavesNoNavlogDirectoryWhenItFails)
 {
 	const fs::path root = tmpDir("nav");
-	const std::string scene = kSrc + "/datasets/nav/utrap.yaml";
+	const std::string scene = test::kSourceDir + "/datasets/nav/utrap.yaml";
 	const auto navArgs = [&](const std::string& command, const fs::path& out)
 	{
 		return std::vector<std::string>{

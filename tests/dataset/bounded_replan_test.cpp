@@ -10,11 +10,12 @@
 
 #include <random>
 
+#include "../TestPaths.h"
+
 using namespace semnav;
 
 namespace
 {
-const std::string kSrc = SEMNAV_SOURCE_DIR;
 
 TraversabilityBuilder::TOptions traversabilityOptions()
 {
@@ -43,7 +44,9 @@ TEST(BoundedReplan, SharedPathsAndCopiedFieldsAreTheFreshPlanners)
 {
 	SemanticMap map;
 	SceneMapBuilder::build(
-	    SceneLoader::loadFile(kSrc + "/datasets/office/office.yaml"), map);
+	    SceneLoader::loadFile(
+	        test::kSourceDir + "/datasets/office/office.yaml"),
+	    map);
 	const CnnPlanner::TOptions cnn;
 	SemanticPlanner planner(map, cnn, traversabilityOptions());
 	planner.setStartBoundedRepair(true);

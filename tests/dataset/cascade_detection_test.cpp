@@ -25,11 +25,12 @@
 #include <set>
 #include <tuple>
 
+#include "../TestPaths.h"
+
 using namespace semnav;
 
 namespace
 {
-const std::string kSource = SEMNAV_SOURCE_DIR;
 
 struct Simulated
 {
@@ -44,7 +45,7 @@ const Simulated& scene()
 	{
 		Simulated out;
 		const Scene sc = SceneLoader::loadFile(
-		    kSource + "/datasets/cascade-scenes/test_c.yaml");
+		    test::kSourceDir + "/datasets/cascade-scenes/test_c.yaml");
 		RayCaster rc(sc, 1);
 		TiltingLaserSimulator sim(rc, sc.sensor, 1);
 		for (std::size_t k = 0; k < sc.trajectory.size(); k++)
@@ -87,7 +88,7 @@ protected:
 	void SetUp() override
 	{
 		opts = CascadeDetector::TOptions::fromIniFile(
-		    kSource + "/config/cascade.ini");
+		    test::kSourceDir + "/config/cascade.ini");
 		for (const auto& k : opts.classes)
 			ASSERT_TRUE(std::filesystem::exists(opts.cascadePath(k)))
 			    << opts.cascadePath(k);
@@ -630,8 +631,8 @@ TEST_F(CascadeDetection, ShapeTrainingLearnsEachCandidateByItsOwnBox)
 	// scripts/train-cascades reproduces the shipped forests.
 	const auto dir = std::filesystem::temp_directory_path() /
 	                 ("semnav_shape_training_" + std::to_string(::getpid()));
-	const Scene sc =
-	    SceneLoader::loadFile(kSource + "/datasets/cascade-scenes/test_c.yaml");
+	const Scene sc = SceneLoader::loadFile(
+	    test::kSourceDir + "/datasets/cascade-scenes/test_c.yaml");
 	SimulationRunner(sc, SimulationRunner::TOptions(), 1).run(dir.string());
 	ShapeTraining::Params params;
 	params.grids = false;

@@ -18,12 +18,13 @@
 #include <filesystem>
 #include <string>
 
+#include "../TestPaths.h"
+
 using namespace semnav;
 namespace fs = std::filesystem;
 
 namespace
 {
-const std::string kSource = SEMNAV_SOURCE_DIR;
 
 /** A README figure: precision and recall measured, and the margin below
  * them the test accepts. */
@@ -56,7 +57,7 @@ void expectAtLeast(
 TEST(DetectionAccuracy, TwelveHeldOutRoomsHoldTheReadmeFigures)
 {
 	DetectionEvaluation ev(CascadeDetector::TOptions::fromIniFile(
-	    kSource + "/config/cascade.ini"));
+	    test::kSourceDir + "/config/cascade.ini"));
 	const fs::path tmp = fs::temp_directory_path() /
 	                     ("semnav_detacc_" + std::to_string(::getpid()));
 	std::size_t sweeps = 0;
@@ -64,7 +65,7 @@ TEST(DetectionAccuracy, TwelveHeldOutRoomsHoldTheReadmeFigures)
 	{
 		const std::string name = std::string("test_") + room;
 		const Scene scene = SceneLoader::loadFile(
-		    kSource + "/datasets/cascade-scenes/" + name + ".yaml");
+		    test::kSourceDir + "/datasets/cascade-scenes/" + name + ".yaml");
 		const fs::path dir = tmp / name;
 		fs::remove_all(dir);
 		SimulationRunner(scene, SimulationRunner::TOptions(), 1)

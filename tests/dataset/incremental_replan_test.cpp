@@ -13,13 +13,13 @@
 #include <functional>
 #include <random>
 
+#include "../TestPaths.h"
 #include "../map/MapTestUtils.h"
 
 using namespace semnav;
 
 namespace
 {
-const std::string kSrc = SEMNAV_SOURCE_DIR;
 
 struct Outcome
 {
@@ -27,7 +27,7 @@ struct Outcome
 	SemanticPlanner::Plan plan;
 };
 
-Outcome attempt(const std::function<SemanticPlanner::Plan()>& f)
+Outcome outcomeOf(const std::function<SemanticPlanner::Plan()>& f)
 {
 	Outcome o;
 	try
@@ -62,7 +62,7 @@ void expectSame(const Outcome& a, const Outcome& b, int step)
 	EXPECT_EQ(a.plan.goalObjectId, b.plan.goalObjectId) << "step " << step;
 }
 
-TraversabilityBuilder::TOptions traversabilityOptions()
+TraversabilityBuilder::TOptions replanTraversabilityOptions()
 {
 	TraversabilityBuilder::TOptions o;
 	o.robotRadius = 0.2;
@@ -81,14 +81,16 @@ TEST(IncrementalReplan, RandomChangesGiveTheFreshPlannersPlans)
 {
 	SemanticMap map;
 	SceneMapBuilder::build(
-	    SceneLoader::loadFile(kSrc + "/datasets/office/office.yaml"), map);
+	    SceneLoader::loadFile(
+	        test::kSourceDir + "/datasets/office/office.yaml"),
+	    map);
 	// Direct writes go through references taken once (before the first
 	// plan) and are recorded with markChanged() / updateCosts(rect).
 	auto& labels = map.get("labels");
 	auto& observations = map.get("observations");
 	auto& grid = map.occupancyGrid();
 	const GridGeometry g = map.geometry();
-	SemanticPlanner planner(map, cnnOptions(), traversabilityOptions());
+	SemanticPlanner planner(map, cnnOptions(), replanTraversabilityOptions());
 	const int washbasin = map.instances(Label::Washbasin).at(0).id;
 	std::mt19937 rng(37);
 	std::uniform_real_distribution<double> X(0.5, 11.5), Y(0.5, 7.5);
@@ -165,7 +167,7 @@ TEST(IncrementalReplan, RandomChangesGiveTheFreshPlannersPlans)
 		const double sx = X(rng), sy = Y(rng);
 		const auto plan = [&](const SemanticPlanner& p)
 		{
-			return attempt(
+			return outcomeOf(
 			    [&]
 			    {
 				    switch (goal)
@@ -183,7 +185,7 @@ TEST(IncrementalReplan, RandomChangesGiveTheFreshPlannersPlans)
 				    }
 			    });
 		};
-		SemanticPlanner fresh(map, cnnOptions(), traversabilityOptions());
+		SemanticPlanner fresh(map, cnnOptions(), replanTraversabilityOptions());
 		fresh.setExtraObstacles(planner.extraObstacles());
 		expectSame(plan(planner), plan(fresh), step);
 		if (HasFatalFailure()) return;
@@ -205,8 +207,10 @@ TEST(IncrementalReplan, UnchangedMapReusesTheFieldAndChangesRepairIt)
 {
 	SemanticMap map;
 	SceneMapBuilder::build(
-	    SceneLoader::loadFile(kSrc + "/datasets/office/office.yaml"), map);
-	SemanticPlanner planner(map, cnnOptions(), traversabilityOptions());
+	    SceneLoader::loadFile(
+	        test::kSourceDir + "/datasets/office/office.yaml"),
+	    map);
+	SemanticPlanner planner(map, cnnOptions(), replanTraversabilityOptions());
 	const auto a = planner.toLabel(5, 4, Label::Wastebasket, CostProfile::Safe);
 	EXPECT_EQ(planner.counters().last, SemanticPlanner::FieldUpdate::Full);
 	const auto b = planner.toLabel(5, 3, Label::Wastebasket, CostProfile::Safe);
@@ -221,7 +225,7 @@ TEST(IncrementalReplan, UnchangedMapReusesTheFieldAndChangesRepairIt)
 	const auto c = planner.toLabel(5, 3, Label::Wastebasket, CostProfile::Safe);
 	EXPECT_EQ(
 	    planner.counters().repairs + planner.counters().repairFallbacks, 1u);
-	SemanticPlanner fresh(map, cnnOptions(), traversabilityOptions());
+	SemanticPlanner fresh(map, cnnOptions(), replanTraversabilityOptions());
 	fresh.setExtraObstacles({mid});
 	const auto d = fresh.toLabel(5, 3, Label::Wastebasket, CostProfile::Safe);
 	EXPECT_EQ(c.field.x, d.field.x);
@@ -249,8 +253,9 @@ TEST(IncrementalReplan, UnchangedMapReusesTheFieldAndChangesRepairIt)
 	ASSERT_TRUE(map.changesSince(v).none());
 	ASSERT_NE(map.version(), v);
 	const auto f = planner.toLabel(5, 3, Label::Wastebasket, CostProfile::Safe);
-	const auto h = SemanticPlanner(map, cnnOptions(), traversabilityOptions())
-	                   .toLabel(5, 3, Label::Wastebasket, CostProfile::Safe);
+	const auto h =
+	    SemanticPlanner(map, cnnOptions(), replanTraversabilityOptions())
+	        .toLabel(5, 3, Label::Wastebasket, CostProfile::Safe);
 	EXPECT_EQ(f.goals.ids(), h.goals.ids());
 	EXPECT_EQ(f.field.x, h.field.x);
 	EXPECT_GT(f.goals.count(), goalCells);

@@ -20,12 +20,13 @@
 #include <map>
 #include <string>
 
+#include "../TestPaths.h"
+
 using namespace semnav;
 namespace fs = std::filesystem;
 
 namespace
 {
-const std::string kSource = SEMNAV_SOURCE_DIR;
 
 /** A drop a few pixels' worth below the measured F1 (about a tenth of
  * the gap between a measured figure and the targets of issue 3). */
@@ -36,7 +37,8 @@ constexpr double kMargin = 0.015;
 void expectF1(
     const std::string& scenePath, const std::map<Label, double>& measured)
 {
-	const Scene scene = SceneLoader::loadFile(kSource + "/" + scenePath);
+	const Scene scene =
+	    SceneLoader::loadFile(test::kSourceDir + "/" + scenePath);
 	const fs::path dir =
 	    fs::temp_directory_path() /
 	    ("semnav_percacc_" + scene.name + "_" + std::to_string(::getpid()));
@@ -44,8 +46,8 @@ void expectF1(
 	const auto sim = SimulationRunner(scene, SimulationRunner::TOptions(), 1)
 	                     .run((dir / "sim").string());
 	PerceptionRun::Settings s;
-	s.cascades =
-	    CascadeDetector::TOptions::fromIniFile(kSource + "/config/cascade.ini");
+	s.cascades = CascadeDetector::TOptions::fromIniFile(
+	    test::kSourceDir + "/config/cascade.ini");
 	s.rawlog = sim.rawlogPath;
 	s.out = (dir / "perceive").string();
 	s.gtDir = (dir / "sim").string();

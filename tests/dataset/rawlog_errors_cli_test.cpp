@@ -19,16 +19,17 @@ namespace fs = std::filesystem;
 
 namespace
 {
-const fs::path kTmp = fs::temp_directory_path() /
-                      ("semnav_rawlog_errors_" + std::to_string(::getpid()));
+const fs::path kRawlogErrorsTmp =
+    fs::temp_directory_path() /
+    ("semnav_rawlog_errors_" + std::to_string(::getpid()));
 
 /** An empty rawlog and one of three odometry readings. */
 std::vector<std::string> sweeplessRawlogs()
 {
-	fs::create_directories(kTmp);
-	const std::string empty = (kTmp / "empty.rawlog").string();
+	fs::create_directories(kRawlogErrorsTmp);
+	const std::string empty = (kRawlogErrorsTmp / "empty.rawlog").string();
 	semnav::RawlogWriter(empty).commit();
-	const std::string odo = (kTmp / "odometry.rawlog").string();
+	const std::string odo = (kRawlogErrorsTmp / "odometry.rawlog").string();
 	semnav::RawlogWriter w(odo);
 	for (int i = 0; i < 3; i++) w.write(*makeOdometry(i, 0, 0));
 	w.commit();
@@ -41,7 +42,7 @@ TEST(RawlogErrorsCli, NoSweepsIsOneLineAndExit1)
 	for (const std::string& rawlog : sweeplessRawlogs())
 		for (const std::string app : {"semnav-map", "semnav-perceive"})
 		{
-			const fs::path out = kTmp / (app + "_out");
+			const fs::path out = kRawlogErrorsTmp / (app + "_out");
 			fs::remove_all(out);
 			const AppRun r = runApp(
 			    app,
@@ -53,15 +54,15 @@ TEST(RawlogErrorsCli, NoSweepsIsOneLineAndExit1)
 			if (app == "semnav-map")
 				EXPECT_FALSE(fs::exists(out / "map.yaml")) << "a 0 x 0 map";
 		}
-	fs::remove_all(kTmp);
+	fs::remove_all(kRawlogErrorsTmp);
 }
 
 TEST(RawlogErrorsCli, CheckOfATruncatedCaptureIsNotSilent)
 {
 	// One stop of the office, simulated; then its last third cut off.
 	const std::string source = SEMNAV_SOURCE_DIR;
-	fs::create_directories(kTmp);
-	const fs::path scene = kTmp / "office.yaml";
+	fs::create_directories(kRawlogErrorsTmp);
+	const fs::path scene = kRawlogErrorsTmp / "office.yaml";
 	{
 		std::ifstream in(source + "/datasets/office/office.yaml");
 		std::ofstream out(scene);
@@ -78,10 +79,10 @@ TEST(RawlogErrorsCli, CheckOfATruncatedCaptureIsNotSilent)
 		}
 	}
 	const AppRun sim = runApp(
-	    "semnav-sim",
-	    "--scene " + scene.string() + " --out " + (kTmp / "sim").string());
+	    "semnav-sim", "--scene " + scene.string() + " --out " +
+	                      (kRawlogErrorsTmp / "sim").string());
 	ASSERT_EQ(sim.code, 0) << sim.err;
-	const fs::path rawlog = kTmp / "sim" / "office.rawlog";
+	const fs::path rawlog = kRawlogErrorsTmp / "sim" / "office.rawlog";
 	fs::resize_file(rawlog, fs::file_size(rawlog) * 2 / 3);
 
 	const std::string args =
@@ -101,18 +102,18 @@ TEST(RawlogErrorsCli, CheckOfATruncatedCaptureIsNotSilent)
 	    runApp("semnav-device-emulator", args + " --truncated-ok");
 	EXPECT_EQ(ok.code, 0) << ok.err;
 	EXPECT_EQ(nlohmann::json::parse(ok.out).at("lines"), j.at("lines"));
-	fs::remove_all(kTmp);
+	fs::remove_all(kRawlogErrorsTmp);
 }
 
 TEST(RawlogErrorsCli, ADirectoryAsRawlogIsNamed)
 {
-	const fs::path dir = kTmp / "a_directory.rawlog";
+	const fs::path dir = kRawlogErrorsTmp / "a_directory.rawlog";
 	fs::create_directories(dir);
 	for (const std::string app : {"semnav-map", "semnav-perceive"})
 	{
 		const AppRun r = runApp(
 		    app, "--no-cascades --rawlog " + dir.string() + " --out " +
-		             (kTmp / "out").string());
+		             (kRawlogErrorsTmp / "out").string());
 		EXPECT_EQ(r.code, 1) << app << ": " << r.err;
 		EXPECT_EQ(lineCount(r.err), 1u) << app << ": " << r.err;
 		EXPECT_NE(
@@ -121,14 +122,14 @@ TEST(RawlogErrorsCli, ADirectoryAsRawlogIsNamed)
 		    std::string::npos)
 		    << app << ": " << r.err;
 	}
-	fs::remove_all(kTmp);
+	fs::remove_all(kRawlogErrorsTmp);
 }
 
 TEST(RawlogErrorsCli, TruncatedRawlogCountsAgreeWithTheMap)
 {
 	// A small room, two coarse sweeps; the second cut short.
-	fs::create_directories(kTmp);
-	const fs::path scene = kTmp / "room.yaml";
+	fs::create_directories(kRawlogErrorsTmp);
+	const fs::path scene = kRawlogErrorsTmp / "room.yaml";
 	std::ofstream(scene)
 	    << "name: room\nbounds: [0, 0, 4, 4]\nobjects:\n"
 	       "  - {label: wall, box: {center: [2, 0.05, 1], size: [4, 0.1, 2]}}\n"
@@ -138,15 +139,15 @@ TEST(RawlogErrorsCli, TruncatedRawlogCountsAgreeWithTheMap)
 	       "sensor: {phi: [-90, 90, 1], theta: [-15, 90, 1]}\n"
 	       "trajectory: [[1.5, 2, 0], [2.5, 2, 0]]\n";
 	const AppRun sim = runApp(
-	    "semnav-sim",
-	    "--scene " + scene.string() + " --out " + (kTmp / "room").string());
+	    "semnav-sim", "--scene " + scene.string() + " --out " +
+	                      (kRawlogErrorsTmp / "room").string());
 	ASSERT_EQ(sim.code, 0) << sim.err;
-	const fs::path rawlog = kTmp / "room" / "room.rawlog";
+	const fs::path rawlog = kRawlogErrorsTmp / "room" / "room.rawlog";
 	fs::resize_file(rawlog, fs::file_size(rawlog) * 3 / 4);
 
 	const AppRun r = runApp(
 	    "semnav-map", "--no-cascades --json --rawlog " + rawlog.string() +
-	                      " --out " + (kTmp / "map").string());
+	                      " --out " + (kRawlogErrorsTmp / "map").string());
 	EXPECT_EQ(r.code, 1) << r.err;
 	const auto j = nlohmann::json::parse(r.out);
 	const int mapped = j.at("sweeps").get<int>();
@@ -165,5 +166,5 @@ TEST(RawlogErrorsCli, TruncatedRawlogCountsAgreeWithTheMap)
 	        std::to_string(incomplete) + " incomplete left out"),
 	    std::string::npos)
 	    << last;
-	fs::remove_all(kTmp);
+	fs::remove_all(kRawlogErrorsTmp);
 }

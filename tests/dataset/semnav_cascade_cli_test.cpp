@@ -14,6 +14,7 @@
 #include <sstream>
 #include <string>
 
+#include "../TestPaths.h"
 #include "AppRunner.h"
 
 namespace fs = std::filesystem;
@@ -23,18 +24,18 @@ using semnav::test::runApp;
 
 namespace
 {
-const std::string kSource = SEMNAV_SOURCE_DIR;
-const fs::path kTmp = fs::temp_directory_path() /
-                      ("semnav_cascade_cli_" + std::to_string(::getpid()));
+const fs::path kCascadeCliTmp =
+    fs::temp_directory_path() /
+    ("semnav_cascade_cli_" + std::to_string(::getpid()));
 
 /** test_a simulated once (26 sweeps). */
 const fs::path& sim()
 {
 	static const fs::path dir = []
 	{
-		const fs::path d = kTmp / "test_a";
+		const fs::path d = kCascadeCliTmp / "test_a";
 		const AppRun r = runApp(
-		    "semnav-sim", "--scene " + kSource +
+		    "semnav-sim", "--scene " + semnav::test::kSourceDir +
 		                      "/datasets/cascade-scenes/test_a.yaml --out " +
 		                      d.string() + " --seed 1");
 		EXPECT_EQ(r.code, 0) << r.err;
@@ -43,10 +44,10 @@ const fs::path& sim()
 	return dir;
 }
 
-/** A small training configuration whose cascade goes to kTmp. */
+/** A small training configuration whose cascade goes to kCascadeCliTmp. */
 std::string config()
 {
-	const fs::path ini = kTmp / "tiny.ini";
+	const fs::path ini = kCascadeCliTmp / "tiny.ini";
 	if (!fs::exists(ini))
 	{
 		std::ofstream o(ini);
@@ -72,8 +73,8 @@ std::string readFile(const fs::path& p)
 class SemnavCascadeCli : public ::testing::Test
 {
 protected:
-	static void SetUpTestSuite() { fs::create_directories(kTmp); }
-	static void TearDownTestSuite() { fs::remove_all(kTmp); }
+	static void SetUpTestSuite() { fs::create_directories(kCascadeCliTmp); }
+	static void TearDownTestSuite() { fs::remove_all(kCascadeCliTmp); }
 };
 }  // namespace
 
@@ -91,24 +92,25 @@ TEST_F(SemnavCascadeCli, BadUsageIsExit2AndErrorsExit1WithOneLine)
 	EXPECT_EQ(help.code, 0);
 	for (const std::string args :
 	     {"--label sofa --datasets " + sim().string() + " --out " +
-	          (kTmp / "x.xml").string(),
+	          (kCascadeCliTmp / "x.xml").string(),
 	      "--label washbasin --datasets /nonexistent --out " +
-	          (kTmp / "x.xml").string(),
+	          (kCascadeCliTmp / "x.xml").string(),
 	      "--label washbasin --datasets " + sim().string() + " --out " +
-	          (kTmp / "x.xml").string() + " --config /nonexistent.ini"})
+	          (kCascadeCliTmp / "x.xml").string() +
+	          " --config /nonexistent.ini"})
 	{
 		const AppRun r = runApp("semnav-train-cascade", args);
 		EXPECT_EQ(r.code, 1) << args;
 		EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;
 	}
-	EXPECT_FALSE(fs::exists(kTmp / "x.xml"));
+	EXPECT_FALSE(fs::exists(kCascadeCliTmp / "x.xml"));
 	const AppRun d = runApp("semnav-detect", "--datasets " + sim().string());
 	EXPECT_EQ(d.code, 2);
 }
 
 TEST_F(SemnavCascadeCli, TrainDetectAndPerceive)
 {
-	const std::string out = (kTmp / "washbasin.xml").string();
+	const std::string out = (kCascadeCliTmp / "washbasin.xml").string();
 	const std::string args = "--label washbasin --datasets " + sim().string() +
 	                         " --out " + out + " --seed 5 --config " + config();
 	const AppRun r = runApp("semnav-train-cascade", args + " --json");
@@ -180,8 +182,8 @@ TEST_F(SemnavCascadeCli, TrainDetectAndPerceive)
 	const AppRun p = runApp(
 	    "semnav-perceive", "--rawlog " + rawlog + " --gt-dir " +
 	                           sim().string() + " --out " +
-	                           (kTmp / "perceive").string() + " --cascades " +
-	                           config() + " --json");
+	                           (kCascadeCliTmp / "perceive").string() +
+	                           " --cascades " + config() + " --json");
 	ASSERT_EQ(p.code, 0) << p.err;
 	const auto pj = nlohmann::json::parse(p.out);
 	const auto& o = pj.at("objects").at("washbasin");
@@ -190,24 +192,26 @@ TEST_F(SemnavCascadeCli, TrainDetectAndPerceive)
 	// Same detector, same scene, same rule: the same counts as semnav-detect.
 	EXPECT_EQ(o.at("tp"), dj.at("objects").at("washbasin").at("tp"));
 	EXPECT_EQ(o.at("fn"), dj.at("objects").at("washbasin").at("fn"));
-	EXPECT_TRUE(fs::exists(kTmp / "perceive" / "sweep_0000_detections.png"));
+	EXPECT_TRUE(
+	    fs::exists(kCascadeCliTmp / "perceive" / "sweep_0000_detections.png"));
 }
 
 TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 {
 	// The shipped washbasin cascade's candidates in test_a: a shape model,
 	// the same bytes for the same seed, and one the detector loads.
-	const fs::path ini = kTmp / "shape.ini";
+	const fs::path ini = kCascadeCliTmp / "shape.ini";
 	{
 		std::ofstream o(ini);
 		o << "[CascadeDetector]\nclasses = washbasin\nrange_scales = true\n"
 		     "[CascadeDetector.washbasin]\ncascade = "
-		  << kSource
+		  << semnav::test::kSourceDir
 		  << "/datasets/cascades/washbasin.xml\n"
 		     "shape_model = washbasin-shape.xml.gz\nmax_stages = 14\n"
 		     "min_neighbors = 1\n";
 	}
-	const std::string out = (kTmp / "washbasin-shape.xml.gz").string();
+	const std::string out =
+	    (kCascadeCliTmp / "washbasin-shape.xml.gz").string();
 	const std::string common = "--label washbasin --datasets " +
 	                           sim().string() + " --config " + ini.string() +
 	                           " --out " + out + " --trees 20 --seed 3";
@@ -325,7 +329,7 @@ TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 	EXPECT_GT(missLines + falseLines, 0);
 	// Bad input: one line, exit 1 (unknown label, missing dataset, a
 	// corrupt model named by the config); bad usage: exit 2.
-	std::ofstream(kTmp / "washbasin-shape.xml.gz") << "not a forest";
+	std::ofstream(kCascadeCliTmp / "washbasin-shape.xml.gz") << "not a forest";
 	const AppRun corrupt = runApp(
 	    "semnav-detect",
 	    "--datasets " + sim().string() + " --config " + ini.string());
@@ -338,10 +342,11 @@ TEST_F(SemnavCascadeCli, TrainShapeModelAndDetectWithIt)
 	{
 		const AppRun e = runApp(
 		    "semnav-train-shape", bad + " --config " + ini.string() +
-		                              " --out " + (kTmp / "x.xml.gz").string());
+		                              " --out " +
+		                              (kCascadeCliTmp / "x.xml.gz").string());
 		EXPECT_EQ(e.code, 1) << bad;
 		EXPECT_EQ(lineCount(e.err), 1u) << bad << ": " << e.err;
 	}
-	EXPECT_FALSE(fs::exists(kTmp / "x.xml.gz"));
+	EXPECT_FALSE(fs::exists(kCascadeCliTmp / "x.xml.gz"));
 	EXPECT_EQ(runApp("semnav-train-shape", "--label washbasin").code, 2);
 }

@@ -12,6 +12,7 @@
 #include <set>
 #include <string>
 
+#include "../TestPaths.h"
 #include "AppRunner.h"
 
 using namespace semnav::test;
@@ -20,18 +21,17 @@ namespace fs = std::filesystem;
 namespace
 {
 const std::set<std::string> kDetected = {"washbasin", "wastebasket", "stairs"};
-const std::string kSource = SEMNAV_SOURCE_DIR;
-const fs::path kTmp = fs::temp_directory_path() /
-                      ("semnav_map_cli_" + std::to_string(::getpid()));
+const fs::path kMapCliTmp = fs::temp_directory_path() /
+                            ("semnav_map_cli_" + std::to_string(::getpid()));
 
 /** The office simulated once (seed 1, as the README's tour). */
 const fs::path& office()
 {
 	static const fs::path rawlog = []
 	{
-		const fs::path d = kTmp / "office";
+		const fs::path d = kMapCliTmp / "office";
 		const AppRun r = runApp(
-		    "semnav-sim", "--scene " + kSource +
+		    "semnav-sim", "--scene " + test::kSourceDir +
 		                      "/datasets/office/office.yaml --out " +
 		                      d.string() + " --seed 1");
 		EXPECT_EQ(r.code, 0) << r.err;
@@ -50,20 +50,20 @@ std::multiset<std::string> objectLabels(const std::string& json)
 	return labels;
 }
 
-/** A copy of config/cascade.ini in kTmp whose `key` of every class names
+/** A copy of config/cascade.ini in kMapCliTmp whose `key` of every class names
  * `file` (the other model paths made absolute). */
 fs::path cascadeIniNaming(
     const std::string& key, const fs::path& file, const std::string& name)
 {
-	std::ifstream in(kSource + "/config/cascade.ini");
-	const fs::path ini = kTmp / name;
+	std::ifstream in(test::kSourceDir + "/config/cascade.ini");
+	const fs::path ini = kMapCliTmp / name;
 	std::ofstream out(ini);
 	for (std::string line; std::getline(in, line);)
 	{
 		if (line.rfind(key + " = ", 0) == 0)
 			line = key + " = " + file.string();
 		else if (const auto at = line.find(" = ../"); at != std::string::npos)
-			line = line.substr(0, at) + " = " + kSource + "/config/" +
+			line = line.substr(0, at) + " = " + test::kSourceDir + "/config/" +
 			       line.substr(at + 3);
 		out << line << "\n";
 	}
@@ -74,14 +74,14 @@ AppRun mapWith(const std::string& args)
 {
 	return runApp(
 	    "semnav-map", "--rawlog " + office().string() + " --out " +
-	                      (kTmp / "map").string() + " --json " + args);
+	                      (kMapCliTmp / "map").string() + " --json " + args);
 }
 
 class SemnavMapCli : public ::testing::Test
 {
 protected:
-	static void SetUpTestSuite() { fs::create_directories(kTmp); }
-	static void TearDownTestSuite() { fs::remove_all(kTmp); }
+	static void SetUpTestSuite() { fs::create_directories(kMapCliTmp); }
+	static void TearDownTestSuite() { fs::remove_all(kMapCliTmp); }
 };
 }  // namespace
 
@@ -111,20 +111,20 @@ TEST_F(SemnavMapCli, BadCascadeFilesAreOneLineNamingTheFile)
 {
 	// A cascade XML cut in half, a shape model of garbage, a missing
 	// cascade, a missing detector INI file.
-	const fs::path cut = kTmp / "cut-washbasin.xml";
+	const fs::path cut = kMapCliTmp / "cut-washbasin.xml";
 	{
-		std::ifstream in(kSource + "/datasets/cascades/washbasin.xml");
+		std::ifstream in(test::kSourceDir + "/datasets/cascades/washbasin.xml");
 		std::string text((std::istreambuf_iterator<char>(in)), {});
 		std::ofstream(cut) << text.substr(0, text.size() / 2);
 	}
-	const fs::path garbage = kTmp / "garbage-shape.xml.gz";
+	const fs::path garbage = kMapCliTmp / "garbage-shape.xml.gz";
 	std::ofstream(garbage) << "not a forest";
-	const fs::path missing = kTmp / "missing.xml";
+	const fs::path missing = kMapCliTmp / "missing.xml";
 	const std::pair<fs::path, fs::path> cases[] = {
 	    {cascadeIniNaming("cascade", cut, "cut.ini"), cut},
 	    {cascadeIniNaming("shape_model", garbage, "garbage.ini"), garbage},
 	    {cascadeIniNaming("cascade", missing, "missing.ini"), missing},
-	    {kTmp / "no-such.ini", kTmp / "no-such.ini"}};
+	    {kMapCliTmp / "no-such.ini", kMapCliTmp / "no-such.ini"}};
 	for (const auto& [ini, named] : cases)
 	{
 		const AppRun r = mapWith("--cascades " + ini.string());
@@ -136,7 +136,7 @@ TEST_F(SemnavMapCli, BadCascadeFilesAreOneLineNamingTheFile)
 		EXPECT_TRUE(r.out.empty()) << r.out;
 	}
 	// Without --cascades the detector INI file is $SEMNAV_CONFIG_DIR's.
-	const fs::path dir = kTmp / "config-dir";
+	const fs::path dir = kMapCliTmp / "config-dir";
 	fs::create_directories(dir);
 	fs::copy_file(
 	    cascadeIniNaming("cascade", cut, "cut.ini"), dir / "cascade.ini",
@@ -152,7 +152,7 @@ TEST_F(SemnavMapCli, BadCascadeFilesAreOneLineNamingTheFile)
 
 TEST_F(SemnavMapCli, WriteConfigWritesWhatConfigLoads)
 {
-	const fs::path ini = kTmp / "written.ini";
+	const fs::path ini = kMapCliTmp / "written.ini";
 	const AppRun w = runApp("semnav-map", "--write-config " + ini.string());
 	ASSERT_EQ(w.code, 0) << w.err;
 	EXPECT_TRUE(w.out.empty());
@@ -172,7 +172,7 @@ TEST_F(SemnavMapCli, WriteConfigWritesWhatConfigLoads)
 TEST_F(SemnavMapCli, ThreeDtkScanWithoutPoseIsRefusedNamingTheFile)
 {
 	// Two scan lines of a wall 3 m ahead; no scan.pose beside them.
-	const fs::path scan = kTmp / "scan.3d";
+	const fs::path scan = kMapCliTmp / "scan.3d";
 	{
 		std::ofstream f(scan);
 		for (int row = 0; row < 2; row++)
@@ -181,12 +181,12 @@ TEST_F(SemnavMapCli, ThreeDtkScanWithoutPoseIsRefusedNamingTheFile)
 	}
 	const AppRun r = runApp(
 	    "semnav-map", "--no-cascades --3dtk " + scan.string() + " --out " +
-	                      (kTmp / "map3dtk").string());
+	                      (kMapCliTmp / "map3dtk").string());
 	EXPECT_EQ(r.code, 1) << r.err;
 	EXPECT_EQ(lineCount(r.err), 1u) << r.err;
 	EXPECT_NE(
-	    r.err.find("no pose file " + (kTmp / "scan.pose").string()),
+	    r.err.find("no pose file " + (kMapCliTmp / "scan.pose").string()),
 	    std::string::npos)
 	    << r.err;
-	EXPECT_FALSE(fs::exists(kTmp / "map3dtk" / "map.yaml"));
+	EXPECT_FALSE(fs::exists(kMapCliTmp / "map3dtk" / "map.yaml"));
 }

@@ -19,6 +19,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "../TestPaths.h"
 #include "AppRunner.h"
 
 using namespace semnav;
@@ -29,7 +30,6 @@ using semnav::test::runApp;
 
 namespace
 {
-const std::string kSrc = SEMNAV_SOURCE_DIR;
 
 fs::path tmpDir(const std::string& name)
 {
@@ -55,8 +55,8 @@ const TourMap& officeMap()
 	static const TourMap m = []
 	{
 		const fs::path d = tmpDir("officemap");
-		const Scene scene =
-		    SceneLoader::loadFile(kSrc + "/datasets/office/office.yaml");
+		const Scene scene = SceneLoader::loadFile(
+		    test::kSourceDir + "/datasets/office/office.yaml");
 		const auto res =
 		    SimulationRunner(scene, SimulationRunner::TOptions(), 1)
 		        .run((d / "sim").string());
@@ -106,7 +106,7 @@ std::size_t navlogRecords(const fs::path& p)
 TEST(SemnavNavCli, JsonNavlogAndPictureOnAGroundTruthMap)
 {
 	const fs::path out = tmpDir("gt");
-	const std::string scene = kSrc + "/datasets/nav/utrap.yaml";
+	const std::string scene = test::kSourceDir + "/datasets/nav/utrap.yaml";
 	const AppRun r = runApp(
 	    "semnav-nav", "--gt-map " + scene + " --scene " + scene +
 	                      " --start 6.2,2.6,0 --command 'go to the nearest "
@@ -186,7 +186,7 @@ TEST(SemnavNavCli, GoesToTheNearestWastebasketOnThePipelinesMap)
 	// navigator plans with the safe profile: wastebasket 6 (as the plan of
 	// step 3).
 	const fs::path out = tmpDir("office");
-	const std::string scene = kSrc + "/datasets/office/office.yaml";
+	const std::string scene = test::kSourceDir + "/datasets/office/office.yaml";
 	const AppRun r = runApp(
 	    "semnav-nav", "--map " + officeMap().dir.string() + " --scene " +
 	                      scene + " --start 2.2,1.5,0 --goal wastebasket " +
@@ -214,7 +214,7 @@ TEST(SemnavNavCli, LocalizesGloballyInThePipelinesMapThenNavigates)
 	// spread there is 0.44 deg); wastebasket 6 reached, truly 0.73 m from
 	// it, 67.5 s simulated, 0 collisions.
 	const fs::path out = tmpDir("officeloc");
-	const std::string scene = kSrc + "/datasets/office/office.yaml";
+	const std::string scene = test::kSourceDir + "/datasets/office/office.yaml";
 	const AppRun r = runApp(
 	    "semnav-nav", "--map " + officeMap().dir.string() + " --scene " +
 	                      scene +
@@ -320,10 +320,11 @@ TEST(SemnavNavCli, ALocalizedFalseArrivalKeepsBeliefAndTruthApart)
 	// from the turned guess, with no rescan on the way and no arrival check
 	// at the goal, the robot believes the pose it was told, drives "to the
 	// wastebasket" and stops in the empty opposite corner.
-	const std::string scene = kSrc + "/datasets/nav-trials/rect_room.yaml";
+	const std::string scene =
+	    test::kSourceDir + "/datasets/nav-trials/rect_room.yaml";
 	const fs::path ini = tmpDir("norescan") / "nav.ini";
 	{
-		std::ifstream in(kSrc + "/config/navigation.ini");
+		std::ifstream in(test::kSourceDir + "/config/navigation.ini");
 		std::stringstream ss;
 		ss << in.rdbuf();
 		std::string s = ss.str();
@@ -366,7 +367,7 @@ TEST(SemnavNavCli, ALocalizedFalseArrivalKeepsBeliefAndTruthApart)
 
 TEST(SemnavNavCli, ErrorsAreOneLineWithExitCodes)
 {
-	const std::string scene = kSrc + "/datasets/nav/utrap.yaml";
+	const std::string scene = test::kSourceDir + "/datasets/nav/utrap.yaml";
 	const std::string base = "--gt-map " + scene + " --scene " + scene;
 	struct Case
 	{
@@ -376,7 +377,7 @@ TEST(SemnavNavCli, ErrorsAreOneLineWithExitCodes)
 	};
 	const fs::path badIni = tmpDir("ini") / "nav.ini";
 	{
-		std::ifstream in(kSrc + "/config/navigation.ini");
+		std::ifstream in(test::kSourceDir + "/config/navigation.ini");
 		std::stringstream ss;
 		ss << in.rdbuf();
 		std::string s = ss.str();
@@ -385,7 +386,7 @@ TEST(SemnavNavCli, ErrorsAreOneLineWithExitCodes)
 	}
 	const fs::path badLocIni = tmpDir("locini") / "loc.ini";
 	{
-		std::ifstream in(kSrc + "/config/localization.ini");
+		std::ifstream in(test::kSourceDir + "/config/localization.ini");
 		std::stringstream ss;
 		ss << in.rdbuf();
 		std::string s = ss.str();

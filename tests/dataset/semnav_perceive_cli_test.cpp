@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 
+#include "../TestPaths.h"
 #include "../common/ThreeDtkData.h"
 #include "AppRunner.h"
 
@@ -24,18 +25,18 @@ using semnav::test::runApp;
 
 namespace
 {
-const std::string kSource = SEMNAV_SOURCE_DIR;
-const fs::path kTmp = fs::temp_directory_path() /
-                      ("semnav_perceive_cli_" + std::to_string(::getpid()));
+const fs::path kPerceiveCliTmp =
+    fs::temp_directory_path() /
+    ("semnav_perceive_cli_" + std::to_string(::getpid()));
 
 /** The outdoor dataset simulated once (7 sweeps). */
 const fs::path& outdoorSim()
 {
 	static const fs::path dir = []
 	{
-		const fs::path d = kTmp / "sim";
+		const fs::path d = kPerceiveCliTmp / "sim";
 		const AppRun r = runApp(
-		    "semnav-sim", "--scene " + kSource +
+		    "semnav-sim", "--scene " + semnav::test::kSourceDir +
 		                      "/datasets/outdoor/outdoor.yaml --out " +
 		                      d.string() + " --seed 1");
 		EXPECT_EQ(r.code, 0) << r.err;
@@ -47,7 +48,7 @@ const fs::path& outdoorSim()
 class SemnavPerceiveCli : public ::testing::Test
 {
 protected:
-	static void TearDownTestSuite() { fs::remove_all(kTmp); }
+	static void TearDownTestSuite() { fs::remove_all(kPerceiveCliTmp); }
 };
 }  // namespace
 
@@ -69,19 +70,19 @@ TEST_F(SemnavPerceiveCli, BadUsageIsExit2WithOneLine)
 TEST_F(SemnavPerceiveCli, ErrorsAreExit1WithOneLine)
 {
 	AppRun r = runApp(
-	    "semnav-perceive",
-	    "--rawlog /nonexistent.rawlog --out " + (kTmp / "e").string());
+	    "semnav-perceive", "--rawlog /nonexistent.rawlog --out " +
+	                           (kPerceiveCliTmp / "e").string());
 	EXPECT_EQ(r.code, 1);
 	EXPECT_EQ(lineCount(r.err), 1u) << r.err;
 	EXPECT_NE(r.err.find("/nonexistent.rawlog"), std::string::npos);
 
-	const fs::path ini = kTmp / "bad.ini";
-	fs::create_directories(kTmp);
+	const fs::path ini = kPerceiveCliTmp / "bad.ini";
+	fs::create_directories(kPerceiveCliTmp);
 	std::ofstream(ini) << "[RuleClassifier]\ndoor_min_width_m = -1\n";
 	r = runApp(
 	    "semnav-perceive",
 	    "--rawlog " + (outdoorSim() / "outdoor.rawlog").string() + " --out " +
-	        (kTmp / "e").string() + " --config " + ini.string());
+	        (kPerceiveCliTmp / "e").string() + " --config " + ini.string());
 	EXPECT_EQ(r.code, 1);
 	EXPECT_EQ(lineCount(r.err), 1u) << r.err;
 	EXPECT_NE(r.err.find("door_min_width_m"), std::string::npos) << r.err;
@@ -89,12 +90,12 @@ TEST_F(SemnavPerceiveCli, ErrorsAreExit1WithOneLine)
 
 TEST_F(SemnavPerceiveCli, ScoresAgainstGroundTruthAsJson)
 {
-	const fs::path out = kTmp / "out";
+	const fs::path out = kPerceiveCliTmp / "out";
 	const AppRun r = runApp(
 	    "semnav-perceive",
 	    "--rawlog " + (outdoorSim() / "outdoor.rawlog").string() + " --out " +
 	        out.string() + " --gt-dir " + outdoorSim().string() + " --config " +
-	        kSource + "/config/perception.ini --json");
+	        semnav::test::kSourceDir + "/config/perception.ini --json");
 	ASSERT_EQ(r.code, 0) << r.err;
 	const auto j = nlohmann::json::parse(r.out);
 	EXPECT_EQ(j.at("sweeps").get<int>(), 7);
@@ -138,13 +139,13 @@ TEST_F(SemnavPerceiveCli, ScoresAgainstGroundTruthAsJson)
 TEST_F(SemnavPerceiveCli, CorruptRawlogWritesTheGoodSweepsThenFails)
 {
 	const fs::path src = outdoorSim() / "outdoor.rawlog";
-	const fs::path bad = kTmp / "cut.rawlog";
+	const fs::path bad = kPerceiveCliTmp / "cut.rawlog";
 	{
 		std::ifstream in(src, std::ios::binary);
 		std::string all((std::istreambuf_iterator<char>(in)), {});
 		std::ofstream(bad, std::ios::binary) << all.substr(0, all.size() / 2);
 	}
-	const fs::path out = kTmp / "cut";
+	const fs::path out = kPerceiveCliTmp / "cut";
 	const AppRun r = runApp(
 	    "semnav-perceive",
 	    "--rawlog " + bad.string() + " --out " + out.string());
@@ -163,7 +164,7 @@ TEST_F(SemnavPerceiveCli, ThreeDtkScan)
 {
 	SKIP_WITHOUT_3DTK("scan000.3d");
 	const fs::path scan = semnav::test::kThreeDtkDir / "scan000.3d";
-	const fs::path out = kTmp / "3dtk";
+	const fs::path out = kPerceiveCliTmp / "3dtk";
 	const AppRun r = runApp(
 	    "semnav-perceive",
 	    "--3dtk " + scan.string() + " --out " + out.string() + " --json");
@@ -179,7 +180,8 @@ TEST_F(SemnavPerceiveCli, DetectsObjectsByDefaultNotWithNoCascades)
 	const std::string in = "--rawlog " +
 	                       (outdoorSim() / "outdoor.rawlog").string() +
 	                       " --gt-dir " + outdoorSim().string() + " --json";
-	const fs::path on = kTmp / "cascades-on", off = kTmp / "cascades-off";
+	const fs::path on = kPerceiveCliTmp / "cascades-on",
+	               off = kPerceiveCliTmp / "cascades-off";
 	const AppRun a = runApp("semnav-perceive", in + " --out " + on.string());
 	ASSERT_EQ(a.code, 0) << a.err;
 	const auto ja = nlohmann::json::parse(a.out);

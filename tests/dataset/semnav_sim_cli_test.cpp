@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "../TestPaths.h"
 #include "AppRunner.h"
 
 namespace fs = std::filesystem;
@@ -25,7 +26,6 @@ AppRun runSim(const std::string& args)
 	return runApp("semnav-sim", args);
 }
 
-const std::string kSource = SEMNAV_SOURCE_DIR;
 }  // namespace
 
 TEST(SemnavSimCli, JsonSummaryOnSuccess)
@@ -33,8 +33,9 @@ TEST(SemnavSimCli, JsonSummaryOnSuccess)
 	const fs::path out = fs::temp_directory_path() /
 	                     ("semnav_cli_out_" + std::to_string(::getpid()));
 	const AppRun r = runSim(
-	    "--scene " + kSource + "/datasets/outdoor/outdoor.yaml --out " +
-	    out.string() + " --seed 3 --json");
+	    "--scene " + semnav::test::kSourceDir +
+	    "/datasets/outdoor/outdoor.yaml --out " + out.string() +
+	    " --seed 3 --json");
 	ASSERT_EQ(r.code, 0) << r.err;
 	const auto j = nlohmann::json::parse(r.out);
 	EXPECT_EQ(j.at("sweeps").get<int>(), 7);

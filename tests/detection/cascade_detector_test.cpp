@@ -12,13 +12,13 @@
 #include <fstream>
 #include <functional>
 
+#include "../TestPaths.h"
 #include "../common/SavedAndLoaded.h"
 
 using namespace semnav;
 
 namespace
 {
-const std::string kSource = SEMNAV_SOURCE_DIR;
 
 /** Points of a 40 x 60 sweep patch: a wall 3 m ahead (x = 3), a box
  * 0.4 m wide, 0.84 m high at x = 2 in rows/cols [20, 40) x [20, 40),
@@ -251,18 +251,19 @@ TEST(CascadeDetector, PassesCoverNearAndFarObjects)
 
 TEST(CascadeDetector, ShippedConfigLoads)
 {
-	const auto o =
-	    CascadeDetector::TOptions::fromIniFile(kSource + "/config/cascade.ini");
+	const auto o = CascadeDetector::TOptions::fromIniFile(
+	    test::kSourceDir + "/config/cascade.ini");
 	ASSERT_EQ(o.classes.size(), 3u);
 	EXPECT_EQ(o.classes[0].label, Label::Washbasin);
 	EXPECT_EQ(o.classes[1].label, Label::Wastebasket);
 	EXPECT_EQ(o.classes[2].label, Label::Stairs);
 	EXPECT_EQ(
 	    std::filesystem::path(o.cascadePath(o.classes[1])).lexically_normal(),
-	    std::filesystem::path(kSource + "/datasets/cascades/wastebasket.xml")
+	    std::filesystem::path(
+	        test::kSourceDir + "/datasets/cascades/wastebasket.xml")
 	        .lexically_normal());
-	const auto t =
-	    CascadeTraining::TOptions::fromIniFile(kSource + "/config/cascade.ini");
+	const auto t = CascadeTraining::TOptions::fromIniFile(
+	    test::kSourceDir + "/config/cascade.ini");
 	EXPECT_EQ(t.trainer.windowWidth, 20);
 	EXPECT_EQ(t.trainer.mode, HaarMode::All);
 	EXPECT_DOUBLE_EQ(t.trainer.minHitRate, 0.995);

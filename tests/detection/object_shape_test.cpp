@@ -42,7 +42,7 @@ struct TempDir
 /** Points and normals of a 30 x 30 pixel patch 3 m ahead of the sensor:
  * the front of an upright cylinder (r 0.15 m, 0.4 m high), or of a box with
  * a flat front 0.3 m wide. */
-struct Patch
+struct ShapePatch
 {
 	cv::Mat points{30, 30, CV_32FC3, cv::Scalar::all(NAN)};
 	cv::Mat normals{30, 30, CV_32FC3, cv::Scalar::all(0)};
@@ -51,9 +51,9 @@ struct Patch
 	std::vector<cv::Point> object, box;
 };
 
-Patch front(bool cylinder)
+ShapePatch front(bool cylinder)
 {
-	Patch p;
+	ShapePatch p;
 	constexpr double r = 0.15, h = 0.4, x0 = 3.0;
 	for (int row = 0; row < 30; row++)
 		for (int col = 0; col < 30; col++)
@@ -84,7 +84,7 @@ Patch front(bool cylinder)
 	return p;
 }
 
-ObjectShape::Features describe(const Patch& p)
+ObjectShape::Features describe(const ShapePatch& p)
 {
 	return ObjectShape::describe(
 	    p.points, p.normals, p.mask, p.labels, p.object, p.box, 0.0);
@@ -175,7 +175,7 @@ TEST(ObjectShape, StepsFaceUpAtManyHeightsATableTopAtOne)
 	// from the sensor (0.17 m rise, 0.3 m run), or one table top at 0.75 m.
 	for (const bool steps : {true, false})
 	{
-		Patch p;
+		ShapePatch p;
 		for (int row = 0; row < 30; row++)
 			for (int col = 0; col < 30; col++)
 			{
@@ -243,7 +243,7 @@ TEST(ObjectShape, StepsFaceUpAtManyHeightsATableTopAtOne)
 
 TEST(ObjectShape, WallsAroundAndNoPoints)
 {
-	Patch p = front(false);
+	ShapePatch p = front(false);
 	// The columns beside the object are a wall behind it.
 	for (int row = 0; row < 30; row++)
 		for (int col : {0, 1, 2, 3, 4, 25, 26, 27, 28, 29})
@@ -320,7 +320,7 @@ TEST(ObjectShape, RisersClimbAlongTheColumnsABoxFrontDoesNot)
 	// Each column from the sensor: five risers 0.17 m high, each 0.3 m
 	// farther than the one below (treads not seen, as far away), or a box's
 	// flat front.
-	Patch flight;
+	ShapePatch flight;
 	for (int row = 0; row < 30; row++)
 		for (int col = 0; col < 30; col++)
 		{

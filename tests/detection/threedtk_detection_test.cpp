@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <map>
 
+#include "../TestPaths.h"
 #include "../common/ThreeDtkData.h"
 
 using namespace semnav;
@@ -21,7 +22,6 @@ namespace fs = std::filesystem;
 
 namespace
 {
-const fs::path kSource = SEMNAV_SOURCE_DIR;
 
 class ThreeDtkDetection : public ::testing::TestWithParam<const char*>
 {
@@ -34,7 +34,7 @@ protected:
 		PerceptionPipeline pipeline;
 		const LabeledSweep ls = pipeline.process(sw);
 		CascadeDetector detector(CascadeDetector::TOptions::fromIniFile(
-		    (kSource / "config" / "cascade.ini").string()));
+		    (fs::path(test::kSourceDir) / "config" / "cascade.ini").string()));
 		return detector.detectCandidates(
 		    sw.phis(), sw.thetas(), ls.normals, ls.normalMask, ls.points,
 		    ls.groundZ, ls.labels, ls.areaIds);
@@ -74,7 +74,7 @@ TEST(ThreeDtkDetectionScans, EveryClassReachesTheShapeCheckOnSomeScan)
 		const Sweep sw = ThreeDtkReader().read(path.string());
 		const LabeledSweep ls = PerceptionPipeline().process(sw);
 		CascadeDetector detector(CascadeDetector::TOptions::fromIniFile(
-		    (kSource / "config" / "cascade.ini").string()));
+		    (fs::path(test::kSourceDir) / "config" / "cascade.ini").string()));
 		for (const auto& c : detector.detectCandidates(
 		         sw.phis(), sw.thetas(), ls.normals, ls.normalMask, ls.points,
 		         ls.groundZ, ls.labels, ls.areaIds))

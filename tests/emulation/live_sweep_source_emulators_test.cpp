@@ -27,6 +27,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "../TestPaths.h"
 #include "../dataset/CaptureRuns.h"
 
 using namespace semnav;
@@ -39,11 +40,10 @@ using semnav::test::BackgroundProcess;
 using semnav::test::CaptureRunLock;
 using semnav::test::shell;
 
-const std::string kSource = SEMNAV_SOURCE_DIR;
 const std::string kBinary = SEMNAV_BINARY_DIR;
 const std::string kEmulator =
     kBinary + "/apps/semnav-device-emulator/semnav-device-emulator";
-const std::string kScene = kSource + "/datasets/office/office.yaml";
+const std::string kScene = test::kSourceDir + "/datasets/office/office.yaml";
 
 std::string scratch(const std::string& name)
 {
@@ -207,7 +207,7 @@ struct EmulatedScanner
 	mrpt::config::CConfigFileMemory config() const
 	{
 		mrpt::config::CConfigFile shipped(
-		    kSource + "/config/grabber-emulated.ini");
+		    test::kSourceDir + "/config/grabber-emulated.ini");
 		mrpt::config::CConfigFileMemory cfg;
 		std::vector<std::string> keys;
 		shipped.getAllKeys("TILT_LMS", keys);
@@ -279,8 +279,9 @@ TEST(LiveSweepSourceWithEmulators, SweepsEqualTheGrabbersLineForLine)
 	// 1. rawlog-grabber + plugin: one ascending, one descending sweep.
 	const std::string grabDir = scratch("grabber");
 	const auto grab = shell(
-	    kSource + "/scripts/capture-selftest --json --build " + kBinary +
-	    " --out " + grabDir + " --seconds 18 2>" + grabDir + "/selftest.err");
+	    test::kSourceDir + "/scripts/capture-selftest --json --build " +
+	    kBinary + " --out " + grabDir + " --seconds 18 2>" + grabDir +
+	    "/selftest.err");
 	ASSERT_EQ(grab.code, 0) << grab.out;
 	const auto grabCheck = parseJson(grab.out);
 	ASSERT_TRUE(grabCheck.contains("rawlog"));

@@ -19,12 +19,13 @@
 #include <string>
 #include <utility>
 
+#include "../TestPaths.h"
+
 using namespace semnav;
 namespace fs = std::filesystem;
 
 namespace
 {
-const std::string kSrc = SEMNAV_SOURCE_DIR;
 
 /** semnav-sim's run of datasets/outdoor/<scene>.yaml (directory). */
 fs::path simulate(const std::string& scene, int seed)
@@ -34,10 +35,10 @@ fs::path simulate(const std::string& scene, int seed)
 	                      scene + std::to_string(seed));
 	fs::remove_all(dir);
 	const std::string cmd = std::string(SEMNAV_BINARY_DIR) +
-	                        "/apps/semnav-sim/semnav-sim --scene " + kSrc +
-	                        "/datasets/outdoor/" + scene + ".yaml --out " +
-	                        dir.string() + " --seed " + std::to_string(seed) +
-	                        " > /dev/null";
+	                        "/apps/semnav-sim/semnav-sim --scene " +
+	                        test::kSourceDir + "/datasets/outdoor/" + scene +
+	                        ".yaml --out " + dir.string() + " --seed " +
+	                        std::to_string(seed) + " > /dev/null";
 	EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
 	return dir;
 }
@@ -49,7 +50,7 @@ std::unique_ptr<MapBuilder> mapRun(const std::string& scene, int seed)
 	MapBuilder::Settings s;
 	s.localization.loadFromConfigFile(
 	    *openIniFile(
-	        kSrc + "/config/localization.ini",
+	        test::kSourceDir + "/config/localization.ini",
 	        MappingLocalizer::TOptions::sections()),
 	    "");
 	s.poses = MapBuilder::PoseSource::Localization;

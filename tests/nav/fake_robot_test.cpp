@@ -25,6 +25,7 @@
 #include <iostream>
 #include <memory>
 
+#include "../TestPaths.h"
 #include "FakeRobot.h"
 #include "FakeSweeps.h"
 #include "ShippedOptions.h"
@@ -37,7 +38,6 @@ using Call = FakeBase::Call;
 
 namespace
 {
-const std::string kSrc = SEMNAV_SOURCE_DIR;
 constexpr double kPeriod = 0.1;
 constexpr double kWatchdog = 1.0;
 constexpr double kRobotRadius = 0.25;
@@ -45,7 +45,8 @@ constexpr double kRobotRadius = 0.25;
 const NavigationConfig& config()
 {
 	static const NavigationConfig c = NavigationConfig::load(
-	    kSrc + "/config/navigation.ini", kSrc + "/config/planning.ini");
+	    test::kSourceDir + "/config/navigation.ini",
+	    test::kSourceDir + "/config/planning.ini");
 	return c;
 }
 

@@ -10,12 +10,13 @@
 
 #include <filesystem>
 
+#include "../TestPaths.h"
+
 using namespace semnav;
 namespace fs = std::filesystem;
 
 namespace
 {
-const std::string kSrc = SEMNAV_SOURCE_DIR;
 
 SemanticMap::CellState stateAt(const SemanticMap& m, double x, double y)
 {
@@ -27,8 +28,8 @@ SemanticMap::CellState stateAt(const SemanticMap& m, double x, double y)
 
 TEST(SceneMapBuilder, OfficeGroundTruth)
 {
-	const Scene s =
-	    SceneLoader::loadFile(kSrc + "/datasets/office/office.yaml");
+	const Scene s = SceneLoader::loadFile(
+	    test::kSourceDir + "/datasets/office/office.yaml");
 	SemanticMap map;
 	SceneMapBuilder::build(s, map);
 	using CS = SemanticMap::CellState;
@@ -65,7 +66,8 @@ TEST(SceneMapBuilder, OfficeGroundTruth)
 
 TEST(SceneMapBuilder, AddInstanceTakesTheNextId)
 {
-	const Scene s = SceneLoader::loadFile(kSrc + "/datasets/nav/utrap.yaml");
+	const Scene s =
+	    SceneLoader::loadFile(test::kSourceDir + "/datasets/nav/utrap.yaml");
 	SemanticMap map;
 	SceneMapBuilder::build(s, map);
 	const std::size_t n = map.instances().size();
@@ -81,8 +83,8 @@ TEST(SceneMapBuilder, AddInstanceTakesTheNextId)
 
 TEST(SceneMapBuilder, ExtraObstaclesChangeThePlan)
 {
-	const Scene s =
-	    SceneLoader::loadFile(kSrc + "/datasets/nav/two_routes.yaml");
+	const Scene s = SceneLoader::loadFile(
+	    test::kSourceDir + "/datasets/nav/two_routes.yaml");
 	SemanticMap map;
 	SceneMapBuilder::build(s, map);
 	SemanticPlanner planner(

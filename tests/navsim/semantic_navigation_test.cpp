@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "../TestPaths.h"
 #include "NavTestUtils.h"
 
 using namespace semnav;
@@ -23,12 +24,6 @@ using Replan = SemanticNavigator::ReplanReason;
 
 namespace
 {
-const std::string kSrc = SEMNAV_SOURCE_DIR;
-
-const SimulationConfig& config()
-{
-	return test::shippedNavigationConfig();
-}
 
 Scene scene(const std::string& rel)
 {
@@ -40,8 +35,11 @@ Scene scene(const std::string& rel)
 std::pair<int, int> nearestInstances(
     const SemanticMap& map, Label label, double x, double y)
 {
-	SemanticPlanner planner(map, config().cnn, config().traversability);
-	const CostProfile profile = costProfileFromName(config().navigator.profile);
+	SemanticPlanner planner(
+	    map, test::shippedNavigationConfig().cnn,
+	    test::shippedNavigationConfig().traversability);
+	const CostProfile profile =
+	    costProfileFromName(test::shippedNavigationConfig().navigator.profile);
 	int bestPath = 0, bestEucl = 0;
 	double cPath = std::numeric_limits<double>::infinity(), cEucl = cPath;
 	for (const auto& o : map.instances(label))
@@ -91,13 +89,13 @@ TEST_P(NavigationRuns, ReachesThePathNearestInstanceWithoutCollision)
 {
 	const Case& c = GetParam();
 	const Scene s = scene(c.scene);
-	SemanticMap map(config().map);
+	SemanticMap map(test::shippedNavigationConfig().map);
 	SceneMapBuilder::build(s, map);
 	const auto [pathNearest, euclNearest] =
 	    nearestInstances(map, c.label, c.start.x, c.start.y);
 	ASSERT_NE(pathNearest, 0);
 
-	SimulatedNavigation sim(map, s, config());
+	SimulatedNavigation sim(map, s, test::shippedNavigationConfig());
 	const auto r = sim.run(NavCommand::nearest(c.label), c.start);
 	std::printf(
 	    "NAVRUN %s start (%.2f, %.2f, %.0f) '%s': success %d, collisions %d, "
@@ -174,10 +172,10 @@ TEST(SemanticNavigation, ReplansAroundAnObstacleTheMapLacks)
 {
 	// Map of two_routes; the robot drives in two_routes_blocked, where a
 	// crate closes the (shorter) south corridor.
-	SemanticMap map(config().map);
+	SemanticMap map(test::shippedNavigationConfig().map);
 	SceneMapBuilder::build(scene("datasets/nav/two_routes.yaml"), map);
 	const Scene world = scene("datasets/nav/two_routes_blocked.yaml");
-	SimulatedNavigation sim(map, world, config());
+	SimulatedNavigation sim(map, world, test::shippedNavigationConfig());
 	const auto r =
 	    sim.run(NavCommand::nearest(Label::Washbasin), {1.5, 2.0, 0});
 	std::printf(
@@ -210,8 +208,9 @@ TEST(SemanticNavigation, ReplansOnTheNavigatorsBlockedEvents)
 	// Without the look-ahead on sensed obstacles, only MRPT's events (way
 	// blocked, target blocked, navigation error) can trigger the replan.
 	SimulationConfig c = SimulationConfig::load(
-	    kSrc + "/config/navigation.ini", kSrc + "/config/planning.ini",
-	    kSrc + "/config/sim.ini");
+	    test::kSourceDir + "/config/navigation.ini",
+	    test::kSourceDir + "/config/planning.ini",
+	    test::kSourceDir + "/config/sim.ini");
 	c.navigator.pathCheckDistance = 0;
 	SemanticMap map(c.map);
 	SceneMapBuilder::build(scene("datasets/nav/two_routes.yaml"), map);
@@ -240,10 +239,10 @@ TEST(SemanticNavigation, ReplansOnTheNavigatorsBlockedEvents)
 TEST(SemanticNavigation, ReplansWhenTheMapChanges)
 {
 	const Scene world = scene("datasets/nav/two_routes.yaml");
-	SemanticMap map(config().map);
+	SemanticMap map(test::shippedNavigationConfig().map);
 	SceneMapBuilder::build(world, map);
 	bool changed = false;
-	SimulatedNavigation sim(map, world, config());
+	SimulatedNavigation sim(map, world, test::shippedNavigationConfig());
 	const auto r = sim.run(
 	    NavCommand::nearest(Label::Washbasin), {1.5, 2.0, 0}, "",
 	    [&](double t, SemanticNavigator& nav)
@@ -279,7 +278,7 @@ TEST(SemanticNavigation, ReplansWhenTheMapChanges)
 
 TEST(SemanticNavigation, StopsWithNoPathWhenEveryWayIsClosed)
 {
-	SemanticMap map(config().map);
+	SemanticMap map(test::shippedNavigationConfig().map);
 	SceneMapBuilder::build(scene("datasets/nav/two_routes.yaml"), map);
 	Scene world = scene("datasets/nav/two_routes_blocked.yaml");
 	// Close the north corridor too.
@@ -287,7 +286,7 @@ TEST(SemanticNavigation, StopsWithNoPathWhenEveryWayIsClosed)
 	crate.label = Label::Obstacle;
 	crate.parts.push_back(BoxShape{{6.0, 5.2, 0.5}, {0.3, 1.6, 1.0}, 0});
 	world.objects.push_back(crate);
-	SimulatedNavigation sim(map, world, config());
+	SimulatedNavigation sim(map, world, test::shippedNavigationConfig());
 	const auto r =
 	    sim.run(NavCommand::nearest(Label::Washbasin), {1.5, 2.0, 0});
 	EXPECT_FALSE(r.success);
@@ -303,11 +302,11 @@ TEST(SemanticNavigation, GivesUpOnNoProgressNotOnAReplanCount)
 	// so the replans may outnumber max_stalled_replans; when nothing counts
 	// as progress (progress_m out of reach) the navigator gives up.
 	const Scene world = scene("datasets/nav/two_routes.yaml");
-	SemanticMap map(config().map);
+	SemanticMap map(test::shippedNavigationConfig().map);
 	SceneMapBuilder::build(world, map);
 	const auto run = [&](double progressM)
 	{
-		SimulationConfig c = config();
+		SimulationConfig c = test::shippedNavigationConfig();
 		c.navigator.maxStalledReplans = 3;
 		c.navigator.progressDistance = progressM;
 		SimulatedNavigation sim(map, world, c);
@@ -332,9 +331,9 @@ TEST(SemanticNavigation, GivesUpOnNoProgressNotOnAReplanCount)
 TEST(SemanticNavigation, BadOrdersAreErrors)
 {
 	const Scene world = scene("datasets/nav/utrap.yaml");
-	SemanticMap map(config().map);
+	SemanticMap map(test::shippedNavigationConfig().map);
 	SceneMapBuilder::build(world, map);
-	SimulatedNavigation sim(map, world, config());
+	SimulatedNavigation sim(map, world, test::shippedNavigationConfig());
 	// A label with no instance: the message lists the map's objects.
 	try
 	{
@@ -366,7 +365,7 @@ TEST(SemanticNavigation, BadOrdersAreErrors)
 		EXPECT_GT(std::hypot(from.x - 0.45, from.y - 3.0), 0.01);
 		EXPECT_LE(
 		    std::hypot(from.x - 0.45, from.y - 3.0),
-		    config().navigator.startSnap + 0.05);
+		    test::shippedNavigationConfig().navigator.startSnap + 0.05);
 	}
 	EXPECT_THROW(
 	    sim.run(NavCommand::nearest(Label::Wastebasket), {50, 3.0, 0}), Error);

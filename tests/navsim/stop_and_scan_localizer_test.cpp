@@ -22,6 +22,7 @@
 #include <limits>
 #include <memory>
 
+#include "../TestPaths.h"
 #include "../common/SavedAndLoaded.h"
 #include "../nav/ShippedOptions.h"
 #include "NavTestUtils.h"
@@ -31,12 +32,6 @@ using Mode = StopAndScanLocalizer::Mode;
 
 namespace
 {
-const std::string kSrc = SEMNAV_SOURCE_DIR;
-
-const SimulationConfig& config()
-{
-	return test::shippedNavigationConfig();
-}
 
 const MappingLocalizer::TOptions& locOptions()
 {
@@ -50,8 +45,8 @@ const PerceptionPipeline::TOptions& perceptionOptions()
 
 const Scene& office()
 {
-	static const Scene s =
-	    SceneLoader::loadFile(kSrc + "/datasets/office/office.yaml");
+	static const Scene s = SceneLoader::loadFile(
+	    test::kSourceDir + "/datasets/office/office.yaml");
 	return s;
 }
 
@@ -59,7 +54,8 @@ const SemanticMap& officeMap()
 {
 	static const std::unique_ptr<SemanticMap> m = []
 	{
-		auto map = std::make_unique<SemanticMap>(config().map);
+		auto map =
+		    std::make_unique<SemanticMap>(test::shippedNavigationConfig().map);
 		SceneMapBuilder::build(office(), *map);
 		return map;
 	}();
@@ -113,7 +109,7 @@ SimulatedNavigation::Result withTruePose(
     const SemanticMap& map, const Scene& scene, const mrpt::math::TPose2D& s,
     Label label)
 {
-	SimulatedNavigation sim(map, scene, config());
+	SimulatedNavigation sim(map, scene, test::shippedNavigationConfig());
 	auto r = sim.run(NavCommand::nearest(label), s);
 	EXPECT_TRUE(r.success) << r.message;
 	return r;
@@ -131,14 +127,15 @@ double pathLength(const std::vector<mrpt::math::TPose2D>& t)
 TEST(StopAndScanLocalizer, GlobalStartInTheOfficeThenReachesTheWastebasket)
 {
 	const mrpt::math::TPose2D start(2.2, 1.5, 0);
-	SimulatedNavigation sim(officeMap(), office(), config());
+	SimulatedNavigation sim(
+	    officeMap(), office(), test::shippedNavigationConfig());
 	sim.setLocalization(Mode::Global, locOptions(), perceptionOptions());
 	const auto r = sim.run(NavCommand::nearest(Label::Wastebasket), start);
 	ASSERT_TRUE(r.localization);
 	print("global (2.2, 1.5, 0)", r);
 	const auto& l = *r.localization;
 	EXPECT_TRUE(l.converged);
-	EXPECT_LE(l.sweeps, config().stopAndScan.maxSweeps);
+	EXPECT_LE(l.sweeps, test::shippedNavigationConfig().stopAndScan.maxSweeps);
 	EXPECT_EQ(l.records.size(), std::size_t(l.sweeps));
 	// The robot turned on the spot between sweeps: the truth at the end of
 	// the start is the start position with another heading.
@@ -146,7 +143,9 @@ TEST(StopAndScanLocalizer, GlobalStartInTheOfficeThenReachesTheWastebasket)
 	EXPECT_NEAR(l.truth.y, start.y, 0.02);
 	EXPECT_NEAR(
 	    yawErr(l.truth.phi, start.phi),
-	    std::min(M_PI, (l.sweeps - 1) * config().stopAndScan.turnAngle),
+	    std::min(
+	        M_PI, (l.sweeps - 1) *
+	                  test::shippedNavigationConfig().stopAndScan.turnAngle),
 	    mrpt::DEG2RAD(3));
 	EXPECT_LT(l.errorXY, 0.15);
 	EXPECT_LT(l.errorYaw, mrpt::DEG2RAD(3));
@@ -156,7 +155,8 @@ TEST(StopAndScanLocalizer, GlobalStartInTheOfficeThenReachesTheWastebasket)
 	ASSERT_TRUE(l.records.back().checked);
 	EXPECT_GT(
 	    l.records.back().score,
-	    l.records.back().rivalScore + config().stopAndScan.uniquenessMargin);
+	    l.records.back().rivalScore +
+	        test::shippedNavigationConfig().stopAndScan.uniquenessMargin);
 	// Errors are against the true pose.
 	EXPECT_NEAR(
 	    l.errorXY,
@@ -181,7 +181,8 @@ TEST(StopAndScanLocalizer, TrackingFromARoughGuessConverges)
 	const mrpt::math::TPose2D start(6.2, 2.6, 0);
 	const mrpt::math::TPose2D guess(6.55, 2.25, mrpt::DEG2RAD(10.0));
 	ASSERT_NEAR(std::hypot(guess.x - start.x, guess.y - start.y), 0.5, 0.01);
-	SimulatedNavigation sim(officeMap(), office(), config());
+	SimulatedNavigation sim(
+	    officeMap(), office(), test::shippedNavigationConfig());
 	sim.setLocalization(
 	    Mode::Tracking, locOptions(), perceptionOptions(), guess);
 	const auto r = sim.run(NavCommand::nearest(Label::Washbasin), start);
@@ -206,8 +207,9 @@ TEST(StopAndScanLocalizer, StopAndScanKeepsTheDriftingOdometryOnTheMap)
 	const auto run = [&](double rescan)
 	{
 		SimulationConfig c = SimulationConfig::load(
-		    kSrc + "/config/navigation.ini", kSrc + "/config/planning.ini",
-		    kSrc + "/config/sim.ini");
+		    test::kSourceDir + "/config/navigation.ini",
+		    test::kSourceDir + "/config/planning.ini",
+		    test::kSourceDir + "/config/sim.ini");
 		c.stopAndScan.rescanDistance = rescan;
 		SimulatedNavigation sim(officeMap(), office(), c);
 		sim.setLocalization(
@@ -269,9 +271,9 @@ trajectory:
 )",
 	    "hall");
 	ASSERT_GT(15.0 - 0.1, hall.sensor.maxRange);
-	SemanticMap map(config().map);
+	SemanticMap map(test::shippedNavigationConfig().map);
 	SceneMapBuilder::build(hall, map);
-	SimulatedNavigation sim(map, hall, config());
+	SimulatedNavigation sim(map, hall, test::shippedNavigationConfig());
 	sim.setLocalization(Mode::Global, locOptions(), perceptionOptions());
 	try
 	{
@@ -285,14 +287,17 @@ trajectory:
 		EXPECT_EQ(m.find('\n'), std::string::npos);
 		EXPECT_NE(m.find("not converged after"), std::string::npos) << m;
 		EXPECT_NE(
-		    m.find(std::to_string(config().stopAndScan.maxSweeps) + " sweeps"),
+		    m.find(
+		        std::to_string(
+		            test::shippedNavigationConfig().stopAndScan.maxSweeps) +
+		        " sweeps"),
 		    std::string::npos)
 		    << m;
 		EXPECT_NE(m.find("0 wall segments seen"), std::string::npos) << m;
 	}
 	ASSERT_EQ(
 	    sim.localizer()->records().size(),
-	    std::size_t(config().stopAndScan.maxSweeps));
+	    std::size_t(test::shippedNavigationConfig().stopAndScan.maxSweeps));
 	for (const auto& s : sim.localizer()->records())
 	{
 		EXPECT_EQ(s.segments, 0u);
@@ -307,14 +312,16 @@ TEST(StopAndScanLocalizer, SymmetricRoomIsAmbiguousNotConverged)
 	// may still collapse onto one of the two (particle depletion); the
 	// uniqueness check must refuse it.
 	const Scene& room = symmetricRoom();
-	SemanticMap map(config().map);
+	SemanticMap map(test::shippedNavigationConfig().map);
 	SceneMapBuilder::build(room, map);
 	const mrpt::math::TPose2D start(1.5, 1.2, 0.3);
 	// Shipped options: the two hypotheses stay alive, never converged.
 	{
 		StopAndScanLocalizer loc(
-		    map, config().stopAndScan, locOptions(), perceptionOptions());
-		SimulatedRobot robot(room, config().robot, start);
+		    map, test::shippedNavigationConfig().stopAndScan, locOptions(),
+		    perceptionOptions());
+		SimulatedRobot robot(
+		    room, test::shippedNavigationConfig().robot, start);
 		robot.enableOdometryNoise(room.odometry);
 		try
 		{
@@ -336,12 +343,13 @@ TEST(StopAndScanLocalizer, SymmetricRoomIsAmbiguousNotConverged)
 	// accepts one of the twins at once; only the uniqueness check refuses.
 	for (const bool check : {true, false})
 	{
-		auto o = config().stopAndScan;
+		auto o = test::shippedNavigationConfig().stopAndScan;
 		o.convergedFraction = 0.5;
 		o.maxSweeps = 3;
 		o.uniquenessCheck = check;
 		StopAndScanLocalizer loc(map, o, locOptions(), perceptionOptions());
-		SimulatedRobot robot(room, config().robot, start);
+		SimulatedRobot robot(
+		    room, test::shippedNavigationConfig().robot, start);
 		robot.enableOdometryNoise(room.odometry);
 		if (!check)
 		{
@@ -385,18 +393,19 @@ TEST(StopAndScanLocalizer, SemanticEvidenceTellsTheSymmetricRoomFromItsTwin)
 	// cannot decide: with the object detectors on, the wastebasket by the
 	// north wall (and the labels around it) tells the two poses apart.
 	const Scene& room = symmetricRoom();
-	SemanticMap map(config().map);
+	SemanticMap map(test::shippedNavigationConfig().map);
 	SceneMapBuilder::build(room, map);
-	const auto cascades =
-	    CascadeDetector::TOptions::fromIniFile(kSrc + "/config/cascade.ini");
+	const auto cascades = CascadeDetector::TOptions::fromIniFile(
+	    test::kSourceDir + "/config/cascade.ini");
 	for (const mrpt::math::TPose2D start :
 	     {mrpt::math::TPose2D(1.5, 1.2, 0.3),
 	      mrpt::math::TPose2D(4.5, 2.8, 0.3 + M_PI)})
 	{
 		StopAndScanLocalizer loc(
-		    map, config().stopAndScan, locOptions(), perceptionOptions(),
-		    cascades);
-		SimulatedRobot robot(room, config().robot, start);
+		    map, test::shippedNavigationConfig().stopAndScan, locOptions(),
+		    perceptionOptions(), cascades);
+		SimulatedRobot robot(
+		    room, test::shippedNavigationConfig().robot, start);
 		robot.enableOdometryNoise(room.odometry);
 		const auto rep = loc.start(robot.interfaces(), Mode::Global);
 		std::cerr << "from (" << start.x << ", " << start.y
@@ -409,7 +418,7 @@ TEST(StopAndScanLocalizer, SemanticEvidenceTellsTheSymmetricRoomFromItsTwin)
 		EXPECT_GT(
 		    rep.records.back().score,
 		    rep.records.back().rivalScore +
-		        config().stopAndScan.uniquenessMargin);
+		        test::shippedNavigationConfig().stopAndScan.uniquenessMargin);
 	}
 }
 
@@ -424,10 +433,10 @@ TEST(StopAndScanLocalizer, AWrongBeliefIsNeverAnArrival)
 	// cannot relocalize and stops with arrival_not_confirmed - never a
 	// false "reached".
 	const Scene& room = symmetricRoom();
-	SemanticMap map(config().map);
+	SemanticMap map(test::shippedNavigationConfig().map);
 	SceneMapBuilder::build(room, map);
-	const auto cascades =
-	    CascadeDetector::TOptions::fromIniFile(kSrc + "/config/cascade.ini");
+	const auto cascades = CascadeDetector::TOptions::fromIniFile(
+	    test::kSourceDir + "/config/cascade.ini");
 	const mrpt::math::TPose2D start(1.5, 1.2, mrpt::DEG2RAD(17.0));
 	const mrpt::math::TPose2D twin(4.5, 2.8, mrpt::DEG2RAD(197.0));
 	for (const bool semantic : {true, false})
@@ -436,7 +445,7 @@ TEST(StopAndScanLocalizer, AWrongBeliefIsNeverAnArrival)
 		if (!semantic)
 			loc.semantic.classPoints = loc.semantic.groundPoints =
 			    loc.semantic.objectPoints = 0;
-		SimulatedNavigation sim(map, room, config());
+		SimulatedNavigation sim(map, room, test::shippedNavigationConfig());
 		sim.setLocalization(
 		    Mode::Tracking, loc, perceptionOptions(), twin, cascades);
 		const auto r = sim.run(NavCommand::nearest(Label::Wastebasket), start);
@@ -474,9 +483,10 @@ TEST(StopAndScanLocalizer, KidnappedWhileDrivingIsFoundRecoveredAndArrives)
 	// while it drives, the robot is carried to (6.2, 2.6) facing north and
 	// its odometry notices nothing. The next stop-and-scan finds the walls
 	// do not fit, relocalizes from scratch, and the robot arrives.
-	const auto cascades =
-	    CascadeDetector::TOptions::fromIniFile(kSrc + "/config/cascade.ini");
-	SimulatedNavigation sim(officeMap(), office(), config());
+	const auto cascades = CascadeDetector::TOptions::fromIniFile(
+	    test::kSourceDir + "/config/cascade.ini");
+	SimulatedNavigation sim(
+	    officeMap(), office(), test::shippedNavigationConfig());
 	sim.setLocalization(
 	    Mode::Global, locOptions(), perceptionOptions(), std::nullopt,
 	    cascades);
@@ -508,8 +518,10 @@ TEST(StopAndScanLocalizer, ACarriedRobotIsFoundAgainByTheNextRescan)
 	// do not fit, the filter restarts over the map, the robot turns and
 	// sweeps until it is localized at the new place.
 	StopAndScanLocalizer loc(
-	    officeMap(), config().stopAndScan, locOptions(), perceptionOptions());
-	SimulatedRobot robot(office(), config().robot, {2.2, 1.5, 0});
+	    officeMap(), test::shippedNavigationConfig().stopAndScan, locOptions(),
+	    perceptionOptions());
+	SimulatedRobot robot(
+	    office(), test::shippedNavigationConfig().robot, {2.2, 1.5, 0});
 	robot.enableOdometryNoise(office().odometry);
 	const RobotInterfaces io = robot.interfaces();
 	const auto first =
@@ -559,12 +571,13 @@ trajectory:
   - [1, 1, 0]
 )",
 	    "nowalls");
-	SemanticMap map(config().map);
+	SemanticMap map(test::shippedNavigationConfig().map);
 	SceneMapBuilder::build(s, map);
 	try
 	{
 		StopAndScanLocalizer loc(
-		    map, config().stopAndScan, locOptions(), perceptionOptions());
+		    map, test::shippedNavigationConfig().stopAndScan, locOptions(),
+		    perceptionOptions());
 		FAIL() << "accepted a map without walls";
 	}
 	catch (const LocalizationFailedError& e)
@@ -613,7 +626,7 @@ TEST(StopAndScanLocalizer, AWastebasketTheMapSaysIsNotThereRefusesTheStart)
 	// docs/localization.md) and the start is refused. Without the check the
 	// start is accepted (the semantic evidence may even pull the estimate
 	// to another wastebasket of the map: one run settled 8.4 m off).
-	std::ifstream in(kSrc + "/datasets/office/office.yaml");
+	std::ifstream in(test::kSourceDir + "/datasets/office/office.yaml");
 	std::string text, line;
 	const std::string basket1 = "center: [0.45, 4.5, 0.2]";
 	bool removed = false;
@@ -624,18 +637,19 @@ TEST(StopAndScanLocalizer, AWastebasketTheMapSaysIsNotThereRefusesTheStart)
 			removed = true;
 	ASSERT_TRUE(removed);
 	const Scene without = SceneLoader::parse(text, "office without basket 1");
-	SemanticMap map(config().map);
+	SemanticMap map(test::shippedNavigationConfig().map);
 	SceneMapBuilder::build(without, map);
-	const auto cascades =
-	    CascadeDetector::TOptions::fromIniFile(kSrc + "/config/cascade.ini");
+	const auto cascades = CascadeDetector::TOptions::fromIniFile(
+	    test::kSourceDir + "/config/cascade.ini");
 	const mrpt::math::TPose2D start(1.5, 3.0, M_PI / 2);
 	for (const bool check : {true, false})
 	{
-		auto o = config().stopAndScan;
+		auto o = test::shippedNavigationConfig().stopAndScan;
 		if (!check) o.contradictionDistance = 0;
 		StopAndScanLocalizer loc(
 		    map, o, locOptions(), perceptionOptions(), cascades);
-		SimulatedRobot robot(office(), config().robot, start);
+		SimulatedRobot robot(
+		    office(), test::shippedNavigationConfig().robot, start);
 		robot.enableOdometryNoise(office().odometry);
 		try
 		{

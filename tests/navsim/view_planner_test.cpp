@@ -20,6 +20,7 @@
 #include <iostream>
 #include <memory>
 
+#include "../TestPaths.h"
 #include "../nav/ShippedOptions.h"
 #include "NavTestUtils.h"
 
@@ -28,7 +29,6 @@ using Hypothesis = ViewPlanner::Hypothesis;
 
 namespace
 {
-const std::string kSrc = SEMNAV_SOURCE_DIR;
 
 const SimulationConfig& config()
 {
@@ -37,8 +37,8 @@ const SimulationConfig& config()
 
 const Scene& hall()
 {
-	static const Scene s =
-	    SceneLoader::loadFile(kSrc + "/datasets/nav-trials/u_hall.yaml");
+	static const Scene s = SceneLoader::loadFile(
+	    test::kSourceDir + "/datasets/nav-trials/u_hall.yaml");
 	return s;
 }
 
@@ -141,8 +141,8 @@ TEST(ViewPlanner, AStartAtTheHallsCentreIsRightAndNeverWrongWithWallsOnly)
 	// semnav-map builds, drives turn refusals into arrivals:
 	// scripts/nav-trials, docs/localization.md.)
 	const mrpt::math::TPose2D start(6.0, 3.5, 0.0);
-	const auto cascades =
-	    CascadeDetector::TOptions::fromIniFile(kSrc + "/config/cascade.ini");
+	const auto cascades = CascadeDetector::TOptions::fromIniFile(
+	    test::kSourceDir + "/config/cascade.ini");
 	StopAndScanLocalizer loc(
 	    hallMap(), config().stopAndScan, test::shippedLocalizationOptions(),
 	    test::shippedPerceptionOptions(), cascades);

@@ -22,7 +22,7 @@ constexpr double kNoLimit = std::numeric_limits<double>::infinity();
 /** Grid sizes (rows, cols) of the random runs. */
 constexpr int kSizes[][2] = {{1, 9}, {7, 3}, {24, 31}, {57, 40}, {96, 128}};
 
-struct Problem
+struct RepairProblem
 {
 	TraversabilityGrid u;
 	GoalLayer goals;
@@ -30,12 +30,13 @@ struct Problem
 
 /** Random costs (half of the cells free of cost), blocked cells, a few
  * wall segments and `nGoals` goal discs. */
-Problem randomProblem(int rows, int cols, double L, uint64_t seed, int nGoals)
+RepairProblem randomProblem(
+    int rows, int cols, double L, uint64_t seed, int nGoals)
 {
 	std::mt19937_64 rng(seed);
 	std::uniform_real_distribution<double> U(0, 1);
 	const GridGeometry g(0.05, 1.0, -2.0, cols, rows);
-	Problem p{TraversabilityGrid(g, L), GoalLayer(g)};
+	RepairProblem p{TraversabilityGrid(g, L), GoalLayer(g)};
 	for (int r = 0; r < rows; r++)
 		for (int c = 0; c < cols; c++)
 		{
@@ -98,7 +99,7 @@ enum class Change
 
 /** Applies a random change of kind `kind` to p; returns the rectangle
  * holding every changed cell. */
-CellRect applyChange(Problem& p, Change kind, std::mt19937_64& rng)
+CellRect applyChange(RepairProblem& p, Change kind, std::mt19937_64& rng)
 {
 	const auto& g = p.u.geometry();
 	std::uniform_real_distribution<double> U(0, 1);
@@ -203,7 +204,7 @@ CellRect applyChange(Problem& p, Change kind, std::mt19937_64& rng)
 	return rect;
 }
 
-bool anyTraversableGoal(const Problem& p)
+bool anyTraversableGoal(const RepairProblem& p)
 {
 	for (std::size_t i = 0; i < p.u.values().size(); i++)
 		if (p.goals.isGoal(i) && !p.u.blocked(i)) return true;
@@ -214,11 +215,11 @@ bool anyTraversableGoal(const Problem& p)
  * holding it; nullopt (p unchanged) when it left no traversable goal. */
 struct Step
 {
-	Problem before;
+	RepairProblem before;
 	Change kind;
 	CellRect rect;
 };
-std::optional<Step> randomStep(Problem& p, std::mt19937_64& rng)
+std::optional<Step> randomStep(RepairProblem& p, std::mt19937_64& rng)
 {
 	Step s{p, static_cast<Change>(rng() % static_cast<int>(Change::Count)), {}};
 	s.rect = applyChange(p, s.kind, rng);
@@ -237,7 +238,7 @@ std::string whereText(uint64_t seed, int step, Change kind)
  * both fields. */
 void expectSamePaths(
     const DiffusionField& repaired, const DiffusionField& full,
-    const Problem& p, std::mt19937_64& rng, int n)
+    const RepairProblem& p, std::mt19937_64& rng, int n)
 {
 	const auto& g = p.u.geometry();
 	int found = 0;
@@ -268,7 +269,7 @@ RunTally randomRun(
 {
 	RunTally t;
 	std::mt19937_64 rng(seed * 7919);
-	Problem p = randomProblem(rows, cols, L, seed, 1 + seed % 3);
+	RepairProblem p = randomProblem(rows, cols, L, seed, 1 + seed % 3);
 	const CnnPlanner planner;
 	DiffusionField f = planner.computeField(p.u, p.goals);
 	for (int step = 0; step < steps; step++)
@@ -328,7 +329,7 @@ namespace
 /** A random traversable cell that `full` reaches; nullopt when none is
  * found. */
 std::optional<CellIndex> reachedStart(
-    const DiffusionField& full, const Problem& p, std::mt19937_64& rng)
+    const DiffusionField& full, const RepairProblem& p, std::mt19937_64& rng)
 {
 	const auto& g = p.u.geometry();
 	for (int k = 0; k < 200; k++)
@@ -346,7 +347,7 @@ std::optional<CellIndex> reachedStart(
  * path from the start; the path from the start is the full recompute's. */
 void expectExactForStart(
     const DiffusionField& f, const DiffusionField& full,
-    const PendingRepair& pending, const Problem& p, const CellIndex& s,
+    const PendingRepair& pending, const RepairProblem& p, const CellIndex& s,
     const std::string& where)
 {
 	const auto& g = p.u.geometry();
@@ -385,7 +386,7 @@ struct BoundedTally
 void boundedRun(int rows, int cols, uint64_t seed, int steps, BoundedTally& t)
 {
 	std::mt19937_64 rng(seed * 104729);
-	Problem p = randomProblem(rows, cols, 1e6, seed, 1 + seed % 3);
+	RepairProblem p = randomProblem(rows, cols, 1e6, seed, 1 + seed % 3);
 	const CnnPlanner planner;
 	DiffusionField f = planner.computeField(p.u, p.goals);
 	for (int step = 0; step < steps; step++)
@@ -452,13 +453,13 @@ TEST(FieldRepair, StartBoundedRepairIsExactForTheStartsPath)
 
 TEST(FieldRepair, StartBoundedRepairNeedsNoPendingWork)
 {
-	Problem p = randomProblem(40, 50, 1e6, 5, 1);
+	RepairProblem p = randomProblem(40, 50, 1e6, 5, 1);
 	const CnnPlanner planner;
 	DiffusionField f = planner.computeField(p.u, p.goals);
 	PendingRepair pending;
 	for (int k = 0; k < 20 && pending.empty(); k++)
 	{
-		const Problem before = p;
+		const RepairProblem before = p;
 		std::mt19937_64 rng(k);
 		const CellRect r = applyChange(p, Change::AddObstacle, rng);
 		planner.repairFieldFrom(
@@ -474,7 +475,7 @@ TEST(FieldRepair, StartBoundedRepairNeedsNoPendingWork)
 
 TEST(FieldRepair, NoChangeTouchesNothing)
 {
-	const Problem p = randomProblem(40, 50, 1e6, 3, 2);
+	const RepairProblem p = randomProblem(40, 50, 1e6, 3, 2);
 	const CnnPlanner planner;
 	DiffusionField f = planner.computeField(p.u, p.goals);
 	const auto ref = f;
@@ -498,8 +499,8 @@ TEST(FieldRepair, NoChangeTouchesNothing)
 
 TEST(FieldRepair, ChangeEverywhereFallsBackUnlessUnlimited)
 {
-	const Problem before = randomProblem(60, 60, 1e6, 4, 2);
-	Problem after = randomProblem(60, 60, 1e6, 5, 2);
+	const RepairProblem before = randomProblem(60, 60, 1e6, 4, 2);
+	RepairProblem after = randomProblem(60, 60, 1e6, 5, 2);
 	after.goals = before.goals;
 	for (std::size_t i = 0; i < after.u.values().size(); i++)
 		if (before.goals.isGoal(i)) after.u.values()[i] = 0;
@@ -526,10 +527,10 @@ TEST(FieldRepair, ChangeEverywhereFallsBackUnlessUnlimited)
 
 TEST(FieldRepair, GoalMovedFallsBackToAFullRecompute)
 {
-	Problem p = randomProblem(50, 50, 1e6, 6, 1);
+	RepairProblem p = randomProblem(50, 50, 1e6, 6, 1);
 	const CnnPlanner planner;
 	DiffusionField f = planner.computeField(p.u, p.goals);
-	const Problem before = p;
+	const RepairProblem before = p;
 	p.goals = GoalLayer(p.u.geometry());
 	p.u.setU(40, 8, 0);
 	p.goals.addCell({40, 8}, 1);
@@ -591,10 +592,10 @@ TEST(FieldRepair, WorkLimitFallsBackWithTheSameField)
 
 TEST(FieldRepair, EqualsTheJacobiReference)
 {
-	Problem p = randomProblem(45, 38, 1e6, 8, 2);
+	RepairProblem p = randomProblem(45, 38, 1e6, 8, 2);
 	const CnnPlanner planner;
 	DiffusionField f = planner.computeField(p.u, p.goals);
-	const Problem before = p;
+	const RepairProblem before = p;
 	std::mt19937_64 rng(8);
 	const CellRect r = applyChange(p, Change::AddObstacle, rng);
 	planner.repairField(f, before.u, before.goals, p.u, p.goals, &r);
@@ -605,13 +606,13 @@ TEST(FieldRepair, EqualsTheJacobiReference)
 
 TEST(FieldRepair, BadInput)
 {
-	const Problem p = randomProblem(20, 20, 1e6, 9, 1);
+	const RepairProblem p = randomProblem(20, 20, 1e6, 9, 1);
 	const CnnPlanner planner;
 	DiffusionField f = planner.computeField(p.u, p.goals);
 	const auto ref = f;
 
 	// Every goal cell blocked: EmptyGoalError as computeField, field kept.
-	Problem blocked = p;
+	RepairProblem blocked = p;
 	for (std::size_t i = 0; i < p.u.values().size(); i++)
 		if (p.goals.isGoal(i)) blocked.u.values()[i] = p.u.L();
 	EXPECT_THROW(
@@ -620,7 +621,7 @@ TEST(FieldRepair, BadInput)
 	EXPECT_EQ(f.x, ref.x);
 
 	// A field of another grid.
-	const Problem other = randomProblem(21, 20, 1e6, 9, 1);
+	const RepairProblem other = randomProblem(21, 20, 1e6, 9, 1);
 	EXPECT_THROW(
 	    planner.repairField(f, other.u, other.goals, p.u, p.goals),
 	    PlanningError);

@@ -78,7 +78,7 @@ struct EmptyStart
 	}
 };
 
-std::atomic<bool> kNoStop{false};
+std::atomic<bool> kNoStopRequest{false};
 
 /** semnav-map --poses pf of `rawlog` with the shipped configs (the
  * library code semnav-map runs). */
@@ -136,7 +136,8 @@ TEST(RobotEmptyStart, GoToThroughTwoRoomsMapsLikeSemnavMap)
 	{
 		const std::size_t before = run.all("arrived").size();
 		EXPECT_TRUE(run.session->handle(
-		    "go to " + std::to_string(x) + " " + std::to_string(y), kNoStop));
+		    "go to " + std::to_string(x) + " " + std::to_string(y),
+		    kNoStopRequest));
 		EXPECT_EQ(run.all("arrived").size(), before + 1)
 		    << "go to " << x << " " << y;
 		EXPECT_LT(run.trueDistanceTo(x, y), 0.6) << "go to " << x << " " << y;
@@ -191,7 +192,7 @@ TEST(RobotEmptyStart, AGoalThatTurnsOutInAnObstacleEndsGoalBlocked)
 	ASSERT_TRUE(run.session->localize());
 	// Room B's table, unseen from the start: the plan heads there until
 	// a sweep shows the table top covering the goal.
-	EXPECT_TRUE(run.session->handle("go to 7.6 2.0", kNoStop));
+	EXPECT_TRUE(run.session->handle("go to 7.6 2.0", kNoStopRequest));
 	const auto failed = run.all("failed");
 	ASSERT_EQ(failed.size(), 1u);
 	EXPECT_EQ(failed[0]["stop_reason"], "goal_blocked");

@@ -34,7 +34,8 @@ std::string generate(SceneGenerator::Kind kind, uint64_t seed)
 
 /** Distance from (x, y) to a primitive's floor footprint; infinity for
  * primitives starting above 1.2 m (lintels) and for terrain. */
-double footprintDistance(const semnav::ScenePrimitive& prim, double x, double y)
+double groundFootprintDistance(
+    const semnav::ScenePrimitive& prim, double x, double y)
 {
 	const auto rectDist = [](double lx, double ly, double hx, double hy)
 	{
@@ -73,7 +74,7 @@ double clearance(const Scene& scene, double x, double y)
 	double d = INFINITY;
 	for (const auto& o : scene.objects)
 		for (const auto& p : o.parts)
-			d = std::min(d, footprintDistance(p, x, y));
+			d = std::min(d, groundFootprintDistance(p, x, y));
 	return d;
 }
 

@@ -33,7 +33,7 @@ namespace fs = std::filesystem;
 
 namespace
 {
-constexpr double kDeg = M_PI / 180;
+constexpr double kDegree = M_PI / 180;
 
 /** Room [-4, 4]^2, ceiling 2.5 m, one wall (id 1) whose face is x = 3. */
 Scene room()
@@ -54,8 +54,8 @@ Scene room()
 SensorSpec smallSpec()
 {
 	SensorSpec sp;
-	sp.phiStep = 5 * kDeg;
-	sp.thetaStep = 5 * kDeg;
+	sp.phiStep = 5 * kDegree;
+	sp.thetaStep = 5 * kDegree;
 	return sp;
 }
 
@@ -143,7 +143,7 @@ TEST(TiltingLaserSimulator, SweepGeometryAndRanges)
 	const TiltingLaserSimulator sim(rc, spec, 42);
 	ASSERT_EQ(sim.lineCount(), 211u);
 	ASSERT_EQ(sim.beamCount(), 361u);
-	const TPose2D pose(1.0, -0.5, 20 * kDeg);
+	const TPose2D pose(1.0, -0.5, 20 * kDegree);
 	const auto t0 = SimulationRunner::epoch();
 	const double period = 1 / 37.5;
 	const SimulatedSweep sw = sim.simulate(pose, 0, t0, period);
@@ -373,8 +373,8 @@ TEST(OdometrySimulator, NoiseStatistics)
 {
 	OdometrySpec spec;
 	spec.transNoise = 0.02;
-	spec.rotNoisePerM = 2 * kDeg;
-	spec.rotBiasPerM = 1 * kDeg;
+	spec.rotNoisePerM = 2 * kDegree;
+	spec.rotBiasPerM = 1 * kDegree;
 	const int trials = 4000;
 	const double s = 2.0;
 	double sh = 0, sh2 = 0, sx2 = 0, sy2 = 0;
@@ -422,14 +422,14 @@ TEST(OdometrySimulator, BiasOfThreeAndAHalfDegPerMetreOverTenMetres)
 	std::vector<TPose2D> traj;
 	for (int i = 0; i <= 10; i++) traj.emplace_back(i, 0, 0);
 	OdometrySpec spec;
-	spec.rotBiasPerM = 3.5 * kDeg;
+	spec.rotBiasPerM = 3.5 * kDegree;
 	spec.rotNoisePerM = 0;
 	spec.transNoise = 0;
 	const auto odo = OdometrySimulator::simulate(spec, traj, 1);
 	const double err =
 	    std::abs(mrpt::math::wrapToPi(odo.back().phi() - traj.back().phi));
-	EXPECT_GT(err, 30 * kDeg);
-	EXPECT_NEAR(err, 35 * kDeg, 1e-9);
+	EXPECT_GT(err, 30 * kDegree);
+	EXPECT_NEAR(err, 35 * kDegree, 1e-9);
 	// With the default heading noise on top, the mean error stays > 30 deg.
 	spec.rotNoisePerM = OdometrySpec{}.rotNoisePerM;
 	spec.transNoise = OdometrySpec{}.transNoise;
@@ -437,7 +437,7 @@ TEST(OdometrySimulator, BiasOfThreeAndAHalfDegPerMetreOverTenMetres)
 	for (int k = 0; k < 200; k++)
 		sum += mrpt::math::wrapToPi(
 		    OdometrySimulator::simulate(spec, traj, k).back().phi());
-	EXPECT_GT(sum / 200, 30 * kDeg);
+	EXPECT_GT(sum / 200, 30 * kDegree);
 }
 
 TEST(SimulationRunner, WritesRawlogGroundTruthAndLabels)
@@ -650,13 +650,13 @@ TEST(SimulatorOptions, SaveLoadRoundTripAndErrors)
 	SimulationRunner::TOptions o;
 	o.sensorLabel = "HEAD";
 	o.linePeriod = 0.0137;
-	o.robotTurnRate = 45 * kDeg;
+	o.robotTurnRate = 45 * kDegree;
 	o.threads = 3;
 	o.bruteForce = true;
 	const SimulationRunner::TOptions r = test::savedAndLoaded(o, "Simulator");
 	EXPECT_EQ(r.sensorLabel, "HEAD");
 	EXPECT_NEAR(r.linePeriod, 0.0137, 1e-12);
-	EXPECT_NEAR(r.robotTurnRate, 45 * kDeg, 1e-12);
+	EXPECT_NEAR(r.robotTurnRate, 45 * kDegree, 1e-12);
 	EXPECT_EQ(r.threads, 3);
 	EXPECT_TRUE(r.bruteForce);
 

@@ -9,7 +9,7 @@ using namespace semnav;
 
 namespace
 {
-uint16_t code(Label l, int inst)
+uint16_t labelCode(Label l, int inst)
 {
 	return static_cast<uint16_t>(static_cast<int>(l) | (inst << 8));
 }
@@ -26,9 +26,10 @@ Detection det(Label l, cv::Rect box, double score = 1)
 TEST(GroundTruthObject, InstancesWithBoxesAndPixels)
 {
 	cv::Mat gt(50, 80, CV_16U, cv::Scalar(static_cast<int>(Label::Wall)));
-	gt(cv::Rect(10, 10, 12, 15)).setTo(code(Label::Washbasin, 4));
-	gt(cv::Rect(40, 5, 5, 5)).setTo(code(Label::Wastebasket, 9));
-	gt(cv::Rect(60, 30, 10, 10)).setTo(code(Label::Washbasin, 0));  // no id
+	gt(cv::Rect(10, 10, 12, 15)).setTo(labelCode(Label::Washbasin, 4));
+	gt(cv::Rect(40, 5, 5, 5)).setTo(labelCode(Label::Wastebasket, 9));
+	gt(cv::Rect(60, 30, 10, 10))
+	    .setTo(labelCode(Label::Washbasin, 0));  // no id
 	const auto objs = GroundTruthObject::fromLabelImage(
 	    gt, {Label::Washbasin, Label::Wastebasket});
 	ASSERT_EQ(objs.size(), 2u);
@@ -51,9 +52,9 @@ TEST(ObjectScorer, IssueRules)
 	// Washbasin 1: 20 x 10 = 200 px (counts); washbasin 2: 10 x 10 = 100 px
 	// (too small to count); wastebasket: 15 x 12 = 180 px (counts).
 	cv::Mat gt(100, 100, CV_16U, cv::Scalar(0));
-	gt(cv::Rect(10, 10, 20, 10)).setTo(code(Label::Washbasin, 1));
-	gt(cv::Rect(60, 60, 10, 10)).setTo(code(Label::Washbasin, 2));
-	gt(cv::Rect(40, 70, 15, 12)).setTo(code(Label::Wastebasket, 3));
+	gt(cv::Rect(10, 10, 20, 10)).setTo(labelCode(Label::Washbasin, 1));
+	gt(cv::Rect(60, 60, 10, 10)).setTo(labelCode(Label::Washbasin, 2));
+	gt(cv::Rect(40, 70, 15, 12)).setTo(labelCode(Label::Wastebasket, 3));
 	const std::vector<Label> labels{Label::Washbasin, Label::Wastebasket};
 	ObjectScorer s;
 	s.add(
@@ -87,9 +88,9 @@ TEST(ObjectScorer, IssueRules)
 TEST(ObjectScorer, ExcludedObjectsAreNotScored)
 {
 	cv::Mat gt(100, 100, CV_16U, cv::Scalar(0));
-	gt(cv::Rect(10, 10, 20, 10)).setTo(code(Label::Washbasin, 1));
-	gt(cv::Rect(50, 50, 20, 10)).setTo(code(Label::Washbasin, 2));
-	gt(cv::Rect(10, 70, 20, 10)).setTo(code(Label::Washbasin, 3));
+	gt(cv::Rect(10, 10, 20, 10)).setTo(labelCode(Label::Washbasin, 1));
+	gt(cv::Rect(50, 50, 20, 10)).setTo(labelCode(Label::Washbasin, 2));
+	gt(cv::Rect(10, 70, 20, 10)).setTo(labelCode(Label::Washbasin, 3));
 	const std::vector<Label> labels{Label::Washbasin};
 	ObjectScorer s;
 	s.add(
@@ -110,8 +111,8 @@ TEST(ObjectScorer, ObjectsOfFewDistinctPointsAreFound)
 	cv::Mat gt(100, 100, CV_16U, cv::Scalar(0));
 	cv::Mat points(100, 100, CV_32FC3, cv::Scalar::all(NAN));
 	const cv::Rect spread(10, 10, 20, 10), repeated(50, 50, 20, 10);
-	gt(spread).setTo(code(Label::Washbasin, 1));
-	gt(repeated).setTo(code(Label::Washbasin, 2));
+	gt(spread).setTo(labelCode(Label::Washbasin, 1));
+	gt(repeated).setTo(labelCode(Label::Washbasin, 2));
 	for (int r = 0; r < 10; r++)
 		for (int c = 0; c < 20; c++)
 		{
@@ -122,16 +123,16 @@ TEST(ObjectScorer, ObjectsOfFewDistinctPointsAreFound)
 		}
 	EXPECT_EQ(
 	    ObjectScorer::distinctCells(
-	        gt == code(Label::Washbasin, 1), points, 0.02),
+	        gt == labelCode(Label::Washbasin, 1), points, 0.02),
 	    200u);
 	EXPECT_EQ(
 	    ObjectScorer::distinctCells(
-	        gt == code(Label::Washbasin, 2), points, 0.02),
+	        gt == labelCode(Label::Washbasin, 2), points, 0.02),
 	    4u);
 	// At 10 cm cells the spread one fills 50 cells.
 	EXPECT_EQ(
 	    ObjectScorer::distinctCells(
-	        gt == code(Label::Washbasin, 1), points, 0.1),
+	        gt == labelCode(Label::Washbasin, 1), points, 0.1),
 	    50u);
 	const ObjectScorer s;
 	const auto few = s.fewDistinctPoints(gt, points, {Label::Washbasin});
