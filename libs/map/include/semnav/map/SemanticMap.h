@@ -453,7 +453,7 @@ private:
 	std::vector<ObjectInstance> m_instances;
 	struct PastSweep;
 	/** The last TOptions::doorViewHistory sweeps, oldest first (shared:
-	 * PastSweep is complete in SemanticMapInsert.cpp only). */
+	 * PastSweep is complete in SemanticMapDoorViews.cpp only). */
 	std::deque<std::shared_ptr<const PastSweep>> m_pastSweeps;
 	std::unique_ptr<octomap::OcTree> m_octree;
 	/** False after write access to the OctoMap from outside: its inner
