@@ -205,6 +205,7 @@ void SemanticMap::insert(
 	const std::size_t firstNew = m_instances.size();
 	insertRegions(ls, robot, e, seenThisSweep);
 	countDoorViews(firstNew, seenThisSweep, viewedThisSweep);
+	joinDoubleDoors(e.changed);
 	keepSweep(sweep, robot);
 
 	// 3D: every point into the OctoMap (endpoints; free space stays 2D).
@@ -655,7 +656,10 @@ void SemanticMap::mergeObject(
 	if (!best)
 	{
 		ObjectInstance o;
-		o.id = static_cast<int>(m_instances.size()) + 1;
+		// Ids stay unique when a joined double door took an instance out.
+		o.id = 1;
+		for (const auto& other : m_instances)
+			o.id = std::max(o.id, other.id + 1);
 		o.label = label;
 		o.centroid = centroid;
 		o.sightings.push_back(centroid);
@@ -674,7 +678,9 @@ void SemanticMap::mergeObject(
 	    seenThisSweep.end();
 	if (!again)
 	{
+		const mrpt::math::TPoint3D middle = best->centroid;
 		best->addSighting(centroid, m_options.mergeDistance / 2);
+		if (best->leaves == 2) centreOnLeaves(*best, middle);
 		best->sightingSizes.push_back(size);
 		best->observations++;
 		seenThisSweep.push_back(best->id);
