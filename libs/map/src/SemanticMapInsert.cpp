@@ -498,18 +498,8 @@ void SemanticMap::insertRegions(
     std::vector<int>& seenThisSweep)
 {
 	const auto& registry = ClassRegistry::instance();
-	// Largest first: of one sweep's regions that merge into one instance
-	// only the first gives a sighting (mergeObject()), so a door's own
-	// region, not a fragment beside it, places it.
-	std::vector<const LabeledRegion*> regions;
-	for (const auto& reg : ls.regions) regions.push_back(&reg);
-	std::stable_sort(
-	    regions.begin(), regions.end(),
-	    [](const LabeledRegion* a, const LabeledRegion* b)
-	    { return a->pixels > b->pixels; });
-	for (const LabeledRegion* r : regions)
+	for (const auto& reg : ls.regions)
 	{
-		const LabeledRegion& reg = *r;
 		if (!registry.contains(reg.label) ||
 		    classInfo(reg.label).instances !=
 		        ClassInfo::InstanceSource::Regions)

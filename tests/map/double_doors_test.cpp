@@ -1,8 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
-// Where the map places doors: by a sweep's largest region, and double doors
-// (two door instances side by side in one wall) at their middle
-// (SemanticMap::TOptions::doubleDoorMaxWidth; docs/mapping.md, "Objects in
-// the map").
+// Double doors: two door instances side by side in one wall joined into one
+// door at their middle (SemanticMap::TOptions::doubleDoorMaxWidth;
+// docs/mapping.md, "Objects in the map").
 #include <gtest/gtest.h>
 #include <semnav/map/SemanticMap.h>
 
@@ -120,23 +119,4 @@ TEST(SemanticMap, TwoRoomsDoorsSideBySideStayTwo)
 	    wallWith({leaf(0, -0.45, 0.8), leaf(1, 0.45, 0.8)}, none),
 	    mrpt::poses::CPose2D(0, 0, 0));
 	EXPECT_EQ(m.instances(Label::Door).size(), 2u);
-}
-
-TEST(SemanticMap, ADoorIsPlacedByItsLargestRegion)
-{
-	// A fragment (a 0.2 m piece at knee height) listed before the door's
-	// own region, their footprints overlapping: the door's region places
-	// it.
-	auto fragment = leaf(0, 0.5, 0.2);
-	fragment.minCorner.z = 0.4;
-	fragment.maxCorner.z = 0.5;
-	fragment.centroid.z = 0.45;
-	fragment.pixels = 150;
-	auto door = leaf(1, 0.0, 0.9);
-	door.pixels = 4000;
-	const auto d =
-	    doors({wallWith({fragment, door}, [](double) { return false; })});
-	ASSERT_EQ(d.size(), 1u);
-	EXPECT_NEAR(d[0].centroid.y, 0.0, 1e-6);
-	EXPECT_EQ(d[0].observations, 1u);
 }
