@@ -139,6 +139,19 @@ const OptionTable<O>& optionTable()
 	        .real(
 	            "door_min_height_m", &O::doorMinHeight, 0, 10,
 	            "Lower doors are not reported.")
+	        .real(
+	            "double_door_max_width_m", &O::doubleDoorMaxWidth, 0, 10,
+	            "Two doors side by side in one wall, together at most this "
+	            "wide, are the leaves of one double door (0: no join)...")
+	        .real(
+	            "double_door_max_leaf_width_m", &O::doubleDoorMaxLeafWidth, 0,
+	            10, "...each at most this wide...")
+	        .real(
+	            "double_door_max_plane_offset_m", &O::doubleDoorMaxPlaneOffset,
+	            0, 1, "...at most this far from one plane...")
+	        .real(
+	            "double_door_max_wall_m", &O::doubleDoorMaxWall, 0, 10,
+	            "...with no longer stretch of wall between them.")
 	        .flag(
 	            "octomap", &O::octomap,
 	            "Put every point into the OctoMap (octomap.bt).");

@@ -40,6 +40,10 @@ struct ObjectInstance
 	 * frame, each turned to agree with the sum so far: a door seen from
 	 * both sides), (0,0,0) when unknown (in memory only). */
 	mrpt::math::TPoint3D normalSum{0, 0, 0};
+	/** Doors: 2 for a double door joined from two instances, one per leaf
+	 * (SemanticMap::TOptions::doubleDoorMaxWidth); its centroid is then the
+	 * middle between its leaves' sightings (in memory only). */
+	int leaves = 1;
 	/** The best shape check score of its detections (Detection::shapeScore;
 	 * 1 for doors and classes without a shape model). */
 	double bestShapeScore = 1;

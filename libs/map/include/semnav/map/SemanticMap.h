@@ -171,6 +171,22 @@ public:
 		/** Doors whose merged extent is lower than this are not reported
 		 * (fragments of walls or furniture taken for a door) (m). */
 		double doorMinHeight = classInfo(Label::Door).plausibility.minHeight;
+		/** Two door instances side by side in one wall are the two leaves
+		 * of a double door, joined into one door at their middle
+		 * (joinDoubleDoors()), when together at most this wide along the
+		 * wall (their footprints) (m; 0: no join, as shipped: on the
+		 * tuning seeds the join moved two single doors and fixed none,
+		 * docs/mapping.md)... */
+		double doubleDoorMaxWidth = 0;
+		/** ...each at most this wide (its typical detection) (m)... */
+		double doubleDoorMaxLeafWidth = 1.15;
+		/** ...their centroids at most this far from one plane, their
+		 * normals within 15 deg (m)... */
+		double doubleDoorMaxPlaneOffset = 0.1;
+		/** ...and with no stretch of wall longer than this between their
+		 * centroids (cells labelled wall and never door): the wall between
+		 * the doors of two neighbouring rooms (m). */
+		double doubleDoorMaxWall = 0.3;
 		/** Insert points into the OctoMap. */
 		bool octomap = true;
 		TravelCostModel::TOptions cost;
@@ -430,6 +446,24 @@ private:
 	 * or a centroid the view test missed). */
 	static void countDetectedView(
 	    ObjectInstance& o, std::vector<int>& viewedThisSweep);
+	/** Joins pairs of door instances side by side in one wall, each about
+	 * a leaf wide, into one door (ObjectInstance::leaves = 2) at their
+	 * middle (TOptions::doubleDoorMaxWidth); the joined instance keeps the
+	 * lower id, the "objects" cells of the other get it. */
+	void joinDoubleDoors(CellRect& changed);
+	/** Whether door instances `a` and `b` are the two leaves of one
+	 * double door (see joinDoubleDoors()). */
+	bool leavesOfOneDoor(
+	    const ObjectInstance& a, const ObjectInstance& b) const;
+	/** Longest stretch (m) of cells labelled wall and never door on the
+	 * segment between two points. */
+	double longestWallBetween(
+	    const mrpt::math::TPoint3D& a, const mrpt::math::TPoint3D& b) const;
+	/** A double door's centroid from its sightings: the middle between
+	 * the mean of those on either side of `middle` along its wall
+	 * (unchanged when one side has none). */
+	static void centreOnLeaves(
+	    ObjectInstance& o, const mrpt::math::TPoint3D& middle);
 	/** Keeps the sweep for countDoorViews() (TOptions::doorViewHistory). */
 	void keepSweep(const Sweep& sweep, const mrpt::poses::CPose3D& robot);
 	/** Sets a staircase's centroid (x, y) from its labelled cells (see
@@ -453,7 +487,7 @@ private:
 	std::vector<ObjectInstance> m_instances;
 	struct PastSweep;
 	/** The last TOptions::doorViewHistory sweeps, oldest first (shared:
-	 * PastSweep is complete in SemanticMapInsert.cpp only). */
+	 * PastSweep is complete in SemanticMapDoorViews.cpp only). */
 	std::deque<std::shared_ptr<const PastSweep>> m_pastSweeps;
 	std::unique_ptr<octomap::OcTree> m_octree;
 	/** False after write access to the OctoMap from outside: its inner

@@ -1,0 +1,190 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// SemanticMap::insert(), double doors: the rules find a double door leaf by
+// leaf, so two door instances side by side in one wall become one door at
+// their middle (TOptions::doubleDoorMaxWidth).
+#include <semnav/common/ClassRegistry.h>
+#include <semnav/common/LabelSet.h>
+#include <semnav/map/SemanticMap.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace semnav
+{
+namespace
+{
+/** Unit horizontal normal of a door, false when unknown. */
+bool unitNormal(const ObjectInstance& o, double& nx, double& ny)
+{
+	const double n = std::hypot(o.normalSum.x, o.normalSum.y);
+	if (n < 1e-9) return false;
+	nx = o.normalSum.x / n;
+	ny = o.normalSum.y / n;
+	return true;
+}
+
+/** The extent of a footprint box along the direction (tx, ty). */
+void spanAlong(
+    const ObjectInstance& o, double tx, double ty, double& lo, double& hi)
+{
+	lo = 1e18;
+	hi = -1e18;
+	for (int k = 0; k < 4; k++)
+	{
+		const double x = (k & 1) ? o.maxCorner.x : o.minCorner.x;
+		const double y = (k & 2) ? o.maxCorner.y : o.minCorner.y;
+		lo = std::min(lo, x * tx + y * ty);
+		hi = std::max(hi, x * tx + y * ty);
+	}
+}
+}  // namespace
+
+double SemanticMap::longestWallBetween(
+    const mrpt::math::TPoint3D& a, const mrpt::math::TPoint3D& b) const
+{
+	const auto& labels = get("labels");
+	const double len = std::hypot(b.x - a.x, b.y - a.y);
+	const double step = m_geometry.resolution / 2;
+	const int n = std::max(1, static_cast<int>(std::ceil(len / step)));
+	double longest = 0, run = 0;
+	for (int k = 0; k <= n; k++)
+	{
+		const double t = static_cast<double>(k) / n;
+		int cx, cy;
+		bool wall = false;
+		if (worldToCell(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), cx, cy))
+		{
+			const LabelSet ls(static_cast<LabelSet::mask_t>(
+			    labels[m_geometry.index(cy, cx)]));
+			wall = ls.contains(Label::Wall) && !ls.contains(Label::Door);
+		}
+		run = wall ? run + len / n : 0;
+		longest = std::max(longest, run);
+	}
+	return longest;
+}
+
+bool SemanticMap::leavesOfOneDoor(
+    const ObjectInstance& a, const ObjectInstance& b) const
+{
+	double ax, ay, bx, by;
+	// Two doors the map reports (a one-off fragment is no leaf).
+	if (a.leaves != 1 || b.leaves != 1 || !reported(a) || !reported(b) ||
+	    !unitNormal(a, ax, ay) || !unitNormal(b, bx, by))
+		return false;
+	// Normals parallel (either way: a door seen from both sides).
+	constexpr double kMaxAngleDeg = 15;
+	const double dot = ax * bx + ay * by;
+	if (std::abs(dot) < std::cos(kMaxAngleDeg * M_PI / 180)) return false;
+	if (dot < 0)
+	{
+		bx = -bx;
+		by = -by;
+	}
+	double nx = ax + bx, ny = ay + by;
+	const double nn = std::hypot(nx, ny);
+	nx /= nn;
+	ny /= nn;
+	// One plane.
+	const double dx = b.centroid.x - a.centroid.x,
+	             dy = b.centroid.y - a.centroid.y;
+	if (std::abs(dx * nx + dy * ny) > m_options.doubleDoorMaxPlaneOffset)
+		return false;
+	// Each a leaf, together a double door.
+	if (a.typicalSize().x > m_options.doubleDoorMaxLeafWidth ||
+	    b.typicalSize().x > m_options.doubleDoorMaxLeafWidth)
+		return false;
+	const double tx = -ny, ty = nx;
+	double alo, ahi, blo, bhi;
+	spanAlong(a, tx, ty, alo, ahi);
+	spanAlong(b, tx, ty, blo, bhi);
+	if (std::max(ahi, bhi) - std::min(alo, blo) > m_options.doubleDoorMaxWidth)
+		return false;
+	// No wall between them: two rooms' doors have one.
+	return longestWallBetween(a.centroid, b.centroid) <=
+	       m_options.doubleDoorMaxWall;
+}
+
+void SemanticMap::joinDoubleDoors(CellRect& changed)
+{
+	if (m_options.doubleDoorMaxWidth <= 0) return;
+	const auto isDoor = [](const ObjectInstance& o) {
+		return classInfo(o.label).instances ==
+		       ClassInfo::InstanceSource::Regions;
+	};
+	for (bool joined = true; joined;)
+	{
+		joined = false;
+		for (std::size_t i = 0; i < m_instances.size() && !joined; i++)
+			for (std::size_t j = i + 1; j < m_instances.size() && !joined; j++)
+			{
+				ObjectInstance &a = m_instances[i], &b = m_instances[j];
+				if (!isDoor(a) || b.label != a.label || !leavesOfOneDoor(a, b))
+					continue;
+				// a takes b in: the middle of the two, both leaves'
+				// sightings, the larger counts (a sweep may have detected
+				// both).
+				a.centroid = (a.centroid + b.centroid) * 0.5;
+				a.sightings.insert(
+				    a.sightings.end(), b.sightings.begin(), b.sightings.end());
+				a.sightingSizes.insert(
+				    a.sightingSizes.end(), b.sightingSizes.begin(),
+				    b.sightingSizes.end());
+				a.minCorner = {
+				    std::min(a.minCorner.x, b.minCorner.x),
+				    std::min(a.minCorner.y, b.minCorner.y),
+				    std::min(a.minCorner.z, b.minCorner.z)};
+				a.maxCorner = {
+				    std::max(a.maxCorner.x, b.maxCorner.x),
+				    std::max(a.maxCorner.y, b.maxCorner.y),
+				    std::max(a.maxCorner.z, b.maxCorner.z)};
+				const double sign = a.normalSum.x * b.normalSum.x +
+				                                a.normalSum.y * b.normalSum.y <
+				                            0
+				                        ? -1
+				                        : 1;
+				a.normalSum = a.normalSum + b.normalSum * sign;
+				a.observations = std::max(a.observations, b.observations);
+				a.views = std::max(a.views, b.views);
+				a.bestShapeScore = std::max(a.bestShapeScore, b.bestShapeScore);
+				a.leaves = 2;
+				const int from = b.id, to = a.id;
+				m_instances.erase(m_instances.begin() + j);
+				auto& objs = layer("objects");
+				for (int cy = 0; cy < m_geometry.rows; cy++)
+					for (int cx = 0; cx < m_geometry.cols; cx++)
+					{
+						float& v = objs[m_geometry.index(cy, cx)];
+						if (v != static_cast<float>(from)) continue;
+						v = static_cast<float>(to);
+						changed.add(cy, cx);
+					}
+				joined = true;
+			}
+	}
+}
+
+void SemanticMap::centreOnLeaves(
+    ObjectInstance& o, const mrpt::math::TPoint3D& middle)
+{
+	double nx, ny;
+	if (!unitNormal(o, nx, ny)) return;
+	const double tx = -ny, ty = nx;
+	mrpt::math::TPoint3D sum[2] = {{0, 0, 0}, {0, 0, 0}};
+	int count[2] = {0, 0};
+	for (const auto& s : o.sightings)
+	{
+		const int side =
+		    (s.x - middle.x) * tx + (s.y - middle.y) * ty < 0 ? 0 : 1;
+		sum[side] = sum[side] + s;
+		count[side]++;
+	}
+	if (!count[0] || !count[1])
+	{
+		o.centroid = middle;
+		return;
+	}
+	o.centroid = (sum[0] * (1.0 / count[0]) + sum[1] * (1.0 / count[1])) * 0.5;
+}
+
+}  // namespace semnav

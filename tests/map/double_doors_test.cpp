@@ -1,0 +1,122 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// Double doors: two door instances side by side in one wall joined into one
+// door at their middle (SemanticMap::TOptions::doubleDoorMaxWidth;
+// docs/mapping.md, "Objects in the map").
+#include <gtest/gtest.h>
+#include <semnav/map/SemanticMap.h>
+
+#include <vector>
+
+#include "MapTestUtils.h"
+
+using namespace semnav;
+
+namespace
+{
+/** A door region (robot frame) `width` wide, 2 m high, in the wall x = 3
+ * facing the robot, centred at y. */
+LabeledRegion leaf(int id, double y, double width)
+{
+	LabeledRegion reg;
+	reg.id = id;
+	reg.label = Label::Door;
+	reg.imageBox = cv::Rect(0, 0, 1, 1);
+	reg.centroid = {3.0, y, 1.0};
+	reg.minCorner = {2.98, y - width / 2, 0.0};
+	reg.maxCorner = {3.02, y + width / 2, 2.0};
+	reg.width = width;
+	reg.height = 2.0;
+	reg.meanNormal = {-1, 0, 0};
+	return reg;
+}
+
+/** A sweep of the wall x = 3 (y from -1.5 to 1.5, 1 m up), its points
+ * labelled wall where wallAt(y), door elsewhere, with these door
+ * regions. */
+template <typename F>
+LabeledSweep wallWith(const std::vector<LabeledRegion>& regions, F wallAt)
+{
+	auto pts = test::floorFan(2.5);
+	for (double y = -1.5; y <= 1.5; y += 0.02)
+		pts.push_back({3.0, y, 1.0, wallAt(y) ? Label::Wall : Label::Door});
+	auto f = test::makeFakeSweep(pts);
+	f.labeled.regions = regions;
+	return f.labeled;
+}
+
+std::vector<ObjectInstance> doors(const std::vector<LabeledSweep>& sweeps)
+{
+	SemanticMap::TOptions o;
+	o.doubleDoorMaxWidth = 2.2;  // shipped off (0)
+	SemanticMap m(o);
+	const auto f = test::makeFakeSweep(test::floorFan(2.5));
+	for (const auto& s : sweeps)
+		m.insert(f.sweep, s, mrpt::poses::CPose2D(0, 0, 0));
+	return m.instances(Label::Door);
+}
+}  // namespace
+
+TEST(SemanticMap, TheTwoLeavesOfADoubleDoorAreOneDoor)
+{
+	// Leaves seen 0.8 m wide, 0.1 m apart (centres 0.9 m apart: neither
+	// the merge distance nor their footprints join them): one door at
+	// their middle.
+	const auto doorOnly = [](double) { return false; };
+	const auto pair =
+	    wallWith({leaf(0, -0.45, 0.8), leaf(1, 0.45, 0.8)}, doorOnly);
+	auto d = doors({pair});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.0, 1e-6);
+	EXPECT_EQ(d[0].leaves, 2);
+	// Later sightings of one leaf keep it at the middle.
+	const auto left = wallWith({leaf(0, -0.5, 0.8)}, doorOnly);
+	d = doors({pair, left, left});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, (-(0.45 + 0.5 + 0.5) / 3 + 0.45) / 2, 1e-6)
+	    << "the middle of the leaves' sightings (-0.45, -0.5, -0.5 | 0.45)";
+	// Leaves first seen in different sweeps join too.
+	d = doors(
+	    {wallWith({leaf(0, -0.45, 0.8)}, doorOnly),
+	     wallWith({leaf(0, 0.45, 0.8)}, doorOnly)});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.0, 1e-6);
+}
+
+TEST(SemanticMap, TwoRoomsDoorsSideBySideStayTwo)
+{
+	// A wall between them (0.4 m of cells labelled wall and never door):
+	// the doors of two neighbouring rooms.
+	const auto d = doors({wallWith(
+	    {leaf(0, -0.6, 0.8), leaf(1, 0.6, 0.8)},
+	    [](double y) { return std::abs(y) < 0.2; })});
+	EXPECT_EQ(d.size(), 2u);
+	EXPECT_EQ(
+	    doors({wallWith(
+	              {leaf(0, -0.6, 0.8), leaf(1, 0.6, 0.8)},
+	              [](double) { return false; })})
+	        .size(),
+	    1u)
+	    << "the same two without the wall";
+	// Too wide together (2.4 m), or a leaf wider than a leaf.
+	const auto none = [](double) { return false; };
+	EXPECT_EQ(
+	    doors({wallWith({leaf(0, -0.65, 1.1), leaf(1, 0.65, 1.1)}, none)})
+	        .size(),
+	    2u);
+	EXPECT_EQ(
+	    doors({wallWith({leaf(0, -0.7, 1.3), leaf(1, 0.5, 0.5)}, none)}).size(),
+	    2u);
+	// Not in one plane (0.3 m apart across the wall).
+	auto back = leaf(1, 0.45, 0.8);
+	back.centroid.x = 3.3;
+	back.minCorner.x = 3.28;
+	back.maxCorner.x = 3.32;
+	EXPECT_EQ(doors({wallWith({leaf(0, -0.45, 0.8), back}, none)}).size(), 2u);
+	// The join switched off (as shipped).
+	SemanticMap m;
+	m.insert(
+	    test::makeFakeSweep(test::floorFan(2.5)).sweep,
+	    wallWith({leaf(0, -0.45, 0.8), leaf(1, 0.45, 0.8)}, none),
+	    mrpt::poses::CPose2D(0, 0, 0));
+	EXPECT_EQ(m.instances(Label::Door).size(), 2u);
+}
