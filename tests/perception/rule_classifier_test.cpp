@@ -67,6 +67,22 @@ void expectDoorOnlyWithTheRule(
 	const LabeledSweep without = PerceptionPipeline(o).process(sw);
 	EXPECT_LT(pixelF1(without.labels, truth, sw, Label::Door), 0.5);
 }
+
+/** No ceiling: outdoor. A smooth path along x between rough grass, and a
+ * building wall ahead. */
+SynthScene pathThroughGrass()
+{
+	SynthScene sc;
+	sc.noise = 0.005;
+	auto onPath = [](double, double y) { return std::abs(y) < 1.0; };
+	sc.height = [onPath](double x, double y)
+	{ return onPath(x, y) ? 0.0005 * std::sin(13 * x) : 2.5 * noise(x, y); };
+	sc.groundLabel = [onPath](double x, double y)
+	{ return onPath(x, y) ? Label::Sidewalk : Label::Grass; };
+	sc.boxes.push_back({{7, -6, 0}, {7.3, 6, 3.0}, Label::Wall});
+	return sc;
+}
+
 }  // namespace
 
 TEST(RuleClassifier, CorridorWithADoor)
@@ -199,16 +215,7 @@ TEST(RuleClassifier, FlushLeafUnderItsLintelSplitsOff)
 
 TEST(RuleClassifier, SidewalkAndGrassByRoughness)
 {
-	// No ceiling: outdoor. A smooth path along x between rough grass, and a
-	// building wall ahead.
-	SynthScene sc;
-	sc.noise = 0.005;
-	auto onPath = [](double, double y) { return std::abs(y) < 1.0; };
-	sc.height = [onPath](double x, double y)
-	{ return onPath(x, y) ? 0.0005 * std::sin(13 * x) : 2.5 * noise(x, y); };
-	sc.groundLabel = [onPath](double x, double y)
-	{ return onPath(x, y) ? Label::Sidewalk : Label::Grass; };
-	sc.boxes.push_back({{7, -6, 0}, {7.3, 6, 3.0}, Label::Wall});
+	const SynthScene sc = pathThroughGrass();
 	cv::Mat truth;
 	const Sweep sw = renderSweep(sc, &truth);
 	PerceptionPipeline pipeline;
@@ -235,17 +242,10 @@ TEST(RuleClassifier, SidewalkAndGrassByRoughness)
 
 TEST(RuleClassifier, SidewalkBorderPerPixelAndFlatSquares)
 {
-	// The scene of SidewalkAndGrassByRoughness: the border typed per pixel
-	// and the flat squares (sidewalk_border_half_width_px,
-	// sidewalk_flat_max_height_std_m, off as shipped) against squares only.
-	SynthScene sc;
-	sc.noise = 0.005;
-	auto onPath = [](double, double y) { return std::abs(y) < 1.0; };
-	sc.height = [onPath](double x, double y)
-	{ return onPath(x, y) ? 0.0005 * std::sin(13 * x) : 2.5 * noise(x, y); };
-	sc.groundLabel = [onPath](double x, double y)
-	{ return onPath(x, y) ? Label::Sidewalk : Label::Grass; };
-	sc.boxes.push_back({{7, -6, 0}, {7.3, 6, 3.0}, Label::Wall});
+	// The border typed per pixel and the flat squares
+	// (sidewalk_border_half_width_px, sidewalk_flat_max_height_std_m, off as
+	// shipped) against squares only.
+	const SynthScene sc = pathThroughGrass();
 	cv::Mat truth;
 	const Sweep sw = renderSweep(sc, &truth);
 	PerceptionPipeline::TOptions o;
