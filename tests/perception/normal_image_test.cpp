@@ -266,3 +266,54 @@ TEST(NormalImage, OptionsAreCheckedAndRoundTrip)
 	order.write("NormalImage", "max_neighbour_distance_m", 0.3);
 	EXPECT_THROW(o.loadFromConfigFile(order, "NormalImage"), ConfigError);
 }
+
+TEST(NormalImage, WidenedSideRowStepsKeepPlanesAndAreChecked)
+{
+	// side_row_step_max (prototype, default off): 0 leaves every normal as
+	// it was; 16 changes only side columns, whose normals on a noise-free
+	// floor stay (0, 0, 1) and face the sensor.
+	SynthScene sc = boxRoom(-3, 5, -2, 2.5, 2.5);
+	cv::Mat truth;
+	const Sweep sw = renderSweep(sc, &truth);
+	NormalImage off;
+	off.compute(sw);
+	NormalImage::TOptions o;
+	o.sideRowStepMax = 16;
+	NormalImage on(o);
+	on.compute(sw);
+	std::size_t changedMiddle = 0, floorSide = 0;
+	for (int r = 0; r < truth.rows; r++)
+		for (int c = 0; c < truth.cols; c++)
+		{
+			const bool side = std::abs(std::cos(sw.phi(c))) < 0.5;
+			const cv::Vec3f a = off.normals().at<cv::Vec3f>(r, c);
+			const cv::Vec3f b = on.normals().at<cv::Vec3f>(r, c);
+			if (!side && a != b) changedMiddle++;
+			if (!side || !on.normalMask().at<uint8_t>(r, c)) continue;
+			const cv::Vec3f p = on.points().at<cv::Vec3f>(r, c);
+			ASSERT_NEAR(cv::norm(b), 1.0, 1e-4);
+			EXPECT_GT(b.dot(on.sensorPositions()[r] - p), 0.0f);
+			const int s = std::min(
+			    16, static_cast<int>(1.0 / std::abs(std::cos(sw.phi(c)))));
+			auto isFloor = [&](int rr, int cc)
+			{
+				return rr >= 0 && rr < truth.rows && cc >= 0 &&
+				       cc < truth.cols &&
+				       truth.at<uint8_t>(rr, cc) ==
+				           static_cast<uint8_t>(Label::Floor);
+			};
+			if (isFloor(r, c) && isFloor(r - s, c - 1) &&
+			    isFloor(r - s, c + 1) && isFloor(r + s, c - 1) &&
+			    isFloor(r + s, c + 1))
+			{
+				EXPECT_NEAR(b[2], 1.0, 1e-2);
+				floorSide++;
+			}
+		}
+	EXPECT_EQ(changedMiddle, 0u);
+	EXPECT_GT(floorSide, 0u);
+
+	mrpt::config::CConfigFileMemory range;
+	range.write("NormalImage", "side_row_step_max", 65);
+	EXPECT_THROW(o.loadFromConfigFile(range, "NormalImage"), ConfigError);
+}

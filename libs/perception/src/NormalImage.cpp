@@ -29,6 +29,10 @@ const OptionTable<O>& optionTable()
 	        .angle(
 	            "min_pair_angle_deg", &O::minPairAngle, 0, 45,
 	            "Edge vector pairs closer to (anti)parallel are skipped.")
+	        .integer(
+	            "side_row_step_max", &O::sideRowStepMax, 0, 64,
+	            "Side columns take row neighbours floor(1/|cos phi|) rows "
+	            "away, at most this many (0 or 1: off).")
 	        .check(
 	            [](const O& o)
 	            { return o.minNeighbourDistance < o.maxNeighbourDistance; },
@@ -140,6 +144,107 @@ void NormalImage::compute(const Sweep& sweep)
 	a.mask = m_normalMask.ptr<uint8_t>(0);
 	a.maskStep = m_normalMask.step1();
 	m_validNormals = K.computeNormals(a);
+	if (m_options.sideRowStepMax > 1) widenSideNormals(sweep);
+}
+
+namespace
+{
+/** The kernel's normal (SimdKernels.impl.h) from the given neighbours of
+ * padded-plane index `i`, scalar; false where it has none. */
+bool normalFrom(
+    const detail::NormalKernelArgs& a, std::size_t i, const std::size_t* nb,
+    const float* sensor, float* n)
+{
+	float ex[4], ey[4], ez[4], el[4];
+	for (int k = 0; k < 4; k++)
+	{
+		const std::size_t j = nb[k];
+		const float dx = a.x[j] - a.x[i], dy = a.y[j] - a.y[i],
+		            dz = a.z[j] - a.z[i];
+		const float d2 = dx * dx + dy * dy + dz * dz;
+		const bool ok =
+		    a.valid[j] * a.valid[i] > 0.5f && d2 >= a.e0sq && d2 <= a.e1sq;
+		ex[k] = ok ? dx : 0.0f;
+		ey[k] = ok ? dy : 0.0f;
+		ez[k] = ok ? dz : 0.0f;
+		el[k] = ok ? d2 : 0.0f;
+	}
+	const float vx = sensor[0] - a.x[i], vy = sensor[1] - a.y[i],
+	            vz = sensor[2] - a.z[i];
+	float nx = 0, ny = 0, nz = 0;
+	for (int p = 0; p < 3; p++)
+		for (int q = p + 1; q < 4; q++)
+		{
+			const float cx = ey[p] * ez[q] - ez[p] * ey[q];
+			const float cy = ez[p] * ex[q] - ex[p] * ez[q];
+			const float cz = ex[p] * ey[q] - ey[p] * ex[q];
+			if (!(cx * cx + cy * cy + cz * cz > a.sinMinSq * el[p] * el[q]))
+				continue;
+			const float sgn = cx * vx + cy * vy + cz * vz >= 0 ? 1.0f : -1.0f;
+			nx += sgn * cx;
+			ny += sgn * cy;
+			nz += sgn * cz;
+		}
+	const float l2 = nx * nx + ny * ny + nz * nz;
+	if (!(l2 > 1e-24f)) return false;
+	const float inv = 1.0f / std::sqrt(l2);
+	n[0] = nx * inv;
+	n[1] = ny * inv;
+	n[2] = nz * inv;
+	return true;
+}
+}  // namespace
+
+void NormalImage::widenSideNormals(const Sweep& sweep)
+{
+	const int rows = m_normals.rows, cols = m_normals.cols;
+	const int pc = m_paddedCols;
+	detail::NormalKernelArgs a;
+	a.x = m_x.data();
+	a.y = m_y.data();
+	a.z = m_z.data();
+	a.valid = m_v.data();
+	a.e0sq = static_cast<float>(
+	    m_options.minNeighbourDistance * m_options.minNeighbourDistance);
+	a.e1sq = static_cast<float>(
+	    m_options.maxNeighbourDistance * m_options.maxNeighbourDistance);
+	const float sinMin = static_cast<float>(std::sin(m_options.minPairAngle));
+	a.sinMinSq = sinMin * sinMin;
+	for (int c = 0; c < cols; c++)
+	{
+		const double cp = std::abs(std::cos(sweep.phi(c)));
+		const int step =
+		    cp > 1e-9
+		        ? static_cast<int>(std::min(
+		              1.0 / cp, static_cast<double>(m_options.sideRowStepMax)))
+		        : m_options.sideRowStepMax;
+		if (step < 2) continue;
+		for (int r = 0; r < rows; r++)
+		{
+			// Rows r - down and r + up (the padded planes' border row
+			// stands for "none" where the sweep ends at r).
+			const int down = r == 0 ? 1 : std::min(step, r);
+			const int up = r == rows - 1 ? 1 : std::min(step, rows - 1 - r);
+			auto at = [&](int rr, int cc)
+			{
+				return static_cast<std::size_t>(rr + 1) * pc +
+				       static_cast<std::size_t>(cc + 1);
+			};
+			const std::size_t nb[4] = {
+			    at(r - down, c - 1), at(r - down, c + 1), at(r + up, c - 1),
+			    at(r + up, c + 1)};
+			float n[3];
+			const bool ok = normalFrom(
+			    a, at(r, c), nb, m_sensorPos[static_cast<std::size_t>(r)].val,
+			    n);
+			auto& N = m_normals.at<cv::Vec3f>(r, c);
+			uint8_t& M = m_normalMask.at<uint8_t>(r, c);
+			m_validNormals -= M;
+			N = ok ? cv::Vec3f(n[0], n[1], n[2]) : cv::Vec3f(0, 0, 0);
+			M = ok ? 1 : 0;
+			m_validNormals += M;
+		}
+	}
 }
 
 void NormalImage::swapOutputs(

@@ -52,6 +52,15 @@ public:
 		 * adds nothing but noise and is skipped (rad);
 		 * min_pair_angle_deg. */
 		double minPairAngle = 5.0 * M_PI / 180.0;
+		/** Toward the sweep's sides the beam runs almost along the tilt
+		 * axis and neighbouring rows lie far closer than neighbouring
+		 * columns (r cos(phi) times the tilt step). When > 1, the pixels
+		 * of columns with floor(1 / |cos phi|) >= 2 take their
+		 * neighbours that many rows away (at most this many, and at most
+		 * to the first / last row) instead of one; 0 or 1: off (the
+		 * paper's neighbours everywhere); side_row_step_max. Prototype
+		 * (docs/generated-scenes.md, branch normals5). */
+		int sideRowStepMax = 0;
 	};
 
 	NormalImage();
@@ -110,6 +119,10 @@ public:
 	    cv::Mat& normalMask);
 
 private:
+	/** Recomputes the normals of the side columns with widened row steps
+	 * (TOptions::sideRowStepMax). */
+	void widenSideNormals(const Sweep& sweep);
+
 	TOptions m_options;
 	cv::Mat m_points, m_ranges, m_pointMask, m_normals, m_normalMask;
 	std::vector<cv::Vec3f> m_sensorPos;
