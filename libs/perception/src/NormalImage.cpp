@@ -144,7 +144,7 @@ void NormalImage::compute(const Sweep& sweep)
 	a.mask = m_normalMask.ptr<uint8_t>(0);
 	a.maskStep = m_normalMask.step1();
 	m_validNormals = K.computeNormals(a);
-	if (m_options.sideRowStepMax > 1) widenSideNormals(sweep);
+	if (m_options.sideRowStepMax > 1) widenSideNormals(sweep, a);
 }
 
 namespace
@@ -195,21 +195,11 @@ bool normalFrom(
 }
 }  // namespace
 
-void NormalImage::widenSideNormals(const Sweep& sweep)
+void NormalImage::widenSideNormals(
+    const Sweep& sweep, const detail::NormalKernelArgs& a)
 {
 	const int rows = m_normals.rows, cols = m_normals.cols;
 	const int pc = m_paddedCols;
-	detail::NormalKernelArgs a;
-	a.x = m_x.data();
-	a.y = m_y.data();
-	a.z = m_z.data();
-	a.valid = m_v.data();
-	a.e0sq = static_cast<float>(
-	    m_options.minNeighbourDistance * m_options.minNeighbourDistance);
-	a.e1sq = static_cast<float>(
-	    m_options.maxNeighbourDistance * m_options.maxNeighbourDistance);
-	const float sinMin = static_cast<float>(std::sin(m_options.minPairAngle));
-	a.sinMinSq = sinMin * sinMin;
 	for (int c = 0; c < cols; c++)
 	{
 		const double cp = std::abs(std::cos(sweep.phi(c)));

@@ -10,6 +10,11 @@
 
 namespace semnav
 {
+namespace detail
+{
+struct NormalKernelArgs;
+}
+
 /** The paper's normal image (sec. 2.1): a unit normal per sweep pixel.
  *
  * For pixel (i, j) with robot-frame point p, the four diagonal neighbours
@@ -120,8 +125,10 @@ public:
 
 private:
 	/** Recomputes the normals of the side columns with widened row steps
-	 * (TOptions::sideRowStepMax). */
-	void widenSideNormals(const Sweep& sweep);
+	 * (TOptions::sideRowStepMax), from the points and thresholds of the
+	 * kernel's arguments `a`. */
+	void widenSideNormals(
+	    const Sweep& sweep, const detail::NormalKernelArgs& a);
 
 	TOptions m_options;
 	cv::Mat m_points, m_ranges, m_pointMask, m_normals, m_normalMask;
