@@ -5,9 +5,7 @@
  * that `semnav-perceive --gt-dir D --out O` writes (O/sweep_NNNN_labels.png
  * against O/sweep_NNNN_gt.png, viewer layout, the legend below row 211).
  *
- *   g++ -O2 -o /tmp/obstacle-confusion scripts/obstacle-confusion.cpp \
- *       $(pkg-config --cflags --libs opencv4)
- *   BAND=20 /tmp/obstacle-confusion OUT/perceive/indoor_{0..19}
+ *   BAND=20 build/scripts/obstacle-confusion OUT/perceive/indoor_{0..19}
  *
  * Prints per scene the obstacle pixel F1 and the F1 without the BAND columns at
  * each side of the image (|phi| near 90 deg, where the sweep's rows nearly
@@ -21,7 +19,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <opencv2/opencv.hpp>
+#include <filesystem>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,12 @@ double f1(long tp, long fp, long fn)
 
 int main(int argc, char** argv)
 {
+	if (argc < 2)
+	{
+		std::fprintf(
+		    stderr, "usage: BAND=20 obstacle-confusion PERCEIVE_DIR...\n");
+		return 2;
+	}
 	const int band = std::getenv("BAND") ? std::atoi(std::getenv("BAND")) : 20;
 	long fpIn[11] = {0}, fpOut[11] = {0}, fnIn[11] = {0}, fnOut[11] = {0};
 	long mixed = 0, lowest = 0, narrow = 0, other = 0;
@@ -72,6 +79,8 @@ int main(int argc, char** argv)
 			std::snprintf(
 			    pl, sizeof pl, "%s/sweep_%04d_labels.png", argv[a], s);
 			std::snprintf(pg, sizeof pg, "%s/sweep_%04d_gt.png", argv[a], s);
+			if (!std::filesystem::exists(pl) || !std::filesystem::exists(pg))
+				break;
 			const cv::Mat L = cv::imread(pl), G = cv::imread(pg);
 			if (L.empty() || G.empty()) break;
 			const int W = L.cols;
@@ -143,7 +152,16 @@ int main(int argc, char** argv)
 		sumEx += f1(tpE, fpE, fnE);
 		scenes++;
 	}
-	if (!scenes) return 1;
+	if (!scenes)
+	{
+		std::fprintf(
+		    stderr,
+		    "obstacle-confusion: no scene with >= 200 true obstacle pixels in "
+		    "sweep_NNNN_labels.png / sweep_NNNN_gt.png pairs (%d directories, "
+		    "first %s)\n",
+		    argc - 1, argv[1]);
+		return 1;
+	}
 	std::printf(
 	    "mean obstacle F1 %.3f; without %d columns at each side %.3f (%d "
 	    "scenes)\n",
