@@ -1,6 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps
  *
- * Diagnosis tool (branch obstacle4, docs/generated-scenes.md "Indoor
+ * Diagnosis tool (branch obstacle4, docs/generated-scenes-log.md "Indoor
  * obstacle"): where the indoor `obstacle` label goes wrong, from the label PNGs
  * that `semnav-perceive --gt-dir D --out O` writes (O/sweep_NNNN_labels.png
  * against O/sweep_NNNN_gt.png, viewer layout, the legend below row 211).

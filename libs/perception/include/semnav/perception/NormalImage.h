@@ -64,7 +64,7 @@ public:
 		 * neighbours that many rows away (at most this many, and at most
 		 * to the first / last row) instead of one; 0 or 1: off (the
 		 * paper's neighbours everywhere); side_row_step_max. Prototype
-		 * (docs/generated-scenes.md, branch normals5). */
+		 * (docs/generated-scenes-log.md, branch normals5). */
 		int sideRowStepMax = 0;
 	};
 
