@@ -185,6 +185,41 @@ TEST(RuleClassifier, DoorWithALintelAndOneSideWall)
 	    sc, [](auto& o) { o.classifier.doorLintelOneSide = false; });
 }
 
+namespace
+{
+/** A room 8 m wide (walls at y = +-4, ceiling 2.6) whose far wall at
+ * x = 6 has a 2.04 m gap (y -1.02..1.02) under a lintel at 2.0 m, holding
+ * a 2 m double door 2 cm in (its leaves flush with each other: one surface),
+ * seen from 4 m in front of it. */
+SynthScene wideDoubleDoor()
+{
+	SynthScene sc;
+	sc.ceiling = 2.6;
+	sc.noise = 0.005;
+	const double H = 2.6;
+	sc.boxes = {
+	    {{-1, -4.1, 0}, {9.1, -4.0, H}, Label::Wall},      // right wall
+	    {{-1, 4.0, 0}, {9.1, 4.1, H}, Label::Wall},        // left wall
+	    {{-1.1, -4.1, 0}, {-1, 4.1, H}, Label::Wall},      // wall behind
+	    {{6.0, 1.02, 0}, {6.1, 4.0, H}, Label::Wall},      // far wall, left
+	    {{6.0, -1.02, 2.0}, {6.1, 1.02, H}, Label::Wall},  // lintel
+	    {{6.02, -1.0, 0}, {6.06, 1.0, 2.0}, Label::Door},
+	    {{6.0, -4.0, 0}, {6.1, -1.02, H}, Label::Wall},  // far wall, right
+	    {{9.0, -4.0, 0}, {9.1, 4.0, H}, Label::Wall},    // behind the gap
+	};
+	sc.mount[0] = 2.0;
+	return sc;
+}
+}  // namespace
+
+TEST(RuleClassifier, WideDoubleDoorWithItsWholeFrameIsADoor)
+{
+	// Its bounding box spans 2.17 m here, wider than door_max_width_m;
+	// walls on both sides and a lintel make it a door.
+	expectDoorOnlyWithTheRule(
+	    wideDoubleDoor(), [](auto& o) { o.classifier.doorFramedMaxWidth = 0; });
+}
+
 TEST(RuleClassifier, FlushLeafUnderItsLintelSplitsOff)
 {
 	// The corridor's door 7 mm behind the wall face, filling its gap (no

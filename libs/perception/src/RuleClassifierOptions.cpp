@@ -117,6 +117,10 @@ const OptionTable<O>& optionTable()
 	            "door_max_width_m", &O::doorMaxWidth, 0, 100,
 	            "...at most this wide...")
 	        .real(
+	            "door_framed_max_width_m", &O::doorFramedMaxWidth, 0, 100,
+	            "...or up to this wide when wall is found on its left, right "
+	            "and top (0 = off; a double door measured with its frame)...")
+	        .real(
 	            "door_min_height_m", &O::doorMinHeight, 0, 100,
 	            "...this high...")
 	        .real(
@@ -126,9 +130,12 @@ const OptionTable<O>& optionTable()
 	            [](const O& o)
 	            {
 		            return o.doorMinWidth <= o.doorMaxWidth &&
-		                   o.doorMinHeight <= o.doorMaxHeight;
+		                   o.doorMinHeight <= o.doorMaxHeight &&
+		                   (o.doorFramedMaxWidth == 0 ||
+		                    o.doorFramedMaxWidth >= o.doorMaxWidth);
 	            },
-	            "door minimum width/height above the maximum")
+	            "door minimum width/height above the maximum, or "
+	            "door_framed_max_width_m under door_max_width_m")
 	        .real(
 	            "door_bottom_tolerance_m", &O::doorBottomTolerance, 0, 10,
 	            "A door's bottom is this close to the ground.")

@@ -172,7 +172,10 @@ void RuleClassifier::labelDoorsAndWalls(
 		Surface& s = m_surfaces[i];
 		if (s.orient != kVertical || s.count < o.minSurfacePixels) continue;
 		bool door = false;
-		if (s.width <= o.doorMaxWidth && s.height <= o.doorMaxHeight)
+		const bool framedWidth =
+		    s.width > o.doorMaxWidth && s.width <= o.doorFramedMaxWidth;
+		if ((s.width <= o.doorMaxWidth || framedWidth) &&
+		    s.height <= o.doorMaxHeight)
 		{
 			// Where the field of view cuts the surface (image border) its
 			// extent and neighbours there are unknown: accepted when
@@ -199,7 +202,11 @@ void RuleClassifier::labelDoorsAndWalls(
 			const bool bottom = s.minP[2] <= zg + o.doorBottomTolerance ||
 			                    (t && dc.bottomFov) ||
 			                    (shown && dc.bottomHidden);
-			door = sides && height && width && bottom &&
+			// Wider than a door: only with its whole frame seen.
+			const bool framed =
+			    !framedWidth || (dc.left >= f && dc.right >= f && dc.top >= f &&
+			                     !dc.leftFov && !dc.rightFov && !dc.topFov);
+			door = sides && framed && height && width && bottom &&
 			       dc.maxOffset >= o.doorMinOffset;
 			MRPT_LOG_DEBUG_FMT(
 			    "door candidate %zu: %d px, rows %d-%d cols %d-%d, width %.2f "

@@ -136,6 +136,10 @@ public:
 		double wallLongMinReach = 1.4;
 		// Door
 		double doorMinWidth = 0.7, doorMaxWidth = 2.0;
+		/** door_framed_max_width_m: a surface wider than doorMaxWidth and at
+		 * most this wide is a door only with wall found on its left, right
+		 * and top, none cut by the field of view (0 = off). */
+		double doorFramedMaxWidth = 2.3;
 		double doorMinHeight = 1.5, doorMaxHeight = 2.5;
 		double doorBottomTolerance = 0.15;
 		double doorMaxOffset = 0.15;
