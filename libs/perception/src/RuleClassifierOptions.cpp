@@ -199,6 +199,11 @@ const OptionTable<O>& optionTable()
 	            "door_max_width_m wide whose lower part steps by "
 	            "door_seam_split_offset_m from the wall above it (a leaf under "
 	            "its lintel), while the wall beside it does not, splits off.")
+	        .flag(
+	            "door_lintel_after_cut", &O::doorLintelAfterCut,
+	            "After a group is cut at a plane step (plane_split_offset_m, "
+	            "or between seams), each side is searched again for a leaf "
+	            "under its lintel (door_lintel_split).")
 	        .real(
 	            "sidewalk_min_rbar", &O::sidewalkMinRbar, -1, 1,
 	            "Outdoor ground: sidewalk where R-bar is at least this, "

@@ -204,12 +204,16 @@ void RuleClassifier::labelDoorsAndWalls(
 			MRPT_LOG_DEBUG_FMT(
 			    "door candidate %zu: %d px, rows %d-%d cols %d-%d, width %.2f "
 			    "height %.2f z %.2f..%.2f; walls left %.2f right %.2f top "
-			    "%.2f, fov %d%d%d%d, hidden %d%d%d, offset %.3f -> %s",
+			    "%.2f, fov %d%d%d%d, hidden %d%d%d, offset %.3f -> "
+			    "%s%s%s%s%s%s",
 			    i, s.count, s.minR, s.maxR, s.minC, s.maxC, s.width, s.height,
 			    s.minP[2], s.maxP[2], dc.left, dc.right, dc.top, dc.leftFov,
 			    dc.rightFov, dc.topFov, dc.bottomFov, dc.leftHidden,
 			    dc.rightHidden, dc.bottomHidden, dc.maxOffset,
-			    door ? "door" : "no");
+			    door ? "door" : "no", sides ? "" : " sides",
+			    height ? "" : " height", width ? "" : " width",
+			    bottom ? "" : " bottom",
+			    dc.maxOffset >= o.doorMinOffset ? "" : " offset");
 		}
 		else
 			MRPT_LOG_DEBUG_FMT(

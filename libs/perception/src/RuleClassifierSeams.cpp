@@ -593,10 +593,12 @@ bool RuleClassifier::splitDoorShaped(
 }
 
 bool RuleClassifier::splitUnderLintel(
-    int slot, const cv::Vec3d& normal, double offset)
+    int slot, const cv::Vec3d& normal, double offset, int onSide)
 {
 	const TOptions& o = m_options;
 	if (!o.doorLintelSplit || o.doorSeamSplitOffset <= 0) return false;
+	// (onSide >= 0: only that side's pixels, and the leaf gets side 2.)
+	auto used = [&](int p) { return onSide < 0 || m_side[p] == onSide; };
 	const SlotAlong sa(*m_points, m_slotPix, m_slotStart, slot, normal);
 	const auto* P = sa.P;
 	const int* pix = sa.pix;
@@ -607,6 +609,7 @@ bool RuleClassifier::splitUnderLintel(
 	for (int i = i0; i < i1; i++)
 	{
 		const int p = pix[i];
+		if (!used(p)) continue;
 		g.u0 = std::min(g.u0, sa.u(p));
 		uHi = std::max(uHi, sa.u(p));
 		g.z0 = std::min(g.z0, double(P[p][2]));
@@ -624,6 +627,7 @@ bool RuleClassifier::splitUnderLintel(
 	for (int i = i0; i < i1; i++)
 	{
 		const int p = pix[i];
+		if (!used(p)) continue;
 		const int c = static_cast<int>((sa.u(p) - g.u0) / kLintelBin);
 		const int r = static_cast<int>((P[p][2] - g.z0) / kLintelBin);
 		g.sum[(r + 1) * g.nu + c] += planeResidual(normal, offset, P[p]);
@@ -662,9 +666,13 @@ bool RuleClassifier::splitUnderLintel(
 	for (int i = i0; i < i1; i++)
 	{
 		const int p = pix[i];
+		if (!used(p)) continue;
 		const double u = sa.u(p);
 		const bool in = u >= a0 && u < a1 && P[p][2] < top;
-		m_side[p] = in ? 1 : 0;
+		if (onSide < 0)
+			m_side[p] = in ? 1 : 0;
+		else if (in)
+			m_side[p] = 2;
 		any |= in;
 	}
 	return any;

@@ -156,6 +156,10 @@ public:
 		double doorOcclusionMargin = 0.05;
 		bool doorShapeSplit = true;
 		bool doorLintelSplit = true;
+		/** door_lintel_after_cut: after a group is cut at a plane step
+		 * (plane_split_offset_m, or between seams), each side is searched
+		 * again for a leaf under its lintel (door_lintel_split). */
+		bool doorLintelAfterCut = true;
 		// Ground type (outdoor)
 		double sidewalkMinRbar = 0.97;
 		double sidewalkMaxHeightStd = 0.012;
@@ -294,8 +298,15 @@ private:
 	 * that height (a lintel), and the group beside it does not, gives the
 	 * stretch below that height side 1 in m_side; true when it does. The
 	 * step is measured column by column against the wall above, so a
-	 * least-squares plane leaning towards the leaf does not hide it. */
-	bool splitUnderLintel(int slot, const cv::Vec3d& normal, double offset);
+	 * least-squares plane leaning towards the leaf does not hide it.
+	 * With onSide >= 0, only the pixels of that side of a step already cut
+	 * (m_side) are looked at, and the stretch gets side 2. */
+	bool splitUnderLintel(
+	    int slot, const cv::Vec3d& normal, double offset, int onSide = -1);
+	/** With door_lintel_after_cut, after slot's group was cut (m_side 0 /
+	 * 1): splitUnderLintel() on each side. */
+	void splitSidesUnderLintel(
+	    int slot, const cv::Vec3d& normal, double offset);
 	/** Step 3, pass 2: pixels of one coplanar group (m_parent) and one side
 	 * of its plane step. */
 	void buildGroupSurfaces();
