@@ -242,6 +242,19 @@ TEST(RuleClassifier, FlushLeafUnderItsLintelAfterAPlaneStep)
 	EXPECT_LT(pixelF1(without.labels, truth, sw, Label::Door), 0.5);
 }
 
+TEST(RuleClassifier, DoorCutByTheFieldOfViewWithItsLintelAboveIn3d)
+{
+	// Beside the corridor's door, 0.5 m from its wall: the leaf fills the
+	// sweep's side from phi 50 deg on, cut by the field of view at its
+	// top and one side, and its lintel lies beside it in the image.
+	SynthScene sc = corridor();
+	sc.mount[0] = 3.7;
+	sc.mount[1] = 0.7;
+	expectDoorOnlyWithTheRule(
+	    sc, [](PerceptionPipeline::TOptions& o)
+	    { o.classifier.doorLintel3d = false; });
+}
+
 TEST(RuleClassifier, SidewalkAndGrassByRoughness)
 {
 	const SynthScene sc = pathThroughGrass();

@@ -204,6 +204,12 @@ const OptionTable<O>& optionTable()
 	            "After a group is cut at a plane step (plane_split_offset_m, "
 	            "or between seams), each side is searched again for a leaf "
 	            "under its lintel (door_lintel_split).")
+	        .flag(
+	            "door_lintel_3d", &O::doorLintel3d,
+	            "A leaf cut by the field of view at its top or a side is a "
+	            "door "
+	            "when walls of its plane lie above it (in 3D, wherever the "
+	            "image puts them) along door_min_side_fraction of its width.")
 	        .real(
 	            "sidewalk_min_rbar", &O::sidewalkMinRbar, -1, 1,
 	            "Outdoor ground: sidewalk where R-bar is at least this, "
