@@ -662,6 +662,19 @@ bool RuleClassifier::splitUnderLintel(
 	    "lintel split %d: stretch %.2f..%.2f m below %.2f m, step %.4f", slot,
 	    a0, a1, top,
 	    best.sign * best.score / std::max(1, best.c1 - best.c0 + 1));
+	if (onSide >= 0)
+	{
+		// A stretch holding the other side's pixels below its top is a
+		// leaf that the first cut already cut apart (its seams): kept so.
+		int other = 0;
+		for (int i = i0; i < i1; i++)
+		{
+			const int p = pix[i];
+			const double u = sa.u(p);
+			other += !used(p) && u >= a0 && u < a1 && P[p][2] < top;
+		}
+		if (other >= o.minSurfacePixels) return false;
+	}
 	bool any = false;
 	for (int i = i0; i < i1; i++)
 	{
