@@ -248,6 +248,48 @@ TEST(RuleClassifier, FlushLeafUnderItsLintelSplitsOff)
 	EXPECT_LT(pixelF1(without.labels, truth, sw, Label::Door), 0.5);
 }
 
+TEST(RuleClassifier, FlushLeafUnderItsLintelAfterAPlaneStep)
+{
+	// The leaf 7 mm behind its wall face as above, and the wall set back
+	// 2 cm from 0.8 m beyond the door on: the group is cut at that step
+	// (plane_split_offset_m) and the leaf stays with the wall in front,
+	// where only door_lintel_after_cut looks for it again.
+	SynthScene sc = corridor();
+	for (auto& b : sc.boxes)
+		if (b.label == Label::Door)
+		{
+			b.lo = {3.0, 1.207, 0};
+			b.hi = {4.0, 1.247, 2.0};
+		}
+		else if (b.lo[0] == 4.0 && b.lo[2] == 0)
+			b.hi[0] = 4.8;  // the left wall after the door, up to the step
+	sc.boxes.push_back({{4.8, 1.22, 0}, {8.1, 1.3, 2.6}, Label::Wall});
+	sc.mount[0] = 3.3;
+	PerceptionPipeline::TOptions o;
+	o.classifier.doorShapeSplit = false;
+	cv::Mat truth;
+	const Sweep sw = renderSweep(sc, &truth);
+	const LabeledSweep ls = PerceptionPipeline(o).process(sw);
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Door), 0.85);
+	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Wall), 0.95);
+	o.classifier.doorLintelAfterCut = false;
+	const LabeledSweep without = PerceptionPipeline(o).process(sw);
+	EXPECT_LT(pixelF1(without.labels, truth, sw, Label::Door), 0.5);
+}
+
+TEST(RuleClassifier, DoorCutByTheFieldOfViewWithItsLintelAboveIn3d)
+{
+	// Beside the corridor's door, 0.5 m from its wall: the leaf fills the
+	// sweep's side from phi 50 deg on, cut by the field of view at its
+	// top and one side, and its lintel lies beside it in the image.
+	SynthScene sc = corridor();
+	sc.mount[0] = 3.7;
+	sc.mount[1] = 0.7;
+	expectDoorOnlyWithTheRule(
+	    sc, [](PerceptionPipeline::TOptions& o)
+	    { o.classifier.doorLintel3d = false; });
+}
+
 TEST(RuleClassifier, SidewalkAndGrassByRoughness)
 {
 	const SynthScene sc = pathThroughGrass();

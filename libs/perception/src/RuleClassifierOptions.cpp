@@ -206,6 +206,17 @@ const OptionTable<O>& optionTable()
 	            "door_max_width_m wide whose lower part steps by "
 	            "door_seam_split_offset_m from the wall above it (a leaf under "
 	            "its lintel), while the wall beside it does not, splits off.")
+	        .flag(
+	            "door_lintel_after_cut", &O::doorLintelAfterCut,
+	            "After a group is cut at a plane step (plane_split_offset_m, "
+	            "or between seams), each side is searched again for a leaf "
+	            "under its lintel (door_lintel_split).")
+	        .flag(
+	            "door_lintel_3d", &O::doorLintel3d,
+	            "A leaf cut by the field of view at its top or a side is a "
+	            "door "
+	            "when walls of its plane lie above it (in 3D, wherever the "
+	            "image puts them) along door_min_side_fraction of its width.")
 	        .real(
 	            "sidewalk_min_rbar", &O::sidewalkMinRbar, -1, 1,
 	            "Outdoor ground: sidewalk where R-bar is at least this, "

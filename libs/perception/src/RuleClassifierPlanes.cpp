@@ -541,9 +541,11 @@ void RuleClassifier::splitByResiduals(
 	{
 		if (m_slotSeamOnly[k])
 		{
-			if (splitAtSeams(k, normal[k], offset[k]) ||
-			    splitUnderLintel(k, normal[k], offset[k]))
-				m_groupSplit[m_parent[m_surf[pix[start[k]]]]] = 1;
+			if (splitAtSeams(k, normal[k], offset[k]))
+				splitSidesUnderLintel(k, normal[k], offset[k]);
+			else if (!splitUnderLintel(k, normal[k], offset[k]))
+				continue;
+			m_groupSplit[m_parent[m_surf[pix[start[k]]]]] = 1;
 			continue;
 		}
 		std::fill(hist.begin(), hist.end(), 0);
@@ -586,11 +588,14 @@ void RuleClassifier::splitByResiduals(
 				// at a grazing angle, or the frame flush).
 				// Or a leaf under its lintel (the plane leaning towards
 				// a leaf that covers much of the group hides the step).
-				if (splitAtSeams(k, normal[k], offset[k]) ||
-				    (sized && step >= m_options.doorSeamSplitOffset &&
-				     splitDoorShaped(k, thr, normal[k], offset[k])) ||
-				    splitUnderLintel(k, normal[k], offset[k]))
-					m_groupSplit[m_parent[m_surf[pix[start[k]]]]] = 1;
+				if (splitAtSeams(k, normal[k], offset[k]))
+					splitSidesUnderLintel(k, normal[k], offset[k]);
+				else if (
+				    !(sized && step >= m_options.doorSeamSplitOffset &&
+				      splitDoorShaped(k, thr, normal[k], offset[k])) &&
+				    !splitUnderLintel(k, normal[k], offset[k]))
+					continue;
+				m_groupSplit[m_parent[m_surf[pix[start[k]]]]] = 1;
 				continue;
 			}
 		}
@@ -604,9 +609,21 @@ void RuleClassifier::splitByResiduals(
 			any |= side;
 		}
 		// Split: pass 2 labels this group's pixels by side.
-		if (any) m_groupSplit[m_parent[m_surf[pix[start[k]]]]] = 1;
+		if (!any) continue;
+		splitSidesUnderLintel(k, normal[k], offset[k]);
+		m_groupSplit[m_parent[m_surf[pix[start[k]]]]] = 1;
 	}
 	for (int p : pix) RES[p] = WT[p] = 0;
+}
+
+void RuleClassifier::splitSidesUnderLintel(
+    int slot, const cv::Vec3d& normal, double offset)
+{
+	// A step elsewhere in the group (a recessed leaf, a wall's corner) or
+	// a seam cut beside the leaf left a nearly flush leaf in one side.
+	if (!m_options.doorLintelAfterCut) return;
+	for (int side = 0; side < 2; side++)
+		splitUnderLintel(slot, normal, offset, side);
 }
 
 }  // namespace semnav

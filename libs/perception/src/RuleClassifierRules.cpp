@@ -160,6 +160,17 @@ bool RuleClassifier::lintelAndOneSide(
 	       (dc.left >= f || dc.right >= f);
 }
 
+bool RuleClassifier::lintelSeenIn3d(const Surface& s, const DoorCheck& dc) const
+{
+	// A leaf seen close up is cut by the field of view at its top and one
+	// side, and its lintel lies beside it in the image: the image's sides
+	// do not tell. Walls of its plane above it in 3D do.
+	const TOptions& o = m_options;
+	return o.doorLintel3d && doorSized(s) &&
+	       (dc.topFov || dc.leftFov || dc.rightFov) &&
+	       dc.lintelAbove >= o.doorMinSideFraction;
+}
+
 void RuleClassifier::labelDoorsAndWalls(
     double zg, const std::vector<int>& wallCandidate,
     const std::vector<uint8_t>& isCeiling)
@@ -188,7 +199,7 @@ void RuleClassifier::labelDoorsAndWalls(
 			     (dc.right >= f || (t && dc.rightFov)) &&
 			     (dc.top >= f || (t && dc.topFov)) &&
 			     (dc.left >= f || dc.right >= f) && singleSideHolds(s, dc)) ||
-			    lintelAndOneSide(s, dc);
+			    lintelAndOneSide(s, dc) || lintelSeenIn3d(s, dc);
 			// A side hidden by something nearer (a reveal, furniture)
 			// bounds the extent seen there as the field of view does.
 			const bool shown = doorSized(s);
@@ -211,12 +222,16 @@ void RuleClassifier::labelDoorsAndWalls(
 			MRPT_LOG_DEBUG_FMT(
 			    "door candidate %zu: %d px, rows %d-%d cols %d-%d, width %.2f "
 			    "height %.2f z %.2f..%.2f; walls left %.2f right %.2f top "
-			    "%.2f, fov %d%d%d%d, hidden %d%d%d, offset %.3f -> %s",
+			    "%.2f, fov %d%d%d%d, hidden %d%d%d, offset %.3f -> "
+			    "%s%s%s%s%s%s",
 			    i, s.count, s.minR, s.maxR, s.minC, s.maxC, s.width, s.height,
 			    s.minP[2], s.maxP[2], dc.left, dc.right, dc.top, dc.leftFov,
 			    dc.rightFov, dc.topFov, dc.bottomFov, dc.leftHidden,
 			    dc.rightHidden, dc.bottomHidden, dc.maxOffset,
-			    door ? "door" : "no");
+			    door ? "door" : "no", sides ? "" : " sides",
+			    height ? "" : " height", width ? "" : " width",
+			    bottom ? "" : " bottom",
+			    dc.maxOffset >= o.doorMinOffset ? "" : " offset");
 		}
 		else
 			MRPT_LOG_DEBUG_FMT(
@@ -391,6 +406,36 @@ DoorOcclusion occlusionOf(
 	if (nCols > 0) res.bottom = double(bottom) / nCols;
 	return res;
 }
+/** Share of a leaf's width (kLintelSlice slices along its plane, between
+ * its box's ends; normal `n`, box lo..hi) over which one of `hits` lies
+ * above its top (a wall of its plane: its lintel). */
+double lintelShareOf(
+    const cv::Vec3d& n, const cv::Vec3f& lo, const cv::Vec3f& hi,
+    const cv::Vec3f* P, const std::vector<int>& hits)
+{
+	constexpr double kLintelSlice = 0.05, kAboveMargin = 0.05;
+	const double ax = -n[1], ay = n[0];
+	// (The box's corners project onto the plane's direction within the
+	// ends of the leaf's footprint.)
+	double uLo = 1e30, uHi = -1e30;
+	for (const float x : {lo[0], hi[0]})
+		for (const float y : {lo[1], hi[1]})
+		{
+			uLo = std::min(uLo, ax * x + ay * y);
+			uHi = std::max(uHi, ax * x + ay * y);
+		}
+	const int nb = std::max(1, static_cast<int>((uHi - uLo) / kLintelSlice));
+	std::vector<uint8_t> covered(nb, 0);
+	for (const int q : hits)
+	{
+		const double u = ax * P[q][0] + ay * P[q][1];
+		if (P[q][2] < hi[2] - kAboveMargin || u <= uLo || u >= uHi) continue;
+		covered[std::min(nb - 1, static_cast<int>((u - uLo) / kLintelSlice))] =
+		    1;
+	}
+	return static_cast<double>(std::count(covered.begin(), covered.end(), 1)) /
+	       nb;
+}
 }  // namespace
 
 RuleClassifier::DoorCheck RuleClassifier::checkDoor(
@@ -434,6 +479,7 @@ RuleClassifier::DoorCheck RuleClassifier::checkDoor(
 	// (Only for a candidate that shows door_search_min_size_m of its width
 	// and height: slivers at the field of view's edge keep K.)
 	const bool sized = doorSized(door);
+	std::vector<int> wallHits;  // wall pixels the probes found (sized)
 	auto reach = [&](int r, int c, int dr, int dc)
 	{
 		if (!sized) return K;
@@ -461,7 +507,12 @@ RuleClassifier::DoorCheck RuleClassifier::checkDoor(
 			}
 			const int s = m_surf[rr * cols + cc];
 			if (s == self) return false;
-			if (wallOk(s) || (ceilingOk && s >= 0 && isCeiling[s])) return true;
+			if (wallOk(s))
+			{
+				if (sized) wallHits.push_back(rr * cols + cc);
+				return true;
+			}
+			if (ceilingOk && s >= 0 && isCeiling[s]) return true;
 		}
 		return false;
 	};
@@ -514,6 +565,9 @@ RuleClassifier::DoorCheck RuleClassifier::checkDoor(
 	};
 	res.topFov = topB > 0 || door.maxR >= rows - 1 - K || atBorder(pHi);
 	res.bottomFov = door.minR <= K || atBorder(pLo);
+	if (sized && m_options.doorLintel3d)
+		res.lintelAbove =
+		    lintelShareOf(door.normal, door.minP, door.maxP, P, wallHits);
 	if (m_options.doorOcclusionMargin > 0)
 	{
 		const DoorOcclusion h = occlusionOf(

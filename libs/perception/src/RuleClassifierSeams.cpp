@@ -29,6 +29,28 @@ struct Seam
 	double u, top;
 };
 
+/** A slot's pixels (`pix[i0..i1)`, points `P`) and where they lie along
+ * the plane with this normal (u: horizontal, along the wall). */
+struct SlotAlong
+{
+	const cv::Vec3f* P;
+	const int* pix;
+	int i0, i1;
+	cv::Vec3d along;
+	SlotAlong(
+	    const cv::Mat& points, const std::vector<int>& slotPix,
+	    const std::vector<int>& slotStart, int slot, const cv::Vec3d& normal)
+	    : P(points.ptr<cv::Vec3f>(0)),
+	      pix(slotPix.data()),
+	      i0(slotStart[slot]),
+	      i1(slotStart[slot + 1]),
+	      along(-normal[1], normal[0], 0)
+	{
+	}
+	/** Position of pixel p along the plane. */
+	double u(int p) const { return along[0] * P[p][0] + along[1] * P[p][1]; }
+};
+
 /** Signed distance of q from the plane (normal, offset). */
 double planeResidual(const cv::Vec3d& normal, double offset, const cv::Vec3f& q)
 {
@@ -412,15 +434,13 @@ bool RuleClassifier::splitAtSeams(
     int slot, const cv::Vec3d& normal, double offset)
 {
 	const TOptions& o = m_options;
-	const auto* P = m_points->ptr<cv::Vec3f>(0);
+	const SlotAlong sa(*m_points, m_slotPix, m_slotStart, slot, normal);
+	const auto* P = sa.P;
 	const auto* PM = m_pointMask->ptr<uint8_t>(0);
 	const int* CO = m_colOf.data();
-	const int* pix = m_slotPix.data();
-	const int i0 = m_slotStart[slot], i1 = m_slotStart[slot + 1];
-	const cv::Vec3d along(-normal[1], normal[0], 0);
+	const int* pix = sa.pix;
+	const int i0 = sa.i0, i1 = sa.i1;
 	auto residual = [&](int p) { return planeResidual(normal, offset, P[p]); };
-	auto alongOf = [&](int p)
-	{ return along[0] * P[p][0] + along[1] * P[p][1]; };
 	// Notches: one to three pixels between two pixels of the group on its
 	// plane, at least one of them off it by door_seam_depth_m (the gap
 	// beside a leaf, its frame) or without a point.
@@ -439,7 +459,7 @@ bool RuleClassifier::splitAtSeams(
 				off = !PM[q] || std::abs(residual(q)) > o.doorSeamDepth;
 			if (off)
 				notches.push_back(
-				    {0.5 * (alongOf(prev) + alongOf(p)),
+				    {0.5 * (sa.u(prev) + sa.u(p)),
 				     0.5 * (P[prev][2] + P[p][2])});
 		}
 		prev = p;
@@ -451,7 +471,7 @@ bool RuleClassifier::splitAtSeams(
 	double uLo = 1e30, uHi = -1e30;
 	for (int i = i0; i < i1; i++)
 	{
-		const double u = alongOf(pix[i]);
+		const double u = sa.u(pix[i]);
 		uLo = std::min(uLo, u);
 		uHi = std::max(uHi, u);
 	}
@@ -473,7 +493,7 @@ bool RuleClassifier::splitAtSeams(
 		for (int i = i0; i < i1; i++)
 		{
 			const int p = pix[i];
-			const double u = alongOf(p), r = residual(p);
+			const double u = sa.u(p), r = residual(p);
 			const bool inside = u > a0 && u < a1;
 			if (inside && P[p][2] < top)
 			{
@@ -505,7 +525,7 @@ bool RuleClassifier::splitAtSeams(
 		for (int i = i0; i < i1; i++)
 		{
 			const int p = pix[i];
-			const double u = alongOf(p);
+			const double u = sa.u(p);
 			if (u > a0 && u < a1 && P[p][2] < top)
 			{
 				m_side[p] = 1;
@@ -525,12 +545,10 @@ bool RuleClassifier::splitDoorShaped(
 	constexpr double kDoorShapeMinPurity = 0.8;
 	const TOptions& o = m_options;
 	if (!o.doorShapeSplit) return false;
-	const auto* P = m_points->ptr<cv::Vec3f>(0);
-	const int* pix = m_slotPix.data();
-	const int i0 = m_slotStart[slot], i1 = m_slotStart[slot + 1];
-	const cv::Vec3d along(-normal[1], normal[0], 0);
-	auto alongOf = [&](int p)
-	{ return along[0] * P[p][0] + along[1] * P[p][1]; };
+	const SlotAlong sa(*m_points, m_slotPix, m_slotStart, slot, normal);
+	const auto* P = sa.P;
+	const int* pix = sa.pix;
+	const int i0 = sa.i0, i1 = sa.i1;
 	std::vector<uint8_t> sideOf;
 	if (!refitSides(
 	        P, m_resSum.ptr<float>(0), pix + i0, i1 - i0, threshold, normal,
@@ -541,7 +559,7 @@ bool RuleClassifier::splitDoorShaped(
 	{
 		const int p = pix[i];
 		const int side = sideOf[i - i0];
-		u[side].push_back(alongOf(p));
+		u[side].push_back(sa.u(p));
 		z[side].push_back(P[p][2]);
 	}
 	const int minPx = o.minSurfacePixels;
@@ -564,7 +582,7 @@ bool RuleClassifier::splitDoorShaped(
 		for (int i = i0; i < i1; i++)
 		{
 			const int p = pix[i];
-			const double uu = alongOf(p);
+			const double uu = sa.u(p);
 			const bool in = uu > b.a0 && uu < b.a1 && P[p][2] <= b.zHi + 0.02;
 			m_side[p] = in ? 1 : 0;
 			any |= in;
@@ -575,24 +593,25 @@ bool RuleClassifier::splitDoorShaped(
 }
 
 bool RuleClassifier::splitUnderLintel(
-    int slot, const cv::Vec3d& normal, double offset)
+    int slot, const cv::Vec3d& normal, double offset, int onSide)
 {
 	const TOptions& o = m_options;
 	if (!o.doorLintelSplit || o.doorSeamSplitOffset <= 0) return false;
-	const auto* P = m_points->ptr<cv::Vec3f>(0);
-	const int* pix = m_slotPix.data();
-	const int i0 = m_slotStart[slot], i1 = m_slotStart[slot + 1];
-	const cv::Vec3d along(-normal[1], normal[0], 0);
-	auto alongOf = [&](int p)
-	{ return along[0] * P[p][0] + along[1] * P[p][1]; };
+	// (onSide >= 0: only that side's pixels, and the leaf gets side 2.)
+	auto used = [&](int p) { return onSide < 0 || m_side[p] == onSide; };
+	const SlotAlong sa(*m_points, m_slotPix, m_slotStart, slot, normal);
+	const auto* P = sa.P;
+	const int* pix = sa.pix;
+	const int i0 = sa.i0, i1 = sa.i1;
 	ResidualGrid g;
 	double uHi = -1e30, zHi = -1e30;
 	g.u0 = g.z0 = 1e30;
 	for (int i = i0; i < i1; i++)
 	{
 		const int p = pix[i];
-		g.u0 = std::min(g.u0, alongOf(p));
-		uHi = std::max(uHi, alongOf(p));
+		if (!used(p)) continue;
+		g.u0 = std::min(g.u0, sa.u(p));
+		uHi = std::max(uHi, sa.u(p));
 		g.z0 = std::min(g.z0, double(P[p][2]));
 		zHi = std::max(zHi, double(P[p][2]));
 	}
@@ -608,7 +627,8 @@ bool RuleClassifier::splitUnderLintel(
 	for (int i = i0; i < i1; i++)
 	{
 		const int p = pix[i];
-		const int c = static_cast<int>((alongOf(p) - g.u0) / kLintelBin);
+		if (!used(p)) continue;
+		const int c = static_cast<int>((sa.u(p) - g.u0) / kLintelBin);
 		const int r = static_cast<int>((P[p][2] - g.z0) / kLintelBin);
 		g.sum[(r + 1) * g.nu + c] += planeResidual(normal, offset, P[p]);
 		g.cnt[(r + 1) * g.nu + c]++;
@@ -642,13 +662,30 @@ bool RuleClassifier::splitUnderLintel(
 	    "lintel split %d: stretch %.2f..%.2f m below %.2f m, step %.4f", slot,
 	    a0, a1, top,
 	    best.sign * best.score / std::max(1, best.c1 - best.c0 + 1));
+	if (onSide >= 0)
+	{
+		// A stretch holding the other side's pixels below its top is a
+		// leaf that the first cut already cut apart (its seams): kept so.
+		int other = 0;
+		for (int i = i0; i < i1; i++)
+		{
+			const int p = pix[i];
+			const double u = sa.u(p);
+			other += !used(p) && u >= a0 && u < a1 && P[p][2] < top;
+		}
+		if (other >= o.minSurfacePixels) return false;
+	}
 	bool any = false;
 	for (int i = i0; i < i1; i++)
 	{
 		const int p = pix[i];
-		const double u = alongOf(p);
+		if (!used(p)) continue;
+		const double u = sa.u(p);
 		const bool in = u >= a0 && u < a1 && P[p][2] < top;
-		m_side[p] = in ? 1 : 0;
+		if (onSide < 0)
+			m_side[p] = in ? 1 : 0;
+		else if (in)
+			m_side[p] = 2;
 		any |= in;
 	}
 	return any;

@@ -160,6 +160,14 @@ public:
 		double doorOcclusionMargin = 0.05;
 		bool doorShapeSplit = true;
 		bool doorLintelSplit = true;
+		/** door_lintel_after_cut: after a group is cut at a plane step
+		 * (plane_split_offset_m, or between seams), each side is searched
+		 * again for a leaf under its lintel (door_lintel_split). */
+		bool doorLintelAfterCut = true;
+		/** door_lintel_3d: a leaf cut by the field of view whose probes
+		 * find a wall above it in 3D along door_min_side_fraction of its
+		 * width (seen close up, its lintel lies beside it in the image). */
+		bool doorLintel3d = true;
 		// Ground type (outdoor)
 		double sidewalkMinRbar = 0.97;
 		double sidewalkMaxHeightStd = 0.012;
@@ -231,6 +239,10 @@ private:
 		 * the side (door_occlusion_margin_m). */
 		bool leftHidden = false, rightHidden = false, bottomHidden = false;
 		double maxOffset = 0;  ///< largest |offset| to an adjacent wall
+		/** Share of the leaf's width (5 cm slices along its plane) under
+		 * which a probe found a wall pixel above the leaf's top: its
+		 * lintel in 3D, wherever the image puts it. */
+		double lintelAbove = 0;
 	};
 
 	/** Adjacency of mergeable surfaces (CSR: neighbours of s are
@@ -298,8 +310,15 @@ private:
 	 * that height (a lintel), and the group beside it does not, gives the
 	 * stretch below that height side 1 in m_side; true when it does. The
 	 * step is measured column by column against the wall above, so a
-	 * least-squares plane leaning towards the leaf does not hide it. */
-	bool splitUnderLintel(int slot, const cv::Vec3d& normal, double offset);
+	 * least-squares plane leaning towards the leaf does not hide it.
+	 * With onSide >= 0, only the pixels of that side of a step already cut
+	 * (m_side) are looked at, and the stretch gets side 2. */
+	bool splitUnderLintel(
+	    int slot, const cv::Vec3d& normal, double offset, int onSide = -1);
+	/** With door_lintel_after_cut, after slot's group was cut (m_side 0 /
+	 * 1): splitUnderLintel() on each side. */
+	void splitSidesUnderLintel(
+	    int slot, const cv::Vec3d& normal, double offset);
 	/** Step 3, pass 2: pixels of one coplanar group (m_parent) and one side
 	 * of its plane step. */
 	void buildGroupSurfaces();
@@ -322,6 +341,10 @@ private:
 	 * top not cut by the field of view) has walls above it and on one
 	 * side. */
 	bool lintelAndOneSide(const Surface& s, const DoorCheck& dc) const;
+	/** True when door_lintel_3d and s (door_search_min_size_m) is cut by
+	 * the field of view at its top or a side and has a wall above it along
+	 * door_min_side_fraction of its width (DoorCheck::lintelAbove). */
+	bool lintelSeenIn3d(const Surface& s, const DoorCheck& dc) const;
 	/** True when s shows door_search_min_size_m of its width and height. */
 	bool doorSized(const Surface& s) const
 	{
