@@ -104,10 +104,10 @@ TEST(GroundBorders, OptionsAreValidated)
 	d.write("GroundBorders", "max_correction_deg", 60);
 	EXPECT_THROW(o.loadFromConfigFile(d, "GroundBorders"), ConfigError);
 	mrpt::config::CConfigFileMemory e;
-	e.write("GroundBorders", "enabled", "true");
+	e.write("GroundBorders", "enabled", "false");
 	e.write("GroundBorders", "max_correction_deg", 10);
 	o.loadFromConfigFile(e, "GroundBorders");
-	EXPECT_TRUE(o.enabled);
+	EXPECT_FALSE(o.enabled);
 	EXPECT_NEAR(o.maxCorrection, DEG2RAD(10), 1e-12);
 }
 

@@ -45,7 +45,7 @@ public:
 
 		/** enabled: mapping uses the borders' direction when the sweep's
 		 * walls give none. */
-		bool enabled = false;
+		bool enabled = true;
 		/** min_range_m, max_range_m: border points by their distance to the
 		 * robot. */
 		double minRange = 0.5;
