@@ -29,7 +29,9 @@ nlohmann::json covarianceJson(const semnav::MapBuilder& b)
 		     {"largest_std_direction_deg",
 		      mrpt::RAD2DEG(u.largestStdDirection)},
 		     {"std_yaw_deg", mrpt::RAD2DEG(u.stdYaw)},
-		     {"directions_following_odometry", u.unconstrained}});
+		     {"directions_following_odometry", u.unconstrained},
+		     {"heading_corrected", u.headingCorrected},
+		     {"heading_from_borders", u.headingFromBorders}});
 	return j;
 }
 

@@ -7,6 +7,7 @@
 #include <semnav/detection/CascadeDetector.h>
 #include <semnav/hwdrivers/CTiltingLMS2xx.h>
 #include <semnav/hwdrivers/LiveSweepSource.h>
+#include <semnav/localization/GroundBorders.h>
 #include <semnav/localization/Localizer.h>
 #include <semnav/localization/ObjectFootprints.h>
 #include <semnav/localization/PredictionGuard.h>
@@ -278,7 +279,8 @@ rawlog_GZ_compress_level = 1
 	      section<SemanticExtractor::TOptions>("SemanticExtractor"),
 	      section<SemanticEvidenceMap::TOptions>("SemanticEvidence"),
 	      section<ObjectFootprints::TOptions>("ObjectFootprints"),
-	      section<PredictionGuard::TOptions>("PredictionGuard")}});
+	      section<PredictionGuard::TOptions>("PredictionGuard"),
+	      section<GroundBorders::TOptions>("GroundBorders")}});
 	{
 		ShippedConfig c{
 		    "map.ini",

@@ -320,7 +320,7 @@ TEST(RuleClassifier, SidewalkAndGrassByRoughness)
 TEST(RuleClassifier, SidewalkBorderPerPixelAndFlatSquares)
 {
 	// The border typed per pixel and the flat squares
-	// (sidewalk_border_half_width_px, sidewalk_flat_max_height_std_m, off as
+	// (sidewalk_border_half_width_px, sidewalk_flat_max_height_std_m, on as
 	// shipped) against squares only.
 	const SynthScene sc = pathThroughGrass();
 	cv::Mat truth;
@@ -329,7 +329,10 @@ TEST(RuleClassifier, SidewalkBorderPerPixelAndFlatSquares)
 	o.classifier.sidewalkBorderHalfWidth = 2;
 	o.classifier.sidewalkFlatMaxHeightStd = 0.007;
 	const LabeledSweep ls = PerceptionPipeline(o).process(sw);
-	const LabeledSweep sq = PerceptionPipeline().process(sw);
+	PerceptionPipeline::TOptions squares;
+	squares.classifier.sidewalkBorderHalfWidth = 0;
+	squares.classifier.sidewalkFlatMaxHeightStd = 0;
+	const LabeledSweep sq = PerceptionPipeline(squares).process(sw);
 	const double swOn = pixelF1(ls.labels, truth, sw, Label::Sidewalk);
 	const double swOff = pixelF1(sq.labels, truth, sw, Label::Sidewalk);
 	const double grOn = pixelF1(ls.labels, truth, sw, Label::Grass);

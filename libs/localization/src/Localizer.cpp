@@ -354,7 +354,9 @@ LocalizationUpdate Localizer::update(
 	const bool scoreSemantic =
 	    m_semantic && !m_semantic->empty() && semantic && !semantic->empty();
 	const bool score = scoreWalls || scoreSemantic;
-	const bool correct = scoreWalls && m_options.mainDirections &&
+	// The correction needs the map's direction and the sweep's, not its
+	// wall samples: a sweep without walls may carry its ground borders'.
+	const bool correct = m_map && !m_map->empty() && m_options.mainDirections &&
 	                     m_map->mainDirection() && obs.dominantDirection;
 	m_pdf.setObservation(&obs);
 	m_pdf.setSemantic(

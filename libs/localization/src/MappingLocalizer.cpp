@@ -6,6 +6,7 @@
 #include <semnav/scan/Sweep.h>
 
 #include <chrono>
+#include <cmath>
 
 namespace semnav
 {
@@ -14,7 +15,7 @@ const std::vector<std::string>& MappingLocalizer::TOptions::sections()
 	static const std::vector<std::string> s = {
 	    "WallExtractor",     "WallMap",          "Localizer",
 	    "SemanticExtractor", "SemanticEvidence", "ObjectFootprints",
-	    "PredictionGuard"};
+	    "PredictionGuard",   "GroundBorders"};
 	return s;
 }
 
@@ -28,6 +29,7 @@ void MappingLocalizer::TOptions::loadFromConfigFile(
 	semantic.loadFromConfigFile(c, prefix + "SemanticEvidence");
 	footprints.loadFromConfigFile(c, prefix + "ObjectFootprints");
 	guard.loadFromConfigFile(c, prefix + "PredictionGuard");
+	borders.loadFromConfigFile(c, prefix + "GroundBorders");
 }
 
 void MappingLocalizer::TOptions::saveToConfigFile(
@@ -40,6 +42,7 @@ void MappingLocalizer::TOptions::saveToConfigFile(
 	semantic.saveToConfigFile(c, prefix + "SemanticEvidence");
 	footprints.saveToConfigFile(c, prefix + "ObjectFootprints");
 	guard.saveToConfigFile(c, prefix + "PredictionGuard");
+	borders.saveToConfigFile(c, prefix + "GroundBorders");
 }
 
 MappingLocalizer::MappingLocalizer(const TOptions& options, Method method)
@@ -53,7 +56,8 @@ MappingLocalizer::MappingLocalizer(const TOptions& options, Method method)
       m_semanticExtractor(options.semanticExtractor),
       m_semantic(options.semantic),
       m_footprints(options.footprints),
-      m_guard(options.guard)
+      m_guard(options.guard),
+      m_borders(options.borders)
 {
 	m_localizer.setWallMap(&m_walls);
 	m_localizer.setSemanticMap(&m_semantic);
@@ -73,6 +77,17 @@ LocalizationUpdate MappingLocalizer::localizeWalls(
 	const auto prior = m_localizer.pdf().getCovarianceAndMean();
 	const mrpt::poses::CPosePDFGaussian predicted = PredictionGuard::predict(
 	    mrpt::poses::CPosePDFGaussian(m_pose, std::get<0>(prior)), step);
+	// A sweep without a wall direction: its ground borders' direction, when
+	// it moves the predicted heading by little (a diagonal path is no main
+	// direction).
+	bool fromBorders = false;
+	if (m_borderDirection && m_walls.mainDirection())
+	{
+		const double d = MainDirections::correction(
+		    predicted.mean.phi(), *m_borderDirection, *m_walls.mainDirection());
+		if (std::abs(d) <= m_options.borders.maxCorrection)
+			m_obs.dominantDirection = m_borderDirection, fromBorders = true;
+	}
 	m_semanticObs = SemanticObservation();
 	if (!m_semantic.empty())
 	{
@@ -84,6 +99,7 @@ LocalizationUpdate MappingLocalizer::localizeWalls(
 			    p.x(), p.y(), p.phi(), m_sweepFootprints);
 	}
 	LocalizationUpdate u = m_localizer.update(incr, m_obs, &m_semanticObs);
+	u.headingFromBorders = fromBorders && u.headingCorrected;
 	auto [cov, mean] = m_localizer.pdf().getCovarianceAndMean();
 	// Several hypotheses: the sweep told them apart rather than leaving a
 	// direction free; test the estimate's hypothesis alone.
@@ -117,6 +133,10 @@ mrpt::poses::CPose2D MappingLocalizer::process(
 	const mrpt::poses::CPose2D odo = sweep.odometry();
 	m_obs = m_extractor.extract(labeled);
 	m_sweepFootprints.clear();
+	m_borderDirection.reset();
+	if (m_method == Method::Walls && m_options.borders.enabled &&
+	    !m_obs.dominantDirection)
+		m_borderDirection = m_borders.direction(labeled);
 	if (m_method == Method::Walls && m_options.footprints.enabled())
 		m_sweepFootprints = m_footprints.extract(labeled);
 	mrpt::poses::CPose2D pose = odo;

@@ -47,6 +47,9 @@ struct LocalizationUpdate
 	 * wall at the mean pose (1 when not computed). */
 	double inlierFraction = 1;
 	bool headingCorrected = false;
+	/** Mapping (GroundBorders): the sweep's direction for that correction
+	 * came from its sidewalk / grass borders, its walls giving none. */
+	bool headingFromBorders = false;
 	/** Spread below the convergence thresholds. */
 	bool converged = false;
 	/** A likelihood collapse was detected in this update (the particles

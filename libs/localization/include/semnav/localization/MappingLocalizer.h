@@ -4,6 +4,7 @@
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/system/COutputLogger.h>
+#include <semnav/localization/GroundBorders.h>
 #include <semnav/localization/Localizer.h>
 #include <semnav/localization/ObjectFootprints.h>
 #include <semnav/localization/OccupancyMcl.h>
@@ -32,7 +33,9 @@ class SemanticMap;
  * against the labels and objects of the map so far, and its object
  * footprints against those of the sweeps inserted so far; then the
  * PredictionGuard: along directions the sweep did not constrain the
- * estimate follows the motion prediction),
+ * estimate follows the motion prediction; a sweep whose walls give no
+ * main direction takes that of its sidewalk / grass borders,
+ * GroundBorders),
  * OccupancyMcl (MRPT's stock likelihood field on the map's occupancy grid
  * with the horizontal scan line: the baseline) and Odometry. */
 class MappingLocalizer : public mrpt::system::COutputLogger
@@ -47,7 +50,7 @@ public:
 
 	/** All localization options; sections [WallExtractor], [WallMap],
 	 * [Localizer], [SemanticExtractor], [SemanticEvidence],
-	 * [ObjectFootprints] and [PredictionGuard]. */
+	 * [ObjectFootprints], [PredictionGuard] and [GroundBorders]. */
 	struct TOptions : public mrpt::config::CLoadableOptions
 	{
 		void loadFromConfigFile(
@@ -65,6 +68,7 @@ public:
 		SemanticEvidenceMap::TOptions semantic;
 		ObjectFootprints::TOptions footprints;
 		PredictionGuard::TOptions guard;
+		GroundBorders::TOptions borders;
 	};
 
 	explicit MappingLocalizer(
@@ -107,6 +111,10 @@ private:
 	ObjectFootprints m_footprints;
 	std::vector<ObjectFootprints::Footprint> m_sweepFootprints;
 	PredictionGuard m_guard;
+	GroundBorders m_borders;
+	/** The sweep's ground borders' direction (robot frame), when its walls
+	 * give none. */
+	std::optional<double> m_borderDirection;
 	WallObservation m_obs;
 	SemanticObservation m_semanticObs;
 	double m_semanticMs = 0;

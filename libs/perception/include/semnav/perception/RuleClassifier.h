@@ -172,9 +172,9 @@ public:
 		double sidewalkMinRbar = 0.97;
 		double sidewalkMaxHeightStd = 0.012;
 		int minPatchSquares = 4;
-		// Off: both move the outdoor localizer (docs/perception.md).
-		int sidewalkBorderHalfWidth = 0;
-		double sidewalkFlatMaxHeightStd = 0;
+		// The border per pixel and the flat squares (docs/perception.md).
+		int sidewalkBorderHalfWidth = 2;
+		double sidewalkFlatMaxHeightStd = 0.007;
 		// Leftover pixels
 		double leftoverPlaneTolerance = 0.05;
 		bool classifyLeftoverPixels = true;
