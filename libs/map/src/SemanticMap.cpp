@@ -136,6 +136,10 @@ const OptionTable<O>& optionTable()
 	            "stairs_min_cell_share", &O::stairsMinCellShare, 0, 1,
 	            "Only cells labelled stairs in this share of the flight's "
 	            "sweeps (0: all).")
+	        .flag(
+	            "door_sighting_largest_region", &O::doorSightingLargestRegion,
+	            "A sweep's sighting of a door is its largest door region "
+	            "there (false: the first).")
 	        .real(
 	            "door_min_height_m", &O::doorMinHeight, 0, 10,
 	            "Lower doors are not reported.")

@@ -168,6 +168,13 @@ public:
 		 * flight labels the table once, the flight's cells many times.
 		 * [0, 1]; 0: every labelled cell. */
 		double stairsMinCellShare = 0.1;
+		/** A sweep gives a door one sighting (its centroid, see
+		 * ObjectInstance::addSighting()): true: of the sweep's door regions
+		 * merged into it, the one with the most pixels; false: the first
+		 * merged (row-major order), often a 0.1-0.3 m piece at the sensor's
+		 * height that the door rule labelled door beside the door, which
+		 * then set the door's place. */
+		bool doorSightingLargestRegion = true;
 		/** Doors whose merged extent is lower than this are not reported
 		 * (fragments of walls or furniture taken for a door) (m). */
 		double doorMinHeight = classInfo(Label::Door).plausibility.minHeight;
