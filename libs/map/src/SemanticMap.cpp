@@ -156,6 +156,10 @@ const OptionTable<O>& optionTable()
 	        .real(
 	            "double_door_max_wall_m", &O::doubleDoorMaxWall, 0, 10,
 	            "...with no longer stretch of wall between them.")
+	        .real(
+	            "door_join_distance_m", &O::doorJoinDistance, 0, 5,
+	            "Two doors in one wall this close, footprints overlapping, "
+	            "are one door found twice (0: no join).")
 	        .flag(
 	            "octomap", &O::octomap,
 	            "Put every point into the OctoMap (octomap.bt).");
