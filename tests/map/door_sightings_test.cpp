@@ -78,3 +78,27 @@ TEST(SemanticMap, DoorSightingIsTheSweepsLargestRegion)
 	ASSERT_EQ(d.size(), 1u);
 	EXPECT_NEAR(d[0].centroid.y, 0.4, 1e-6);
 }
+
+TEST(SemanticMap, FloorToCeilingDoorRegionsMakeNoDoor)
+{
+	// A 2.6 m high stretch of wall the rules took for a door comes first
+	// and would hold the door beside it (its footprint overlaps the
+	// door's).
+	const auto wall = doorPiece(0, 1.0, 1.3, 2.0, 2.6, 800);
+	const auto door = doorPiece(1, 0.3, 1.0, 0.9, 2.0, 600);
+	SemanticMap::TOptions o;
+	o.doorRegionMaxHeight = 2.5;
+	SemanticMap m(o);
+	auto f = test::makeFakeSweep(test::floorFan(2.5));
+	f.labeled.regions = {wall, door};
+	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
+	auto d = m.instances(Label::Door);
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.3, 1e-6) << "the door alone";
+	EXPECT_LT(d[0].maxCorner.z, 2.1);
+	// No limit (as in the default, 0): the wall region makes the instance
+	// the door joins.
+	d = doorsFrom({{wall, door}}, true);
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 1.0, 1e-6);
+}

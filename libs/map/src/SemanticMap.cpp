@@ -141,6 +141,9 @@ const OptionTable<O>& optionTable()
 	            "A sweep's sighting of a door is its largest door region "
 	            "there (false: the first).")
 	        .real(
+	            "door_region_max_height_m", &O::doorRegionMaxHeight, 0, 10,
+	            "Higher door regions make and join no door (0: no limit).")
+	        .real(
 	            "door_min_height_m", &O::doorMinHeight, 0, 10,
 	            "Lower doors are not reported.")
 	        .real(

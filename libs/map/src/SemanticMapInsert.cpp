@@ -507,6 +507,10 @@ void SemanticMap::insertRegions(
 		    classInfo(reg.label).instances !=
 		        ClassInfo::InstanceSource::Regions)
 			continue;
+		// Floor to ceiling: a wall the rules took for a door.
+		if (m_options.doorRegionMaxHeight > 0 &&
+		    reg.height > m_options.doorRegionMaxHeight)
+			continue;
 		mrpt::math::TPoint3D lo, hi, wc;
 		toWorldBox(robot, reg.minCorner, reg.maxCorner, lo, hi);
 		robot.composePoint(reg.centroid, wc);

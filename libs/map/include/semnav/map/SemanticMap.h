@@ -175,6 +175,10 @@ public:
 		 * height that the door rule labelled door beside the door, which
 		 * then set the door's place. */
 		bool doorSightingLargestRegion = true;
+		/** Door regions higher than this make no door instance and join
+		 * none (m; 0: no limit): a stretch of wall from floor to ceiling
+		 * that the rules took for a door, seen at a grazing angle. */
+		double doorRegionMaxHeight = 0;
 		/** Doors whose merged extent is lower than this are not reported
 		 * (fragments of walls or furniture taken for a door) (m). */
 		double doorMinHeight = classInfo(Label::Door).plausibility.minHeight;
