@@ -33,12 +33,13 @@ LabeledRegion doorPiece(
 }
 
 /** The door instances after inserting, at the origin, one sweep per list
- * of regions. */
+ * of regions (no door region height limit). */
 std::vector<ObjectInstance> doorsFrom(
     const std::vector<std::vector<LabeledRegion>>& sweeps, bool largest)
 {
 	SemanticMap::TOptions o;
 	o.doorSightingLargestRegion = largest;
+	o.doorRegionMaxHeight = 0;  // no limit
 	SemanticMap m(o);
 	auto f = test::makeFakeSweep(test::floorFan(2.5));
 	for (const auto& regions : sweeps)
@@ -96,7 +97,7 @@ TEST(SemanticMap, FloorToCeilingDoorRegionsMakeNoDoor)
 	ASSERT_EQ(d.size(), 1u);
 	EXPECT_NEAR(d[0].centroid.y, 0.3, 1e-6) << "the door alone";
 	EXPECT_LT(d[0].maxCorner.z, 2.1);
-	// No limit (as in the default, 0): the wall region makes the instance
+	// No limit (0): the wall region makes the instance
 	// the door joins.
 	d = doorsFrom({{wall, door}}, true);
 	ASSERT_EQ(d.size(), 1u);

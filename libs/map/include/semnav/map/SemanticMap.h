@@ -178,7 +178,7 @@ public:
 		/** Door regions higher than this make no door instance and join
 		 * none (m; 0: no limit): a stretch of wall from floor to ceiling
 		 * that the rules took for a door, seen at a grazing angle. */
-		double doorRegionMaxHeight = 0;
+		double doorRegionMaxHeight = 2.5;
 		/** Doors whose merged extent is lower than this are not reported
 		 * (fragments of walls or furniture taken for a door) (m). */
 		double doorMinHeight = classInfo(Label::Door).plausibility.minHeight;
