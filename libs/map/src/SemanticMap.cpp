@@ -136,6 +136,13 @@ const OptionTable<O>& optionTable()
 	            "stairs_min_cell_share", &O::stairsMinCellShare, 0, 1,
 	            "Only cells labelled stairs in this share of the flight's "
 	            "sweeps (0: all).")
+	        .flag(
+	            "door_sighting_largest_region", &O::doorSightingLargestRegion,
+	            "A sweep's sighting of a door is its largest door region "
+	            "there (false: the first).")
+	        .real(
+	            "door_region_max_height_m", &O::doorRegionMaxHeight, 0, 10,
+	            "Higher door regions make and join no door (0: no limit).")
 	        .real(
 	            "door_min_height_m", &O::doorMinHeight, 0, 10,
 	            "Lower doors are not reported.")
@@ -152,6 +159,10 @@ const OptionTable<O>& optionTable()
 	        .real(
 	            "double_door_max_wall_m", &O::doubleDoorMaxWall, 0, 10,
 	            "...with no longer stretch of wall between them.")
+	        .real(
+	            "door_join_distance_m", &O::doorJoinDistance, 0, 5,
+	            "Two doors in one wall this close, footprints overlapping, "
+	            "are one door found twice (0: no join).")
 	        .flag(
 	            "octomap", &O::octomap,
 	            "Put every point into the OctoMap (octomap.bt).");

@@ -105,9 +105,73 @@ bool SemanticMap::leavesOfOneDoor(
 	       m_options.doubleDoorMaxWall;
 }
 
+bool SemanticMap::duplicatesOfOneDoor(
+    const ObjectInstance& a, const ObjectInstance& b) const
+{
+	double ax, ay, bx, by;
+	if (m_options.doorJoinDistance <= 0 || a.leaves != 1 || b.leaves != 1 ||
+	    !reported(a) || !reported(b) || !unitNormal(a, ax, ay) ||
+	    !unitNormal(b, bx, by))
+		return false;
+	const double dx = b.centroid.x - a.centroid.x,
+	             dy = b.centroid.y - a.centroid.y;
+	if (std::hypot(dx, dy) > m_options.doorJoinDistance) return false;
+	// Normals parallel (either way), one plane, footprints overlapping.
+	constexpr double kMaxAngleDeg = 15;
+	const double dot = ax * bx + ay * by;
+	if (std::abs(dot) < std::cos(kMaxAngleDeg * M_PI / 180)) return false;
+	const double s = dot < 0 ? -1 : 1;
+	double nx = ax + s * bx, ny = ay + s * by;
+	const double nn = std::hypot(nx, ny);
+	nx /= nn;
+	ny /= nn;
+	if (std::abs(dx * nx + dy * ny) > m_options.doubleDoorMaxPlaneOffset)
+		return false;
+	return a.minCorner.x <= b.maxCorner.x && b.minCorner.x <= a.maxCorner.x &&
+	       a.minCorner.y <= b.maxCorner.y && b.minCorner.y <= a.maxCorner.y;
+}
+
+void SemanticMap::absorbDoor(ObjectInstance& a, int bIndex, CellRect& changed)
+{
+	const ObjectInstance& b = m_instances[static_cast<std::size_t>(bIndex)];
+	// Both instances' sightings, footprints and normals; the larger counts
+	// (a sweep may have detected both).
+	a.sightings.insert(
+	    a.sightings.end(), b.sightings.begin(), b.sightings.end());
+	a.sightingSizes.insert(
+	    a.sightingSizes.end(), b.sightingSizes.begin(), b.sightingSizes.end());
+	a.minCorner = {
+	    std::min(a.minCorner.x, b.minCorner.x),
+	    std::min(a.minCorner.y, b.minCorner.y),
+	    std::min(a.minCorner.z, b.minCorner.z)};
+	a.maxCorner = {
+	    std::max(a.maxCorner.x, b.maxCorner.x),
+	    std::max(a.maxCorner.y, b.maxCorner.y),
+	    std::max(a.maxCorner.z, b.maxCorner.z)};
+	const double sign =
+	    a.normalSum.x * b.normalSum.x + a.normalSum.y * b.normalSum.y < 0 ? -1
+	                                                                      : 1;
+	a.normalSum = a.normalSum + b.normalSum * sign;
+	a.observations = std::max(a.observations, b.observations);
+	a.views = std::max(a.views, b.views);
+	a.bestShapeScore = std::max(a.bestShapeScore, b.bestShapeScore);
+	const int from = b.id, to = a.id;
+	m_instances.erase(m_instances.begin() + bIndex);
+	auto& objs = layer("objects");
+	for (int cy = 0; cy < m_geometry.rows; cy++)
+		for (int cx = 0; cx < m_geometry.cols; cx++)
+		{
+			float& v = objs[m_geometry.index(cy, cx)];
+			if (v != static_cast<float>(from)) continue;
+			v = static_cast<float>(to);
+			changed.add(cy, cx);
+		}
+}
+
 void SemanticMap::joinDoubleDoors(CellRect& changed)
 {
-	if (m_options.doubleDoorMaxWidth <= 0) return;
+	if (m_options.doubleDoorMaxWidth <= 0 && m_options.doorJoinDistance <= 0)
+		return;
 	const auto isDoor = [](const ObjectInstance& o) {
 		return classInfo(o.label).instances ==
 		       ClassInfo::InstanceSource::Regions;
@@ -119,46 +183,28 @@ void SemanticMap::joinDoubleDoors(CellRect& changed)
 			for (std::size_t j = i + 1; j < m_instances.size() && !joined; j++)
 			{
 				ObjectInstance &a = m_instances[i], &b = m_instances[j];
-				if (!isDoor(a) || b.label != a.label || !leavesOfOneDoor(a, b))
+				if (!isDoor(a) || b.label != a.label) continue;
+				mrpt::math::TPoint3D c;
+				int leaves = 1;
+				if (m_options.doubleDoorMaxWidth > 0 && leavesOfOneDoor(a, b))
+				{
+					// The middle of the two leaves.
+					c = (a.centroid + b.centroid) * 0.5;
+					leaves = 2;
+				}
+				else if (duplicatesOfOneDoor(a, b))
+				{
+					// One door found twice: the mean of the two weighted by
+					// their detections.
+					const double wa = static_cast<double>(a.observations),
+					             wb = static_cast<double>(b.observations);
+					c = (a.centroid * wa + b.centroid * wb) * (1.0 / (wa + wb));
+				}
+				else
 					continue;
-				// a takes b in: the middle of the two, both leaves'
-				// sightings, the larger counts (a sweep may have detected
-				// both).
-				a.centroid = (a.centroid + b.centroid) * 0.5;
-				a.sightings.insert(
-				    a.sightings.end(), b.sightings.begin(), b.sightings.end());
-				a.sightingSizes.insert(
-				    a.sightingSizes.end(), b.sightingSizes.begin(),
-				    b.sightingSizes.end());
-				a.minCorner = {
-				    std::min(a.minCorner.x, b.minCorner.x),
-				    std::min(a.minCorner.y, b.minCorner.y),
-				    std::min(a.minCorner.z, b.minCorner.z)};
-				a.maxCorner = {
-				    std::max(a.maxCorner.x, b.maxCorner.x),
-				    std::max(a.maxCorner.y, b.maxCorner.y),
-				    std::max(a.maxCorner.z, b.maxCorner.z)};
-				const double sign = a.normalSum.x * b.normalSum.x +
-				                                a.normalSum.y * b.normalSum.y <
-				                            0
-				                        ? -1
-				                        : 1;
-				a.normalSum = a.normalSum + b.normalSum * sign;
-				a.observations = std::max(a.observations, b.observations);
-				a.views = std::max(a.views, b.views);
-				a.bestShapeScore = std::max(a.bestShapeScore, b.bestShapeScore);
-				a.leaves = 2;
-				const int from = b.id, to = a.id;
-				m_instances.erase(m_instances.begin() + j);
-				auto& objs = layer("objects");
-				for (int cy = 0; cy < m_geometry.rows; cy++)
-					for (int cx = 0; cx < m_geometry.cols; cx++)
-					{
-						float& v = objs[m_geometry.index(cy, cx)];
-						if (v != static_cast<float>(from)) continue;
-						v = static_cast<float>(to);
-						changed.add(cy, cx);
-					}
+				absorbDoor(a, static_cast<int>(j), changed);
+				a.centroid = c;
+				a.leaves = leaves;
 				joined = true;
 			}
 	}

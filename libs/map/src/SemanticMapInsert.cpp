@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <map>
 
 namespace semnav
 {
@@ -498,21 +499,38 @@ void SemanticMap::insertRegions(
     std::vector<int>& seenThisSweep)
 {
 	const auto& registry = ClassRegistry::instance();
+	// Per instance given a sighting in this sweep: that region's pixels.
+	std::map<int, std::size_t> sightingPixels;
 	for (const auto& reg : ls.regions)
 	{
 		if (!registry.contains(reg.label) ||
 		    classInfo(reg.label).instances !=
 		        ClassInfo::InstanceSource::Regions)
 			continue;
+		// Floor to ceiling: a wall the rules took for a door.
+		if (m_options.doorRegionMaxHeight > 0 &&
+		    reg.height > m_options.doorRegionMaxHeight)
+			continue;
 		mrpt::math::TPoint3D lo, hi, wc;
 		toWorldBox(robot, reg.minCorner, reg.maxCorner, lo, hi);
 		robot.composePoint(reg.centroid, wc);
+		const std::size_t before = seenThisSweep.size();
 		int id = 0;
-		mergeObject(
-		    reg.label, wc, {reg.width, 0, reg.height}, lo, hi, 1.0,
-		    seenThisSweep, id);
+		const mrpt::math::TPoint3D size{reg.width, 0, reg.height};
+		mergeObject(reg.label, wc, size, lo, hi, 1.0, seenThisSweep, id);
 		if (ObjectInstance* o = instanceWithId(id))
+		{
 			addNormal(robot, reg.meanNormal, *o);
+			if (seenThisSweep.size() > before)  // it gave the sighting
+				sightingPixels[id] = reg.pixels;
+			else if (
+			    m_options.doorSightingLargestRegion && o->leaves == 1 &&
+			    reg.pixels > sightingPixels[id])
+			{
+				o->replaceLastSighting(wc, size, m_options.mergeDistance / 2);
+				sightingPixels[id] = reg.pixels;
+			}
+		}
 		paintObject(
 		    e, id, reg.imageBox,
 		    [&](int r, int c)

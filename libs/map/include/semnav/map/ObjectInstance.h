@@ -58,6 +58,28 @@ struct ObjectInstance
 		if (sightings.empty() && observations > 0)
 			sightings.push_back(centroid);
 		sightings.push_back(c);
+		recentre(inlierRadius);
+	}
+
+	/** Replaces the last sighting (and its size, if recorded) by a better
+	 * one of the same sweep, and recomputes `centroid` as addSighting()
+	 * does. No-op without sightings. */
+	void replaceLastSighting(
+	    const mrpt::math::TPoint3D& c, const mrpt::math::TPoint3D& size,
+	    double inlierRadius)
+	{
+		if (sightings.empty()) return;
+		sightings.back() = c;
+		if (!sightingSizes.empty()) sightingSizes.back() = size;
+		recentre(inlierRadius);
+	}
+
+	/** Sets `centroid` to the mean of the sightings within `inlierRadius`
+	 * (horizontally) of their per-axis median (all of them when none is;
+	 * unchanged without sightings). */
+	void recentre(double inlierRadius)
+	{
+		if (sightings.empty()) return;
 		const auto in = inlierSightings(inlierRadius);
 		const auto& used = in.empty() ? sightings : in;
 		mrpt::math::TPoint3D sum(0, 0, 0);

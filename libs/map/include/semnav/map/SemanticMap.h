@@ -168,6 +168,17 @@ public:
 		 * flight labels the table once, the flight's cells many times.
 		 * [0, 1]; 0: every labelled cell. */
 		double stairsMinCellShare = 0.1;
+		/** A sweep gives a door one sighting (its centroid, see
+		 * ObjectInstance::addSighting()): true: of the sweep's door regions
+		 * merged into it, the one with the most pixels; false: the first
+		 * merged (row-major order), often a 0.1-0.3 m piece at the sensor's
+		 * height that the door rule labelled door beside the door, which
+		 * then set the door's place. */
+		bool doorSightingLargestRegion = true;
+		/** Door regions higher than this make no door instance and join
+		 * none (m; 0: no limit): a stretch of wall from floor to ceiling
+		 * that the rules took for a door, seen at a grazing angle. */
+		double doorRegionMaxHeight = 2.5;
 		/** Doors whose merged extent is lower than this are not reported
 		 * (fragments of walls or furniture taken for a door) (m). */
 		double doorMinHeight = classInfo(Label::Door).plausibility.minHeight;
@@ -187,6 +198,15 @@ public:
 		 * centroids (cells labelled wall and never door): the wall between
 		 * the doors of two neighbouring rooms (m). */
 		double doubleDoorMaxWall = 0.3;
+		/** Two reported door instances in one wall (normals within 15 deg,
+		 * centroids at most doubleDoorMaxPlaneOffset from one plane) whose
+		 * footprints overlap and whose centroids are at most this far apart
+		 * are one door found twice (the two leaves of a double door seen
+		 * apart, or a grazing look at a door placed beside it): joined at
+		 * the mean of their centroids weighted by their detections (m; 0:
+		 * no join). Two doors of neighbouring rooms are >= 1.5 m apart in
+		 * the generated buildings. */
+		double doorJoinDistance = 0.8;
 		/** Insert points into the OctoMap. */
 		bool octomap = true;
 		TravelCostModel::TOptions cost;
@@ -448,8 +468,9 @@ private:
 	    ObjectInstance& o, std::vector<int>& viewedThisSweep);
 	/** Joins pairs of door instances side by side in one wall, each about
 	 * a leaf wide, into one door (ObjectInstance::leaves = 2) at their
-	 * middle (TOptions::doubleDoorMaxWidth); the joined instance keeps the
-	 * lower id, the "objects" cells of the other get it. */
+	 * middle (TOptions::doubleDoorMaxWidth), and pairs that are one door
+	 * found twice (TOptions::doorJoinDistance); the joined instance keeps
+	 * the lower id, the "objects" cells of the other get it. */
 	void joinDoubleDoors(CellRect& changed);
 	/** Whether door instances `a` and `b` are the two leaves of one
 	 * double door (see joinDoubleDoors()). */
@@ -459,6 +480,15 @@ private:
 	 * segment between two points. */
 	double longestWallBetween(
 	    const mrpt::math::TPoint3D& a, const mrpt::math::TPoint3D& b) const;
+	/** Whether door instances `a` and `b` are one door found twice: both
+	 * reported, centroids within TOptions::doorJoinDistance, in one wall,
+	 * footprints overlapping (see joinDoubleDoors()). */
+	bool duplicatesOfOneDoor(
+	    const ObjectInstance& a, const ObjectInstance& b) const;
+	/** `a` takes in m_instances[bIndex] (sightings, footprint, normals,
+	 * the larger counts; the "objects" cells of b get a's id), which is
+	 * erased. */
+	void absorbDoor(ObjectInstance& a, int bIndex, CellRect& changed);
 	/** A double door's centroid from its sightings: the middle between
 	 * the mean of those on either side of `middle` along its wall
 	 * (unchanged when one side has none). */

@@ -1,0 +1,85 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// One door found twice: two reported door instances in one wall, closer
+// than TOptions::doorJoinDistance with overlapping footprints, are joined
+// (docs/mapping.md, "Objects in the map").
+#include <gtest/gtest.h>
+#include <semnav/map/SemanticMap.h>
+
+#include <vector>
+
+#include "MapTestUtils.h"
+
+using namespace semnav;
+
+namespace
+{
+/** A door region (robot frame) in the wall x = 3 facing the robot, 2 m
+ * high, centred at y, `width` wide. */
+LabeledRegion wallDoor(int id, double y, double width)
+{
+	LabeledRegion reg;
+	reg.id = id;
+	reg.label = Label::Door;
+	reg.pixels = 1000;
+	reg.imageBox = cv::Rect(0, 0, 1, 1);
+	reg.centroid = {3.0, y, 1.0};
+	reg.minCorner = {2.98, y - width / 2, 0.0};
+	reg.maxCorner = {3.02, y + width / 2, 2.0};
+	reg.width = width;
+	reg.height = 2.0;
+	reg.meanNormal = {-1, 0, 0};
+	return reg;
+}
+
+/** The reported doors after one sweep per list of regions, at the
+ * origin. */
+std::vector<ObjectInstance> joinedDoors(
+    const std::vector<std::vector<LabeledRegion>>& sweeps, double joinDistance)
+{
+	SemanticMap::TOptions o;
+	o.doorJoinDistance = joinDistance;
+	SemanticMap m(o);
+	auto f = test::makeFakeSweep(test::floorFan(2.5));
+	for (const auto& regions : sweeps)
+	{
+		f.labeled.regions = regions;
+		m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
+	}
+	return m.instances(Label::Door);
+}
+}  // namespace
+
+TEST(SemanticMap, OneDoorFoundTwiceIsJoined)
+{
+	// Sweep 1: two pieces 0.65 m apart (more than the merge distance, no
+	// overlap): two instances. Sweep 2: the door whole, beside the first,
+	// whose footprint now overlaps the second's.
+	const std::vector<std::vector<LabeledRegion>> sweeps = {
+	    {wallDoor(0, 0.0, 0.5), wallDoor(1, 0.65, 0.5)},
+	    {wallDoor(0, 0.1, 1.0)}};
+	auto d = joinedDoors(sweeps, 0);
+	ASSERT_EQ(d.size(), 2u) << "no join";
+	d = joinedDoors(sweeps, 0.8);
+	ASSERT_EQ(d.size(), 1u);
+	// The mean of (0 + 0.1) / 2 (2 detections) and 0.65 (1).
+	EXPECT_NEAR(d[0].centroid.y, (2 * 0.05 + 0.65) / 3, 1e-6);
+	EXPECT_EQ(d[0].leaves, 1);
+	EXPECT_EQ(d[0].observations, 2u);
+	// Farther apart than the join distance: two doors.
+	EXPECT_EQ(joinedDoors(sweeps, 0.55).size(), 2u);
+	// Footprints apart: two doors, however close.
+	EXPECT_EQ(
+	    joinedDoors({{wallDoor(0, 0.0, 0.5), wallDoor(1, 0.65, 0.5)}}, 0.8)
+	        .size(),
+	    2u);
+	// Not in one wall (0.3 m across): two doors.
+	auto back = wallDoor(1, 0.65, 0.5);
+	back.centroid.x = 3.3;
+	back.minCorner.x = 2.9;
+	back.maxCorner.x = 3.32;
+	EXPECT_EQ(
+	    joinedDoors(
+	        {{wallDoor(0, 0.0, 0.5), back}, {wallDoor(0, 0.1, 1.0)}}, 0.8)
+	        .size(),
+	    2u);
+}

@@ -1,0 +1,105 @@
+/* semnav: semantic navigation from tilting-laser sweeps */
+// A sweep's sighting of a door: its largest door region merged into it, not
+// the first (SemanticMap::TOptions::doorSightingLargestRegion;
+// docs/mapping.md, "Objects in the map").
+#include <gtest/gtest.h>
+#include <semnav/map/SemanticMap.h>
+
+#include <vector>
+
+#include "MapTestUtils.h"
+
+using namespace semnav;
+
+namespace
+{
+/** A door region (robot frame) in the wall x = 3, centred at (y, z),
+ * `width` x `height`, of `pixels` pixels. */
+LabeledRegion doorPiece(
+    int id, double y, double z, double width, double height, std::size_t pixels)
+{
+	LabeledRegion reg;
+	reg.id = id;
+	reg.label = Label::Door;
+	reg.pixels = pixels;
+	reg.imageBox = cv::Rect(0, 0, 1, 1);
+	reg.centroid = {3.0, y, z};
+	reg.minCorner = {2.98, y - width / 2, z - height / 2};
+	reg.maxCorner = {3.02, y + width / 2, z + height / 2};
+	reg.width = width;
+	reg.height = height;
+	reg.meanNormal = {-1, 0, 0};
+	return reg;
+}
+
+/** The door instances after inserting, at the origin, one sweep per list
+ * of regions (no door region height limit). */
+std::vector<ObjectInstance> doorsFrom(
+    const std::vector<std::vector<LabeledRegion>>& sweeps, bool largest)
+{
+	SemanticMap::TOptions o;
+	o.doorSightingLargestRegion = largest;
+	o.doorRegionMaxHeight = 0;  // no limit
+	SemanticMap m(o);
+	auto f = test::makeFakeSweep(test::floorFan(2.5));
+	for (const auto& regions : sweeps)
+	{
+		f.labeled.regions = regions;
+		m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
+	}
+	return m.instances(Label::Door);
+}
+}  // namespace
+
+TEST(SemanticMap, DoorSightingIsTheSweepsLargestRegion)
+{
+	// The door rule's 0.2 x 0.1 m piece at the sensor's height, 0.4 m
+	// beside the door, comes first in the sweep; the door's own region
+	// (0.9 x 2 m) second. Both merge into one instance (0.4 m < the merge
+	// distance).
+	const auto piece = doorPiece(0, 0.4, 0.45, 0.2, 0.1, 150);
+	const auto door = doorPiece(1, 0.0, 1.0, 0.9, 2.0, 6000);
+	auto d = doorsFrom({{piece, door}}, true);
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.0, 1e-6) << "the door's region";
+	EXPECT_EQ(d[0].observations, 1u);
+	ASSERT_EQ(d[0].sightingSizes.size(), 1u);
+	EXPECT_NEAR(d[0].sightingSizes[0].z, 2.0, 1e-9);
+	// The piece after the door's region changes nothing.
+	d = doorsFrom({{door, piece}}, true);
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.0, 1e-6);
+	// Two sweeps, the piece first in each: both sightings on the door.
+	d = doorsFrom({{piece, door}, {piece, door}}, true);
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_EQ(d[0].observations, 2u);
+	EXPECT_NEAR(d[0].centroid.y, 0.0, 1e-6);
+	// Off: the first region merged sets the sighting (the piece's place).
+	d = doorsFrom({{piece, door}}, false);
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.4, 1e-6);
+}
+
+TEST(SemanticMap, FloorToCeilingDoorRegionsMakeNoDoor)
+{
+	// A 2.6 m high stretch of wall the rules took for a door comes first
+	// and would hold the door beside it (its footprint overlaps the
+	// door's).
+	const auto wall = doorPiece(0, 1.0, 1.3, 2.0, 2.6, 800);
+	const auto door = doorPiece(1, 0.3, 1.0, 0.9, 2.0, 600);
+	SemanticMap::TOptions o;
+	o.doorRegionMaxHeight = 2.5;
+	SemanticMap m(o);
+	auto f = test::makeFakeSweep(test::floorFan(2.5));
+	f.labeled.regions = {wall, door};
+	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
+	auto d = m.instances(Label::Door);
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.3, 1e-6) << "the door alone";
+	EXPECT_LT(d[0].maxCorner.z, 2.1);
+	// No limit (0): the wall region makes the instance
+	// the door joins.
+	d = doorsFrom({{wall, door}}, true);
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 1.0, 1e-6);
+}
