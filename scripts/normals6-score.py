@@ -18,7 +18,7 @@ for kind in ("indoor", "outdoor"):
     print("objects tp/fp/fn:", {v: {c: "%d/%d/%d" % (o["tp"], o["fp"], o["fn"]) for c, o in summ[v][kind]["objects"].items()} for v in V})
     same = {v: all(res[v][n]["objects"] == res["base"][n]["objects"] for n in names if n.startswith(kind)) for v in ("8", "16")}
     print("detections per scene identical to off:", same)
-    for c in ("door", "obstacle", "wall") if kind == "indoor" else ("wall", "obstacle", "sidewalk", "grass"):
+    for c in ("door", "obstacle", "wall") if kind == "indoor" else ("door", "wall", "obstacle", "sidewalk", "grass"):
         mv = []
         for n in sorted(names, key=lambda s: (s.split("_")[0], int(s.split("_")[1]))):
             if not n.startswith(kind): continue
@@ -27,3 +27,9 @@ for kind in ("indoor", "outdoor"):
             d8, d16 = p[1]["f1"] - p[0]["f1"], p[2]["f1"] - p[0]["f1"]
             if abs(d8) >= 0.02 or abs(d16) >= 0.02: mv.append("%s %.3f %+.3f/%+.3f" % (n.split("_")[1], p[0]["f1"], d8, d16))
         print("%s moves >= 0.02 (scene off 8/16): %s" % (c, "; ".join(mv)))
+print("object count differences per scene (scene class: off -> 8 / 16, tp/fp/fn):")
+for n in sorted(names):
+    for c in ("washbasin", "wastebasket", "stairs"):
+        o = [res[v][n]["objects"].get(c, {}) for v in V]
+        t = ["%d/%d/%d" % (x.get("tp", 0), x.get("fp", 0), x.get("fn", 0)) for x in o]
+        if len(set(t)) > 1: print("  %s %s: %s -> %s / %s" % (n, c, *t))
