@@ -269,9 +269,10 @@ TEST(NormalImage, OptionsAreCheckedAndRoundTrip)
 
 TEST(NormalImage, WidenedSideRowStepsKeepPlanesAndAreChecked)
 {
-	// side_row_step_max (prototype, default off): 0 leaves every normal as
-	// it was; 16 changes only side columns, whose normals on a noise-free
-	// plane equal the paper's and face the sensor.
+	// side_row_step_max (default off): 0 leaves every normal as it was; 16
+	// changes only the side columns of classifierNormals(), whose normals
+	// on a noise-free plane equal the paper's and face the sensor, and
+	// leaves normals() (the detectors' normals) bit for bit the paper's.
 	SynthScene sc = boxRoom(-3, 5, -2, 2.5, 2.5);
 	cv::Mat truth;
 	const Sweep sw = renderSweep(sc, &truth);
@@ -281,15 +282,22 @@ TEST(NormalImage, WidenedSideRowStepsKeepPlanesAndAreChecked)
 	o.sideRowStepMax = 16;
 	NormalImage on(o);
 	on.compute(sw);
-	std::size_t changedMiddle = 0, planeSide = 0;
+	EXPECT_FALSE(off.widened());
+	EXPECT_EQ(off.classifierNormals().data, off.normals().data);
+	ASSERT_TRUE(on.widened());
+	EXPECT_EQ(cv::norm(on.normals(), off.normals(), cv::NORM_INF), 0.0);
+	EXPECT_EQ(cv::norm(on.normalMask(), off.normalMask(), cv::NORM_INF), 0.0);
+	EXPECT_EQ(on.validNormals(), off.validNormals());
+	std::size_t changedMiddle = 0, changedSide = 0, planeSide = 0;
 	for (int r = 0; r < truth.rows; r++)
 		for (int c = 0; c < truth.cols; c++)
 		{
 			const bool side = std::abs(std::cos(sw.phi(c))) < 0.5;
 			const cv::Vec3f a = off.normals().at<cv::Vec3f>(r, c);
-			const cv::Vec3f b = on.normals().at<cv::Vec3f>(r, c);
+			const cv::Vec3f b = on.classifierNormals().at<cv::Vec3f>(r, c);
 			if (!side && a != b) changedMiddle++;
-			if (!side || !on.normalMask().at<uint8_t>(r, c)) continue;
+			if (side && a != b) changedSide++;
+			if (!side || !on.classifierNormalMask().at<uint8_t>(r, c)) continue;
 			const cv::Vec3f p = on.points().at<cv::Vec3f>(r, c);
 			ASSERT_NEAR(cv::norm(b), 1.0, 1e-4);
 			EXPECT_GT(b.dot(on.sensorPositions()[r] - p), 0.0f);
@@ -310,6 +318,7 @@ TEST(NormalImage, WidenedSideRowStepsKeepPlanesAndAreChecked)
 			}
 		}
 	EXPECT_EQ(changedMiddle, 0u);
+	EXPECT_GT(changedSide, 0u);
 	EXPECT_GT(planeSide, 0u);
 
 	mrpt::config::CConfigFileMemory range;

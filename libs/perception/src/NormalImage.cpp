@@ -198,8 +198,15 @@ bool normalFrom(
 void NormalImage::widenSideNormals(
     const Sweep& sweep, const detail::NormalKernelArgs& a)
 {
+	m_normals.copyTo(m_sideNormals);
+	m_normalMask.copyTo(m_sideNormalMask);
 	const int rows = m_normals.rows, cols = m_normals.cols;
 	const int pc = m_paddedCols;
+	auto at = [&](int rr, int cc)
+	{
+		return static_cast<std::size_t>(rr + 1) * pc +
+		       static_cast<std::size_t>(cc + 1);
+	};
 	for (int c = 0; c < cols; c++)
 	{
 		const double cp = std::abs(std::cos(sweep.phi(c)));
@@ -215,11 +222,6 @@ void NormalImage::widenSideNormals(
 			// stands for "none" where the sweep ends at r).
 			const int down = r == 0 ? 1 : std::min(step, r);
 			const int up = r == rows - 1 ? 1 : std::min(step, rows - 1 - r);
-			auto at = [&](int rr, int cc)
-			{
-				return static_cast<std::size_t>(rr + 1) * pc +
-				       static_cast<std::size_t>(cc + 1);
-			};
 			const std::size_t nb[4] = {
 			    at(r - down, c - 1), at(r - down, c + 1), at(r + up, c - 1),
 			    at(r + up, c + 1)};
@@ -227,12 +229,9 @@ void NormalImage::widenSideNormals(
 			const bool ok = normalFrom(
 			    a, at(r, c), nb, m_sensorPos[static_cast<std::size_t>(r)].val,
 			    n);
-			auto& N = m_normals.at<cv::Vec3f>(r, c);
-			uint8_t& M = m_normalMask.at<uint8_t>(r, c);
-			m_validNormals -= M;
-			N = ok ? cv::Vec3f(n[0], n[1], n[2]) : cv::Vec3f(0, 0, 0);
-			M = ok ? 1 : 0;
-			m_validNormals += M;
+			m_sideNormals.at<cv::Vec3f>(r, c) =
+			    ok ? cv::Vec3f(n[0], n[1], n[2]) : cv::Vec3f(0, 0, 0);
+			m_sideNormalMask.at<uint8_t>(r, c) = ok ? 1 : 0;
 		}
 	}
 }
@@ -278,14 +277,16 @@ cv::Mat NormalImage::toBgr(const cv::Mat& normals, const cv::Mat& mask)
 void NormalImage::smoothed(
     const cv::Mat& groups, int halfWidth, cv::Mat& out) const
 {
-	const int rows = m_normals.rows, cols = m_normals.cols;
+	const cv::Mat& normals = classifierNormals();
+	const cv::Mat& mask = classifierNormalMask();
+	const int rows = normals.rows, cols = normals.cols;
 	out.create(rows, cols, CV_32FC3);
 	const bool useGroups = !groups.empty();
 	const int k = std::max(0, halfWidth);
 	for (int r = 0; r < rows; r++)
 	{
 		auto* O = out.ptr<cv::Vec3f>(r);
-		const auto* NM = m_normalMask.ptr<uint8_t>(r);
+		const auto* NM = mask.ptr<uint8_t>(r);
 		const int* G = useGroups ? groups.ptr<int>(r) : nullptr;
 		for (int c = 0; c < cols; c++)
 		{
@@ -296,16 +297,16 @@ void NormalImage::smoothed(
 			for (int rr = std::max(0, r - k); rr <= std::min(rows - 1, r + k);
 			     rr++)
 			{
-				const auto* N2 = m_normals.ptr<cv::Vec3f>(rr);
-				const auto* NM2 = m_normalMask.ptr<uint8_t>(rr);
+				const auto* N2 = normals.ptr<cv::Vec3f>(rr);
+				const auto* NM2 = mask.ptr<uint8_t>(rr);
 				const int* G2 = useGroups ? groups.ptr<int>(rr) : nullptr;
 				for (int cc = std::max(0, c - k);
 				     cc <= std::min(cols - 1, c + k); cc++)
 					if (NM2[cc] && (!useGroups || G2[cc] == g)) sum += N2[cc];
 			}
 			const float len = std::sqrt(sum.dot(sum));
-			O[c] = len > 1e-12f ? sum * (1.0f / len)
-			                    : m_normals.at<cv::Vec3f>(r, c);
+			O[c] =
+			    len > 1e-12f ? sum * (1.0f / len) : normals.at<cv::Vec3f>(r, c);
 		}
 	}
 }

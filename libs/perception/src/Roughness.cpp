@@ -46,14 +46,15 @@ Roughness::Roughness(const TOptions& options) : m_options(options) {}
 
 void Roughness::compute(const NormalImage& normals, const cv::Mat& areaIds)
 {
-	const int rows = normals.normals().rows, cols = normals.normals().cols;
+	const int rows = normals.classifierNormals().rows,
+	          cols = normals.classifierNormals().cols;
 	m_r.create(rows, cols, CV_32F);
 	if (rows == 0 || cols == 0)
 	{
 		m_rBar.create(rows, cols, CV_32F);
 		return;
 	}
-	const cv::Mat* n = &normals.normals();
+	const cv::Mat* n = &normals.classifierNormals();
 	if (m_options.smoothNormals)
 	{
 		normals.smoothed(areaIds, m_options.smoothingHalfWidth, m_smooth);
@@ -63,7 +64,7 @@ void Roughness::compute(const NormalImage& normals, const cv::Mat& areaIds)
 	// normal mask over the window (box filters: O(1) per pixel). Normals are
 	// 0 where there is none, so S only counts pixels with a normal.
 	// (S row by row: the sums of normals are used once.)
-	normals.normalMask().convertTo(m_mask, CV_32F);
+	normals.classifierNormalMask().convertTo(m_mask, CV_32F);
 	detail::boxSum(m_mask, m_options.windowHalfWidth, m_sumM, m_tmp);
 	m_rowSum.resize(static_cast<std::size_t>(cols) * 3);
 	const detail::SimdKernels& K = detail::simdKernels();
@@ -74,7 +75,8 @@ void Roughness::compute(const NormalImage& normals, const cv::Mat& areaIds)
 	    {
 		    K.roughnessRow(
 		        n->ptr<float>(r), sums, m_sumM.ptr<float>(r),
-		        normals.normalMask().ptr<uint8_t>(r), m_r.ptr<float>(r), cols);
+		        normals.classifierNormalMask().ptr<uint8_t>(r),
+		        m_r.ptr<float>(r), cols);
 	    });
 	squareMeans(
 	    m_r, areaIds, m_options.squareWidth, m_options.minSquarePixels, m_rBar);

@@ -164,7 +164,7 @@ void RuleClassifier::classifyOrientation(const NormalImage& normals)
 	const TOptions& o = m_options;
 	const int rows = m_rows, cols = m_cols, n = rows * cols;
 	const auto* PM = m_pointMask->ptr<uint8_t>(0);
-	const auto* NM = normals.normalMask().ptr<uint8_t>(0);
+	const auto* NM = normals.classifierNormalMask().ptr<uint8_t>(0);
 	// (A box filter over all pixels: 0 where there is no normal; pixels
 	// without their own normal are not classified anyway.)
 	detail::OrientThresholds th;
@@ -183,7 +183,7 @@ void RuleClassifier::classifyOrientation(const NormalImage& normals)
 		// Box sums normalised and classified row by row.
 		m_smoothSum.create(rows, cols, CV_32FC3);
 		detail::boxSumRows(
-		    normals.normals(), o.normalSmoothingHalfWidth, m_tmp,
+		    normals.classifierNormals(), o.normalSmoothingHalfWidth, m_tmp,
 		    [&](int r) { return m_smoothSum.ptr<float>(r); },
 		    [&](int r, const float*)
 		    {
@@ -195,7 +195,7 @@ void RuleClassifier::classifyOrientation(const NormalImage& normals)
 	}
 	else
 	{
-		m_ns = &normals.normals();
+		m_ns = &normals.classifierNormals();
 		for (int r = 0; r < rows; r++) classifyRow(r, m_ns->ptr<float>(r));
 	}
 }

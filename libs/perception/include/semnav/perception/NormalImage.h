@@ -91,12 +91,30 @@ public:
 	const cv::Mat& normals() const { return m_normals; }
 	/** CV_8U, 1 where the pixel has a normal. */
 	const cv::Mat& normalMask() const { return m_normalMask; }
+	/** The normals the rule classifier and the roughness read: those of
+	 * normals() with the side columns recomputed from rows farther apart
+	 * (TOptions::sideRowStepMax); the very Mats of normals() when that is
+	 * off. normals() stays the paper's normals: the object detectors and
+	 * their training read those (LabeledSweep::normals, swapOutputs()). */
+	const cv::Mat& classifierNormals() const
+	{
+		return widened() ? m_sideNormals : m_normals;
+	}
+	/** The mask of classifierNormals(). */
+	const cv::Mat& classifierNormalMask() const
+	{
+		return widened() ? m_sideNormalMask : m_normalMask;
+	}
+	/** True when classifierNormals() differ from normals() (side row
+	 * steps on). */
+	bool widened() const { return m_options.sideRowStepMax > 1; }
 	/** Sensor position of each row in the robot frame. */
 	const std::vector<cv::Vec3f>& sensorPositions() const
 	{
 		return m_sensorPos;
 	}
 	std::size_t validPoints() const { return m_validPoints; }
+	/** Pixels with a normal in normals(). */
 	std::size_t validNormals() const { return m_validNormals; }
 
 	/** The colour image in OpenCV's BGR channel order (for cv::imencode),
@@ -108,23 +126,25 @@ public:
 	/** (R, G, B) of a unit normal, as in the paper's figures. */
 	static cv::Vec3b rgbOf(const cv::Vec3f& n);
 
-	/** Normals averaged over the (2k+1)^2 window, counting only neighbours
-	 * with a normal and with the same `groups` id (CV_32S, may be empty:
-	 * no restriction), renormalised. Pixels without their own normal stay
-	 * without. out: CV_32FC3. */
+	/** classifierNormals() averaged over the (2k+1)^2 window, counting
+	 * only neighbours with a normal and with the same `groups` id (CV_32S,
+	 * may be empty: no restriction), renormalised. Pixels without their
+	 * own normal stay without. out: CV_32FC3. */
 	void smoothed(const cv::Mat& groups, int halfWidth, cv::Mat& out) const;
 
 	const TOptions& options() const { return m_options; }
 
 	/** Hands the results over without copying: swaps points, point mask,
-	 * normals and normal mask with the given Mats, whose buffers the next
+	 * normals() and normalMask() (the paper's normals, not the
+	 * classifier's) with the given Mats, whose buffers the next
 	 * compute() reuses (pass the same Mats every time: no allocation). */
 	void swapOutputs(
 	    cv::Mat& points, cv::Mat& pointMask, cv::Mat& normals,
 	    cv::Mat& normalMask);
 
 private:
-	/** Recomputes the normals of the side columns with widened row steps
+	/** classifierNormals(): a copy of the kernel's normals whose side
+	 * columns are recomputed with widened row steps
 	 * (TOptions::sideRowStepMax), from the points and thresholds of the
 	 * kernel's arguments `a`. */
 	void widenSideNormals(
@@ -132,6 +152,8 @@ private:
 
 	TOptions m_options;
 	cv::Mat m_points, m_ranges, m_pointMask, m_normals, m_normalMask;
+	// classifierNormals() when widened().
+	cv::Mat m_sideNormals, m_sideNormalMask;
 	std::vector<cv::Vec3f> m_sensorPos;
 	// Padded point planes and per-row normal sums (kernel buffers).
 	std::vector<float> m_x, m_y, m_z, m_v, m_nx, m_ny, m_nz;

@@ -52,7 +52,8 @@ public:
 	explicit Roughness(const TOptions& options);
 
 	/** R per pixel and R-bar per square of each area (areaIds CV_32S;
-	 * area 0 gets no R-bar, as the paper leaves it out). */
+	 * area 0 gets no R-bar, as the paper leaves it out), on
+	 * normals.classifierNormals(). */
 	void compute(const NormalImage& normals, const cv::Mat& areaIds);
 
 	/** R, CV_32F, NaN where undefined (no normal or no neighbour with

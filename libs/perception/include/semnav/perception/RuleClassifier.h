@@ -183,8 +183,9 @@ public:
 	RuleClassifier();
 	explicit RuleClassifier(const TOptions& options);
 
-	/** Labels the sweep. `areaIds` from RangeSegmentation; `roughness`
-	 * computed on the same normals and areas (its square width is w').
+	/** Labels the sweep from normals.classifierNormals(). `areaIds` from
+	 * RangeSegmentation; `roughness` computed on the same normals and
+	 * areas (its square width is w').
 	 * Fills out.labels, regionIds, regions, groundZ, ceilingZ, indoor;
 	 * the other images of `out` are left untouched. `floorReferenced`: the
 	 * points' frame stands on the floor (the robot's; false for a frame at
