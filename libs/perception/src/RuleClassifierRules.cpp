@@ -549,6 +549,29 @@ RuleClassifier::DoorCheck RuleClassifier::checkDoor(
 	res.left = double(left) / nRows;
 	res.right = double(right) / nRows;
 	res.top = double(top) / nCols;
+	markFieldOfViewCuts(door, leftB, rightB, topB, pLo, pHi, res);
+	if (sized && m_options.doorLintel3d)
+		res.lintelAbove =
+		    lintelShareOf(door.normal, door.minP, door.maxP, P, wallHits);
+	if (m_options.doorOcclusionMargin > 0)
+	{
+		const DoorOcclusion h = occlusionOf(
+		    o, m_surf.data(), m_ranges->ptr<float>(0), rows, cols, door.minR,
+		    door.minC, self, K,
+		    static_cast<float>(m_options.doorOcclusionMargin));
+		const double f = m_options.doorMinSideFraction;
+		res.leftHidden = h.left >= f;
+		res.rightHidden = h.right >= f;
+		res.bottomHidden = h.bottom >= f;
+	}
+	return res;
+}
+
+void RuleClassifier::markFieldOfViewCuts(
+    const Surface& door, int leftB, int rightB, int topB, int pLo, int pHi,
+    DoorCheck& res) const
+{
+	const int cols = m_cols, rows = m_rows, K = m_options.doorSearchPixels;
 	// Cut by the field of view: the surface reaches the image border (the
 	// outermost columns, phi near +-90 deg, have degenerate neighbours and
 	// rarely carry normals, hence the wider margin there).
@@ -565,21 +588,6 @@ RuleClassifier::DoorCheck RuleClassifier::checkDoor(
 	};
 	res.topFov = topB > 0 || door.maxR >= rows - 1 - K || atBorder(pHi);
 	res.bottomFov = door.minR <= K || atBorder(pLo);
-	if (sized && m_options.doorLintel3d)
-		res.lintelAbove =
-		    lintelShareOf(door.normal, door.minP, door.maxP, P, wallHits);
-	if (m_options.doorOcclusionMargin > 0)
-	{
-		const DoorOcclusion h = occlusionOf(
-		    o, m_surf.data(), m_ranges->ptr<float>(0), rows, cols, door.minR,
-		    door.minC, self, K,
-		    static_cast<float>(m_options.doorOcclusionMargin));
-		const double f = m_options.doorMinSideFraction;
-		res.leftHidden = h.left >= f;
-		res.rightHidden = h.right >= f;
-		res.bottomHidden = h.bottom >= f;
-	}
-	return res;
 }
 
 }  // namespace semnav

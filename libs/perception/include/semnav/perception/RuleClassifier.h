@@ -355,6 +355,12 @@ private:
 	DoorCheck checkDoor(
 	    int self, const std::vector<int>& wallCandidate,
 	    const std::vector<uint8_t>& isCeiling) const;
+	/** Sets res's *Fov flags: where the field of view cuts the door (probes
+	 * that ran out of the image: leftB, rightB, topB; its lowest / highest
+	 * pixel pLo / pHi at the image border). */
+	void markFieldOfViewCuts(
+	    const Surface& door, int leftB, int rightB, int topB, int pLo, int pHi,
+	    DoorCheck& res) const;
 	/** Obstacle pieces lying on an adjacent wall's plane lose their label. */
 	void unlabelPlaneFragments();
 	/** Step 5: m_label from the surfaces, then the leftover pixels. */
