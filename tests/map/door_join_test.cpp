@@ -7,28 +7,16 @@
 
 #include <vector>
 
-#include "MapTestUtils.h"
+#include "DoorRegions.h"
 
 using namespace semnav;
 
 namespace
 {
-/** A door region (robot frame) in the wall x = 3 facing the robot, 2 m
- * high, centred at y, `width` wide. */
+/** A door region in the wall x = 3, 2 m high, centred at y. */
 LabeledRegion wallDoor(int id, double y, double width)
 {
-	LabeledRegion reg;
-	reg.id = id;
-	reg.label = Label::Door;
-	reg.pixels = 1000;
-	reg.imageBox = cv::Rect(0, 0, 1, 1);
-	reg.centroid = {3.0, y, 1.0};
-	reg.minCorner = {2.98, y - width / 2, 0.0};
-	reg.maxCorner = {3.02, y + width / 2, 2.0};
-	reg.width = width;
-	reg.height = 2.0;
-	reg.meanNormal = {-1, 0, 0};
-	return reg;
+	return test::doorPiece(id, y, 1.0, width, 2.0, 1000);
 }
 
 /** The reported doors after one sweep per list of regions, at the
@@ -38,14 +26,7 @@ std::vector<ObjectInstance> joinedDoors(
 {
 	SemanticMap::TOptions o;
 	o.doorJoinDistance = joinDistance;
-	SemanticMap m(o);
-	auto f = test::makeFakeSweep(test::floorFan(2.5));
-	for (const auto& regions : sweeps)
-	{
-		f.labeled.regions = regions;
-		m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
-	}
-	return m.instances(Label::Door);
+	return test::doorsAfterSweeps(o, sweeps);
 }
 }  // namespace
 

@@ -7,31 +7,12 @@
 
 #include <vector>
 
-#include "MapTestUtils.h"
+#include "DoorRegions.h"
 
 using namespace semnav;
 
 namespace
 {
-/** A door region (robot frame) in the wall x = 3, centred at (y, z),
- * `width` x `height`, of `pixels` pixels. */
-LabeledRegion doorPiece(
-    int id, double y, double z, double width, double height, std::size_t pixels)
-{
-	LabeledRegion reg;
-	reg.id = id;
-	reg.label = Label::Door;
-	reg.pixels = pixels;
-	reg.imageBox = cv::Rect(0, 0, 1, 1);
-	reg.centroid = {3.0, y, z};
-	reg.minCorner = {2.98, y - width / 2, z - height / 2};
-	reg.maxCorner = {3.02, y + width / 2, z + height / 2};
-	reg.width = width;
-	reg.height = height;
-	reg.meanNormal = {-1, 0, 0};
-	return reg;
-}
-
 /** The door instances after inserting, at the origin, one sweep per list
  * of regions (no door region height limit). */
 std::vector<ObjectInstance> doorsFrom(
@@ -40,14 +21,7 @@ std::vector<ObjectInstance> doorsFrom(
 	SemanticMap::TOptions o;
 	o.doorSightingLargestRegion = largest;
 	o.doorRegionMaxHeight = 0;  // no limit
-	SemanticMap m(o);
-	auto f = test::makeFakeSweep(test::floorFan(2.5));
-	for (const auto& regions : sweeps)
-	{
-		f.labeled.regions = regions;
-		m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
-	}
-	return m.instances(Label::Door);
+	return test::doorsAfterSweeps(o, sweeps);
 }
 }  // namespace
 
@@ -57,8 +31,8 @@ TEST(SemanticMap, DoorSightingIsTheSweepsLargestRegion)
 	// beside the door, comes first in the sweep; the door's own region
 	// (0.9 x 2 m) second. Both merge into one instance (0.4 m < the merge
 	// distance).
-	const auto piece = doorPiece(0, 0.4, 0.45, 0.2, 0.1, 150);
-	const auto door = doorPiece(1, 0.0, 1.0, 0.9, 2.0, 6000);
+	const auto piece = test::doorPiece(0, 0.4, 0.45, 0.2, 0.1, 150);
+	const auto door = test::doorPiece(1, 0.0, 1.0, 0.9, 2.0, 6000);
 	auto d = doorsFrom({{piece, door}}, true);
 	ASSERT_EQ(d.size(), 1u);
 	EXPECT_NEAR(d[0].centroid.y, 0.0, 1e-6) << "the door's region";
@@ -85,8 +59,8 @@ TEST(SemanticMap, FloorToCeilingDoorRegionsMakeNoDoor)
 	// A 2.6 m high stretch of wall the rules took for a door comes first
 	// and would hold the door beside it (its footprint overlaps the
 	// door's).
-	const auto wall = doorPiece(0, 1.0, 1.3, 2.0, 2.6, 800);
-	const auto door = doorPiece(1, 0.3, 1.0, 0.9, 2.0, 600);
+	const auto wall = test::doorPiece(0, 1.0, 1.3, 2.0, 2.6, 800);
+	const auto door = test::doorPiece(1, 0.3, 1.0, 0.9, 2.0, 600);
 	SemanticMap::TOptions o;
 	o.doorRegionMaxHeight = 2.5;
 	SemanticMap m(o);

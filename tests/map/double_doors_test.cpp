@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "MapTestUtils.h"
+#include "DoorRegions.h"
 
 using namespace semnav;
 
@@ -17,17 +17,7 @@ namespace
  * facing the robot, centred at y. */
 LabeledRegion leaf(int id, double y, double width)
 {
-	LabeledRegion reg;
-	reg.id = id;
-	reg.label = Label::Door;
-	reg.imageBox = cv::Rect(0, 0, 1, 1);
-	reg.centroid = {3.0, y, 1.0};
-	reg.minCorner = {2.98, y - width / 2, 0.0};
-	reg.maxCorner = {3.02, y + width / 2, 2.0};
-	reg.width = width;
-	reg.height = 2.0;
-	reg.meanNormal = {-1, 0, 0};
-	return reg;
+	return test::doorPiece(id, y, 1.0, width, 2.0, 0);
 }
 
 /** A sweep of the wall x = 3 (y from -1.5 to 1.5, 1 m up), its points
