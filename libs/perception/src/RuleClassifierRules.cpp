@@ -436,6 +436,52 @@ double lintelShareOf(
 	return static_cast<double>(std::count(covered.begin(), covered.end(), 1)) /
 	       nb;
 }
+/** Rows and columns of a door outline whose probes found wall beside it
+ * (left, right) and above it (top), or ran out of the image (*Border). */
+struct SideCounts
+{
+	int left = 0, right = 0, top = 0, rows = 0, cols = 0;
+	int leftBorder = 0, rightBorder = 0, topBorder = 0;
+};
+
+/** Probes each row's ends and each column's top of outline `o` (its first
+ * row / column minR / minC) with probe(r, c, dr, dc, ceilingOk, border). */
+template <typename Probe>
+SideCounts countSides(const DoorOutline& o, int minR, int minC, Probe&& probe)
+{
+	SideCounts n;
+	const int nr = static_cast<int>(o.rowMin.size());
+	const int nc = static_cast<int>(o.colMax.size());
+	for (int i = 0; i < nr; i++)
+	{
+		if (o.rowMax[i] < 0) continue;
+		n.rows++;
+		const int r = minR + i;
+		bool border = false;
+		// Lower columns are on the robot's right.
+		if (probe(r, o.rowMin[i], 0, -1, false, border))
+			n.right++;
+		else if (border)
+			n.rightBorder++;
+		border = false;
+		if (probe(r, o.rowMax[i], 0, 1, false, border))
+			n.left++;
+		else if (border)
+			n.leftBorder++;
+	}
+	for (int j = 0; j < nc; j++)
+	{
+		if (o.colMax[j] < 0) continue;
+		n.cols++;
+		bool border = false;
+		if (probe(o.colMax[j], minC + j, 1, 0, true, border))
+			n.top++;
+		else if (border)
+			n.topBorder++;
+	}
+	return n;
+}
+
 }  // namespace
 
 RuleClassifier::DoorCheck RuleClassifier::checkDoor(
@@ -466,11 +512,6 @@ RuleClassifier::DoorCheck RuleClassifier::checkDoor(
 	const DoorOutline o = outlineOf(
 	    m_surf.data(), m_points->ptr<cv::Vec3f>(0), cols, door.minR, door.maxR,
 	    door.minC, door.maxC, self);
-	const int nr = static_cast<int>(o.rowMin.size()),
-	          nc = static_cast<int>(o.colMax.size());
-	const std::vector<int>&rowMin = o.rowMin, &rowMax = o.rowMax,
-	      &colMax = o.colMax;
-	const int pLo = o.lowest, pHi = o.highest;
 	const int K = m_options.doorSearchPixels;
 	const auto* P = m_points->ptr<cv::Vec3f>(0);
 	// The probe's reach in pixels: door_search_m at the spacing of the
@@ -516,40 +557,14 @@ RuleClassifier::DoorCheck RuleClassifier::checkDoor(
 		}
 		return false;
 	};
-	int left = 0, right = 0, top = 0, nRows = 0, nCols = 0;
-	int leftB = 0, rightB = 0, topB = 0;
-	for (int i = 0; i < nr; i++)
-	{
-		if (rowMax[i] < 0) continue;
-		nRows++;
-		const int r = door.minR + i;
-		bool border = false;
-		// Lower columns are on the robot's right.
-		if (probe(r, rowMin[i], 0, -1, false, border))
-			right++;
-		else if (border)
-			rightB++;
-		border = false;
-		if (probe(r, rowMax[i], 0, 1, false, border))
-			left++;
-		else if (border)
-			leftB++;
-	}
-	for (int j = 0; j < nc; j++)
-	{
-		if (colMax[j] < 0) continue;
-		nCols++;
-		bool border = false;
-		if (probe(colMax[j], door.minC + j, 1, 0, true, border))
-			top++;
-		else if (border)
-			topB++;
-	}
-	if (nRows == 0 || nCols == 0) return res;
-	res.left = double(left) / nRows;
-	res.right = double(right) / nRows;
-	res.top = double(top) / nCols;
-	markFieldOfViewCuts(door, leftB, rightB, topB, pLo, pHi, res);
+	const SideCounts n = countSides(o, door.minR, door.minC, probe);
+	if (n.rows == 0 || n.cols == 0) return res;
+	res.left = double(n.left) / n.rows;
+	res.right = double(n.right) / n.rows;
+	res.top = double(n.top) / n.cols;
+	markFieldOfViewCuts(
+	    door, n.leftBorder, n.rightBorder, n.topBorder, o.lowest, o.highest,
+	    res);
 	if (sized && m_options.doorLintel3d)
 		res.lintelAbove =
 		    lintelShareOf(door.normal, door.minP, door.maxP, P, wallHits);
