@@ -253,10 +253,12 @@ void expectMatchesRecorded(
 	          << c.tiltMaxDiffDeg << " deg; pixels " << c.pixels
 	          << ", consistent " << c.consistentFraction()
 	          << ", validity mismatch " << c.validityMismatch << std::endl;
-	// The same tilt grid (span / step); a few lines may be missing in
-	// either (a host thread held up, see docs/hardware.md).
+	// The same tilt grid (span / step); lines may be missing in either (a
+	// host thread held up, see docs/hardware.md), but then the assembler
+	// reports them: at most a fifth of the sweep.
 	EXPECT_NEAR(static_cast<double>(l.rows()), g->rows(), 2.0);
-	EXPECT_GE(c.rows, l.rows() * 9 / 10);
+	EXPECT_LE(l.quality().missingLines, l.rows() / 5);
+	EXPECT_GE(c.rows + l.quality().missingLines, l.rows() * 9 / 10);
 	EXPECT_GE(c.rowsMatched + 1, c.rows);
 	// Rows interleave: each live row within a line step of a recorded
 	// one (half a step + the timing tolerance, ~0.1 deg).
