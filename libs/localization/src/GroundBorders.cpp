@@ -6,7 +6,6 @@
 #include <semnav/localization/GroundBorders.h>
 #include <semnav/perception/LabeledSweep.h>
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -95,41 +94,16 @@ std::pair<std::size_t, std::size_t> longestRun(
 	return best;
 }
 
-/** Total-least-squares segment through pts, or nothing when shorter than
- * minLength or with fewer than minPoints points. */
+/** The segment through pts (fitWallSegment, extreme points as ends), or
+ * nothing when shorter than minLength or with fewer than minPoints points. */
 std::optional<WallSegment> fitSegment(
     const std::vector<mrpt::math::TPoint2D>& pts, const O& o)
 {
-	const std::size_t n = pts.size();
-	if (n < static_cast<std::size_t>(o.minPoints)) return std::nullopt;
-	double mx = 0, my = 0;
-	for (const auto& p : pts) mx += p.x, my += p.y;
-	mx /= n, my /= n;
-	double sxx = 0, sxy = 0, syy = 0;
-	for (const auto& p : pts)
-	{
-		const double dx = p.x - mx, dy = p.y - my;
-		sxx += dx * dx, sxy += dx * dy, syy += dy * dy;
-	}
-	Eigen::Matrix2d cov;
-	cov << sxx / n, sxy / n, sxy / n, syy / n;
-	Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
-	const Eigen::Vector2d d = es.eigenvectors().col(1);
-	double t0 = 1e9, t1 = -1e9;
-	for (const auto& p : pts)
-	{
-		const double t = (p.x - mx) * d.x() + (p.y - my) * d.y();
-		t0 = std::min(t0, t), t1 = std::max(t1, t);
-	}
-	if (t1 - t0 < o.minLength) return std::nullopt;
-	WallSegment s;
-	s.p0 = {mx + t0 * d.x(), my + t0 * d.y()};
-	s.p1 = {mx + t1 * d.x(), my + t1 * d.y()};
-	s.points = n;
-	s.residual = std::sqrt(std::max(0.0, es.eigenvalues()(0)));
-	const double lMax = std::max(1e-12, es.eigenvalues()(1));
-	s.sigmaOffset = s.residual / std::sqrt(double(n));
-	s.sigmaAngle = s.residual / std::sqrt(double(n) * lMax);
+	if (pts.size() < static_cast<std::size_t>(o.minPoints)) return std::nullopt;
+	std::vector<double> xs, ys;
+	for (const auto& p : pts) xs.push_back(p.x), ys.push_back(p.y);
+	const WallSegment s = fitWallSegment(xs, ys, 0);
+	if (s.length() < o.minLength) return std::nullopt;
 	return s;
 }
 

@@ -4,7 +4,6 @@
 #include <semnav/localization/WallExtractor.h>
 #include <semnav/perception/LabeledSweep.h>
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -53,7 +52,7 @@ WallObservation WallExtractor::extract(const LabeledSweep& ls) const
 {
 	WallObservation obs;
 	obs.sweepIndex = ls.sweepIndex;
-	std::vector<double> xs, ys, along;
+	std::vector<double> xs, ys;
 	for (const auto& reg : ls.regions)
 	{
 		if (reg.label != Label::Wall ||
@@ -76,45 +75,11 @@ WallObservation WallExtractor::extract(const LabeledSweep& ls) const
 		}
 		const std::size_t n = xs.size();
 		if (n < static_cast<std::size_t>(m_options.minPoints)) continue;
-		// Total least squares: principal axis of the (x, y) scatter.
-		double mx = 0, my = 0;
-		for (std::size_t i = 0; i < n; i++) mx += xs[i], my += ys[i];
-		mx /= n, my /= n;
-		double sxx = 0, sxy = 0, syy = 0;
-		for (std::size_t i = 0; i < n; i++)
-		{
-			const double dx = xs[i] - mx, dy = ys[i] - my;
-			sxx += dx * dx, sxy += dx * dy, syy += dy * dy;
-		}
-		Eigen::Matrix2d cov;
-		cov << sxx / n, sxy / n, sxy / n, syy / n;
-		Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
-		const double lMin = std::max(0.0, es.eigenvalues()(0));
-		const double lMax = std::max(1e-12, es.eigenvalues()(1));
-		const Eigen::Vector2d d = es.eigenvectors().col(1);
-		const double residual = std::sqrt(lMin);
-		if (residual > m_options.maxResidual) continue;
-		along.resize(n);
-		for (std::size_t i = 0; i < n; i++)
-			along[i] = (xs[i] - mx) * d.x() + (ys[i] - my) * d.y();
-		const auto q = [&](double f)
-		{
-			const std::size_t k = std::min(
-			    n - 1, static_cast<std::size_t>(std::lround(f * (n - 1))));
-			std::nth_element(along.begin(), along.begin() + k, along.end());
-			return along[k];
-		};
-		const double t0 = q(m_options.endpointQuantile);
-		const double t1 = q(1 - m_options.endpointQuantile);
-		if (t1 - t0 < m_options.minLength) continue;
-		WallSegment s;
-		s.p0 = {mx + t0 * d.x(), my + t0 * d.y()};
-		s.p1 = {mx + t1 * d.x(), my + t1 * d.y()};
-		s.points = n;
-		s.residual = residual;
-		// Line fit: var(offset) = s^2 / n, var(angle) = s^2 / (n var_along).
-		s.sigmaOffset = residual / std::sqrt(double(n));
-		s.sigmaAngle = residual / std::sqrt(double(n) * lMax);
+		const WallSegment s =
+		    fitWallSegment(xs, ys, m_options.endpointQuantile);
+		if (s.residual > m_options.maxResidual ||
+		    s.length() < m_options.minLength)
+			continue;
 		obs.segments.push_back(s);
 	}
 	finish(obs);

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <vector>
 
 namespace semnav
 {
@@ -44,5 +45,13 @@ struct WallSegment
 		return s;
 	}
 };
+
+/** Total-least-squares segment through the points (xs[i], ys[i]), at
+ * least two: the principal axis of their scatter, its ends at the
+ * endpointQuantile and 1 - endpointQuantile quantiles of the points along
+ * it (0: the extreme points), its residual and sigmas from the fit. */
+WallSegment fitWallSegment(
+    const std::vector<double>& xs, const std::vector<double>& ys,
+    double endpointQuantile);
 
 }  // namespace semnav
