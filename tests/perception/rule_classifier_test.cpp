@@ -290,6 +290,80 @@ TEST(RuleClassifier, DoorCutByTheFieldOfViewWithItsLintelAboveIn3d)
 	    { o.classifier.doorLintel3d = false; });
 }
 
+TEST(RuleClassifier, RecessedLeafBesideTheRobotIsADoor)
+{
+	// The corridor's door, 2.1 m high and set back 8 cm in its 10 cm wall,
+	// seen from 0.55 m beside it: the leaf fills the sweep's side from its
+	// bottom row to its top row (cut by the field of view at its top,
+	// bottom and one side, below its lintel), and its other side finds the
+	// wall beside the frame along part of it only.
+	SynthScene sc = corridor();
+	for (auto& b : sc.boxes)
+		if (b.label == Label::Door)
+		{
+			b.lo = {3.02, 1.28, 0};
+			b.hi = {3.98, 1.30, 2.1};
+		}
+		else if (b.lo[0] == 3.0 && b.lo[2] == 2.0)
+			b.lo[2] = 2.1;  // the lintel
+	sc.mount[0] = 3.5;
+	sc.mount[1] = 0.65;
+	// (Measured: door 0.99 with the rule, 0 without.)
+	expectDoorOnlyWithTheRule(
+	    sc, [](PerceptionPipeline::TOptions& o)
+	    { o.classifier.doorRecessedLeafOffset = 0; });
+}
+
+TEST(RuleClassifier, RecessedDoubleDoorWithPartOfItsFrameIsADoor)
+{
+	// A 1.76 m double door set back 8 cm in the corridor's 10 cm wall,
+	// seen at an angle from 2.5 m along the corridor: the reveals and the
+	// leaves' edges hide part of the walls around it, and its probes find
+	// walls along under door_min_side_fraction of a side, but a piece of
+	// wall does not stand 8 cm off the walls around it.
+	SynthScene sc = corridor();
+	for (auto& b : sc.boxes)
+		if (b.label == Label::Door)
+		{
+			b.lo = {3.02, 1.28, 0};
+			b.hi = {4.78, 1.30, 2.0};
+		}
+		else if (b.lo[0] == 4.0 && b.lo[2] == 0)
+			b.lo[0] = 4.8;  // the left wall after the door
+		else if (b.lo[0] == 3.0 && b.lo[2] == 2.0)
+			b.hi[0] = 4.8;  // the lintel
+	sc.mount[0] = 0.5;
+	sc.mount[1] = 0.4;
+	// (Measured: door 0.97 with the rule, 0 without.)
+	expectDoorOnlyWithTheRule(
+	    sc, [](PerceptionPipeline::TOptions& o)
+	    { o.classifier.doorRecessedFrameSideFraction = 0; });
+}
+
+TEST(RuleClassifier, NarrowLeafWithItsWholeFrameIsADoor)
+{
+	// A leaf narrower than door_min_width_m (0.5 m: what the seam and
+	// lintel splits often cut out of a wider leaf, the rest staying with
+	// its wall) with wall found close around it on three sides.
+	SynthScene sc = corridor();
+	for (auto& b : sc.boxes)
+		if (b.label == Label::Door)
+		{
+			b.lo = {3.02, 1.22, 0};
+			b.hi = {3.48, 1.26, 2.0};
+		}
+		else if (b.lo[0] == 4.0 && b.lo[2] == 0)
+			b.lo[0] = 3.5;  // the left wall after the door
+		else if (b.lo[0] == 3.0 && b.lo[2] == 2.0)
+			b.hi[0] = 3.5;  // the lintel
+	sc.mount[0] = 2.0;
+	sc.mount[1] = -0.8;
+	// (Measured from here: door 0.95 with the rule, 0 without.)
+	expectDoorOnlyWithTheRule(
+	    sc, [](PerceptionPipeline::TOptions& o)
+	    { o.classifier.doorFramedMinWidth = 0; });
+}
+
 TEST(RuleClassifier, SidewalkAndGrassByRoughness)
 {
 	const SynthScene sc = pathThroughGrass();

@@ -218,6 +218,27 @@ const OptionTable<O>& optionTable()
 	            "when walls of its plane lie above it (in 3D, wherever the "
 	            "image puts them) along door_min_side_fraction of its width.")
 	        .real(
+	            "door_recessed_leaf_offset_m", &O::doorRecessedLeafOffset, 0,
+	            10,
+	            "A leaf cut by the field of view at its top, bottom and one "
+	            "side is a door when it stands off the walls of its plane "
+	            "found beside its other side by this (recessed; 0: off)...")
+	        .real(
+	            "door_recessed_leaf_side_fraction",
+	            &O::doorRecessedLeafSideFraction, 0, 1,
+	            "...found along this share of that side.")
+	        .real(
+	            "door_recessed_frame_side_fraction",
+	            &O::doorRecessedFrameSideFraction, 0, 1,
+	            "A leaf standing off its walls by door_recessed_leaf_offset_m, "
+	            "its left, right and top not cut by the field of view, is a "
+	            "door with walls along this share of each (0: off).")
+	        .real(
+	            "door_framed_min_width_m", &O::doorFramedMinWidth, 0, 10,
+	            "A candidate narrower than door_min_width_m but this wide is a "
+	            "door with walls along door_single_side_fraction of its left, "
+	            "right and top, none cut by the field of view (0: off).")
+	        .real(
 	            "sidewalk_min_rbar", &O::sidewalkMinRbar, -1, 1,
 	            "Outdoor ground: sidewalk where R-bar is at least this, "
 	            "else grass.")

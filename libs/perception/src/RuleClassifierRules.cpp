@@ -171,6 +171,55 @@ bool RuleClassifier::lintelSeenIn3d(const Surface& s, const DoorCheck& dc) const
 	       dc.lintelAbove >= o.doorMinSideFraction;
 }
 
+bool RuleClassifier::recessedLeafBeside(
+    const Surface& s, const DoorCheck& dc, double zg) const
+{
+	// A leaf seen close up beside the robot fills the sweep's side from
+	// its bottom row to its top row: only one side is in view, and its
+	// probes find the wall beside the frame along part of it (the rest is
+	// the frame's reveal). Standing well off that wall, it is a leaf set
+	// back in its frame, not a piece of the wall.
+	// (It fills the image's rows, and its top, below its lintel, is no
+	// higher than a door: a piece of wall high up at the side is not.)
+	const TOptions& o = m_options;
+	const int K = o.doorSearchPixels;
+	if (o.doorRecessedLeafOffset <= 0 || !doorSized(s) || !dc.topFov ||
+	    !dc.bottomFov || dc.leftFov == dc.rightFov || s.minR > K ||
+	    s.maxR < m_rows - 1 - K || s.maxP[2] > zg + o.doorMaxHeight)
+		return false;
+	const double side = dc.leftFov ? dc.right : dc.left;
+	return side >= o.doorRecessedLeafSideFraction &&
+	       dc.maxOffset >= o.doorRecessedLeafOffset;
+}
+
+bool RuleClassifier::recessedLeafFramed(const DoorCheck& dc) const
+{
+	// A leaf set back in its frame, seen whole: the frame's reveals and
+	// the leaf's own shadow hide part of the walls around it (a double
+	// door seen at an angle, a far leaf under a thin lintel), but a piece
+	// of wall does not stand that far off the walls around it.
+	const TOptions& o = m_options;
+	const double g = o.doorRecessedFrameSideFraction;
+	return g > 0 && o.doorRecessedLeafOffset > 0 &&
+	       dc.maxOffset >= o.doorRecessedLeafOffset && !dc.leftFov &&
+	       !dc.rightFov && !dc.topFov && dc.left >= g && dc.right >= g &&
+	       dc.top >= g;
+}
+
+bool RuleClassifier::narrowAndFramed(
+    const Surface& s, const DoorCheck& dc) const
+{
+	// The seam and lintel splits cut part of a leaf out of its wall, and
+	// the rest of the leaf stays with the wall: the piece is narrower than
+	// a door, with wall (its own leaf's rest, then the frame) close around
+	// it on three sides.
+	const TOptions& o = m_options;
+	const double g = o.doorSingleSideFraction;
+	return o.doorFramedMinWidth > 0 && s.width >= o.doorFramedMinWidth &&
+	       !dc.leftFov && !dc.rightFov && !dc.topFov && dc.left >= g &&
+	       dc.right >= g && dc.top >= g;
+}
+
 void RuleClassifier::labelDoorsAndWalls(
     double zg, const std::vector<int>& wallCandidate,
     const std::vector<uint8_t>& isCeiling)
@@ -199,7 +248,8 @@ void RuleClassifier::labelDoorsAndWalls(
 			     (dc.right >= f || (t && dc.rightFov)) &&
 			     (dc.top >= f || (t && dc.topFov)) &&
 			     (dc.left >= f || dc.right >= f) && singleSideHolds(s, dc)) ||
-			    lintelAndOneSide(s, dc) || lintelSeenIn3d(s, dc);
+			    lintelAndOneSide(s, dc) || lintelSeenIn3d(s, dc) ||
+			    recessedLeafBeside(s, dc, zg) || recessedLeafFramed(dc);
 			// A side hidden by something nearer (a reveal, furniture)
 			// bounds the extent seen there as the field of view does.
 			const bool shown = doorSized(s);
@@ -208,6 +258,7 @@ void RuleClassifier::labelDoorsAndWalls(
 			    (t && (dc.topFov || dc.bottomFov)) ||
 			    (shown && dc.bottomHidden && s.maxP[2] >= zg + o.doorMinHeight);
 			const bool width = s.width >= o.doorMinWidth ||
+			                   narrowAndFramed(s, dc) ||
 			                   (t && (dc.leftFov || dc.rightFov)) ||
 			                   (shown && (dc.leftHidden || dc.rightHidden));
 			const bool bottom = s.minP[2] <= zg + o.doorBottomTolerance ||

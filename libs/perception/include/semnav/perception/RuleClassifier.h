@@ -168,6 +168,24 @@ public:
 		 * find a wall above it in 3D along door_min_side_fraction of its
 		 * width (seen close up, its lintel lies beside it in the image). */
 		bool doorLintel3d = true;
+		/** door_recessed_leaf_offset_m: a leaf seen close up beside the
+		 * robot, cut by the field of view at its top, bottom and one side,
+		 * is a door when its other side finds walls of its plane along
+		 * door_recessed_leaf_side_fraction and it stands off them by this
+		 * much (recessed in its frame; 0 = off). */
+		double doorRecessedLeafOffset = 0.05;
+		double doorRecessedLeafSideFraction = 0.15;
+		/** door_recessed_frame_side_fraction: a leaf standing off its walls
+		 * by door_recessed_leaf_offset_m, none of its sides cut by the
+		 * field of view, is a door with walls found along this share of
+		 * its left, right and top each (0 = off). */
+		double doorRecessedFrameSideFraction = 0.35;
+		/** door_framed_min_width_m: a candidate narrower than
+		 * door_min_width_m but at least this wide is a door when walls hold
+		 * along door_single_side_fraction of its left, right and top, none
+		 * cut by the field of view (a leaf of which a piece was cut out;
+		 * 0 = off). */
+		double doorFramedMinWidth = 0.3;
 		// Ground type (outdoor)
 		double sidewalkMinRbar = 0.97;
 		double sidewalkMaxHeightStd = 0.012;
@@ -346,6 +364,23 @@ private:
 	 * the field of view at its top or a side and has a wall above it along
 	 * door_min_side_fraction of its width (DoorCheck::lintelAbove). */
 	bool lintelSeenIn3d(const Surface& s, const DoorCheck& dc) const;
+	/** True when door_recessed_leaf_offset_m > 0 and s
+	 * (door_search_min_size_m) is cut by the field of view at its top,
+	 * bottom and one side (it fills the image's rows, its top at most
+	 * door_max_height_m above the ground zg), its other side finds walls
+	 * along door_recessed_leaf_side_fraction and it stands off them by
+	 * door_recessed_leaf_offset_m. */
+	bool recessedLeafBeside(
+	    const Surface& s, const DoorCheck& dc, double zg) const;
+	/** True when door_recessed_frame_side_fraction > 0, s stands off its
+	 * walls by door_recessed_leaf_offset_m (> 0), none of its left, right
+	 * and top is cut by the field of view and walls hold along
+	 * door_recessed_frame_side_fraction of each. */
+	bool recessedLeafFramed(const DoorCheck& dc) const;
+	/** True when door_framed_min_width_m > 0, s is at least that wide and
+	 * walls hold along door_single_side_fraction of its left, right and
+	 * top, none cut by the field of view. */
+	bool narrowAndFramed(const Surface& s, const DoorCheck& dc) const;
 	/** True when s shows door_search_min_size_m of its width and height. */
 	bool doorSized(const Surface& s) const
 	{
