@@ -235,9 +235,11 @@ const OptionTable<O>& optionTable()
 	            "door with walls along this share of each (0: off).")
 	        .real(
 	            "door_framed_min_width_m", &O::doorFramedMinWidth, 0, 10,
-	            "A candidate narrower than door_min_width_m but this wide is a "
-	            "door with walls along door_single_side_fraction of its left, "
-	            "right and top, none cut by the field of view (0: off).")
+	            "A candidate narrower than door_min_width_m but this wide, cut "
+	            "by the field of view at its bottom, is a door with walls "
+	            "along "
+	            "door_single_side_fraction of its left, right and top, none "
+	            "cut by the field of view (0: off).")
 	        .real(
 	            "sidewalk_min_rbar", &O::sidewalkMinRbar, -1, 1,
 	            "Outdoor ground: sidewalk where R-bar is at least this, "

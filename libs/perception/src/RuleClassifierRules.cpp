@@ -212,12 +212,13 @@ bool RuleClassifier::narrowAndFramed(
 	// The seam and lintel splits cut part of a leaf out of its wall, and
 	// the rest of the leaf stays with the wall: the piece is narrower than
 	// a door, with wall (its own leaf's rest, then the frame) close around
-	// it on three sides.
+	// it on three sides. Only seen close up (cut by the field of view at
+	// its bottom): far off, narrow framed pieces are panels and reveals.
 	const TOptions& o = m_options;
 	const double g = o.doorSingleSideFraction;
 	return o.doorFramedMinWidth > 0 && s.width >= o.doorFramedMinWidth &&
-	       !dc.leftFov && !dc.rightFov && !dc.topFov && dc.left >= g &&
-	       dc.right >= g && dc.top >= g;
+	       dc.bottomFov && !dc.leftFov && !dc.rightFov && !dc.topFov &&
+	       dc.left >= g && dc.right >= g && dc.top >= g;
 }
 
 void RuleClassifier::labelDoorsAndWalls(

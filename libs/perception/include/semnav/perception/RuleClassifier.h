@@ -181,10 +181,10 @@ public:
 		 * its left, right and top each (0 = off). */
 		double doorRecessedFrameSideFraction = 0.35;
 		/** door_framed_min_width_m: a candidate narrower than
-		 * door_min_width_m but at least this wide is a door when walls hold
-		 * along door_single_side_fraction of its left, right and top, none
-		 * cut by the field of view (a leaf of which a piece was cut out;
-		 * 0 = off). */
+		 * door_min_width_m but at least this wide, cut by the field of view
+		 * at its bottom (seen close up), is a door when walls hold along
+		 * door_single_side_fraction of its left, right and top, none cut by
+		 * the field of view (a leaf of which a piece was cut out; 0 = off). */
 		double doorFramedMinWidth = 0.3;
 		// Ground type (outdoor)
 		double sidewalkMinRbar = 0.97;
@@ -377,9 +377,10 @@ private:
 	 * and top is cut by the field of view and walls hold along
 	 * door_recessed_frame_side_fraction of each. */
 	bool recessedLeafFramed(const DoorCheck& dc) const;
-	/** True when door_framed_min_width_m > 0, s is at least that wide and
-	 * walls hold along door_single_side_fraction of its left, right and
-	 * top, none cut by the field of view. */
+	/** True when door_framed_min_width_m > 0, s is at least that wide,
+	 * cut by the field of view at its bottom, and walls hold along
+	 * door_single_side_fraction of its left, right and top, none cut by the
+	 * field of view. */
 	bool narrowAndFramed(const Surface& s, const DoorCheck& dc) const;
 	/** True when s shows door_search_min_size_m of its width and height. */
 	bool doorSized(const Surface& s) const
