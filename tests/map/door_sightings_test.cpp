@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <semnav/map/SemanticMap.h>
 
+#include <cmath>
 #include <vector>
 
 #include "DoorRegions.h"
@@ -76,4 +77,32 @@ TEST(SemanticMap, FloorToCeilingDoorRegionsMakeNoDoor)
 	d = doorsFrom({{wall, door}}, true);
 	ASSERT_EQ(d.size(), 1u);
 	EXPECT_NEAR(d[0].centroid.y, 1.0, 1e-6);
+}
+
+TEST(SemanticMap, DoorCentroidWeighsSightingsByWidth)
+{
+	// One whole view of a 0.9 m door at y = 0, then two cut views of it
+	// (0.4 m of the leaf visible, centred 0.25 m beside the middle).
+	const auto whole = test::doorPiece(0, 0.0, 1.0, 0.9, 2.0, 6000);
+	const auto cut = test::doorPiece(0, 0.25, 1.0, 0.4, 2.0, 2500);
+	SemanticMap::TOptions o;
+	o.doorCentroidWidthPower = 0;  // plain mean
+	auto d = test::doorsAfterSweeps(o, {{whole}, {cut}, {cut}});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.5 / 3, 1e-6);
+	// Weighted by width squared: 0.9^2 against 2 x 0.4^2.
+	o.doorCentroidWidthPower = 2;
+	d = test::doorsAfterSweeps(o, {{whole}, {cut}, {cut}});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_EQ(d[0].observations, 3u);
+	EXPECT_NEAR(d[0].centroid.y, 2 * 0.16 * 0.25 / (0.81 + 2 * 0.16), 1e-6);
+	EXPECT_LT(std::abs(d[0].centroid.y), 0.1) << "within 0.1 m of the middle";
+	// The cut view first: the same centroid.
+	d = test::doorsAfterSweeps(o, {{cut}, {whole}, {cut}});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 2 * 0.16 * 0.25 / (0.81 + 2 * 0.16), 1e-6);
+	// Only cut views: their mean.
+	d = test::doorsAfterSweeps(o, {{cut}, {cut}});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.25, 1e-6);
 }

@@ -163,6 +163,10 @@ const OptionTable<O>& optionTable()
 	            "door_join_distance_m", &O::doorJoinDistance, 0, 5,
 	            "Two doors in one wall this close, footprints overlapping, "
 	            "are one door found twice (0: no join).")
+	        .real(
+	            "door_centroid_width_power", &O::doorCentroidWidthPower, 0, 8,
+	            "A door's centroid weighs its sightings by their width to "
+	            "this power (0: plain mean).")
 	        .flag(
 	            "octomap", &O::octomap,
 	            "Put every point into the OctoMap (octomap.bt).");

@@ -207,6 +207,13 @@ public:
 		 * no join). Two doors of neighbouring rooms are >= 1.5 m apart in
 		 * the generated buildings. */
 		double doorJoinDistance = 0.8;
+		/** A door's centroid weighs each of its sightings (those within
+		 * half the merge distance of their median) by its region's width
+		 * to this power: a cut view of a door (at the edge of the field of
+		 * view, half hidden, seen at a grazing angle) or a fragment beside
+		 * it is narrower than a whole view and pulls the centroid less
+		 * (ObjectInstance::recentre()). 0: the plain mean. */
+		double doorCentroidWidthPower = 2;
 		/** Insert points into the OctoMap. */
 		bool octomap = true;
 		TravelCostModel::TOptions cost;
@@ -503,6 +510,9 @@ private:
 	static const char* const kStairsSweeps;
 	/** True when a cell labelled wall lies within `radius` of (x, y). */
 	bool wallWithin(double x, double y, double radius) const;
+	/** The width power of a label's centroids
+	 * (TOptions::doorCentroidWidthPower for doors, 0 otherwise). */
+	double sightingWidthPower(Label label) const;
 	void mergeObject(
 	    Label label, const mrpt::math::TPoint3D& centroid,
 	    const mrpt::math::TPoint3D& size, const mrpt::math::TPoint3D& minCorner,
