@@ -26,7 +26,6 @@ std::vector<ObjectInstance> joinedDoors(
 {
 	SemanticMap::TOptions o;
 	o.doorJoinDistance = joinDistance;
-	o.doorCentroidWidthPower = 0;  // each instance's plain mean
 	return test::doorsAfterSweeps(o, sweeps);
 }
 }  // namespace

@@ -15,13 +15,14 @@ using namespace semnav;
 namespace
 {
 /** The door instances after inserting, at the origin, one sweep per list
- * of regions (no door region height limit). */
+ * of regions (no door region height limit, no least width). */
 std::vector<ObjectInstance> doorsFrom(
     const std::vector<std::vector<LabeledRegion>>& sweeps, bool largest)
 {
 	SemanticMap::TOptions o;
 	o.doorSightingLargestRegion = largest;
 	o.doorRegionMaxHeight = 0;  // no limit
+	o.doorMinWidth = 0;         // a door seen only as the 0.2 m piece stays
 	return test::doorsAfterSweeps(o, sweeps);
 }
 }  // namespace
@@ -79,30 +80,54 @@ TEST(SemanticMap, FloorToCeilingDoorRegionsMakeNoDoor)
 	EXPECT_NEAR(d[0].centroid.y, 1.0, 1e-6);
 }
 
-TEST(SemanticMap, DoorCentroidWeighsSightingsByWidth)
+TEST(SemanticMap, DoorCentroidIgnoresNarrowSightings)
 {
-	// One whole view of a 0.9 m door at y = 0, then two cut views of it
-	// (0.4 m of the leaf visible, centred 0.25 m beside the middle).
+	// Two whole views of a 0.9 m door at y = 0 and 0.1, and in a third
+	// sweep only a 0.2 m piece of it 0.25 m beside the middle (a cut view
+	// at the edge of the field of view, or a piece of the jamb).
 	const auto whole = test::doorPiece(0, 0.0, 1.0, 0.9, 2.0, 6000);
-	const auto cut = test::doorPiece(0, 0.25, 1.0, 0.4, 2.0, 2500);
+	const auto whole2 = test::doorPiece(0, 0.1, 1.0, 0.9, 2.0, 6000);
+	const auto piece = test::doorPiece(0, 0.25, 1.0, 0.2, 1.8, 900);
 	SemanticMap::TOptions o;
-	o.doorCentroidWidthPower = 0;  // plain mean
-	auto d = test::doorsAfterSweeps(o, {{whole}, {cut}, {cut}});
+	o.doorCentroidMinWidth = 0;  // every sighting
+	o.doorMinWidth = 0;
+	auto d = test::doorsAfterSweeps(o, {{whole}, {whole2}, {piece}});
 	ASSERT_EQ(d.size(), 1u);
-	EXPECT_NEAR(d[0].centroid.y, 0.5 / 3, 1e-6);
-	// Weighted by width squared: 0.9^2 against 2 x 0.4^2.
-	o.doorCentroidWidthPower = 2;
-	d = test::doorsAfterSweeps(o, {{whole}, {cut}, {cut}});
+	EXPECT_NEAR(d[0].centroid.y, 0.35 / 3, 1e-6);
+	o.doorCentroidMinWidth = 0.3;
+	d = test::doorsAfterSweeps(o, {{whole}, {whole2}, {piece}});
 	ASSERT_EQ(d.size(), 1u);
 	EXPECT_EQ(d[0].observations, 3u);
-	EXPECT_NEAR(d[0].centroid.y, 2 * 0.16 * 0.25 / (0.81 + 2 * 0.16), 1e-6);
-	EXPECT_LT(std::abs(d[0].centroid.y), 0.1) << "within 0.1 m of the middle";
-	// The cut view first: the same centroid.
-	d = test::doorsAfterSweeps(o, {{cut}, {whole}, {cut}});
+	EXPECT_NEAR(d[0].centroid.y, 0.05, 1e-6) << "the whole views";
+	// The piece first: the same.
+	d = test::doorsAfterSweeps(o, {{piece}, {whole}, {whole2}});
 	ASSERT_EQ(d.size(), 1u);
-	EXPECT_NEAR(d[0].centroid.y, 2 * 0.16 * 0.25 / (0.81 + 2 * 0.16), 1e-6);
-	// Only cut views: their mean.
-	d = test::doorsAfterSweeps(o, {{cut}, {cut}});
+	EXPECT_NEAR(d[0].centroid.y, 0.05, 1e-6);
+	// Only pieces: their mean.
+	const auto piece2 = test::doorPiece(0, 0.15, 1.0, 0.2, 1.8, 900);
+	d = test::doorsAfterSweeps(o, {{piece}, {piece2}});
 	ASSERT_EQ(d.size(), 1u);
-	EXPECT_NEAR(d[0].centroid.y, 0.25, 1e-6);
+	EXPECT_NEAR(d[0].centroid.y, 0.2, 1e-6);
+}
+
+TEST(SemanticMap, DoorsNeverSeenWideAreNotReported)
+{
+	// A 0.25 m strip (a jamb or a wall edge the rules took for a door),
+	// 2 m high, detected in two sweeps.
+	const auto strip = test::doorPiece(0, 0.0, 1.0, 0.25, 2.0, 900);
+	SemanticMap::TOptions o;
+	o.doorMinWidth = 0;  // no check
+	EXPECT_EQ(test::doorsAfterSweeps(o, {{strip}, {strip}}).size(), 1u);
+	o.doorMinWidth = 0.4;
+	EXPECT_TRUE(test::doorsAfterSweeps(o, {{strip}, {strip}}).empty());
+	// One sighting at least 0.4 m wide is enough.
+	const auto door = test::doorPiece(0, 0.1, 1.0, 0.8, 2.0, 5000);
+	EXPECT_EQ(test::doorsAfterSweeps(o, {{strip}, {door}}).size(), 1u);
+	// An instance's sightings are still kept: it stays a candidate.
+	SemanticMap m(o);
+	auto f = test::makeFakeSweep(test::floorFan(2.5));
+	f.labeled.regions = {strip};
+	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
+	EXPECT_EQ(m.allInstances().size(), 1u);
+	EXPECT_TRUE(m.instances(Label::Door).empty());
 }

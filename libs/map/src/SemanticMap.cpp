@@ -147,6 +147,10 @@ const OptionTable<O>& optionTable()
 	            "door_min_height_m", &O::doorMinHeight, 0, 10,
 	            "Lower doors are not reported.")
 	        .real(
+	            "door_min_width_m", &O::doorMinWidth, 0, 10,
+	            "Doors none of whose sightings is this wide are not reported "
+	            "(0: no check).")
+	        .real(
 	            "double_door_max_width_m", &O::doubleDoorMaxWidth, 0, 10,
 	            "Two doors side by side in one wall, together at most this "
 	            "wide, are the leaves of one double door (0: no join)...")
@@ -164,9 +168,9 @@ const OptionTable<O>& optionTable()
 	            "Two doors in one wall this close, footprints overlapping, "
 	            "are one door found twice (0: no join).")
 	        .real(
-	            "door_centroid_width_power", &O::doorCentroidWidthPower, 0, 8,
-	            "A door's centroid weighs its sightings by their width to "
-	            "this power (0: plain mean).")
+	            "door_centroid_min_width_m", &O::doorCentroidMinWidth, 0, 10,
+	            "Only a door's sightings this wide count for its centroid "
+	            "(0: all).")
 	        .flag(
 	            "octomap", &O::octomap,
 	            "Put every point into the OctoMap (octomap.bt).");
@@ -502,6 +506,12 @@ bool SemanticMap::reported(const ObjectInstance& o) const
 	if (region) ratio = m_options.doorMinDetectionRatio;
 	if (static_cast<double>(o.observations) <
 	    ratio * static_cast<double>(o.views))
+		return false;
+	if (region && m_options.doorMinWidth > 0 && !o.sightingSizes.empty() &&
+	    std::none_of(
+	        o.sightingSizes.begin(), o.sightingSizes.end(),
+	        [&](const mrpt::math::TPoint3D& s)
+	        { return s.x >= m_options.doorMinWidth; }))
 		return false;
 	const ClassInfo::Plausibility p = plausibility(o.label);
 	if (o.extent().z < p.minHeight || o.minCorner.z > p.maxBottom ||

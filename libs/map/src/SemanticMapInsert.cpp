@@ -529,7 +529,7 @@ void SemanticMap::insertRegions(
 			{
 				o->replaceLastSighting(
 				    wc, size, m_options.mergeDistance / 2,
-				    sightingWidthPower(reg.label));
+				    sightingMinWidth(reg.label));
 				sightingPixels[id] = reg.pixels;
 			}
 		}
@@ -635,10 +635,10 @@ void SemanticMap::centreOnCells(ObjectInstance& o) const
 	o.centroid.y = 0.5 * (g.centerY(by0) + g.centerY(by1));
 }
 
-double SemanticMap::sightingWidthPower(Label label) const
+double SemanticMap::sightingMinWidth(Label label) const
 {
 	return classInfo(label).instances == ClassInfo::InstanceSource::Regions
-	           ? m_options.doorCentroidWidthPower
+	           ? m_options.doorCentroidMinWidth
 	           : 0;
 }
 
@@ -708,7 +708,7 @@ void SemanticMap::mergeObject(
 		const mrpt::math::TPoint3D middle = best->centroid;
 		best->sightingSizes.push_back(size);
 		best->addSighting(
-		    centroid, m_options.mergeDistance / 2, sightingWidthPower(label));
+		    centroid, m_options.mergeDistance / 2, sightingMinWidth(label));
 		if (best->leaves == 2) centreOnLeaves(*best, middle);
 		best->observations++;
 		seenThisSweep.push_back(best->id);

@@ -182,6 +182,12 @@ public:
 		/** Doors whose merged extent is lower than this are not reported
 		 * (fragments of walls or furniture taken for a door) (m). */
 		double doorMinHeight = classInfo(Label::Door).plausibility.minHeight;
+		/** Doors none of whose sightings (one region per sweep) is at
+		 * least this wide are not reported: a strip of wall, jamb or leaf
+		 * edge the rules took for a door, or a door seen so cut that its
+		 * place is off by half its width (m; 0: no check; a map loaded
+		 * without sighting sizes keeps its doors). */
+		double doorMinWidth = 0.4;
 		/** Two door instances side by side in one wall are the two leaves
 		 * of a double door, joined into one door at their middle
 		 * (joinDoubleDoors()), when together at most this wide along the
@@ -207,13 +213,12 @@ public:
 		 * no join). Two doors of neighbouring rooms are >= 1.5 m apart in
 		 * the generated buildings. */
 		double doorJoinDistance = 0.8;
-		/** A door's centroid weighs each of its sightings (those within
-		 * half the merge distance of their median) by its region's width
-		 * to this power: a cut view of a door (at the edge of the field of
-		 * view, half hidden, seen at a grazing angle) or a fragment beside
-		 * it is narrower than a whole view and pulls the centroid less
-		 * (ObjectInstance::recentre()). 0: the plain mean. */
-		double doorCentroidWidthPower = 2;
+		/** A door's centroid counts only its sightings at least this wide
+		 * (each sweep's region), when it has one: a 0.1-0.3 m piece of
+		 * leaf, jamb or wall the rules labelled door beside it, or a cut
+		 * view at its edge, does not pull it (ObjectInstance::recentre();
+		 * m; 0: every sighting). */
+		double doorCentroidMinWidth = 0.3;
 		/** Insert points into the OctoMap. */
 		bool octomap = true;
 		TravelCostModel::TOptions cost;
@@ -510,9 +515,9 @@ private:
 	static const char* const kStairsSweeps;
 	/** True when a cell labelled wall lies within `radius` of (x, y). */
 	bool wallWithin(double x, double y, double radius) const;
-	/** The width power of a label's centroids
-	 * (TOptions::doorCentroidWidthPower for doors, 0 otherwise). */
-	double sightingWidthPower(Label label) const;
+	/** The least width of the sightings that count for a label's
+	 * centroids (TOptions::doorCentroidMinWidth for doors, 0: all). */
+	double sightingMinWidth(Label label) const;
 	void mergeObject(
 	    Label label, const mrpt::math::TPoint3D& centroid,
 	    const mrpt::math::TPoint3D& size, const mrpt::math::TPoint3D& minCorner,
