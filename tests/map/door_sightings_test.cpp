@@ -80,34 +80,38 @@ TEST(SemanticMap, FloorToCeilingDoorRegionsMakeNoDoor)
 	EXPECT_NEAR(d[0].centroid.y, 1.0, 1e-6);
 }
 
-TEST(SemanticMap, DoorCentroidIgnoresNarrowSightings)
+TEST(SemanticMap, DoorCentroidWeighsSightingsByWidth)
 {
-	// Two whole views of a 0.9 m door at y = 0 and 0.1, and in a third
-	// sweep only a 0.2 m piece of it 0.25 m beside the middle (a cut view
-	// at the edge of the field of view, or a piece of the jamb).
+	// One whole view of a 0.9 m door at y = 0, then two cut views of it
+	// (0.4 m of the leaf, centred 0.25 m beside the middle).
 	const auto whole = test::doorPiece(0, 0.0, 1.0, 0.9, 2.0, 6000);
-	const auto whole2 = test::doorPiece(0, 0.1, 1.0, 0.9, 2.0, 6000);
-	const auto piece = test::doorPiece(0, 0.25, 1.0, 0.2, 1.8, 900);
+	const auto cut = test::doorPiece(0, 0.25, 1.0, 0.4, 2.0, 2500);
 	SemanticMap::TOptions o;
-	o.doorCentroidMinWidth = 0;  // every sighting
-	o.doorMinWidth = 0;
-	auto d = test::doorsAfterSweeps(o, {{whole}, {whole2}, {piece}});
+	o.doorCentroidMaxWeightWidth = 0;  // plain mean
+	auto d = test::doorsAfterSweeps(o, {{whole}, {cut}, {cut}});
 	ASSERT_EQ(d.size(), 1u);
-	EXPECT_NEAR(d[0].centroid.y, 0.35 / 3, 1e-6);
-	o.doorCentroidMinWidth = 0.3;
-	d = test::doorsAfterSweeps(o, {{whole}, {whole2}, {piece}});
+	EXPECT_NEAR(d[0].centroid.y, 0.5 / 3, 1e-6);
+	// Weighted by width squared: 0.9^2 against 2 x 0.4^2.
+	o.doorCentroidMaxWeightWidth = 1.5;
+	const double weighted = 2 * 0.16 * 0.25 / (0.81 + 2 * 0.16);
+	d = test::doorsAfterSweeps(o, {{whole}, {cut}, {cut}});
 	ASSERT_EQ(d.size(), 1u);
 	EXPECT_EQ(d[0].observations, 3u);
-	EXPECT_NEAR(d[0].centroid.y, 0.05, 1e-6) << "the whole views";
-	// The piece first: the same.
-	d = test::doorsAfterSweeps(o, {{piece}, {whole}, {whole2}});
+	EXPECT_NEAR(d[0].centroid.y, weighted, 1e-6);
+	// The cut views first: the same.
+	d = test::doorsAfterSweeps(o, {{cut}, {cut}, {whole}});
 	ASSERT_EQ(d.size(), 1u);
-	EXPECT_NEAR(d[0].centroid.y, 0.05, 1e-6);
-	// Only pieces: their mean.
-	const auto piece2 = test::doorPiece(0, 0.15, 1.0, 0.2, 1.8, 900);
-	d = test::doorsAfterSweeps(o, {{piece}, {piece2}});
+	EXPECT_NEAR(d[0].centroid.y, weighted, 1e-6);
+	// Only cut views: their mean.
+	d = test::doorsAfterSweeps(o, {{cut}, {cut}});
 	ASSERT_EQ(d.size(), 1u);
-	EXPECT_NEAR(d[0].centroid.y, 0.2, 1e-6);
+	EXPECT_NEAR(d[0].centroid.y, 0.25, 1e-6);
+	// A region 3 m wide (the door and wall beside it) counts as 1.5 m:
+	// against the whole view (0.9 m) at 0, it at 0.28.
+	const auto swallowed = test::doorPiece(0, 0.28, 1.0, 3.0, 2.0, 9000);
+	d = test::doorsAfterSweeps(o, {{whole}, {swallowed}});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.28 * 2.25 / (0.81 + 2.25), 1e-6);
 }
 
 TEST(SemanticMap, DoorsNeverSeenWideAreNotReported)
@@ -118,9 +122,9 @@ TEST(SemanticMap, DoorsNeverSeenWideAreNotReported)
 	SemanticMap::TOptions o;
 	o.doorMinWidth = 0;  // no check
 	EXPECT_EQ(test::doorsAfterSweeps(o, {{strip}, {strip}}).size(), 1u);
-	o.doorMinWidth = 0.4;
+	o.doorMinWidth = 0.3;
 	EXPECT_TRUE(test::doorsAfterSweeps(o, {{strip}, {strip}}).empty());
-	// One sighting at least 0.4 m wide is enough.
+	// One sighting at least 0.3 m wide is enough.
 	const auto door = test::doorPiece(0, 0.1, 1.0, 0.8, 2.0, 5000);
 	EXPECT_EQ(test::doorsAfterSweeps(o, {{strip}, {door}}).size(), 1u);
 	// An instance's sightings are still kept: it stays a candidate.

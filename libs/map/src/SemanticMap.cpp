@@ -168,9 +168,10 @@ const OptionTable<O>& optionTable()
 	            "Two doors in one wall this close, footprints overlapping, "
 	            "are one door found twice (0: no join).")
 	        .real(
-	            "door_centroid_min_width_m", &O::doorCentroidMinWidth, 0, 10,
-	            "Only a door's sightings this wide count for its centroid "
-	            "(0: all).")
+	            "door_centroid_max_weight_width_m",
+	            &O::doorCentroidMaxWeightWidth, 0, 10,
+	            "A door's centroid weighs its sightings by their width "
+	            "squared, up to this width (0: plain mean).")
 	        .flag(
 	            "octomap", &O::octomap,
 	            "Put every point into the OctoMap (octomap.bt).");

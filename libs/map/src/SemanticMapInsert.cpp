@@ -529,7 +529,7 @@ void SemanticMap::insertRegions(
 			{
 				o->replaceLastSighting(
 				    wc, size, m_options.mergeDistance / 2,
-				    sightingMinWidth(reg.label));
+				    sightingMaxWeightWidth(reg.label));
 				sightingPixels[id] = reg.pixels;
 			}
 		}
@@ -635,10 +635,10 @@ void SemanticMap::centreOnCells(ObjectInstance& o) const
 	o.centroid.y = 0.5 * (g.centerY(by0) + g.centerY(by1));
 }
 
-double SemanticMap::sightingMinWidth(Label label) const
+double SemanticMap::sightingMaxWeightWidth(Label label) const
 {
 	return classInfo(label).instances == ClassInfo::InstanceSource::Regions
-	           ? m_options.doorCentroidMinWidth
+	           ? m_options.doorCentroidMaxWeightWidth
 	           : 0;
 }
 
@@ -708,7 +708,8 @@ void SemanticMap::mergeObject(
 		const mrpt::math::TPoint3D middle = best->centroid;
 		best->sightingSizes.push_back(size);
 		best->addSighting(
-		    centroid, m_options.mergeDistance / 2, sightingMinWidth(label));
+		    centroid, m_options.mergeDistance / 2,
+		    sightingMaxWeightWidth(label));
 		if (best->leaves == 2) centreOnLeaves(*best, middle);
 		best->observations++;
 		seenThisSweep.push_back(best->id);

@@ -54,12 +54,13 @@ struct ObjectInstance
 	 * or a false alarm merged by footprint overlap, no longer drags the
 	 * object away. */
 	void addSighting(
-	    const mrpt::math::TPoint3D& c, double inlierRadius, double minWidth = 0)
+	    const mrpt::math::TPoint3D& c, double inlierRadius,
+	    double maxWeightWidth = 0)
 	{
 		if (sightings.empty() && observations > 0)
 			sightings.push_back(centroid);
 		sightings.push_back(c);
-		recentre(inlierRadius, minWidth);
+		recentre(inlierRadius, maxWeightWidth);
 	}
 
 	/** Replaces the last sighting (and its size, if recorded) by a better
@@ -67,56 +68,59 @@ struct ObjectInstance
 	 * does. No-op without sightings. */
 	void replaceLastSighting(
 	    const mrpt::math::TPoint3D& c, const mrpt::math::TPoint3D& size,
-	    double inlierRadius, double minWidth = 0)
+	    double inlierRadius, double maxWeightWidth = 0)
 	{
 		if (sightings.empty()) return;
 		sightings.back() = c;
 		if (!sightingSizes.empty()) sightingSizes.back() = size;
-		recentre(inlierRadius, minWidth);
+		recentre(inlierRadius, maxWeightWidth);
 	}
 
 	/** Sets `centroid` to the mean of the sightings within `inlierRadius`
 	 * (horizontally) of their per-axis median (all of them when none is;
-	 * unchanged without sightings). `minWidth` > 0: only the sightings
-	 * whose detection is at least that wide (sightingSizes x) count, when
-	 * one is: a fragment of leaf, jamb or wall beside a door, or a cut
-	 * view at its edge, does not pull it (doors,
-	 * SemanticMap::TOptions::doorCentroidMinWidth); all of them when a
+	 * unchanged without sightings). `maxWeightWidth` > 0: each weighted by
+	 * the square of its detection's width (sightingSizes x), widths above
+	 * `maxWeightWidth` counting as that: a cut view of a door or a piece of
+	 * jamb beside it pulls it less than a whole view, and a region that
+	 * swallowed wall no more than one a door wide (doors,
+	 * SemanticMap::TOptions::doorCentroidMaxWeightWidth); unweighted when a
 	 * sighting has no size. */
-	void recentre(double inlierRadius, double minWidth = 0)
+	void recentre(double inlierRadius, double maxWeightWidth = 0)
 	{
 		if (sightings.empty()) return;
-		std::vector<mrpt::math::TPoint3D> wide;
-		if (minWidth > 0 && sightingSizes.size() == sightings.size())
-			for (std::size_t i = 0; i < sightings.size(); i++)
-				if (sightingSizes[i].x >= minWidth)
-					wide.push_back(sightings[i]);
-		const auto& pool = wide.empty() ? sightings : wide;
-		const auto in = inliersOf(pool, inlierRadius);
-		const auto& used = in.empty() ? pool : in;
+		const double mx = median(sightings, &mrpt::math::TPoint3D::x),
+		             my = median(sightings, &mrpt::math::TPoint3D::y);
+		const auto near = [&](const mrpt::math::TPoint3D& p)
+		{ return std::hypot(p.x - mx, p.y - my) <= inlierRadius; };
+		const bool any = std::any_of(sightings.begin(), sightings.end(), near);
+		const bool weighted =
+		    maxWeightWidth > 0 && sightingSizes.size() == sightings.size();
 		mrpt::math::TPoint3D sum(0, 0, 0);
-		for (const auto& p : used) sum = sum + p;
-		centroid = sum * (1.0 / used.size());
+		double total = 0;
+		for (std::size_t i = 0; i < sightings.size(); i++)
+		{
+			if (any && !near(sightings[i])) continue;
+			// A width of 0 (unknown) weighs as a 1 cm sliver.
+			const double w = weighted ? std::min(
+			                                std::max(sightingSizes[i].x, 0.01),
+			                                std::max(maxWeightWidth, 0.01))
+			                          : 1.0;
+			sum = sum + sightings[i] * (w * w);
+			total += w * w;
+		}
+		centroid = sum * (1.0 / total);
 	}
 
 	/** The sightings within `inlierRadius` (horizontally) of their per-axis
 	 * median (none without sightings). */
 	std::vector<mrpt::math::TPoint3D> inlierSightings(double inlierRadius) const
 	{
-		return inliersOf(sightings, inlierRadius);
-	}
-
-	/** The points of `points` within `inlierRadius` (horizontally) of their
-	 * per-axis median (none when `points` is empty). */
-	static std::vector<mrpt::math::TPoint3D> inliersOf(
-	    const std::vector<mrpt::math::TPoint3D>& points, double inlierRadius)
-	{
 		std::vector<mrpt::math::TPoint3D> in;
-		if (points.empty()) return in;
-		const double mx = median(points, &mrpt::math::TPoint3D::x),
-		             my = median(points, &mrpt::math::TPoint3D::y);
-		for (const auto& p : points)
-			if (std::hypot(p.x - mx, p.y - my) <= inlierRadius) in.push_back(p);
+		if (sightings.empty()) return in;
+		const double mx = median(sightings, &mrpt::math::TPoint3D::x),
+		             my = median(sightings, &mrpt::math::TPoint3D::y);
+		for (const auto& s : sightings)
+			if (std::hypot(s.x - mx, s.y - my) <= inlierRadius) in.push_back(s);
 		return in;
 	}
 
