@@ -26,6 +26,7 @@ std::vector<ObjectInstance> joinedDoors(
 {
 	SemanticMap::TOptions o;
 	o.doorJoinDistance = joinDistance;
+	o.doorCentroidMaxWeightWidth = 0;  // each instance's plain mean
 	return test::doorsAfterSweeps(o, sweeps);
 }
 }  // namespace

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <semnav/map/SemanticMap.h>
 
+#include <cmath>
 #include <vector>
 
 #include "DoorRegions.h"
@@ -14,13 +15,14 @@ using namespace semnav;
 namespace
 {
 /** The door instances after inserting, at the origin, one sweep per list
- * of regions (no door region height limit). */
+ * of regions (no door region height limit, no least width). */
 std::vector<ObjectInstance> doorsFrom(
     const std::vector<std::vector<LabeledRegion>>& sweeps, bool largest)
 {
 	SemanticMap::TOptions o;
 	o.doorSightingLargestRegion = largest;
 	o.doorRegionMaxHeight = 0;  // no limit
+	o.doorMinWidth = 0;         // a door seen only as the 0.2 m piece stays
 	return test::doorsAfterSweeps(o, sweeps);
 }
 }  // namespace
@@ -76,4 +78,60 @@ TEST(SemanticMap, FloorToCeilingDoorRegionsMakeNoDoor)
 	d = doorsFrom({{wall, door}}, true);
 	ASSERT_EQ(d.size(), 1u);
 	EXPECT_NEAR(d[0].centroid.y, 1.0, 1e-6);
+}
+
+TEST(SemanticMap, DoorCentroidWeighsSightingsByWidth)
+{
+	// One whole view of a 0.9 m door at y = 0, then two cut views of it
+	// (0.4 m of the leaf, centred 0.25 m beside the middle).
+	const auto whole = test::doorPiece(0, 0.0, 1.0, 0.9, 2.0, 6000);
+	const auto cut = test::doorPiece(0, 0.25, 1.0, 0.4, 2.0, 2500);
+	SemanticMap::TOptions o;
+	o.doorCentroidMaxWeightWidth = 0;  // plain mean
+	auto d = test::doorsAfterSweeps(o, {{whole}, {cut}, {cut}});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.5 / 3, 1e-6);
+	// Weighted by width squared: 0.9^2 against 2 x 0.4^2.
+	o.doorCentroidMaxWeightWidth = 1.5;
+	const double weighted = 2 * 0.16 * 0.25 / (0.81 + 2 * 0.16);
+	d = test::doorsAfterSweeps(o, {{whole}, {cut}, {cut}});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_EQ(d[0].observations, 3u);
+	EXPECT_NEAR(d[0].centroid.y, weighted, 1e-6);
+	// The cut views first: the same.
+	d = test::doorsAfterSweeps(o, {{cut}, {cut}, {whole}});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, weighted, 1e-6);
+	// Only cut views: their mean.
+	d = test::doorsAfterSweeps(o, {{cut}, {cut}});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.25, 1e-6);
+	// A region 3 m wide (the door and wall beside it) counts as 1.5 m:
+	// against the whole view (0.9 m) at 0, it at 0.28.
+	const auto swallowed = test::doorPiece(0, 0.28, 1.0, 3.0, 2.0, 9000);
+	d = test::doorsAfterSweeps(o, {{whole}, {swallowed}});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.28 * 2.25 / (0.81 + 2.25), 1e-6);
+}
+
+TEST(SemanticMap, DoorsNeverSeenWideAreNotReported)
+{
+	// A 0.25 m strip (a jamb or a wall edge the rules took for a door),
+	// 2 m high, detected in two sweeps.
+	const auto strip = test::doorPiece(0, 0.0, 1.0, 0.25, 2.0, 900);
+	SemanticMap::TOptions o;
+	o.doorMinWidth = 0;  // no check
+	EXPECT_EQ(test::doorsAfterSweeps(o, {{strip}, {strip}}).size(), 1u);
+	o.doorMinWidth = 0.3;
+	EXPECT_TRUE(test::doorsAfterSweeps(o, {{strip}, {strip}}).empty());
+	// One sighting at least 0.3 m wide is enough.
+	const auto door = test::doorPiece(0, 0.1, 1.0, 0.8, 2.0, 5000);
+	EXPECT_EQ(test::doorsAfterSweeps(o, {{strip}, {door}}).size(), 1u);
+	// An instance's sightings are still kept: it stays a candidate.
+	SemanticMap m(o);
+	auto f = test::makeFakeSweep(test::floorFan(2.5));
+	f.labeled.regions = {strip};
+	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
+	EXPECT_EQ(m.allInstances().size(), 1u);
+	EXPECT_TRUE(m.instances(Label::Door).empty());
 }

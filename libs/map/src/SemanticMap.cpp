@@ -147,6 +147,10 @@ const OptionTable<O>& optionTable()
 	            "door_min_height_m", &O::doorMinHeight, 0, 10,
 	            "Lower doors are not reported.")
 	        .real(
+	            "door_min_width_m", &O::doorMinWidth, 0, 10,
+	            "Doors none of whose sightings is this wide are not reported "
+	            "(0: no check).")
+	        .real(
 	            "double_door_max_width_m", &O::doubleDoorMaxWidth, 0, 10,
 	            "Two doors side by side in one wall, together at most this "
 	            "wide, are the leaves of one double door (0: no join)...")
@@ -163,6 +167,11 @@ const OptionTable<O>& optionTable()
 	            "door_join_distance_m", &O::doorJoinDistance, 0, 5,
 	            "Two doors in one wall this close, footprints overlapping, "
 	            "are one door found twice (0: no join).")
+	        .real(
+	            "door_centroid_max_weight_width_m",
+	            &O::doorCentroidMaxWeightWidth, 0, 10,
+	            "A door's centroid weighs its sightings by their width "
+	            "squared, up to this width (0: plain mean).")
 	        .flag(
 	            "octomap", &O::octomap,
 	            "Put every point into the OctoMap (octomap.bt).");
@@ -498,6 +507,12 @@ bool SemanticMap::reported(const ObjectInstance& o) const
 	if (region) ratio = m_options.doorMinDetectionRatio;
 	if (static_cast<double>(o.observations) <
 	    ratio * static_cast<double>(o.views))
+		return false;
+	if (region && m_options.doorMinWidth > 0 && !o.sightingSizes.empty() &&
+	    std::none_of(
+	        o.sightingSizes.begin(), o.sightingSizes.end(),
+	        [&](const mrpt::math::TPoint3D& s)
+	        { return s.x >= m_options.doorMinWidth; }))
 		return false;
 	const ClassInfo::Plausibility p = plausibility(o.label);
 	if (o.extent().z < p.minHeight || o.minCorner.z > p.maxBottom ||

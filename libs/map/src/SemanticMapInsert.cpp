@@ -527,7 +527,9 @@ void SemanticMap::insertRegions(
 			    m_options.doorSightingLargestRegion && o->leaves == 1 &&
 			    reg.pixels > sightingPixels[id])
 			{
-				o->replaceLastSighting(wc, size, m_options.mergeDistance / 2);
+				o->replaceLastSighting(
+				    wc, size, m_options.mergeDistance / 2,
+				    sightingMaxWeightWidth(reg.label));
 				sightingPixels[id] = reg.pixels;
 			}
 		}
@@ -633,6 +635,13 @@ void SemanticMap::centreOnCells(ObjectInstance& o) const
 	o.centroid.y = 0.5 * (g.centerY(by0) + g.centerY(by1));
 }
 
+double SemanticMap::sightingMaxWeightWidth(Label label) const
+{
+	return classInfo(label).instances == ClassInfo::InstanceSource::Regions
+	           ? m_options.doorCentroidMaxWeightWidth
+	           : 0;
+}
+
 void SemanticMap::mergeObject(
     Label label, const mrpt::math::TPoint3D& centroid,
     const mrpt::math::TPoint3D& size, const mrpt::math::TPoint3D& minCorner,
@@ -697,9 +706,11 @@ void SemanticMap::mergeObject(
 	if (!again)
 	{
 		const mrpt::math::TPoint3D middle = best->centroid;
-		best->addSighting(centroid, m_options.mergeDistance / 2);
-		if (best->leaves == 2) centreOnLeaves(*best, middle);
 		best->sightingSizes.push_back(size);
+		best->addSighting(
+		    centroid, m_options.mergeDistance / 2,
+		    sightingMaxWeightWidth(label));
+		if (best->leaves == 2) centreOnLeaves(*best, middle);
 		best->observations++;
 		seenThisSweep.push_back(best->id);
 	}

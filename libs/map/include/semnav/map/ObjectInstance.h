@@ -53,12 +53,14 @@ struct ObjectInstance
 	 * their per-axis median: a detection box that swallowed a neighbour,
 	 * or a false alarm merged by footprint overlap, no longer drags the
 	 * object away. */
-	void addSighting(const mrpt::math::TPoint3D& c, double inlierRadius)
+	void addSighting(
+	    const mrpt::math::TPoint3D& c, double inlierRadius,
+	    double maxWeightWidth = 0)
 	{
 		if (sightings.empty() && observations > 0)
 			sightings.push_back(centroid);
 		sightings.push_back(c);
-		recentre(inlierRadius);
+		recentre(inlierRadius, maxWeightWidth);
 	}
 
 	/** Replaces the last sighting (and its size, if recorded) by a better
@@ -66,25 +68,47 @@ struct ObjectInstance
 	 * does. No-op without sightings. */
 	void replaceLastSighting(
 	    const mrpt::math::TPoint3D& c, const mrpt::math::TPoint3D& size,
-	    double inlierRadius)
+	    double inlierRadius, double maxWeightWidth = 0)
 	{
 		if (sightings.empty()) return;
 		sightings.back() = c;
 		if (!sightingSizes.empty()) sightingSizes.back() = size;
-		recentre(inlierRadius);
+		recentre(inlierRadius, maxWeightWidth);
 	}
 
 	/** Sets `centroid` to the mean of the sightings within `inlierRadius`
 	 * (horizontally) of their per-axis median (all of them when none is;
-	 * unchanged without sightings). */
-	void recentre(double inlierRadius)
+	 * unchanged without sightings). `maxWeightWidth` > 0: each weighted by
+	 * the square of its detection's width (sightingSizes x), widths above
+	 * `maxWeightWidth` counting as that: a cut view of a door or a piece of
+	 * jamb beside it pulls it less than a whole view, and a region that
+	 * swallowed wall no more than one a door wide (doors,
+	 * SemanticMap::TOptions::doorCentroidMaxWeightWidth); unweighted when a
+	 * sighting has no size. */
+	void recentre(double inlierRadius, double maxWeightWidth = 0)
 	{
 		if (sightings.empty()) return;
-		const auto in = inlierSightings(inlierRadius);
-		const auto& used = in.empty() ? sightings : in;
+		const double mx = median(sightings, &mrpt::math::TPoint3D::x),
+		             my = median(sightings, &mrpt::math::TPoint3D::y);
+		const auto near = [&](const mrpt::math::TPoint3D& p)
+		{ return std::hypot(p.x - mx, p.y - my) <= inlierRadius; };
+		const bool any = std::any_of(sightings.begin(), sightings.end(), near);
+		const bool weighted =
+		    maxWeightWidth > 0 && sightingSizes.size() == sightings.size();
 		mrpt::math::TPoint3D sum(0, 0, 0);
-		for (const auto& s : used) sum = sum + s;
-		centroid = sum * (1.0 / used.size());
+		double total = 0;
+		for (std::size_t i = 0; i < sightings.size(); i++)
+		{
+			if (any && !near(sightings[i])) continue;
+			// A width of 0 (unknown) weighs as a 1 cm sliver.
+			const double w = weighted ? std::min(
+			                                std::max(sightingSizes[i].x, 0.01),
+			                                std::max(maxWeightWidth, 0.01))
+			                          : 1.0;
+			sum = sum + sightings[i] * (w * w);
+			total += w * w;
+		}
+		centroid = sum * (1.0 / total);
 	}
 
 	/** The sightings within `inlierRadius` (horizontally) of their per-axis

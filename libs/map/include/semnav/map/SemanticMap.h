@@ -182,6 +182,12 @@ public:
 		/** Doors whose merged extent is lower than this are not reported
 		 * (fragments of walls or furniture taken for a door) (m). */
 		double doorMinHeight = classInfo(Label::Door).plausibility.minHeight;
+		/** Doors none of whose sightings (one region per sweep) is at
+		 * least this wide are not reported: a strip of wall, jamb or leaf
+		 * edge the rules took for a door, or a door seen so cut that its
+		 * place is off by half its width (m; 0: no check; a map loaded
+		 * without sighting sizes keeps its doors). */
+		double doorMinWidth = 0.3;
 		/** Two door instances side by side in one wall are the two leaves
 		 * of a double door, joined into one door at their middle
 		 * (joinDoubleDoors()), when together at most this wide along the
@@ -207,6 +213,15 @@ public:
 		 * no join). Two doors of neighbouring rooms are >= 1.5 m apart in
 		 * the generated buildings. */
 		double doorJoinDistance = 0.8;
+		/** A door's centroid weighs each of its sightings (those within
+		 * half the merge distance of their median) by the square of its
+		 * region's width, widths above this counting as this: a cut view
+		 * (edge of the field of view, half hidden, grazing) or a piece of
+		 * leaf or jamb is narrower than a whole view and pulls it less; a
+		 * region that swallowed wall beside the door weighs no more than
+		 * one about a door wide (ObjectInstance::recentre(); m; 0: the
+		 * plain mean). */
+		double doorCentroidMaxWeightWidth = 1.5;
 		/** Insert points into the OctoMap. */
 		bool octomap = true;
 		TravelCostModel::TOptions cost;
@@ -503,6 +518,9 @@ private:
 	static const char* const kStairsSweeps;
 	/** True when a cell labelled wall lies within `radius` of (x, y). */
 	bool wallWithin(double x, double y, double radius) const;
+	/** The width cap of a label's sighting weights
+	 * (TOptions::doorCentroidMaxWeightWidth for doors, 0: unweighted). */
+	double sightingMaxWeightWidth(Label label) const;
 	void mergeObject(
 	    Label label, const mrpt::math::TPoint3D& centroid,
 	    const mrpt::math::TPoint3D& size, const mrpt::math::TPoint3D& minCorner,
