@@ -244,7 +244,17 @@ const OptionTable<O>& optionTable()
 	            "its plane.")
 	        .flag(
 	            "classify_leftover_pixels", &O::classifyLeftoverPixels,
-	            "Label the pixels left over (for pixel-level scoring).");
+	            "Label the pixels left over (for pixel-level scoring).")
+	        .real(
+	            "wall_plane_reclaim_m", &O::wallPlaneReclaimTolerance, 0, 1,
+	            "Pixels labelled obstacle, 4-connected to a wall through "
+	            "pixels this close to that wall's plane, become wall (0: "
+	            "off).")
+	        .integer(
+	            "wall_plane_reclaim_side_columns",
+	            &O::wallPlaneReclaimSideColumns, 0, 100000,
+	            "wall_plane_reclaim_m acts only in this many image columns "
+	            "at each side of the sweep (0: in all).");
 	return t;
 }
 }  // namespace

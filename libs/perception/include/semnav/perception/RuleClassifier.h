@@ -178,6 +178,13 @@ public:
 		// Leftover pixels
 		double leftoverPlaneTolerance = 0.05;
 		bool classifyLeftoverPixels = true;
+		/** wall_plane_reclaim_m: pixels labelled obstacle that are
+		 * 4-connected to a wall through pixels within this distance of
+		 * that wall's plane become wall (0: off). */
+		double wallPlaneReclaimTolerance = 0.0;
+		/** wall_plane_reclaim_side_columns: the reclaim acts only in this
+		 * many image columns at each side of the sweep (0: everywhere). */
+		int wallPlaneReclaimSideColumns = 0;
 	};
 
 	RuleClassifier();
@@ -368,6 +375,7 @@ private:
 	void labelSurfacePixels();
 	void seedLeftovers();
 	void growLeftovers(double zg);
+	void reclaimWallPlanes();
 	/** Step 6: indoor or outdoor; out.labels; ground types outdoors. */
 	void finishLabels(
 	    std::size_t ceilPixels, const Roughness& roughness, LabeledSweep& out);
