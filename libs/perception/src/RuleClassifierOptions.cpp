@@ -254,7 +254,11 @@ const OptionTable<O>& optionTable()
 	            "wall_plane_reclaim_side_columns",
 	            &O::wallPlaneReclaimSideColumns, 0, 100000,
 	            "wall_plane_reclaim_m acts only in this many image columns "
-	            "at each side of the sweep (0: in all).");
+	            "at each side of the sweep (0: in all).")
+	        .flag(
+	            "wall_plane_reclaim_ceilings", &O::wallPlaneReclaimCeilings,
+	            "wall_plane_reclaim_m: ceiling surfaces reclaim the "
+	            "obstacle pixels on their planes too.");
 	return t;
 }
 }  // namespace

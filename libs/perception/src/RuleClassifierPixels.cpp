@@ -343,6 +343,10 @@ void RuleClassifier::reclaimWallPlanes()
 	const int rows = m_rows, cols = m_cols, n = rows * cols;
 	const auto* P = m_points->ptr<cv::Vec3f>(0);
 	const int8_t wall = lab(Label::Wall), obstacle = lab(Label::Obstacle);
+	const int8_t ceiling = lab(Label::Ceiling);
+	const bool ceilings = o.wallPlaneReclaimCeilings;
+	auto claims = [&](int8_t l)
+	{ return l == wall || (ceilings && l == ceiling); };
 	const int band = o.wallPlaneReclaimSideColumns;
 	auto inBand = [&](int c)
 	{ return band <= 0 || c < band || c >= cols - band; };
@@ -351,7 +355,7 @@ void RuleClassifier::reclaimWallPlanes()
 	// the obstacle pixels on its plane first.
 	m_stack.clear();
 	for (int p = 0; p < n; p++)
-		if (m_label[p] == wall && m_owner[p] >= 0) m_stack.push_back(p);
+		if (claims(m_label[p]) && m_owner[p] >= 0) m_stack.push_back(p);
 	for (std::size_t head = 0; head < m_stack.size(); head++)
 	{
 		const int p = m_stack[head];
@@ -368,7 +372,7 @@ void RuleClassifier::reclaimWallPlanes()
 			const double dist = S.normal[0] * x[0] + S.normal[1] * x[1] +
 			                    S.normal[2] * x[2] - d;
 			if (std::abs(dist) > tol) continue;
-			m_label[q] = wall;
+			m_label[q] = m_label[p];
 			m_owner[q] = s;
 			m_stack.push_back(q);
 		}

@@ -180,11 +180,15 @@ public:
 		bool classifyLeftoverPixels = true;
 		/** wall_plane_reclaim_m: pixels labelled obstacle that are
 		 * 4-connected to a wall through pixels within this distance of
-		 * that wall's plane become wall (0: off). */
-		double wallPlaneReclaimTolerance = 0.0;
+		 * that wall's plane become wall (0: off; docs/perception.md,
+		 * "Wall plane reclaim"). */
+		double wallPlaneReclaimTolerance = 0.03;
 		/** wall_plane_reclaim_side_columns: the reclaim acts only in this
 		 * many image columns at each side of the sweep (0: everywhere). */
 		int wallPlaneReclaimSideColumns = 0;
+		/** wall_plane_reclaim_ceilings: ceiling surfaces reclaim the
+		 * obstacle pixels on their planes too. */
+		bool wallPlaneReclaimCeilings = true;
 	};
 
 	RuleClassifier();
