@@ -347,10 +347,16 @@ void RuleClassifier::reclaimWallPlanes()
 	const bool ceilings = o.wallPlaneReclaimCeilings;
 	auto claims = [&](int8_t l)
 	{ return l == wall || (ceilings && l == ceiling); };
+	// In the side columns (noisier normals, more pieces) a tolerance of
+	// their own.
 	const int band = o.wallPlaneReclaimSideColumns;
-	auto inBand = [&](int c)
-	{ return band <= 0 || c < band || c >= cols - band; };
-	const float tol = static_cast<float>(o.wallPlaneReclaimTolerance);
+	const float tolMid = static_cast<float>(o.wallPlaneReclaimTolerance);
+	const float tolSide =
+	    o.wallPlaneReclaimSideTolerance > 0
+	        ? static_cast<float>(o.wallPlaneReclaimSideTolerance)
+	        : tolMid;
+	auto tolAt = [&](int c)
+	{ return c < band || c >= cols - band ? tolSide : tolMid; };
 	// FIFO from every wall pixel of a surface: the nearest wall claims
 	// the obstacle pixels on its plane first.
 	m_stack.clear();
@@ -367,11 +373,11 @@ void RuleClassifier::reclaimWallPlanes()
 		    r > 0 ? p - cols : -1, r + 1 < rows ? p + cols : -1};
 		for (int q : nb)
 		{
-			if (q < 0 || m_label[q] != obstacle || !inBand(CO[q])) continue;
+			if (q < 0 || m_label[q] != obstacle) continue;
 			const cv::Vec3f& x = P[q];
 			const double dist = S.normal[0] * x[0] + S.normal[1] * x[1] +
 			                    S.normal[2] * x[2] - d;
-			if (std::abs(dist) > tol) continue;
+			if (std::abs(dist) > tolAt(CO[q])) continue;
 			m_label[q] = m_label[p];
 			m_owner[q] = s;
 			m_stack.push_back(q);
