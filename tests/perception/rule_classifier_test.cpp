@@ -574,3 +574,38 @@ TEST(RuleClassifier, OptionsAreCheckedAndRoundTrip)
 	expectBad("min_surface_px", "2.5");       // not an integer
 	expectBad("classify_leftover_pixels", "maybe");
 }
+
+TEST(RuleClassifier, WallPiecesOnTheWallsPlaneAreReclaimed)
+{
+	// A narrow room, its side walls near the robot at the sweep's sides
+	// (where the normals are noise and the walls break into pieces), a
+	// cabinet against the left wall.
+	SynthScene sc = boxRoom(-3, 5, -0.9, 0.9, 2.5);
+	sc.noise = 0.006;
+	sc.boxes.push_back({{1.0, 0.45, 0}, {1.6, 0.9, 1.2}, Label::Obstacle});
+	cv::Mat truth;
+	const Sweep sw = renderSweep(sc, &truth);
+	auto wallAsObstacle = [&](double tol, double* obstacleF1)
+	{
+		PerceptionPipeline::TOptions po;
+		po.classifier.wallPlaneReclaimTolerance = tol;
+		const LabeledSweep ls = PerceptionPipeline(po).process(sw);
+		std::size_t n = 0;
+		for (int r = 0; r < truth.rows; r++)
+			for (int c = 0; c < truth.cols; c++)
+				n += sw.valid(r, c) &&
+				     truth.at<uint8_t>(r, c) == uint8_t(Label::Wall) &&
+				     ls.labels.at<uint8_t>(r, c) == uint8_t(Label::Obstacle);
+		*obstacleF1 = pixelF1(ls.labels, truth, sw, Label::Obstacle);
+		return n;
+	};
+	double f1Off = 0, f1On = 0;
+	const std::size_t off = wallAsObstacle(0.0, &f1Off);
+	const std::size_t on = wallAsObstacle(0.03, &f1On);
+	std::cout << "wall labelled obstacle " << off << " -> " << on
+	          << ", obstacle F1 " << f1Off << " -> " << f1On << "\n";
+	EXPECT_GT(off, 50u) << "the scene must show the problem";
+	EXPECT_LT(on, off / 2);
+	EXPECT_GE(f1On, f1Off);
+	EXPECT_GE(f1On, 0.8) << "the cabinet, 45 cm off the wall, stays";
+}

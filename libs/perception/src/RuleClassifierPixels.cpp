@@ -78,6 +78,7 @@ void RuleClassifier::labelPixels(double zg)
 	if (!m_options.classifyLeftoverPixels) return;
 	seedLeftovers();
 	growLeftovers(zg);
+	reclaimWallPlanes();
 }
 
 void RuleClassifier::labelSurfacePixels()
@@ -331,6 +332,57 @@ std::vector<double> RuleClassifier::squareHeightVariances(
 		var[k] = std::max(0.0, s2[k] / cnt[k] - m * m);
 	}
 	return var;
+}
+
+void RuleClassifier::reclaimWallPlanes()
+{
+	const TOptions& o = m_options;
+	if (o.wallPlaneReclaimTolerance <= 0) return;
+	const int* RO = m_rowOf.data();
+	const int* CO = m_colOf.data();
+	const int rows = m_rows, cols = m_cols, n = rows * cols;
+	const auto* P = m_points->ptr<cv::Vec3f>(0);
+	const int8_t wall = lab(Label::Wall), obstacle = lab(Label::Obstacle);
+	const int8_t ceiling = lab(Label::Ceiling);
+	const bool ceilings = o.wallPlaneReclaimCeilings;
+	auto claims = [&](int8_t l)
+	{ return l == wall || (ceilings && l == ceiling); };
+	// In the side columns (noisier normals, more pieces) a tolerance of
+	// their own.
+	const int band = o.wallPlaneReclaimSideColumns;
+	const float tolMid = static_cast<float>(o.wallPlaneReclaimTolerance);
+	const float tolSide =
+	    o.wallPlaneReclaimSideTolerance > 0
+	        ? static_cast<float>(o.wallPlaneReclaimSideTolerance)
+	        : tolMid;
+	auto tolAt = [&](int c)
+	{ return c < band || c >= cols - band ? tolSide : tolMid; };
+	// FIFO from every wall pixel of a surface: the nearest wall claims
+	// the obstacle pixels on its plane first.
+	m_stack.clear();
+	for (int p = 0; p < n; p++)
+		if (claims(m_label[p]) && m_owner[p] >= 0) m_stack.push_back(p);
+	for (std::size_t head = 0; head < m_stack.size(); head++)
+	{
+		const int p = m_stack[head];
+		const int r = RO[p], c = CO[p], s = m_owner[p];
+		const Surface& S = m_surfaces[s];
+		const double d = S.planeD();
+		const int nb[4] = {
+		    c > 0 ? p - 1 : -1, c + 1 < cols ? p + 1 : -1,
+		    r > 0 ? p - cols : -1, r + 1 < rows ? p + cols : -1};
+		for (int q : nb)
+		{
+			if (q < 0 || m_label[q] != obstacle) continue;
+			const cv::Vec3f& x = P[q];
+			const double dist = S.normal[0] * x[0] + S.normal[1] * x[1] +
+			                    S.normal[2] * x[2] - d;
+			if (std::abs(dist) > tolAt(CO[q])) continue;
+			m_label[q] = m_label[p];
+			m_owner[q] = s;
+			m_stack.push_back(q);
+		}
+	}
 }
 
 }  // namespace semnav

@@ -196,6 +196,20 @@ public:
 		// Leftover pixels
 		double leftoverPlaneTolerance = 0.05;
 		bool classifyLeftoverPixels = true;
+		/** wall_plane_reclaim_m: pixels labelled obstacle that are
+		 * 4-connected to a wall through pixels within this distance of
+		 * that wall's plane become wall (0: off; docs/perception.md,
+		 * "Wall plane reclaim"). */
+		double wallPlaneReclaimTolerance = 0.0;
+		/** wall_plane_reclaim_side_columns: the image columns at each side
+		 * of the sweep that use wallPlaneReclaimSideTolerance (0: none). */
+		int wallPlaneReclaimSideColumns = 0;
+		/** wall_plane_reclaim_side_m: wall_plane_reclaim_m in those
+		 * columns (0: the same). */
+		double wallPlaneReclaimSideTolerance = 0.0;
+		/** wall_plane_reclaim_ceilings: ceiling surfaces reclaim the
+		 * obstacle pixels on their planes too. */
+		bool wallPlaneReclaimCeilings = true;
 	};
 
 	RuleClassifier();
@@ -404,6 +418,7 @@ private:
 	void labelSurfacePixels();
 	void seedLeftovers();
 	void growLeftovers(double zg);
+	void reclaimWallPlanes();
 	/** Step 6: indoor or outdoor; out.labels; ground types outdoors. */
 	void finishLabels(
 	    std::size_t ceilPixels, const Roughness& roughness, LabeledSweep& out);
