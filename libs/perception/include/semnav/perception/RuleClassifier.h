@@ -200,7 +200,7 @@ public:
 		 * 4-connected to a wall through pixels within this distance of
 		 * that wall's plane become wall (0: off; docs/perception.md,
 		 * "Wall plane reclaim"). */
-		double wallPlaneReclaimTolerance = 0.0;
+		double wallPlaneReclaimTolerance = 0.03;
 		/** wall_plane_reclaim_side_columns: the image columns at each side
 		 * of the sweep that use wallPlaneReclaimSideTolerance (0: none). */
 		int wallPlaneReclaimSideColumns = 0;
