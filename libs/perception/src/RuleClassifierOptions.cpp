@@ -273,16 +273,6 @@ const OptionTable<O>& optionTable()
 	            "Pixels labelled obstacle, 4-connected to a wall through "
 	            "pixels this close to that wall's plane, become wall (0: "
 	            "off).")
-	        .integer(
-	            "wall_plane_reclaim_side_columns",
-	            &O::wallPlaneReclaimSideColumns, 0, 100000,
-	            "Image columns at each side of the sweep that use "
-	            "wall_plane_reclaim_side_m (0: none).")
-	        .real(
-	            "wall_plane_reclaim_side_m", &O::wallPlaneReclaimSideTolerance,
-	            0, 1,
-	            "wall_plane_reclaim_m in the wall_plane_reclaim_side_columns "
-	            "(0: the same).")
 	        .flag(
 	            "wall_plane_reclaim_ceilings", &O::wallPlaneReclaimCeilings,
 	            "wall_plane_reclaim_m: ceiling surfaces reclaim the "

@@ -347,16 +347,7 @@ void RuleClassifier::reclaimWallPlanes()
 	const bool ceilings = o.wallPlaneReclaimCeilings;
 	auto claims = [&](int8_t l)
 	{ return l == wall || (ceilings && l == ceiling); };
-	// In the side columns (noisier normals, more pieces) a tolerance of
-	// their own.
-	const int band = o.wallPlaneReclaimSideColumns;
-	const float tolMid = static_cast<float>(o.wallPlaneReclaimTolerance);
-	const float tolSide =
-	    o.wallPlaneReclaimSideTolerance > 0
-	        ? static_cast<float>(o.wallPlaneReclaimSideTolerance)
-	        : tolMid;
-	auto tolAt = [&](int c)
-	{ return c < band || c >= cols - band ? tolSide : tolMid; };
+	const float tol = static_cast<float>(o.wallPlaneReclaimTolerance);
 	// FIFO from every wall pixel of a surface: the nearest wall claims
 	// the obstacle pixels on its plane first.
 	m_stack.clear();
@@ -377,7 +368,7 @@ void RuleClassifier::reclaimWallPlanes()
 			const cv::Vec3f& x = P[q];
 			const double dist = S.normal[0] * x[0] + S.normal[1] * x[1] +
 			                    S.normal[2] * x[2] - d;
-			if (std::abs(dist) > tolAt(CO[q])) continue;
+			if (std::abs(dist) > tol) continue;
 			m_label[q] = m_label[p];
 			m_owner[q] = s;
 			m_stack.push_back(q);

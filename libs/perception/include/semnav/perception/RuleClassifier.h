@@ -201,12 +201,6 @@ public:
 		 * that wall's plane become wall (0: off; docs/perception.md,
 		 * "Wall plane reclaim"). */
 		double wallPlaneReclaimTolerance = 0.03;
-		/** wall_plane_reclaim_side_columns: the image columns at each side
-		 * of the sweep that use wallPlaneReclaimSideTolerance (0: none). */
-		int wallPlaneReclaimSideColumns = 0;
-		/** wall_plane_reclaim_side_m: wall_plane_reclaim_m in those
-		 * columns (0: the same). */
-		double wallPlaneReclaimSideTolerance = 0.0;
 		/** wall_plane_reclaim_ceilings: ceiling surfaces reclaim the
 		 * obstacle pixels on their planes too. */
 		bool wallPlaneReclaimCeilings = true;
