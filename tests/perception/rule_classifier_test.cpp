@@ -43,6 +43,22 @@ SynthScene corridor()
 	return sc;
 }
 
+/** corridor() with its door leaf at [lo, hi] and the gap in the left wall
+ * ending at gapEnd: the wall after the door and the lintel follow it. */
+SynthScene corridorWithLeaf(
+    const cv::Vec3d& lo, const cv::Vec3d& hi, double gapEnd = 4.0)
+{
+	SynthScene sc = corridor();
+	for (auto& b : sc.boxes)
+		if (b.label == Label::Door)
+			b.lo = lo, b.hi = hi;
+		else if (b.lo[0] == 4.0 && b.lo[2] == 0)
+			b.lo[0] = gapEnd;  // the left wall after the door
+		else if (b.lo[0] == 3.0 && b.lo[2] == 2.0)
+			b.hi[0] = gapEnd;  // the lintel
+	return sc;
+}
+
 double noise(double x, double y)
 {
 	// Deterministic bumps of a few cm on a ~10 cm scale (grass).
@@ -51,15 +67,16 @@ double noise(double x, double y)
 	       0.008 * std::cos(97 * x - 29 * y + 1);
 }
 
-/** The scene's door found (and its walls kept) with the options as shipped,
- * and lost once `withoutTheRule` switched the rule under test off. */
+/** The scene's door found (and its walls kept) with the options `o` (as
+ * shipped by default), and lost once `withoutTheRule` switched the rule
+ * under test off. */
 void expectDoorOnlyWithTheRule(
     const SynthScene& sc,
-    const std::function<void(PerceptionPipeline::TOptions&)>& withoutTheRule)
+    const std::function<void(PerceptionPipeline::TOptions&)>& withoutTheRule,
+    PerceptionPipeline::TOptions o = {})
 {
 	cv::Mat truth;
 	const Sweep sw = renderSweep(sc, &truth);
-	PerceptionPipeline::TOptions o;
 	const LabeledSweep ls = PerceptionPipeline(o).process(sw);
 	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Door), 0.85);
 	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Wall), 0.95);
@@ -225,27 +242,15 @@ TEST(RuleClassifier, FlushLeafUnderItsLintelSplitsOff)
 	// The corridor's door 7 mm behind the wall face, filling its gap (no
 	// seams), seen from in front of it at 1.2 m: the leaf is much of its
 	// wall's pixels, and the least-squares plane leans towards it.
-	SynthScene sc = corridor();
-	for (auto& b : sc.boxes)
-		if (b.label == Label::Door)
-		{
-			b.lo = {3.0, 1.207, 0};
-			b.hi = {4.0, 1.247, 2.0};
-		}
+	SynthScene sc = corridorWithLeaf({3.0, 1.207, 0}, {4.0, 1.247, 2.0});
 	sc.mount[0] = 3.3;
 	// (The leaf-shaped side of the Otsu step is off in both runs: this
-	// tests the step measured against the lintel.)
-	cv::Mat truth;
-	const Sweep sw = renderSweep(sc, &truth);
+	// tests the step measured against the lintel.) Without the lintel
+	// split the leaf stays wall.
 	PerceptionPipeline::TOptions o;
 	o.classifier.doorShapeSplit = false;
-	const LabeledSweep ls = PerceptionPipeline(o).process(sw);
-	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Door), 0.85);
-	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Wall), 0.95);
-	// Without the lintel split the leaf stays wall.
-	o.classifier.doorLintelSplit = false;
-	const LabeledSweep without = PerceptionPipeline(o).process(sw);
-	EXPECT_LT(pixelF1(without.labels, truth, sw, Label::Door), 0.5);
+	expectDoorOnlyWithTheRule(
+	    sc, [](auto& off) { off.classifier.doorLintelSplit = false; }, o);
 }
 
 TEST(RuleClassifier, FlushLeafUnderItsLintelAfterAPlaneStep)
@@ -254,27 +259,16 @@ TEST(RuleClassifier, FlushLeafUnderItsLintelAfterAPlaneStep)
 	// 2 cm from 0.8 m beyond the door on: the group is cut at that step
 	// (plane_split_offset_m) and the leaf stays with the wall in front,
 	// where only door_lintel_after_cut looks for it again.
-	SynthScene sc = corridor();
+	SynthScene sc = corridorWithLeaf({3.0, 1.207, 0}, {4.0, 1.247, 2.0});
 	for (auto& b : sc.boxes)
-		if (b.label == Label::Door)
-		{
-			b.lo = {3.0, 1.207, 0};
-			b.hi = {4.0, 1.247, 2.0};
-		}
-		else if (b.lo[0] == 4.0 && b.lo[2] == 0)
+		if (b.lo[0] == 4.0 && b.lo[2] == 0)
 			b.hi[0] = 4.8;  // the left wall after the door, up to the step
 	sc.boxes.push_back({{4.8, 1.22, 0}, {8.1, 1.3, 2.6}, Label::Wall});
 	sc.mount[0] = 3.3;
 	PerceptionPipeline::TOptions o;
 	o.classifier.doorShapeSplit = false;
-	cv::Mat truth;
-	const Sweep sw = renderSweep(sc, &truth);
-	const LabeledSweep ls = PerceptionPipeline(o).process(sw);
-	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Door), 0.85);
-	EXPECT_GE(pixelF1(ls.labels, truth, sw, Label::Wall), 0.95);
-	o.classifier.doorLintelAfterCut = false;
-	const LabeledSweep without = PerceptionPipeline(o).process(sw);
-	EXPECT_LT(pixelF1(without.labels, truth, sw, Label::Door), 0.5);
+	expectDoorOnlyWithTheRule(
+	    sc, [](auto& off) { off.classifier.doorLintelAfterCut = false; }, o);
 }
 
 TEST(RuleClassifier, DoorCutByTheFieldOfViewWithItsLintelAboveIn3d)
@@ -297,15 +291,9 @@ TEST(RuleClassifier, RecessedLeafBesideTheRobotIsADoor)
 	// bottom row to its top row (cut by the field of view at its top,
 	// bottom and one side, below its lintel), and its other side finds the
 	// wall beside the frame along part of it only.
-	SynthScene sc = corridor();
+	SynthScene sc = corridorWithLeaf({3.02, 1.28, 0}, {3.98, 1.30, 2.1});
 	for (auto& b : sc.boxes)
-		if (b.label == Label::Door)
-		{
-			b.lo = {3.02, 1.28, 0};
-			b.hi = {3.98, 1.30, 2.1};
-		}
-		else if (b.lo[0] == 3.0 && b.lo[2] == 2.0)
-			b.lo[2] = 2.1;  // the lintel
+		if (b.lo[0] == 3.0 && b.lo[2] == 2.0) b.lo[2] = 2.1;  // the lintel
 	sc.mount[0] = 3.5;
 	sc.mount[1] = 0.65;
 	// (Measured: door 0.99 with the rule, 0 without.)
@@ -321,17 +309,7 @@ TEST(RuleClassifier, RecessedDoubleDoorWithPartOfItsFrameIsADoor)
 	// leaves' edges hide part of the walls around it, and its probes find
 	// walls along under door_min_side_fraction of a side, but a piece of
 	// wall does not stand 8 cm off the walls around it.
-	SynthScene sc = corridor();
-	for (auto& b : sc.boxes)
-		if (b.label == Label::Door)
-		{
-			b.lo = {3.02, 1.28, 0};
-			b.hi = {4.78, 1.30, 2.0};
-		}
-		else if (b.lo[0] == 4.0 && b.lo[2] == 0)
-			b.lo[0] = 4.8;  // the left wall after the door
-		else if (b.lo[0] == 3.0 && b.lo[2] == 2.0)
-			b.hi[0] = 4.8;  // the lintel
+	SynthScene sc = corridorWithLeaf({3.02, 1.28, 0}, {4.78, 1.30, 2.0}, 4.8);
 	sc.mount[0] = 0.5;
 	sc.mount[1] = 0.4;
 	// (Measured: door 0.97 with the rule, 0 without.)
@@ -345,17 +323,7 @@ TEST(RuleClassifier, NarrowLeafWithItsWholeFrameIsADoor)
 	// A leaf narrower than door_min_width_m (0.5 m: what the seam and
 	// lintel splits often cut out of a wider leaf, the rest staying with
 	// its wall) with wall found close around it on three sides.
-	SynthScene sc = corridor();
-	for (auto& b : sc.boxes)
-		if (b.label == Label::Door)
-		{
-			b.lo = {3.02, 1.22, 0};
-			b.hi = {3.48, 1.26, 2.0};
-		}
-		else if (b.lo[0] == 4.0 && b.lo[2] == 0)
-			b.lo[0] = 3.5;  // the left wall after the door
-		else if (b.lo[0] == 3.0 && b.lo[2] == 2.0)
-			b.hi[0] = 3.5;  // the lintel
+	SynthScene sc = corridorWithLeaf({3.02, 1.22, 0}, {3.48, 1.26, 2.0}, 3.5);
 	sc.mount[0] = 2.0;
 	sc.mount[1] = -0.8;
 	// (Measured from here: door 0.95 with the rule, 0 without.)
