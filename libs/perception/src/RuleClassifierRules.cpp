@@ -201,9 +201,7 @@ bool RuleClassifier::recessedLeafFramed(const DoorCheck& dc) const
 	const TOptions& o = m_options;
 	const double g = o.doorRecessedFrameSideFraction;
 	return g > 0 && o.doorRecessedLeafOffset > 0 &&
-	       dc.maxOffset >= o.doorRecessedLeafOffset && !dc.leftFov &&
-	       !dc.rightFov && !dc.topFov && dc.left >= g && dc.right >= g &&
-	       dc.top >= g;
+	       dc.maxOffset >= o.doorRecessedLeafOffset && dc.wholeFrame(g);
 }
 
 bool RuleClassifier::narrowAndFramed(
@@ -217,8 +215,7 @@ bool RuleClassifier::narrowAndFramed(
 	const TOptions& o = m_options;
 	const double g = o.doorSingleSideFraction;
 	return o.doorFramedMinWidth > 0 && s.width >= o.doorFramedMinWidth &&
-	       dc.bottomFov && !dc.leftFov && !dc.rightFov && !dc.topFov &&
-	       dc.left >= g && dc.right >= g && dc.top >= g;
+	       dc.bottomFov && dc.wholeFrame(g);
 }
 
 void RuleClassifier::labelDoorsAndWalls(
@@ -266,9 +263,7 @@ void RuleClassifier::labelDoorsAndWalls(
 			                    (t && dc.bottomFov) ||
 			                    (shown && dc.bottomHidden);
 			// Wider than a door: only with its whole frame seen.
-			const bool framed =
-			    !framedWidth || (dc.left >= f && dc.right >= f && dc.top >= f &&
-			                     !dc.leftFov && !dc.rightFov && !dc.topFov);
+			const bool framed = !framedWidth || dc.wholeFrame(f);
 			door = sides && framed && height && width && bottom &&
 			       dc.maxOffset >= o.doorMinOffset;
 			MRPT_LOG_DEBUG_FMT(

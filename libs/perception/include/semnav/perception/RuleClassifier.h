@@ -270,6 +270,13 @@ private:
 		 * which a probe found a wall pixel above the leaf's top: its
 		 * lintel in 3D, wherever the image puts it. */
 		double lintelAbove = 0;
+		/** Left, right and top all in view (none cut by the field of
+		 * view), each with wall along at least `fraction` of it. */
+		bool wholeFrame(double fraction) const
+		{
+			return !leftFov && !rightFov && !topFov && left >= fraction &&
+			       right >= fraction && top >= fraction;
+		}
 	};
 
 	/** Adjacency of mergeable surfaces (CSR: neighbours of s are
