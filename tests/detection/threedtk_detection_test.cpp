@@ -102,7 +102,11 @@ TEST_P(ThreeDtkDetection, NoWastebasketInTheArcade)
 		    << "wastebasket at " << c.measure->centroid.x << ", "
 		    << c.measure->centroid.y << " (shape score " << c.shapeScore << ")";
 	}
-	EXPECT_GT(scored, 0) << "no wastebasket candidate reached the forest";
+	// Whether the forest is reached is checked over both scans by
+	// EveryClassReachesTheShapeCheckOnSomeScan: with the wall plane reclaim
+	// scan000's wastebasket candidates all fail the geometric checks first.
+	std::printf(
+	    "%s: %d wastebasket candidates shape-scored\n", GetParam(), scored);
 }
 
 INSTANTIATE_TEST_SUITE_P(
