@@ -88,18 +88,15 @@ struct ObjectInstance
 	void recentre(double inlierRadius, double maxWeightWidth = 0)
 	{
 		if (sightings.empty()) return;
-		const double mx = median(sightings, &mrpt::math::TPoint3D::x),
-		             my = median(sightings, &mrpt::math::TPoint3D::y);
-		const auto near = [&](const mrpt::math::TPoint3D& p)
-		{ return std::hypot(p.x - mx, p.y - my) <= inlierRadius; };
-		const bool any = std::any_of(sightings.begin(), sightings.end(), near);
+		const std::vector<bool> in = inlierMask(inlierRadius);
+		const bool any = std::find(in.begin(), in.end(), true) != in.end();
 		const bool weighted =
 		    maxWeightWidth > 0 && sightingSizes.size() == sightings.size();
 		mrpt::math::TPoint3D sum(0, 0, 0);
 		double total = 0;
 		for (std::size_t i = 0; i < sightings.size(); i++)
 		{
-			if (any && !near(sightings[i])) continue;
+			if (any && !in[i]) continue;
 			// A width of 0 (unknown) weighs as a 1 cm sliver.
 			const double w = weighted ? std::min(
 			                                std::max(sightingSizes[i].x, 0.01),
@@ -116,11 +113,23 @@ struct ObjectInstance
 	std::vector<mrpt::math::TPoint3D> inlierSightings(double inlierRadius) const
 	{
 		std::vector<mrpt::math::TPoint3D> in;
+		const std::vector<bool> mask = inlierMask(inlierRadius);
+		for (std::size_t i = 0; i < sightings.size(); i++)
+			if (mask[i]) in.push_back(sightings[i]);
+		return in;
+	}
+
+	/** Per sighting: whether it lies within `inlierRadius` (horizontally)
+	 * of the sightings' per-axis median. */
+	std::vector<bool> inlierMask(double inlierRadius) const
+	{
+		std::vector<bool> in(sightings.size(), false);
 		if (sightings.empty()) return in;
 		const double mx = median(sightings, &mrpt::math::TPoint3D::x),
 		             my = median(sightings, &mrpt::math::TPoint3D::y);
-		for (const auto& s : sightings)
-			if (std::hypot(s.x - mx, s.y - my) <= inlierRadius) in.push_back(s);
+		for (std::size_t i = 0; i < sightings.size(); i++)
+			in[i] = std::hypot(sightings[i].x - mx, sightings[i].y - my) <=
+			        inlierRadius;
 		return in;
 	}
 
