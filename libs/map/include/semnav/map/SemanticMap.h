@@ -204,6 +204,16 @@ public:
 		 * centroids (cells labelled wall and never door): the wall between
 		 * the doors of two neighbouring rooms (m). */
 		double doubleDoorMaxWall = 0.3;
+		/** ...the narrower leaf at least this share of the wider (their
+		 * typical detections; the leaves of a double door are alike, a
+		 * strip of wall or jamb beside a single door is not; 0: no
+		 * check)... */
+		double doubleDoorMinLeafWidthRatio = 0.7;
+		/** ...and their centroids at most this far from one plane (the
+		 * two leaves hang in one plane; a strip of wall beside a door
+		 * recessed into its gap lies at the wall's face, the door's inset
+		 * away) (m; 0: doubleDoorMaxPlaneOffset only). */
+		double doubleDoorMaxLeafOffset = 0.05;
 		/** Two reported door instances in one wall (normals within 15 deg,
 		 * centroids at most doubleDoorMaxPlaneOffset from one plane) whose
 		 * footprints overlap and whose centroids are at most this far apart
