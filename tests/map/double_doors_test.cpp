@@ -34,7 +34,7 @@ LabeledSweep wallWith(const std::vector<LabeledRegion>& regions, F wallAt)
 	return f.labeled;
 }
 
-/** The join on (2.2 m, shipped off) with the other options as shipped. */
+/** The join on (2.2 m, as shipped) with the other options as shipped. */
 SemanticMap::TOptions joinOn()
 {
 	SemanticMap::TOptions o;
@@ -110,8 +110,10 @@ TEST(SemanticMap, TwoRoomsDoorsSideBySideStayTwo)
 	back.minCorner.x = 3.28;
 	back.maxCorner.x = 3.32;
 	EXPECT_EQ(doors({wallWith({leaf(0, -0.45, 0.8), back}, none)}).size(), 2u);
-	// The join switched off (as shipped).
-	SemanticMap m;
+	// The join switched off (0).
+	SemanticMap::TOptions off;
+	off.doubleDoorMaxWidth = 0;
+	SemanticMap m(off);
 	m.insert(
 	    test::makeFakeSweep(test::floorFan(2.5)).sweep,
 	    wallWith({leaf(0, -0.45, 0.8), leaf(1, 0.45, 0.8)}, none),
