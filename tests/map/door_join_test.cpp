@@ -26,6 +26,9 @@ std::vector<ObjectInstance> joinedDoors(
 {
 	SemanticMap::TOptions o;
 	o.doorJoinDistance = joinDistance;
+	// This join alone: two alike pieces side by side would otherwise be
+	// the leaves of a double door (doubleDoorMaxWidth).
+	o.doubleDoorMaxWidth = 0;
 	o.doorCentroidMaxWeightWidth = 0;  // each instance's plain mean
 	return test::doorsAfterSweeps(o, sweeps);
 }

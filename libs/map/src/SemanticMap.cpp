@@ -162,7 +162,17 @@ const OptionTable<O>& optionTable()
 	            0, 1, "...at most this far from one plane...")
 	        .real(
 	            "double_door_max_wall_m", &O::doubleDoorMaxWall, 0, 10,
-	            "...with no longer stretch of wall between them.")
+	            "...with no longer stretch of wall between them...")
+	        .real(
+	            "double_door_min_leaf_width_ratio",
+	            &O::doubleDoorMinLeafWidthRatio, 0, 1,
+	            "...the narrower leaf at least this share of the wider (0: no "
+	            "check)...")
+	        .real(
+	            "double_door_max_leaf_offset_m", &O::doubleDoorMaxLeafOffset, 0,
+	            1,
+	            "...and the leaves at most this far from one plane (0: "
+	            "double_door_max_plane_offset_m only).")
 	        .real(
 	            "door_join_distance_m", &O::doorJoinDistance, 0, 5,
 	            "Two doors in one wall this close, footprints overlapping, "

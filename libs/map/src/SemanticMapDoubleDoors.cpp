@@ -88,11 +88,17 @@ bool SemanticMap::leavesOfOneDoor(
 	// One plane.
 	const double dx = b.centroid.x - a.centroid.x,
 	             dy = b.centroid.y - a.centroid.y;
-	if (std::abs(dx * nx + dy * ny) > m_options.doubleDoorMaxPlaneOffset)
+	const double offset = std::abs(dx * nx + dy * ny);
+	if (offset > m_options.doubleDoorMaxPlaneOffset ||
+	    (m_options.doubleDoorMaxLeafOffset > 0 &&
+	     offset > m_options.doubleDoorMaxLeafOffset))
 		return false;
-	// Each a leaf, together a double door.
-	if (a.typicalSize().x > m_options.doubleDoorMaxLeafWidth ||
-	    b.typicalSize().x > m_options.doubleDoorMaxLeafWidth)
+	// Each a leaf, alike, together a double door.
+	const double wa = a.typicalSize().x, wb = b.typicalSize().x;
+	if (wa > m_options.doubleDoorMaxLeafWidth ||
+	    wb > m_options.doubleDoorMaxLeafWidth ||
+	    std::min(wa, wb) <
+	        m_options.doubleDoorMinLeafWidthRatio * std::max(wa, wb))
 		return false;
 	const double tx = -ny, ty = nx;
 	double alo, ahi, blo, bhi;

@@ -191,10 +191,11 @@ public:
 		/** Two door instances side by side in one wall are the two leaves
 		 * of a double door, joined into one door at their middle
 		 * (joinDoubleDoors()), when together at most this wide along the
-		 * wall (their footprints) (m; 0: no join, as shipped: on the
-		 * tuning seeds the join moved two single doors and fixed none,
-		 * docs/mapping.md)... */
-		double doubleDoorMaxWidth = 0;
+		 * wall (their footprints) (m; 0: no join; the generated double
+		 * doors are <= 2.0 m; with the leaf width ratio and leaf offset
+		 * checks, on tuning buildings 0-99 it removed 3 of 6 spurious doors
+		 * and lost none found on 100-159, docs/mapping.md)... */
+		double doubleDoorMaxWidth = 2.2;
 		/** ...each at most this wide (its typical detection) (m)... */
 		double doubleDoorMaxLeafWidth = 1.15;
 		/** ...their centroids at most this far from one plane, their
@@ -204,6 +205,16 @@ public:
 		 * centroids (cells labelled wall and never door): the wall between
 		 * the doors of two neighbouring rooms (m). */
 		double doubleDoorMaxWall = 0.3;
+		/** ...the narrower leaf at least this share of the wider (their
+		 * typical detections; the leaves of a double door are alike, a
+		 * strip of wall or jamb beside a single door is not; 0: no
+		 * check)... */
+		double doubleDoorMinLeafWidthRatio = 0.7;
+		/** ...and their centroids at most this far from one plane (the
+		 * two leaves hang in one plane; a strip of wall beside a door
+		 * recessed into its gap lies at the wall's face, the door's inset
+		 * away) (m; 0: doubleDoorMaxPlaneOffset only). */
+		double doubleDoorMaxLeafOffset = 0.05;
 		/** Two reported door instances in one wall (normals within 15 deg,
 		 * centroids at most doubleDoorMaxPlaneOffset from one plane) whose
 		 * footprints overlap and whose centroids are at most this far apart
