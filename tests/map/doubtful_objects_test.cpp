@@ -36,9 +36,9 @@ ObjectInstance doubtful(
 
 TEST(SemanticMap, DoubtfulStairsNarrowerThanAFlightAreNotReported)
 {
-	// indoor_59: a 0.54 m wide box beside a washbasin, detected as stairs
-	// in 4 of 4 views with shape score 0.64. A flight's detections are
-	// 0.75 m wide and more.
+	// indoor_59: a low box and a wastebasket, 0.54 m wide together, detected as
+	// stairs in 4 of 4 views with shape score 0.64. A flight's detections are
+	// 0.74 m wide and more.
 	const auto box = doubtful(Label::Stairs, 2, 0, 0.6, {0.54, 0.54, 0.68});
 	const auto flight = doubtful(Label::Stairs, 2, 0, 0.6, {0.96, 0.98});
 	SemanticMap m;
@@ -58,7 +58,7 @@ TEST(SemanticMap, DoubtfulStairsNarrowerThanAFlightAreNotReported)
 
 TEST(SemanticMap, DoubtfulWastebasketsNeverSeenNarrowAreNotReported)
 {
-	// indoor_41: a stool's edge beside a wastebasket, 0.40 and 0.38 m wide
+	// indoor_41: a plant pot (foliage 0.63 m across), 0.40 and 0.38 m wide
 	// (shape score 0.66); indoor_148's real wastebasket was seen 0.51 m
 	// wide once (its box took in a neighbour) and 0.23 m the other time.
 	const auto stool = doubtful(Label::Wastebasket, 2, 0, 0.46, {0.40, 0.38});
@@ -76,8 +76,8 @@ TEST(SemanticMap, DoubtfulWastebasketsNeverSeenNarrowAreNotReported)
 
 TEST(SemanticMap, ADoubtfulObjectOnASureOneOfAnotherLabelIsNotReported)
 {
-	// indoor_77: a wastebasket under a washbasin (sure, 5 detections), also
-	// detected as a washbasin (shape score 0.66) 0.15 m from it.
+	// indoor_77: a wastebasket (sure, 5 detections), also detected as a
+	// washbasin (shape score 0.66) 0.15 m from it.
 	for (const double distance : {0.3, 0.0})
 	{
 		SemanticMap::TOptions o;

@@ -19,8 +19,8 @@ bool SemanticMap::doubtfulObjectPlausible(const ObjectInstance& o) const
 	    ObjectInstance::median(sizes, &mrpt::math::TPoint3D::x) <
 	        m_options.unsureStairsMinWidth)
 		return false;
-	// A wastebasket is seen narrow at least once; a stool beside one, or
-	// a chair, never.
+	// A wastebasket is seen narrow at least once; a plant pot, whose
+	// foliage is wider than its pot, never.
 	if (o.label == Label::Wastebasket &&
 	    m_options.unsureWastebasketMaxWidth > 0 && !sizes.empty() &&
 	    std::none_of(

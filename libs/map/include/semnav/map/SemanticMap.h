@@ -136,20 +136,20 @@ public:
 		int unsureMinObservations = 2;
 		/** Stairs that are not sure whose typical detection (the median
 		 * width of their sightings) is narrower than this are not
-		 * reported: a box, a cabinet or a wastebasket taken for a flight
-		 * is 0.5-0.7 m wide, a flight's detections 0.75 m and more (m; 0:
-		 * no check; a map loaded without sighting sizes keeps them). */
+		 * reported: a low box (with a wastebasket beside it) taken for a
+		 * flight is 0.5-0.7 m wide, a flight's detections 0.74 m and more (m;
+		 * 0: no check; a map loaded without sighting sizes keeps them). */
 		double unsureStairsMinWidth = 0.8;
-		/** Wastebaskets that are not sure none of whose sightings is
-		 * narrower than this are not reported: the detections of a real
-		 * wastebasket are 0.16-0.26 m wide at least once, a stool or a
-		 * chair taken for one 0.33 m and more every time (m; 0: no
+		/** Wastebaskets that are not sure none of whose sightings is at
+		 * most this wide are not reported: the detections of a real
+		 * wastebasket are 0.16-0.26 m wide at least once, a plant pot's
+		 * (its foliage) taken for one 0.33 m and more every time (m; 0: no
 		 * check; a map loaded without sighting sizes keeps them). */
 		double unsureWastebasketMaxWidth = 0.3;
 		/** Cascade objects that are not sure whose centroid lies within
 		 * this distance of a sure reported cascade object of another
 		 * label are not reported: one object is not two (a wastebasket
-		 * under a washbasin taken for a washbasin too) (m; 0: no check). */
+		 * taken for a washbasin too) (m; 0: no check). */
 		double unsureOtherLabelDistance = 0.3;
 		/** A sweep has an object in view when it has line of sight to its
 		 * centroid and the object would cover at least this many pixels
