@@ -111,6 +111,20 @@ const OptionTable<O>& optionTable()
 	            "unsure_min_observations", &O::unsureMinObservations, 1, 1000,
 	            "Objects that are not sure need this many "
 	            "detections.")
+	        .real(
+	            "unsure_stairs_min_width_m", &O::unsureStairsMinWidth, 0, 10,
+	            "Stairs not sure whose typical detection is narrower are not "
+	            "reported (0: no check).")
+	        .real(
+	            "unsure_wastebasket_max_width_m", &O::unsureWastebasketMaxWidth,
+	            0, 10,
+	            "Wastebaskets not sure never seen narrower are not reported "
+	            "(0: no check).")
+	        .real(
+	            "unsure_other_label_distance_m", &O::unsureOtherLabelDistance,
+	            0, 10,
+	            "Objects not sure this close to a sure object of another "
+	            "label are not reported (0: no check).")
 	        .integer(
 	            "view_min_pixels", &O::viewMinPixels, 0, 1000000,
 	            "A sweep sees an object in line of sight that would "
@@ -518,6 +532,7 @@ bool SemanticMap::reported(const ObjectInstance& o) const
 	if (static_cast<double>(o.observations) <
 	    ratio * static_cast<double>(o.views))
 		return false;
+	if (!region && !sure && !doubtfulObjectPlausible(o)) return false;
 	if (region && m_options.doorMinWidth > 0 && !o.sightingSizes.empty() &&
 	    std::none_of(
 	        o.sightingSizes.begin(), o.sightingSizes.end(),

@@ -134,6 +134,23 @@ public:
 		/** Objects that are not sure need this many detections: a single
 		 * doubtful detection is no object. */
 		int unsureMinObservations = 2;
+		/** Stairs that are not sure whose typical detection (the median
+		 * width of their sightings) is narrower than this are not
+		 * reported: a low box (with a wastebasket beside it) taken for a
+		 * flight is 0.5-0.7 m wide, a flight's detections 0.74 m and more (m;
+		 * 0: no check; a map loaded without sighting sizes keeps them). */
+		double unsureStairsMinWidth = 0.8;
+		/** Wastebaskets that are not sure none of whose sightings is at
+		 * most this wide are not reported: the detections of a real
+		 * wastebasket are 0.16-0.26 m wide at least once, a plant pot's
+		 * (its foliage) taken for one 0.33 m and more every time (m; 0: no
+		 * check; a map loaded without sighting sizes keeps them). */
+		double unsureWastebasketMaxWidth = 0.3;
+		/** Cascade objects that are not sure whose centroid lies within
+		 * this distance of a sure reported cascade object of another
+		 * label are not reported: one object is not two (a wastebasket
+		 * taken for a washbasin too) (m; 0: no check). */
+		double unsureOtherLabelDistance = 0.3;
 		/** A sweep has an object in view when it has line of sight to its
 		 * centroid and the object would cover at least this many pixels
 		 * of it (from its extent and distance). */
@@ -529,6 +546,10 @@ private:
 	static const char* const kStairsSweeps;
 	/** True when a cell labelled wall lies within `radius` of (x, y). */
 	bool wallWithin(double x, double y, double radius) const;
+	/** The reporting rules for cascade objects that are not sure
+	 * (TOptions::unsureStairsMinWidth, unsureWastebasketMaxWidth,
+	 * unsureOtherLabelDistance): true when `o` passes them. */
+	bool doubtfulObjectPlausible(const ObjectInstance& o) const;
 	/** The width cap of a label's sighting weights
 	 * (TOptions::doorCentroidMaxWeightWidth for doors, 0: unweighted). */
 	double sightingMaxWeightWidth(Label label) const;
