@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <semnav/map/SemanticMap.h>
 
+#include <functional>
 #include <vector>
 
 using namespace semnav;
@@ -32,6 +33,22 @@ ObjectInstance doubtful(
 	o.bestShapeScore = shapeScore;
 	return o;
 }
+
+/** `o` is not reported, but is when sure (shape score `sureScore`) or with
+ * the rule turned off by `ruleOff`. */
+void expectHeldBackOnlyWhileDoubtful(
+    const ObjectInstance& o, double sureScore,
+    const std::function<void(SemanticMap::TOptions&)>& ruleOff)
+{
+	EXPECT_FALSE(SemanticMap().reported(o));
+	auto sure = o;
+	sure.bestShapeScore = sureScore;
+	EXPECT_TRUE(SemanticMap().reported(sure))
+	    << "the rule is for doubtful ones";
+	SemanticMap::TOptions opts;
+	ruleOff(opts);
+	EXPECT_TRUE(SemanticMap(opts).reported(o)) << "rule off";
+}
 }  // namespace
 
 TEST(SemanticMap, DoubtfulStairsNarrowerThanAFlightAreNotReported)
@@ -41,19 +58,13 @@ TEST(SemanticMap, DoubtfulStairsNarrowerThanAFlightAreNotReported)
 	// 0.74 m wide and more.
 	const auto box = doubtful(Label::Stairs, 2, 0, 0.6, {0.54, 0.54, 0.68});
 	const auto flight = doubtful(Label::Stairs, 2, 0, 0.6, {0.96, 0.98});
-	SemanticMap m;
-	EXPECT_FALSE(m.reported(box));
-	EXPECT_TRUE(m.reported(flight));
-	auto sure = box;
-	sure.bestShapeScore = 0.99;
-	EXPECT_TRUE(m.reported(sure)) << "the rule is for doubtful stairs only";
+	EXPECT_TRUE(SemanticMap().reported(flight));
+	expectHeldBackOnlyWhileDoubtful(
+	    box, 0.99, [](auto& o) { o.unsureStairsMinWidth = 0; });
 	auto loaded = box;  // a loaded map has no sighting sizes
 	loaded.sightings.clear();
 	loaded.sightingSizes.clear();
-	EXPECT_TRUE(m.reported(loaded));
-	SemanticMap::TOptions o;
-	o.unsureStairsMinWidth = 0;
-	EXPECT_TRUE(SemanticMap(o).reported(box)) << "rule off";
+	EXPECT_TRUE(SemanticMap().reported(loaded));
 }
 
 TEST(SemanticMap, DoubtfulWastebasketsNeverSeenNarrowAreNotReported)
@@ -63,15 +74,9 @@ TEST(SemanticMap, DoubtfulWastebasketsNeverSeenNarrowAreNotReported)
 	// wide once (its box took in a neighbour) and 0.23 m the other time.
 	const auto stool = doubtful(Label::Wastebasket, 2, 0, 0.46, {0.40, 0.38});
 	const auto bin = doubtful(Label::Wastebasket, 2, 0, 0.46, {0.51, 0.23});
-	SemanticMap m;
-	EXPECT_FALSE(m.reported(stool));
-	EXPECT_TRUE(m.reported(bin));
-	auto sure = stool;
-	sure.bestShapeScore = 0.95;
-	EXPECT_TRUE(m.reported(sure)) << "the rule is for doubtful ones only";
-	SemanticMap::TOptions o;
-	o.unsureWastebasketMaxWidth = 0;
-	EXPECT_TRUE(SemanticMap(o).reported(stool)) << "rule off";
+	EXPECT_TRUE(SemanticMap().reported(bin));
+	expectHeldBackOnlyWhileDoubtful(
+	    stool, 0.95, [](auto& o) { o.unsureWastebasketMaxWidth = 0; });
 }
 
 TEST(SemanticMap, ADoubtfulObjectOnASureOneOfAnotherLabelIsNotReported)
