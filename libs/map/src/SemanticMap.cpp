@@ -154,6 +154,10 @@ const OptionTable<O>& optionTable()
 	            "door_sighting_largest_region", &O::doorSightingLargestRegion,
 	            "A sweep's sighting of a door is its largest door region "
 	            "there (false: the first).")
+	        .flag(
+	            "door_sighting_box_centre", &O::doorSightingBoxCentre,
+	            "A door region's sighting is the middle of its bounding box "
+	            "(false: the mean of its points).")
 	        .real(
 	            "door_region_max_height_m", &O::doorRegionMaxHeight, 0, 10,
 	            "Higher door regions make and join no door (0: no limit).")

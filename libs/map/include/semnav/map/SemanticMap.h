@@ -192,6 +192,12 @@ public:
 		 * height that the door rule labelled door beside the door, which
 		 * then set the door's place. */
 		bool doorSightingLargestRegion = true;
+		/** A door region's sighting is the middle of its bounding box
+		 * (horizontally; height: its points' mean) rather than the mean of
+		 * its points: a wide door seen obliquely has many more points on its
+		 * near side, which pulled the mean 0.3-0.5 m toward the sensor's
+		 * side of a double door. false: the points' mean, as before. */
+		bool doorSightingBoxCentre = true;
 		/** Door regions higher than this make no door instance and join
 		 * none (m; 0: no limit): a stretch of wall from floor to ceiling
 		 * that the rules took for a door, seen at a grazing angle. */
