@@ -516,7 +516,10 @@ void SemanticMap::insertRegions(
 		// A region's box is centred on a flat leaf however it is seen; the
 		// mean of its points leans to its near side.
 		const mrpt::math::TPoint3D at =
-		    m_options.doorSightingBoxCentre
+		    m_options.doorSightingBoxCentreMinWidth > 0 &&
+		            reg.width >= m_options.doorSightingBoxCentreMinWidth &&
+		            (m_options.doorSightingBoxCentreMaxWidth <= 0 ||
+		             reg.width <= m_options.doorSightingBoxCentreMaxWidth)
 		        ? mrpt::math::TPoint3D(
 		              0.5 * (reg.minCorner.x + reg.maxCorner.x),
 		              0.5 * (reg.minCorner.y + reg.maxCorner.y), reg.centroid.z)
