@@ -1,7 +1,8 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // A sweep's sighting of a door: its largest door region merged into it, not
 // the first (SemanticMap::TOptions::doorSightingLargestRegion;
-// docs/mapping.md, "Objects in the map").
+// docs/mapping.md, "Objects in the map"); its place: the middle of the
+// box of a wide region (doorSightingBoxCentreMinWidth).
 #include <gtest/gtest.h>
 #include <semnav/map/SemanticMap.h>
 
@@ -134,4 +135,44 @@ TEST(SemanticMap, DoorsNeverSeenWideAreNotReported)
 	m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
 	EXPECT_EQ(m.allInstances().size(), 1u);
 	EXPECT_TRUE(m.instances(Label::Door).empty());
+}
+
+TEST(SemanticMap, AWideDoorsSightingIsTheMiddleOfItsRegionsBox)
+{
+	// A 1.9 m double door at y = 0 seen obliquely from y < 0: its box
+	// spans y -0.95..0.95, but most of its points are on the near side,
+	// so their mean is at y = -0.35 (indoor_8's door 17, 0.39 m off).
+	auto door = test::doorPiece(0, 0.0, 1.0, 1.9, 2.0, 9000);
+	door.centroid.y = -0.35;
+	SemanticMap::TOptions o;
+	o.doorSightingBoxCentreMinWidth = 1.2;
+	auto d = test::doorsAfterSweeps(o, {{door}});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.0, 1e-6) << "the box's middle";
+	EXPECT_NEAR(d[0].centroid.x, 3.0, 1e-6);
+	EXPECT_NEAR(d[0].centroid.z, 1.0, 1e-6) << "height: the points' mean";
+	// Seen again from the other side (mean at +0.3): still the middle.
+	auto other = door;
+	other.centroid.y = 0.3;
+	d = test::doorsAfterSweeps(o, {{door}, {other}});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.0, 1e-6);
+	// A region narrower than 1.2 m keeps the mean of its points.
+	auto single = test::doorPiece(0, 0.0, 1.0, 0.9, 2.0, 5000);
+	single.centroid.y = -0.1;
+	d = test::doorsAfterSweeps(o, {{single}});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, -0.1, 1e-6);
+	// A region wider than 2.2 m (door and wall) keeps the mean too.
+	o.doorSightingBoxCentreMaxWidth = 2.2;
+	auto swallowed = test::doorPiece(0, 0.6, 1.0, 3.0, 2.0, 9000);
+	swallowed.centroid.y = 0.2;
+	d = test::doorsAfterSweeps(o, {{swallowed}});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.2, 1e-6);
+	// Off (0): the points' mean.
+	o.doorSightingBoxCentreMinWidth = 0;
+	d = test::doorsAfterSweeps(o, {{door}});
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, -0.35, 1e-6);
 }

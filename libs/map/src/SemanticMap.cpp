@@ -155,6 +155,15 @@ const OptionTable<O>& optionTable()
 	            "A sweep's sighting of a door is its largest door region "
 	            "there (false: the first).")
 	        .real(
+	            "door_sighting_box_centre_min_width_m",
+	            &O::doorSightingBoxCentreMinWidth, 0, 10,
+	            "A door region at least this wide is sighted at the middle of "
+	            "its box, not the mean of its points (0: never).")
+	        .real(
+	            "door_sighting_box_centre_max_width_m",
+	            &O::doorSightingBoxCentreMaxWidth, 0, 10,
+	            "...and at most this wide (0: no limit).")
+	        .real(
 	            "door_region_max_height_m", &O::doorRegionMaxHeight, 0, 10,
 	            "Higher door regions make and join no door (0: no limit).")
 	        .real(

@@ -513,7 +513,18 @@ void SemanticMap::insertRegions(
 			continue;
 		mrpt::math::TPoint3D lo, hi, wc;
 		toWorldBox(robot, reg.minCorner, reg.maxCorner, lo, hi);
-		robot.composePoint(reg.centroid, wc);
+		// A region's box is centred on a flat leaf however it is seen; the
+		// mean of its points leans to its near side.
+		const mrpt::math::TPoint3D at =
+		    m_options.doorSightingBoxCentreMinWidth > 0 &&
+		            reg.width >= m_options.doorSightingBoxCentreMinWidth &&
+		            (m_options.doorSightingBoxCentreMaxWidth <= 0 ||
+		             reg.width <= m_options.doorSightingBoxCentreMaxWidth)
+		        ? mrpt::math::TPoint3D(
+		              0.5 * (reg.minCorner.x + reg.maxCorner.x),
+		              0.5 * (reg.minCorner.y + reg.maxCorner.y), reg.centroid.z)
+		        : reg.centroid;
+		robot.composePoint(at, wc);
 		const std::size_t before = seenThisSweep.size();
 		int id = 0;
 		const mrpt::math::TPoint3D size{reg.width, 0, reg.height};

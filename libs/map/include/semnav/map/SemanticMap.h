@@ -192,6 +192,21 @@ public:
 		 * height that the door rule labelled door beside the door, which
 		 * then set the door's place. */
 		bool doorSightingLargestRegion = true;
+		/** A door region at least this wide gives as its sighting the
+		 * middle of its bounding box (horizontally; height: its points'
+		 * mean) rather than the mean of its points (m; 0: never). A wide
+		 * door seen obliquely has many more points on its near side, which
+		 * pulled the mean 0.3-0.5 m toward the sensor's side of a double
+		 * door; narrower regions keep the mean, which a few stray points at
+		 * an edge move less than they move the box. Off: 1.5 found 5 more
+		 * doors on tuning seeds 0-99 and 1 more on 100-159 but added a
+		 * spurious one there (docs/generated-scenes-log.md, part 6). */
+		double doorSightingBoxCentreMinWidth = 0;
+		/** ...and at most this wide (m; 0: no limit): a wider region
+		 * swallowed wall beside the door, and its box's middle is farther
+		 * off than its points' mean (indoor_54: a 2.99 m region, 0.93 m
+		 * off, which then made a second door). */
+		double doorSightingBoxCentreMaxWidth = 2.2;
 		/** Door regions higher than this make no door instance and join
 		 * none (m; 0: no limit): a stretch of wall from floor to ceiling
 		 * that the rules took for a door, seen at a grazing angle. */
