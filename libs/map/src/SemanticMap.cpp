@@ -528,7 +528,7 @@ bool SemanticMap::reported(const ObjectInstance& o) const
 	// views are door views (doorInView()).
 	const bool region =
 	    classInfo(o.label).instances == ClassInfo::InstanceSource::Regions;
-	const bool sure = o.bestShapeScore >= m_options.sureShapeScore;
+	const bool sure = sureDetection(o);
 	int minObs =
 	    region ? m_options.doorMinObservations : m_options.minObservations;
 	if (!region && !sure)

@@ -30,20 +30,24 @@ bool SemanticMap::doubtfulObjectPlausible(const ObjectInstance& o) const
 		return false;
 	// One object is not two: a sure object of another label stands there.
 	if (m_options.unsureOtherLabelDistance <= 0) return true;
-	const auto detected = [](Label l)
-	{ return classInfo(l).instances == ClassInfo::InstanceSource::Detections; };
 	return std::none_of(
 	    m_instances.begin(), m_instances.end(),
 	    [&](const ObjectInstance& q)
 	    {
-		    return q.label != o.label && detected(q.label) &&
-		           q.bestShapeScore >= m_options.sureShapeScore &&
+		    return q.label != o.label && sureDetection(q) &&
 		           std::hypot(
 		               q.centroid.x - o.centroid.x,
 		               q.centroid.y - o.centroid.y) <=
 		               m_options.unsureOtherLabelDistance &&
 		           reported(q);
 	    });
+}
+
+bool SemanticMap::sureDetection(const ObjectInstance& o) const
+{
+	return classInfo(o.label).instances ==
+	           ClassInfo::InstanceSource::Detections &&
+	       o.bestShapeScore >= m_options.sureShapeScore;
 }
 
 }  // namespace semnav

@@ -565,6 +565,9 @@ private:
 	 * (TOptions::unsureStairsMinWidth, unsureWastebasketMaxWidth,
 	 * unsureOtherLabelDistance): true when `o` passes them. */
 	bool doubtfulObjectPlausible(const ObjectInstance& o) const;
+	/** True for a detected object (not a region such as a door) whose shape
+	 * check was sure (TOptions::sureShapeScore). */
+	bool sureDetection(const ObjectInstance& o) const;
 	/** The width cap of a label's sighting weights
 	 * (TOptions::doorCentroidMaxWeightWidth for doors, 0: unweighted). */
 	double sightingMaxWeightWidth(Label label) const;
