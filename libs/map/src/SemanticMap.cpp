@@ -166,6 +166,10 @@ const OptionTable<O>& optionTable()
 	        .real(
 	            "door_region_max_height_m", &O::doorRegionMaxHeight, 0, 10,
 	            "Higher door regions make and join no door (0: no limit).")
+	        .flag(
+	            "door_footprint_from_points", &O::doorFootprintFromPoints,
+	            "A door region's footprint is the world box of its points "
+	            "(false: the box around its robot-frame box).")
 	        .real(
 	            "door_min_height_m", &O::doorMinHeight, 0, 10,
 	            "Lower doors are not reported.")

@@ -135,6 +135,26 @@ struct SemanticMap::WorldPoint
 	int r, c;
 };
 
+std::vector<SemanticMap::WorldBox> SemanticMap::regionPointBoxes(
+    const LabeledSweep& ls, const std::vector<WorldPoint>& pts)
+{
+	std::vector<WorldBox> boxes(ls.regions.size());
+	if (ls.regionIds.empty()) return boxes;
+	for (const auto& p : pts)
+	{
+		const int id = ls.regionIds.at<int32_t>(p.r, p.c);
+		if (id < 0 || static_cast<std::size_t>(id) >= boxes.size()) continue;
+		WorldBox& b = boxes[static_cast<std::size_t>(id)];
+		b.lo = {
+		    std::min<double>(b.lo.x, p.x), std::min<double>(b.lo.y, p.y),
+		    std::min<double>(b.lo.z, p.z)};
+		b.hi = {
+		    std::max<double>(b.hi.x, p.x), std::max<double>(b.hi.y, p.y),
+		    std::max<double>(b.hi.z, p.z)};
+	}
+	return boxes;
+}
+
 /** What one sweep says of each cell of its window (the cells it can
  * reach), and where its pixels fell. */
 struct SemanticMap::SweepEvidence
@@ -204,7 +224,7 @@ void SemanticMap::insert(
 			        seenThisSweep.end())
 				centreOnCells(o);
 	const std::size_t firstNew = m_instances.size();
-	insertRegions(ls, robot, e, seenThisSweep);
+	insertRegions(ls, robot, pts, e, seenThisSweep);
 	countDoorViews(firstNew, seenThisSweep, viewedThisSweep);
 	joinDoubleDoors(e.changed);
 	keepSweep(sweep, robot);
@@ -495,10 +515,14 @@ void SemanticMap::insertDetections(
 }
 
 void SemanticMap::insertRegions(
-    const LabeledSweep& ls, const mrpt::poses::CPose3D& robot, SweepEvidence& e,
+    const LabeledSweep& ls, const mrpt::poses::CPose3D& robot,
+    const std::vector<WorldPoint>& pts, SweepEvidence& e,
     std::vector<int>& seenThisSweep)
 {
 	const auto& registry = ClassRegistry::instance();
+	const std::vector<WorldBox> pointBoxes = m_options.doorFootprintFromPoints
+	                                             ? regionPointBoxes(ls, pts)
+	                                             : std::vector<WorldBox>();
 	// Per instance given a sighting in this sweep: that region's pixels.
 	std::map<int, std::size_t> sightingPixels;
 	for (const auto& reg : ls.regions)
@@ -512,7 +536,15 @@ void SemanticMap::insertRegions(
 		    reg.height > m_options.doorRegionMaxHeight)
 			continue;
 		mrpt::math::TPoint3D lo, hi, wc;
-		toWorldBox(robot, reg.minCorner, reg.maxCorner, lo, hi);
+		const std::size_t k = static_cast<std::size_t>(reg.id);
+		if (reg.id >= 0 && k < pointBoxes.size() &&
+		    pointBoxes[k].lo.x <= pointBoxes[k].hi.x)
+		{
+			lo = pointBoxes[k].lo;
+			hi = pointBoxes[k].hi;
+		}
+		else
+			toWorldBox(robot, reg.minCorner, reg.maxCorner, lo, hi);
 		// A region's box is centred on a flat leaf however it is seen; the
 		// mean of its points leans to its near side.
 		const mrpt::math::TPoint3D at =

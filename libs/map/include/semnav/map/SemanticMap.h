@@ -211,6 +211,14 @@ public:
 		 * none (m; 0: no limit): a stretch of wall from floor to ceiling
 		 * that the rules took for a door, seen at a grazing angle. */
 		double doorRegionMaxHeight = 2.5;
+		/** A door region's footprint (the box its instance grows by, which
+		 * merges it with an instance it overlaps) is the world box of its
+		 * points; false: the world box around its robot-frame box, which
+		 * for a wall seen at 45 deg to the robot's axes is as deep as it is
+		 * wide and bridged neighbouring doors (one instance held two doors
+		 * and was reported at one of them). Regions without points (a map's
+		 * tests' hand-made regions) keep the box around their box. */
+		bool doorFootprintFromPoints = true;
 		/** Doors whose merged extent is lower than this are not reported
 		 * (fragments of walls or furniture taken for a door) (m). */
 		double doorMinHeight = classInfo(Label::Door).plausibility.minHeight;
@@ -445,6 +453,14 @@ public:
 
 private:
 	struct WorldPoint;
+	/** A world-frame box (empty: lo above hi). */
+	struct WorldBox
+	{
+		mrpt::math::TPoint3D lo{1e18, 1e18, 1e18}, hi{-1e18, -1e18, -1e18};
+	};
+	/** The world box of each region's points (indexed by region id). */
+	static std::vector<WorldBox> regionPointBoxes(
+	    const LabeledSweep& labeled, const std::vector<WorldPoint>& pts);
 	struct SweepEvidence;
 	/** Layer by name, writable, not counted as a change (internal). */
 	std::vector<float>& layer(const char* name);
@@ -494,7 +510,8 @@ private:
 	 * instances. */
 	void insertRegions(
 	    const LabeledSweep& labeled, const mrpt::poses::CPose3D& robot,
-	    SweepEvidence& e, std::vector<int>& seenThisSweep);
+	    const std::vector<WorldPoint>& pts, SweepEvidence& e,
+	    std::vector<int>& seenThisSweep);
 	/** Reporting rules of a class: its registry row, with the built-ins'
 	 * configured values. */
 	ClassInfo::Plausibility plausibility(Label l) const;
