@@ -164,6 +164,11 @@ const OptionTable<O>& optionTable()
 	            &O::doorSightingBoxCentreMaxWidth, 0, 10,
 	            "...and at most this wide (0: no limit).")
 	        .real(
+	            "door_sighting_full_height_share",
+	            &O::doorSightingFullHeightShare, 0, 1,
+	            "...at the middle of its columns spanning this share of its "
+	            "height (0: of its box).")
+	        .real(
 	            "door_region_max_height_m", &O::doorRegionMaxHeight, 0, 10,
 	            "Higher door regions make and join no door (0: no limit).")
 	        .real(

@@ -207,6 +207,12 @@ public:
 		 * off than its points' mean (indoor_54: a 2.99 m region, 0.93 m
 		 * off, which then made a second door). */
 		double doorSightingBoxCentreMaxWidth = 2.2;
+		/** Such a region is sighted at the middle of its columns along the
+		 * wall whose points span at least this share of its height, not
+		 * the middle of its box (0: the box): a leaf fills its opening from
+		 * bottom to top, a strip of wall the region took in beside it does
+		 * not (docs/mapping.md). */
+		double doorSightingFullHeightShare = 0;
 		/** Door regions higher than this make no door instance and join
 		 * none (m; 0: no limit): a stretch of wall from floor to ceiling
 		 * that the rules took for a door, seen at a grazing angle. */
