@@ -206,6 +206,10 @@ const OptionTable<O>& optionTable()
 	            "Two doors in one wall this close, footprints overlapping, "
 	            "are one door found twice (0: no join).")
 	        .real(
+	            "door_join_contained_share", &O::doorJoinContainedShare, 0, 1,
+	            "A door seen no more often whose footprint lies this share "
+	            "inside another's in its wall is a piece of it (0: no join).")
+	        .real(
 	            "door_centroid_max_weight_width_m",
 	            &O::doorCentroidMaxWeightWidth, 0, 10,
 	            "A door's centroid weighs its sightings by their width "

@@ -262,6 +262,13 @@ public:
 		 * no join). Two doors of neighbouring rooms are >= 1.5 m apart in
 		 * the generated buildings. */
 		double doorJoinDistance = 0.8;
+		/** A door seen in no more sweeps than another in its wall, whose
+		 * footprint lies at least this share inside the other's along the
+		 * wall and within doubleDoorMaxWidth of it, is a piece of that
+		 * door and joins it at the other's centroid (0: no join): a strip
+		 * at a double door's edge, farther than doorJoinDistance from the
+		 * door's middle once wide regions are sighted at theirs. */
+		double doorJoinContainedShare = 0;
 		/** A door's centroid weighs each of its sightings (those within
 		 * half the merge distance of their median) by the square of its
 		 * region's width, widths above this counting as this: a cut view
@@ -549,6 +556,12 @@ private:
 	 * footprints overlapping (see joinDoubleDoors()). */
 	bool duplicatesOfOneDoor(
 	    const ObjectInstance& a, const ObjectInstance& b) const;
+	/** Whether door instance `part` is a piece of door `whole`: both
+	 * reported, in one wall, `part` seen in no more sweeps and its
+	 * footprint along the wall at least TOptions::doorJoinContainedShare
+	 * inside that of `whole` (see joinDoubleDoors()). */
+	bool pieceOfDoor(
+	    const ObjectInstance& whole, const ObjectInstance& part) const;
 	/** `a` takes in m_instances[bIndex] (sightings, footprint, normals,
 	 * the larger counts; the "objects" cells of b get a's id), which is
 	 * erased. */
