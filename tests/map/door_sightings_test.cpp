@@ -217,33 +217,3 @@ TEST(SemanticMap, AWideDoorsSightingIsTheMiddleOfItsFullHeightColumns)
 	EXPECT_NEAR(doorY(0.75), 0.0, 0.03) << "the full-height columns";
 	EXPECT_NEAR(doorY(0), 0.3, 1e-6) << "off: the box's middle";
 }
-
-TEST(SemanticMap, AWholeViewOfADoubleDoorIsNoOutlierAmongLeafViews)
-{
-	// indoor_60's door 11: seen whole once (1.82 m, at its middle y =
-	// 0.35) and three times as one leaf (0.65-1.12 m, y -0.08..0.05).
-	// The leaf views' median is 0.33 m from the whole view.
-	const auto doorY = [](double widthShare)
-	{
-		ObjectInstance o;
-		const double y[] = {0.35, 0.0, -0.08, 0.05},
-		             w[] = {1.82, 0.85, 0.65, 1.12};
-		for (int i = 0; i < 4; i++)
-		{
-			o.sightingSizes.push_back({w[i], 0, 2.0});
-			o.addSighting({3.0, y[i], 1.0}, 0.3, 1.5, widthShare);
-			o.observations++;
-		}
-		return o.centroid.y;
-	};
-	// Off: the whole view is an outlier; the leaves' weighted mean.
-	const double leaves =
-	    (0.0 * 0.85 * 0.85 - 0.08 * 0.65 * 0.65 + 0.05 * 1.12 * 1.12) /
-	    (0.85 * 0.85 + 0.65 * 0.65 + 1.12 * 1.12);
-	EXPECT_NEAR(doorY(0), leaves, 1e-6);
-	// 0.5: it is an inlier up to 0.3 + 0.5 * (1.82 - 0.985) m away.
-	const double all = (0.35 * 1.5 * 1.5 +
-	                    leaves * (0.85 * 0.85 + 0.65 * 0.65 + 1.12 * 1.12)) /
-	                   (1.5 * 1.5 + 0.85 * 0.85 + 0.65 * 0.65 + 1.12 * 1.12);
-	EXPECT_NEAR(doorY(0.5), all, 1e-6);
-}

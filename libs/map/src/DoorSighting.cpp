@@ -25,12 +25,9 @@ mrpt::math::TPoint3D doorRegionMiddle(
 	// Along the wall: horizontal and across the normal.
 	const double tx = -reg.meanNormal.y / nn, ty = reg.meanNormal.x / nn;
 	const double s0 = reg.centroid.x * tx + reg.centroid.y * ty;
-	// Columns along the wall, each with its lowest and highest point: 5 cm
-	// wide, or twice the points' mean spacing in a sparse region (a far
-	// view, whose columns would otherwise miss the leaf's top or bottom).
-	const double spacing =
-	    reg.pixels > 0 ? std::sqrt(reg.width * reg.height / reg.pixels) : 0;
-	const double kColumn = std::max(0.05, 2 * spacing);
+	// Columns 5 cm wide along the wall, each with its lowest and highest
+	// point.
+	constexpr double kColumn = 0.05;
 	const double half = 0.5 * reg.width + 2 * kColumn;
 	const int n = static_cast<int>(std::ceil(2 * half / kColumn)) + 1;
 	std::vector<float> lo(n, std::numeric_limits<float>::infinity());

@@ -214,11 +214,6 @@ const OptionTable<O>& optionTable()
 	            &O::doorCentroidMaxWeightWidth, 0, 10,
 	            "A door's centroid weighs its sightings by their width "
 	            "squared, up to this width (0: plain mean).")
-	        .real(
-	            "door_centroid_inlier_width_share",
-	            &O::doorCentroidInlierWidthShare, 0, 5,
-	            "A wider door sighting is an inlier this share of the width "
-	            "difference farther (0: no).")
 	        .flag(
 	            "octomap", &O::octomap,
 	            "Put every point into the OctoMap (octomap.bt).");

@@ -541,8 +541,7 @@ void SemanticMap::insertRegions(
 			{
 				o->replaceLastSighting(
 				    wc, size, m_options.mergeDistance / 2,
-				    sightingMaxWeightWidth(reg.label),
-				    sightingInlierWidthShare(reg.label));
+				    sightingMaxWeightWidth(reg.label));
 				sightingPixels[id] = reg.pixels;
 			}
 		}
@@ -655,13 +654,6 @@ double SemanticMap::sightingMaxWeightWidth(Label label) const
 	           : 0;
 }
 
-double SemanticMap::sightingInlierWidthShare(Label label) const
-{
-	return classInfo(label).instances == ClassInfo::InstanceSource::Regions
-	           ? m_options.doorCentroidInlierWidthShare
-	           : 0;
-}
-
 void SemanticMap::mergeObject(
     Label label, const mrpt::math::TPoint3D& centroid,
     const mrpt::math::TPoint3D& size, const mrpt::math::TPoint3D& minCorner,
@@ -729,7 +721,7 @@ void SemanticMap::mergeObject(
 		best->sightingSizes.push_back(size);
 		best->addSighting(
 		    centroid, m_options.mergeDistance / 2,
-		    sightingMaxWeightWidth(label), sightingInlierWidthShare(label));
+		    sightingMaxWeightWidth(label));
 		if (best->leaves == 2) centreOnLeaves(*best, middle);
 		best->observations++;
 		seenThisSweep.push_back(best->id);

@@ -55,12 +55,12 @@ struct ObjectInstance
 	 * object away. */
 	void addSighting(
 	    const mrpt::math::TPoint3D& c, double inlierRadius,
-	    double maxWeightWidth = 0, double widthShare = 0)
+	    double maxWeightWidth = 0)
 	{
 		if (sightings.empty() && observations > 0)
 			sightings.push_back(centroid);
 		sightings.push_back(c);
-		recentre(inlierRadius, maxWeightWidth, widthShare);
+		recentre(inlierRadius, maxWeightWidth);
 	}
 
 	/** Replaces the last sighting (and its size, if recorded) by a better
@@ -68,12 +68,12 @@ struct ObjectInstance
 	 * does. No-op without sightings. */
 	void replaceLastSighting(
 	    const mrpt::math::TPoint3D& c, const mrpt::math::TPoint3D& size,
-	    double inlierRadius, double maxWeightWidth = 0, double widthShare = 0)
+	    double inlierRadius, double maxWeightWidth = 0)
 	{
 		if (sightings.empty()) return;
 		sightings.back() = c;
 		if (!sightingSizes.empty()) sightingSizes.back() = size;
-		recentre(inlierRadius, maxWeightWidth, widthShare);
+		recentre(inlierRadius, maxWeightWidth);
 	}
 
 	/** Sets `centroid` to the mean of the sightings within `inlierRadius`
@@ -84,14 +84,11 @@ struct ObjectInstance
 	 * jamb beside it pulls it less than a whole view, and a region that
 	 * swallowed wall no more than one a door wide (doors,
 	 * SemanticMap::TOptions::doorCentroidMaxWeightWidth); unweighted when a
-	 * sighting has no size. `widthShare` > 0: a sighting wider than the
-	 * median one is an inlier up to this share of the difference farther
-	 * (a whole view of a double door among views of one leaf). */
-	void recentre(
-	    double inlierRadius, double maxWeightWidth = 0, double widthShare = 0)
+	 * sighting has no size. */
+	void recentre(double inlierRadius, double maxWeightWidth = 0)
 	{
 		if (sightings.empty()) return;
-		const std::vector<bool> in = inlierMask(inlierRadius, widthShare);
+		const std::vector<bool> in = inlierMask(inlierRadius);
 		const bool any = std::find(in.begin(), in.end(), true) != in.end();
 		const bool weighted =
 		    maxWeightWidth > 0 && sightingSizes.size() == sightings.size();
@@ -123,25 +120,16 @@ struct ObjectInstance
 	}
 
 	/** Per sighting: whether it lies within `inlierRadius` (horizontally)
-	 * of the sightings' per-axis median (plus `widthShare` times how much
-	 * wider than the median sighting it is, when sizes are known). */
-	std::vector<bool> inlierMask(
-	    double inlierRadius, double widthShare = 0) const
+	 * of the sightings' per-axis median. */
+	std::vector<bool> inlierMask(double inlierRadius) const
 	{
 		std::vector<bool> in(sightings.size(), false);
 		if (sightings.empty()) return in;
 		const double mx = median(sightings, &mrpt::math::TPoint3D::x),
 		             my = median(sightings, &mrpt::math::TPoint3D::y);
-		const bool sized =
-		    widthShare > 0 && sightingSizes.size() == sightings.size();
-		const double mw =
-		    sized ? median(sightingSizes, &mrpt::math::TPoint3D::x) : 0;
 		for (std::size_t i = 0; i < sightings.size(); i++)
-			in[i] =
-			    std::hypot(sightings[i].x - mx, sightings[i].y - my) <=
-			    inlierRadius +
-			        (sized ? widthShare * std::max(0.0, sightingSizes[i].x - mw)
-			               : 0.0);
+			in[i] = std::hypot(sightings[i].x - mx, sightings[i].y - my) <=
+			        inlierRadius;
 		return in;
 	}
 

@@ -278,11 +278,6 @@ public:
 		 * one about a door wide (ObjectInstance::recentre(); m; 0: the
 		 * plain mean). */
 		double doorCentroidMaxWeightWidth = 1.5;
-		/** A door sighting wider than its door's median one is an inlier
-		 * of its centroid up to this share of the difference farther from
-		 * the sightings' median (0: the merge distance's half only): a
-		 * whole view of a double door among views of one leaf. */
-		double doorCentroidInlierWidthShare = 0;
 		/** Insert points into the OctoMap. */
 		bool octomap = true;
 		TravelCostModel::TOptions cost;
@@ -589,8 +584,6 @@ private:
 	 * (TOptions::unsureStairsMinWidth, unsureWastebasketMaxWidth,
 	 * unsureOtherLabelDistance): true when `o` passes them. */
 	bool doubtfulObjectPlausible(const ObjectInstance& o) const;
-	/** TOptions::doorCentroidInlierWidthShare for doors, 0 for others. */
-	double sightingInlierWidthShare(Label label) const;
 	/** The width cap of a label's sighting weights
 	 * (TOptions::doorCentroidMaxWeightWidth for doors, 0: unweighted). */
 	double sightingMaxWeightWidth(Label label) const;
