@@ -540,7 +540,8 @@ private:
 	/** Joins pairs of door instances side by side in one wall, each about
 	 * a leaf wide, into one door (ObjectInstance::leaves = 2) at their
 	 * middle (TOptions::doubleDoorMaxWidth), and pairs that are one door
-	 * found twice (TOptions::doorJoinDistance); the joined instance keeps
+	 * found twice (TOptions::doorJoinDistance) or a door and a piece of it
+	 * (TOptions::doorJoinContainedShare); the joined instance keeps
 	 * the lower id, the "objects" cells of the other get it. */
 	void joinDoubleDoors(CellRect& changed);
 	/** Whether door instances `a` and `b` are the two leaves of one
