@@ -68,3 +68,34 @@ TEST(SemanticMap, OneDoorFoundTwiceIsJoined)
 	        .size(),
 	    2u);
 }
+
+TEST(SemanticMap, APieceInsideADoorsFootprintJoinsIt)
+{
+	// Sweep 1: a door 1.2 m wide at y = 0 and a 0.35 m piece at y = 0.9
+	// (footprints apart: two instances). Sweep 2: the door whole, 2.2 m
+	// wide at y = 0.1, whose footprint now holds the piece; the piece is
+	// 0.85 m from the door's centroid, farther than the join distance
+	// (indoor_112: two strips at a double door's edge, 0.76 and 0.93 m
+	// from its middle).
+	const std::vector<std::vector<LabeledRegion>> sweeps = {
+	    {wallDoor(0, 0.0, 1.2), wallDoor(1, 0.9, 0.35)},
+	    {wallDoor(0, 0.1, 2.2)}};
+	SemanticMap::TOptions o;
+	o.doubleDoorMaxWidth = 0;
+	o.doorCentroidMaxWeightWidth = 0;
+	o.doorJoinContainedShare = 0;
+	ASSERT_EQ(test::doorsAfterSweeps(o, sweeps).size(), 2u) << "off";
+	o.doorJoinContainedShare = 0.8;
+	o.doubleDoorMaxWidth = 2.2;    // the piece's reach
+	o.doubleDoorMaxLeafWidth = 0;  // no leaves join
+	auto d = test::doorsAfterSweeps(o, sweeps);
+	ASSERT_EQ(d.size(), 1u);
+	EXPECT_NEAR(d[0].centroid.y, 0.05, 1e-6) << "the door's centroid";
+	// A piece seen in more sweeps than the door is no piece of it.
+	const std::vector<std::vector<LabeledRegion>> more = {
+	    sweeps[0],
+	    {wallDoor(1, 0.9, 0.35)},
+	    {wallDoor(1, 0.9, 0.35)},
+	    sweeps[1]};
+	EXPECT_EQ(test::doorsAfterSweeps(o, more).size(), 2u);
+}

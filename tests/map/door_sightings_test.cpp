@@ -176,3 +176,44 @@ TEST(SemanticMap, AWideDoorsSightingIsTheMiddleOfItsRegionsBox)
 	ASSERT_EQ(d.size(), 1u);
 	EXPECT_NEAR(d[0].centroid.y, -0.35, 1e-6);
 }
+
+TEST(SemanticMap, AWideDoorsSightingIsTheMiddleOfItsFullHeightColumns)
+{
+	// A 1.9 m double door in the wall x = 3 (y -0.95..0.95, z 0..2) whose
+	// region took in a 0.6 m strip of wall beside it, 0.4 m high (y
+	// 0.95..1.55): the box's middle is 0.3 m off, the door's columns are
+	// centred on it (indoor_115's door 14, a 1.87 m region 0.39 m off).
+	auto f = test::makeFakeSweep(test::floorFan(2.5));
+	std::vector<test::FakePoint> pts;
+	for (double y = -0.95; y <= 0.951; y += 0.05)
+		for (double z = 0; z <= 2.001; z += 0.1)
+			pts.push_back({3.0, y, z, Label::Door});
+	for (double y = 1.0; y <= 1.551; y += 0.05)
+		for (double z = 0.8; z <= 1.201; z += 0.1)
+			pts.push_back({3.0, y, z, Label::Door});
+	auto all = test::floorFan(2.5);
+	const int first = static_cast<int>(all.size());
+	all.insert(all.end(), pts.begin(), pts.end());
+	f = test::makeFakeSweep(all);
+	for (int i = first; i < static_cast<int>(all.size()); i++)
+		f.labeled.regionIds.at<int32_t>(0, i) = 0;
+	auto door = test::doorPiece(0, 0.0, 1.0, 2.5, 2.0, pts.size());
+	door.minCorner.y = -0.95;
+	door.maxCorner.y = 1.55;
+	door.centroid.y = 0.1;
+	door.imageBox = cv::Rect(first, 0, static_cast<int>(pts.size()), 1);
+	f.labeled.regions = {door};
+	const auto doorY = [&](double share)
+	{
+		SemanticMap::TOptions o;
+		o.doorSightingBoxCentreMinWidth = 1.5;
+		o.doorSightingBoxCentreMaxWidth = 2.6;
+		o.doorSightingFullHeightShare = share;
+		SemanticMap m(o);
+		m.insert(f.sweep, f.labeled, mrpt::poses::CPose2D(0, 0, 0));
+		const auto d = m.instances(Label::Door);
+		return d.size() == 1 ? d[0].centroid.y : 99.0;
+	};
+	EXPECT_NEAR(doorY(0.75), 0.0, 0.03) << "the full-height columns";
+	EXPECT_NEAR(doorY(0), 0.3, 1e-6) << "off: the box's middle";
+}

@@ -164,6 +164,11 @@ const OptionTable<O>& optionTable()
 	            &O::doorSightingBoxCentreMaxWidth, 0, 10,
 	            "...and at most this wide (0: no limit).")
 	        .real(
+	            "door_sighting_full_height_share",
+	            &O::doorSightingFullHeightShare, 0, 1,
+	            "...at the middle of its columns spanning this share of its "
+	            "height (0: of its box).")
+	        .real(
 	            "door_region_max_height_m", &O::doorRegionMaxHeight, 0, 10,
 	            "Higher door regions make and join no door (0: no limit).")
 	        .flag(
@@ -204,6 +209,10 @@ const OptionTable<O>& optionTable()
 	            "door_join_distance_m", &O::doorJoinDistance, 0, 5,
 	            "Two doors in one wall this close, footprints overlapping, "
 	            "are one door found twice (0: no join).")
+	        .real(
+	            "door_join_contained_share", &O::doorJoinContainedShare, 0, 1,
+	            "A door seen no more often whose footprint lies this share "
+	            "inside another's in its wall is a piece of it (0: no join).")
 	        .real(
 	            "door_centroid_max_weight_width_m",
 	            &O::doorCentroidMaxWeightWidth, 0, 10,

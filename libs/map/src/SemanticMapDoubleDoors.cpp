@@ -137,6 +137,38 @@ bool SemanticMap::duplicatesOfOneDoor(
 	       a.minCorner.y <= b.maxCorner.y && b.minCorner.y <= a.maxCorner.y;
 }
 
+bool SemanticMap::pieceOfDoor(
+    const ObjectInstance& whole, const ObjectInstance& part) const
+{
+	double ax, ay, bx, by;
+	if (m_options.doorJoinContainedShare <= 0 || whole.leaves != 1 ||
+	    part.leaves != 1 || part.observations > whole.observations ||
+	    !reported(whole) || !reported(part) || !unitNormal(whole, ax, ay) ||
+	    !unitNormal(part, bx, by))
+		return false;
+	const double dx = part.centroid.x - whole.centroid.x,
+	             dy = part.centroid.y - whole.centroid.y;
+	if (std::hypot(dx, dy) > m_options.doubleDoorMaxWidth) return false;
+	// Normals parallel (either way), one plane.
+	constexpr double kMaxAngleDeg = 15;
+	const double dot = ax * bx + ay * by;
+	if (std::abs(dot) < std::cos(kMaxAngleDeg * M_PI / 180)) return false;
+	const double s = dot < 0 ? -1 : 1;
+	double nx = ax + s * bx, ny = ay + s * by;
+	const double nn = std::hypot(nx, ny);
+	nx /= nn;
+	ny /= nn;
+	if (std::abs(dx * nx + dy * ny) > m_options.doubleDoorMaxPlaneOffset)
+		return false;
+	// The piece's span along the wall, inside the door's.
+	double wlo, whi, plo, phi;
+	spanAlong(whole, -ny, nx, wlo, whi);
+	spanAlong(part, -ny, nx, plo, phi);
+	const double inside = std::min(whi, phi) - std::max(wlo, plo);
+	return phi > plo &&
+	       inside >= m_options.doorJoinContainedShare * (phi - plo);
+}
+
 void SemanticMap::absorbDoor(ObjectInstance& a, int bIndex, CellRect& changed)
 {
 	const ObjectInstance& b = m_instances[static_cast<std::size_t>(bIndex)];
@@ -206,6 +238,10 @@ void SemanticMap::joinDoubleDoors(CellRect& changed)
 					             wb = static_cast<double>(b.observations);
 					c = (a.centroid * wa + b.centroid * wb) * (1.0 / (wa + wb));
 				}
+				else if (pieceOfDoor(a, b))
+					c = a.centroid;  // b is a piece of door a
+				else if (pieceOfDoor(b, a))
+					c = b.centroid;
 				else
 					continue;
 				absorbDoor(a, static_cast<int>(j), changed);

@@ -15,6 +15,8 @@
 #include <limits>
 #include <map>
 
+#include "DoorSighting.h"
+
 namespace semnav
 {
 namespace
@@ -552,9 +554,8 @@ void SemanticMap::insertRegions(
 		            reg.width >= m_options.doorSightingBoxCentreMinWidth &&
 		            (m_options.doorSightingBoxCentreMaxWidth <= 0 ||
 		             reg.width <= m_options.doorSightingBoxCentreMaxWidth)
-		        ? mrpt::math::TPoint3D(
-		              0.5 * (reg.minCorner.x + reg.maxCorner.x),
-		              0.5 * (reg.minCorner.y + reg.maxCorner.y), reg.centroid.z)
+		        ? doorRegionMiddle(
+		              ls, reg, m_options.doorSightingFullHeightShare)
 		        : reg.centroid;
 		robot.composePoint(at, wc);
 		const std::size_t before = seenThisSweep.size();

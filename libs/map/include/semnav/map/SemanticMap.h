@@ -207,6 +207,12 @@ public:
 		 * off than its points' mean (indoor_54: a 2.99 m region, 0.93 m
 		 * off, which then made a second door). */
 		double doorSightingBoxCentreMaxWidth = 2.2;
+		/** Such a region is sighted at the middle of its columns along the
+		 * wall whose points span at least this share of its height, not
+		 * the middle of its box (0: the box): a leaf fills its opening from
+		 * bottom to top, a strip of wall the region took in beside it does
+		 * not (docs/mapping.md). */
+		double doorSightingFullHeightShare = 0;
 		/** Door regions higher than this make no door instance and join
 		 * none (m; 0: no limit): a stretch of wall from floor to ceiling
 		 * that the rules took for a door, seen at a grazing angle. */
@@ -264,6 +270,13 @@ public:
 		 * no join). Two doors of neighbouring rooms are >= 1.5 m apart in
 		 * the generated buildings. */
 		double doorJoinDistance = 0.8;
+		/** A door seen in no more sweeps than another in its wall, whose
+		 * footprint lies at least this share inside the other's along the
+		 * wall and within doubleDoorMaxWidth of it, is a piece of that
+		 * door and joins it at the other's centroid (0: no join): a strip
+		 * at a double door's edge, farther than doorJoinDistance from the
+		 * door's middle once wide regions are sighted at theirs. */
+		double doorJoinContainedShare = 0;
 		/** A door's centroid weighs each of its sightings (those within
 		 * half the merge distance of their median) by the square of its
 		 * region's width, widths above this counting as this: a cut view
@@ -544,7 +557,8 @@ private:
 	/** Joins pairs of door instances side by side in one wall, each about
 	 * a leaf wide, into one door (ObjectInstance::leaves = 2) at their
 	 * middle (TOptions::doubleDoorMaxWidth), and pairs that are one door
-	 * found twice (TOptions::doorJoinDistance); the joined instance keeps
+	 * found twice (TOptions::doorJoinDistance) or a door and a piece of it
+	 * (TOptions::doorJoinContainedShare); the joined instance keeps
 	 * the lower id, the "objects" cells of the other get it. */
 	void joinDoubleDoors(CellRect& changed);
 	/** Whether door instances `a` and `b` are the two leaves of one
@@ -560,6 +574,12 @@ private:
 	 * footprints overlapping (see joinDoubleDoors()). */
 	bool duplicatesOfOneDoor(
 	    const ObjectInstance& a, const ObjectInstance& b) const;
+	/** Whether door instance `part` is a piece of door `whole`: both
+	 * reported, in one wall, `part` seen in no more sweeps and its
+	 * footprint along the wall at least TOptions::doorJoinContainedShare
+	 * inside that of `whole` (see joinDoubleDoors()). */
+	bool pieceOfDoor(
+	    const ObjectInstance& whole, const ObjectInstance& part) const;
 	/** `a` takes in m_instances[bIndex] (sightings, footprint, normals,
 	 * the larger counts; the "objects" cells of b get a's id), which is
 	 * erased. */
