@@ -109,11 +109,12 @@ TEST(SemanticMap, ADoubtfulObjectScoringWellNeedsOneDetection)
 	// 0.40-0.75.
 	const auto good = doubtful(Label::Wastebasket, 2, 0, 0.4, {0.25}, 0.9);
 	const auto poor = doubtful(Label::Wastebasket, 2, 0, 0.4, {0.25}, 0.7);
-	SemanticMap::TOptions o;
+	SemanticMap::TOptions o, off;
 	o.unsureOnceMinShapeScore = 0.8;
+	off.unsureOnceMinShapeScore = 0;
 	EXPECT_TRUE(SemanticMap(o).reported(good));
 	EXPECT_FALSE(SemanticMap(o).reported(poor));
-	EXPECT_FALSE(SemanticMap().reported(good)) << "rule off";
+	EXPECT_FALSE(SemanticMap(off).reported(good)) << "rule off";
 	// Detected once in two views: the ratio still holds it back.
 	auto twice = good;
 	twice.views = 2;

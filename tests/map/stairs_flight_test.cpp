@@ -94,10 +94,11 @@ TEST(SemanticMap, SureStairsMayStartAboveTheFloor)
 	o.observations = 2;
 	o.views = 2;
 	o.bestShapeScore = 1.0;
-	SemanticMap::TOptions opts;
+	SemanticMap::TOptions opts, off;
 	opts.sureStairsMaxBottom = 0.2;
+	off.sureStairsMaxBottom = 0;
 	EXPECT_TRUE(SemanticMap(opts).reported(o));
-	EXPECT_FALSE(SemanticMap().reported(o)) << "rule off";
+	EXPECT_FALSE(SemanticMap(off).reported(o)) << "rule off";
 	// A doubtful one (a table top) must still come down to 0.1 m.
 	auto doubtful = o;
 	doubtful.bestShapeScore = 0.9;

@@ -161,7 +161,8 @@ const OptionTable<O>& optionTable()
 	            "sweeps (0: all).")
 	        .real(
 	            "stairs_cell_margin_m", &O::stairsCellMargin, 0, 5,
-	            "...found up to this far outside the flight's footprint (0: "
+	            "A staircase's cells count up to this far outside its "
+	            "footprint (0: "
 	            "inside it).")
 	        .real(
 	            "stairs_cell_gap_m", &O::stairsCellGap, 0, 2,

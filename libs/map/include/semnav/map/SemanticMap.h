@@ -139,7 +139,7 @@ public:
 		 * unsureMinObservations ([0, 1]; 0: none): a wastebasket or
 		 * washbasin seen in one sweep only scored 0.8-0.94, the false
 		 * objects detected once 0.3-0.75. */
-		double unsureOnceMinShapeScore = 0;
+		double unsureOnceMinShapeScore = 0.8;
 		/** Stairs that are not sure whose typical detection (the median
 		 * width of their sightings) is narrower than this are not
 		 * reported: a low box (with a wastebasket beside it) taken for a
@@ -183,7 +183,7 @@ public:
 		 * this height (m; 0: stairsMaxBottom for them too): a flight
 		 * whose lowest riser was cut from every detection box is still a
 		 * flight when its shape says so. */
-		double sureStairsMaxBottom = 0;
+		double sureStairsMaxBottom = 0.2;
 		/** A staircase's centroid (x, y) is the centre of the cells
 		 * labelled stairs (and not wall, washbasin or wastebasket in any
 		 * sweep) connected to its sightings within its footprint: one
