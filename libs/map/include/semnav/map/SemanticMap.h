@@ -138,7 +138,7 @@ public:
 		 * check need only minObservations detections, not
 		 * unsureMinObservations ([0, 1]; 0: none): a wastebasket or
 		 * washbasin seen in one sweep only scored 0.8-0.94, the false
-		 * objects detected once 0.3-0.75. */
+		 * objects detected once 0.40-0.75. */
 		double unsureOnceMinShapeScore = 0.8;
 		/** Stairs that are not sure whose typical detection (the median
 		 * width of their sightings) is narrower than this are not
