@@ -549,6 +549,10 @@ TEST(SemanticMapOptions, ShippedConfigLoadsAndBadValuesAreRejected)
 	changed.sureMinDetectionRatio = 0.45;
 	changed.unsureMinObservations = 3;
 	changed.objectMergeDistance = 0.3;
+	changed.unsureOnceMinShapeScore = 0.85;
+	changed.sureStairsMaxBottom = 0.25;
+	changed.stairsCellMargin = 0.7;
+	changed.stairsCellGap = 0.3;
 	const SemanticMap::TOptions back =
 	    test::savedAndLoaded(changed, "SemanticMap");
 	EXPECT_DOUBLE_EQ(back.washbasinMinTop, 0.7);
@@ -562,6 +566,10 @@ TEST(SemanticMapOptions, ShippedConfigLoadsAndBadValuesAreRejected)
 	EXPECT_DOUBLE_EQ(back.sureMinDetectionRatio, 0.45);
 	EXPECT_EQ(back.unsureMinObservations, 3);
 	EXPECT_DOUBLE_EQ(back.objectMergeDistance, 0.3);
+	EXPECT_DOUBLE_EQ(back.unsureOnceMinShapeScore, 0.85);
+	EXPECT_DOUBLE_EQ(back.sureStairsMaxBottom, 0.25);
+	EXPECT_DOUBLE_EQ(back.stairsCellMargin, 0.7);
+	EXPECT_DOUBLE_EQ(back.stairsCellGap, 0.3);
 	mrpt::config::CConfigFileMemory typo(
 	    "[TravelCost]\nrobot_type = hovercraft\n");
 	EXPECT_THROW(o.cost.loadFromConfigFile(typo, "TravelCost"), ConfigError);

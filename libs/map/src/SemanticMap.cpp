@@ -112,6 +112,11 @@ const OptionTable<O>& optionTable()
 	            "Objects that are not sure need this many "
 	            "detections.")
 	        .real(
+	            "unsure_once_min_shape_score", &O::unsureOnceMinShapeScore, 0,
+	            1,
+	            "Objects not sure scoring at least this need only "
+	            "min_observations detections (0: none).")
+	        .real(
 	            "unsure_stairs_min_width_m", &O::unsureStairsMinWidth, 0, 10,
 	            "Stairs not sure whose typical detection is narrower are not "
 	            "reported (0: no check).")
@@ -143,6 +148,10 @@ const OptionTable<O>& optionTable()
 	        .real(
 	            "stairs_max_bottom_m", &O::stairsMaxBottom, 0, 3,
 	            "Stairs never coming down to this height are not reported.")
+	        .real(
+	            "sure_stairs_max_bottom_m", &O::sureStairsMaxBottom, 0, 3,
+	            "Sure stairs need only come down to this height (0: "
+	            "stairs_max_bottom_m).")
 	        .flag(
 	            "stairs_centroid_from_cells", &O::stairsCentroidFromCells,
 	            "A staircase's centroid is that of its stairs cells.")
@@ -150,6 +159,15 @@ const OptionTable<O>& optionTable()
 	            "stairs_min_cell_share", &O::stairsMinCellShare, 0, 1,
 	            "Only cells labelled stairs in this share of the flight's "
 	            "sweeps (0: all).")
+	        .real(
+	            "stairs_cell_margin_m", &O::stairsCellMargin, 0, 5,
+	            "A staircase's cells count up to this far outside its "
+	            "footprint (0: "
+	            "inside it).")
+	        .real(
+	            "stairs_cell_gap_m", &O::stairsCellGap, 0, 2,
+	            "Cells of a flight this close are connected (at most one "
+	            "cell: 8-connected).")
 	        .flag(
 	            "door_sighting_largest_region", &O::doorSightingLargestRegion,
 	            "A sweep's sighting of a door is its largest door region "
@@ -544,7 +562,9 @@ bool SemanticMap::reported(const ObjectInstance& o) const
 	const bool sure = sureDetection(o);
 	int minObs =
 	    region ? m_options.doorMinObservations : m_options.minObservations;
-	if (!region && !sure)
+	const bool fair = m_options.unsureOnceMinShapeScore > 0 &&
+	                  o.bestShapeScore >= m_options.unsureOnceMinShapeScore;
+	if (!region && !sure && !fair)
 		minObs = std::max(minObs, m_options.unsureMinObservations);
 	if (static_cast<int>(o.observations) < minObs) return false;
 	double ratio = o.label == Label::Stairs ? m_options.stairsMinDetectionRatio
@@ -562,7 +582,10 @@ bool SemanticMap::reported(const ObjectInstance& o) const
 	        { return s.x >= m_options.doorMinWidth; }))
 		return false;
 	const ClassInfo::Plausibility p = plausibility(o.label);
-	if (o.extent().z < p.minHeight || o.minCorner.z > p.maxBottom ||
+	double maxBottom = p.maxBottom;
+	if (o.label == Label::Stairs && sure && m_options.sureStairsMaxBottom > 0)
+		maxBottom = std::max(maxBottom, m_options.sureStairsMaxBottom);
+	if (o.extent().z < p.minHeight || o.minCorner.z > maxBottom ||
 	    o.maxCorner.z < p.minInstanceTop)
 		return false;
 	return p.maxWallDistance <= 0 ||

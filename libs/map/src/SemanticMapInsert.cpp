@@ -589,8 +589,9 @@ void SemanticMap::centreOnCells(ObjectInstance& o) const
 	const GridGeometry& g = m_geometry;
 	const auto& labels = get("labels");
 	int x0, y0, x1, y1;
-	worldToCell(o.minCorner.x, o.minCorner.y, x0, y0);
-	worldToCell(o.maxCorner.x, o.maxCorner.y, x1, y1);
+	const double margin = m_options.stairsCellMargin;
+	worldToCell(o.minCorner.x - margin, o.minCorner.y - margin, x0, y0);
+	worldToCell(o.maxCorner.x + margin, o.maxCorner.y + margin, x1, y1);
 	x0 = std::max(x0, 0);
 	y0 = std::max(y0, 0);
 	x1 = std::min(x1, g.cols - 1);
@@ -649,12 +650,16 @@ void SemanticMap::centreOnCells(ObjectInstance& o) const
 				m = 1;
 				queue.emplace_back(cx, cy);
 			}
-	// The 8-connected stairs cells around them, inside the footprint.
+	// The stairs cells connected to them (8-connected, or within the gap),
+	// inside the footprint (and its margin).
+	const int k = std::max(
+	    1, static_cast<int>(
+	           std::floor(m_options.stairsCellGap / g.resolution + 1e-6)));
 	for (std::size_t i = 0; i < queue.size(); i++)
 	{
 		const auto [ax, ay] = queue[i];
-		for (int dy = -1; dy <= 1; dy++)
-			for (int dx = -1; dx <= 1; dx++)
+		for (int dy = -k; dy <= k; dy++)
+			for (int dx = -k; dx <= k; dx++)
 			{
 				const int cx = ax + dx, cy = ay + dy;
 				if (cx < x0 || cx > x1 || cy < y0 || cy > y1) continue;

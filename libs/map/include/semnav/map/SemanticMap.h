@@ -134,6 +134,12 @@ public:
 		/** Objects that are not sure need this many detections: a single
 		 * doubtful detection is no object. */
 		int unsureMinObservations = 2;
+		/** Objects that are not sure but scored at least this on their shape
+		 * check need only minObservations detections, not
+		 * unsureMinObservations ([0, 1]; 0: none): of the wastebaskets
+		 * and washbasins detected once (tuning seeds 0-96), 11 of the 24
+		 * true ones scored 0.81-0.94, the false ones 0.40-0.75. */
+		double unsureOnceMinShapeScore = 0.8;
 		/** Stairs that are not sure whose typical detection (the median
 		 * width of their sightings) is narrower than this are not
 		 * reported: a low box (with a wastebasket beside it) taken for a
@@ -173,6 +179,11 @@ public:
 		 * one does not (m). */
 		double stairsMaxBottom =
 		    classInfo(Label::Stairs).plausibility.maxBottom;
+		/** Sure stairs (TOptions::sureShapeScore) need only come down to
+		 * this height (m; 0: stairsMaxBottom for them too): a flight
+		 * whose lowest riser was cut from every detection box is still a
+		 * flight when its shape says so. */
+		double sureStairsMaxBottom = 0.2;
 		/** A staircase's centroid (x, y) is the centre of the cells
 		 * labelled stairs (and not wall, washbasin or wastebasket in any
 		 * sweep) connected to its sightings within its footprint: one
@@ -185,6 +196,16 @@ public:
 		 * flight labels the table once, the flight's cells many times.
 		 * [0, 1]; 0: every labelled cell. */
 		double stairsMinCellShare = 0.1;
+		/** The cells connected to a flight's sightings are looked for up
+		 * to this far outside its footprint (m; 0: inside it): the
+		 * detection boxes often hold the part of the flight seen best
+		 * (its near side, its lower steps), its risers run on. */
+		double stairsCellMargin = 0;
+		/** Cells of the flight this close to one another are connected
+		 * (m; at most one cell: 8-connected): from below, the treads of
+		 * the upper steps are hidden and only their risers are labelled,
+		 * lines a run apart. */
+		double stairsCellGap = 0;
 		/** A sweep gives a door one sighting (its centroid, see
 		 * ObjectInstance::addSighting()): true: of the sweep's door regions
 		 * merged into it, the one with the most pixels; false: the first
