@@ -219,10 +219,9 @@ public:
 		 * door seen obliquely has many more points on its near side, which
 		 * pulled the mean 0.3-0.5 m toward the sensor's side of a double
 		 * door; narrower regions keep the mean, which a few stray points at
-		 * an edge move less than they move the box. Off: 1.5 found 5 more
-		 * doors on tuning seeds 0-99 and 1 more on 100-159 but added a
-		 * spurious one there (docs/generated-scenes-log.md, part 6). */
-		double doorSightingBoxCentreMinWidth = 0;
+		 * an edge move less than they move the box. With the two guards
+		 * below (docs/generated-scenes-log.md, parts 6 and 8). */
+		double doorSightingBoxCentreMinWidth = 1.5;
 		/** ...and at most this wide (m; 0: no limit): a wider region
 		 * swallowed wall beside the door, and its box's middle is farther
 		 * off than its points' mean (indoor_54: a 2.99 m region, 0.93 m
@@ -233,7 +232,7 @@ public:
 		 * the middle of its box (0: the box): a leaf fills its opening from
 		 * bottom to top, a strip of wall the region took in beside it does
 		 * not (docs/mapping.md). */
-		double doorSightingFullHeightShare = 0;
+		double doorSightingFullHeightShare = 0.75;
 		/** Door regions higher than this make no door instance and join
 		 * none (m; 0: no limit): a stretch of wall from floor to ceiling
 		 * that the rules took for a door, seen at a grazing angle. */
@@ -297,7 +296,7 @@ public:
 		 * door and joins it at the other's centroid (0: no join): a strip
 		 * at a double door's edge, farther than doorJoinDistance from the
 		 * door's middle once wide regions are sighted at theirs. */
-		double doorJoinContainedShare = 0;
+		double doorJoinContainedShare = 0.8;
 		/** A door's centroid weighs each of its sightings (those within
 		 * half the merge distance of their median) by the square of its
 		 * region's width, widths above this counting as this: a cut view
