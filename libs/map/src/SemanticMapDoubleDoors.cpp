@@ -23,6 +23,34 @@ bool unitNormal(const ObjectInstance& o, double& nx, double& ny)
 	return true;
 }
 
+/** Whether two doors' normals are parallel within 15 deg, either way (a
+ * door seen from both sides); (nx, ny): their mean unit normal. */
+bool parallelDoors(
+    const ObjectInstance& a, const ObjectInstance& b, double& nx, double& ny)
+{
+	double ax, ay, bx, by;
+	if (!unitNormal(a, ax, ay) || !unitNormal(b, bx, by)) return false;
+	constexpr double kMaxAngleDeg = 15;
+	const double dot = ax * bx + ay * by;
+	if (std::abs(dot) < std::cos(kMaxAngleDeg * M_PI / 180)) return false;
+	const double s = dot < 0 ? -1 : 1;
+	nx = ax + s * bx;
+	ny = ay + s * by;
+	const double nn = std::hypot(nx, ny);
+	nx /= nn;
+	ny /= nn;
+	return true;
+}
+
+/** The distance of b's centroid from a's plane of normal (nx, ny). */
+double planeOffset(
+    const ObjectInstance& a, const ObjectInstance& b, double nx, double ny)
+{
+	return std::abs(
+	    (b.centroid.x - a.centroid.x) * nx +
+	    (b.centroid.y - a.centroid.y) * ny);
+}
+
 /** The extent of a footprint box along the direction (tx, ty). */
 void spanAlong(
     const ObjectInstance& o, double tx, double ty, double& lo, double& hi)
@@ -67,28 +95,13 @@ double SemanticMap::longestWallBetween(
 bool SemanticMap::leavesOfOneDoor(
     const ObjectInstance& a, const ObjectInstance& b) const
 {
-	double ax, ay, bx, by;
-	// Two doors the map reports (a one-off fragment is no leaf).
+	double nx, ny;
+	// Two doors the map reports (a one-off fragment is no leaf), in one
+	// plane.
 	if (a.leaves != 1 || b.leaves != 1 || !reported(a) || !reported(b) ||
-	    !unitNormal(a, ax, ay) || !unitNormal(b, bx, by))
+	    !parallelDoors(a, b, nx, ny))
 		return false;
-	// Normals parallel (either way: a door seen from both sides).
-	constexpr double kMaxAngleDeg = 15;
-	const double dot = ax * bx + ay * by;
-	if (std::abs(dot) < std::cos(kMaxAngleDeg * M_PI / 180)) return false;
-	if (dot < 0)
-	{
-		bx = -bx;
-		by = -by;
-	}
-	double nx = ax + bx, ny = ay + by;
-	const double nn = std::hypot(nx, ny);
-	nx /= nn;
-	ny /= nn;
-	// One plane.
-	const double dx = b.centroid.x - a.centroid.x,
-	             dy = b.centroid.y - a.centroid.y;
-	const double offset = std::abs(dx * nx + dy * ny);
+	const double offset = planeOffset(a, b, nx, ny);
 	if (offset > m_options.doubleDoorMaxPlaneOffset ||
 	    (m_options.doubleDoorMaxLeafOffset > 0 &&
 	     offset > m_options.doubleDoorMaxLeafOffset))
@@ -114,25 +127,15 @@ bool SemanticMap::leavesOfOneDoor(
 bool SemanticMap::duplicatesOfOneDoor(
     const ObjectInstance& a, const ObjectInstance& b) const
 {
-	double ax, ay, bx, by;
+	double nx, ny;
 	if (m_options.doorJoinDistance <= 0 || a.leaves != 1 || b.leaves != 1 ||
-	    !reported(a) || !reported(b) || !unitNormal(a, ax, ay) ||
-	    !unitNormal(b, bx, by))
+	    !reported(a) || !reported(b) ||
+	    std::hypot(b.centroid.x - a.centroid.x, b.centroid.y - a.centroid.y) >
+	        m_options.doorJoinDistance ||
+	    !parallelDoors(a, b, nx, ny) ||
+	    planeOffset(a, b, nx, ny) > m_options.doubleDoorMaxPlaneOffset)
 		return false;
-	const double dx = b.centroid.x - a.centroid.x,
-	             dy = b.centroid.y - a.centroid.y;
-	if (std::hypot(dx, dy) > m_options.doorJoinDistance) return false;
-	// Normals parallel (either way), one plane, footprints overlapping.
-	constexpr double kMaxAngleDeg = 15;
-	const double dot = ax * bx + ay * by;
-	if (std::abs(dot) < std::cos(kMaxAngleDeg * M_PI / 180)) return false;
-	const double s = dot < 0 ? -1 : 1;
-	double nx = ax + s * bx, ny = ay + s * by;
-	const double nn = std::hypot(nx, ny);
-	nx /= nn;
-	ny /= nn;
-	if (std::abs(dx * nx + dy * ny) > m_options.doubleDoorMaxPlaneOffset)
-		return false;
+	// Footprints overlapping.
 	return a.minCorner.x <= b.maxCorner.x && b.minCorner.x <= a.maxCorner.x &&
 	       a.minCorner.y <= b.maxCorner.y && b.minCorner.y <= a.maxCorner.y;
 }
@@ -140,25 +143,16 @@ bool SemanticMap::duplicatesOfOneDoor(
 bool SemanticMap::pieceOfDoor(
     const ObjectInstance& whole, const ObjectInstance& part) const
 {
-	double ax, ay, bx, by;
+	double nx, ny;
 	if (m_options.doorJoinContainedShare <= 0 || whole.leaves != 1 ||
 	    part.leaves != 1 || part.observations > whole.observations ||
-	    !reported(whole) || !reported(part) || !unitNormal(whole, ax, ay) ||
-	    !unitNormal(part, bx, by))
-		return false;
-	const double dx = part.centroid.x - whole.centroid.x,
-	             dy = part.centroid.y - whole.centroid.y;
-	if (std::hypot(dx, dy) > m_options.doubleDoorMaxWidth) return false;
-	// Normals parallel (either way), one plane.
-	constexpr double kMaxAngleDeg = 15;
-	const double dot = ax * bx + ay * by;
-	if (std::abs(dot) < std::cos(kMaxAngleDeg * M_PI / 180)) return false;
-	const double s = dot < 0 ? -1 : 1;
-	double nx = ax + s * bx, ny = ay + s * by;
-	const double nn = std::hypot(nx, ny);
-	nx /= nn;
-	ny /= nn;
-	if (std::abs(dx * nx + dy * ny) > m_options.doubleDoorMaxPlaneOffset)
+	    !reported(whole) || !reported(part) ||
+	    std::hypot(
+	        part.centroid.x - whole.centroid.x,
+	        part.centroid.y - whole.centroid.y) >
+	        m_options.doubleDoorMaxWidth ||
+	    !parallelDoors(whole, part, nx, ny) ||
+	    planeOffset(whole, part, nx, ny) > m_options.doubleDoorMaxPlaneOffset)
 		return false;
 	// The piece's span along the wall, inside the door's.
 	double wlo, whi, plo, phi;
