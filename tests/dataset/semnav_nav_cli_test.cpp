@@ -168,15 +168,17 @@ TEST(SemnavNavCli, TheTourMapAndPlansHoldTheReadmeFigures)
 	        {"door", 2}, {"washbasin", 1}, {"wastebasket", 2}, {"stairs", 1}}));
 	// Step 3, measured with semnav-plan --map M --from 2.2,1.5 --json and
 	// --goal wastebasket --profile safe: wastebasket 6, 10.33 m, cost
-	// 15.33; --object 5 --profile safe: cost 23.13; --goal wastebasket
-	// (shortest): 9.95 m to wastebasket 6, 9.99 m to 5 (a near tie, so the
-	// test asserts the nearer of the two). Asserts each within 2 %.
+	// 15.33; --object 5 --profile safe: cost 24.11 (23.13 before the map
+	// merges of 2026-11-29: wastebasket 5 and the stairs beside it moved
+	// 2-3 cm); --goal wastebasket (shortest): 9.95 m to wastebasket 6,
+	// 9.97 m to 5 (a near tie, so the test asserts the nearer of the two).
+	// Asserts each within 2 %.
 	const auto safe = planOnTourMap("--goal wastebasket --profile safe");
 	EXPECT_EQ(safe.at("goal_object_id").get<int>(), 6);
 	EXPECT_NEAR(safe.at("length_m").get<double>(), 10.33, 0.2);
 	EXPECT_NEAR(safe.at("cost").get<double>(), 15.33, 0.3);
 	const auto nearer = planOnTourMap("--object 5 --profile safe");
-	EXPECT_NEAR(nearer.at("cost").get<double>(), 23.13, 0.45);
+	EXPECT_NEAR(nearer.at("cost").get<double>(), 24.11, 0.45);
 	const auto shortest = planOnTourMap("--goal wastebasket");
 	EXPECT_NEAR(shortest.at("length_m").get<double>(), 9.95, 0.2);
 	const double to5 = planOnTourMap("--object 5").at("length_m").get<double>();
