@@ -51,7 +51,7 @@ struct TourMap
 	nlohmann::json summary;
 };
 
-const TourMap& officeMap()
+const TourMap& officeTourMap()
 {
 	static const TourMap m = []
 	{
@@ -76,8 +76,8 @@ const TourMap& officeMap()
 nlohmann::json planOnTourMap(const std::string& args)
 {
 	const AppRun r = runApp(
-	    "semnav-plan",
-	    "--map " + officeMap().dir.string() + " --from 2.2,1.5 --json " + args);
+	    "semnav-plan", "--map " + officeTourMap().dir.string() +
+	                       " --from 2.2,1.5 --json " + args);
 	EXPECT_EQ(r.code, 0) << args << ": " << r.err;
 	return nlohmann::json::parse(r.out);
 }
@@ -152,7 +152,7 @@ TEST(SemnavNavCli, TheTourMapAndPlansHoldTheReadmeFigures)
 	//   semnav-map --rawlog office.rawlog --out M --poses pf --gt-dir D --json
 	// odometry alone 50.6 deg / 1.87 m RMSE; the filter 0.069 deg / 0.040 m
 	// (0.053 deg / 0.038 m before the wall plane reclaim of issue 40).
-	const auto& l = officeMap().summary.at("localization");
+	const auto& l = officeTourMap().summary.at("localization");
 	EXPECT_NEAR(l.at("odometry_final_yaw_err_deg").get<double>(), 50.6, 2.0);
 	EXPECT_NEAR(l.at("odometry_rmse_xy_m").get<double>(), 1.87, 0.2);
 	// Asserts <= measured + 0.12 deg and + 0.03 m.
@@ -160,7 +160,7 @@ TEST(SemnavNavCli, TheTourMapAndPlansHoldTheReadmeFigures)
 	EXPECT_LE(l.at("rmse_xy_m").get<double>(), 0.068);
 	// The office's two doors, washbasin, two wastebaskets and stairs.
 	std::map<std::string, int> objects;
-	for (const auto& o : officeMap().summary.at("objects"))
+	for (const auto& o : officeTourMap().summary.at("objects"))
 		objects[o.at("label").get<std::string>()]++;
 	EXPECT_EQ(
 	    objects,
@@ -196,7 +196,7 @@ TEST(SemnavNavCli, GoesToTheNearestWastebasketOnThePipelinesMap)
 	const fs::path out = tmpDir("office");
 	const std::string scene = test::kSourceDir + "/datasets/office/office.yaml";
 	const AppRun r = runApp(
-	    "semnav-nav", "--map " + officeMap().dir.string() + " --scene " +
+	    "semnav-nav", "--map " + officeTourMap().dir.string() + " --scene " +
 	                      scene + " --start 2.2,1.5,0 --goal wastebasket " +
 	                      "--json --out " + out.string());
 	ASSERT_EQ(r.code, 0) << r.err << r.out;
@@ -224,7 +224,7 @@ TEST(SemnavNavCli, LocalizesGloballyInThePipelinesMapThenNavigates)
 	const fs::path out = tmpDir("officeloc");
 	const std::string scene = test::kSourceDir + "/datasets/office/office.yaml";
 	const AppRun r = runApp(
-	    "semnav-nav", "--map " + officeMap().dir.string() + " --scene " +
+	    "semnav-nav", "--map " + officeTourMap().dir.string() + " --scene " +
 	                      scene +
 	                      " --start 2.2,1.5,0 --localize global --command 'go "
 	                      "to the nearest wastebasket' --json --out " +

@@ -33,7 +33,7 @@ AppRun runPlan(const std::string& args)
 }
 
 /** The office mapped with true poses from its first 5 stops. */
-const fs::path& officeMap()
+const fs::path& officeMapDir()
 {
 	static const fs::path dir = []
 	{
@@ -64,9 +64,9 @@ const fs::path& officeMap()
 
 TEST(SemnavPlanCli, PlansToTheNearestDoorWithPictureAndGrids)
 {
-	const fs::path out = officeMap().parent_path();
+	const fs::path out = officeMapDir().parent_path();
 	const AppRun r = runPlan(
-	    "--map " + officeMap().string() +
+	    "--map " + officeMapDir().string() +
 	    " --from 1.2,1.2 --goal door --json --png " +
 	    (out / "plan.png").string() + " --export-grid " +
 	    (out / "grid").string());
@@ -115,7 +115,7 @@ TEST(SemnavPlanCli, PlansToTheNearestDoorWithPictureAndGrids)
 
 TEST(SemnavPlanCli, ErrorsAreOneLineWithExitCodes)
 {
-	const std::string map = "--map " + officeMap().string();
+	const std::string map = "--map " + officeMapDir().string();
 	struct Case
 	{
 		std::string args, needle;
@@ -151,11 +151,11 @@ TEST(SemnavPlanCli, ObjectsAreTheOnesTheSummaryReports)
 	// The office map with a 4 cm "door" (a wall fragment) added: a
 	// candidate, not an object.
 	SemanticMap map;
-	MapIO::load(officeMap().string(), map);
+	MapIO::load(officeMapDir().string(), map);
 	const int tiny =
 	    map.addInstance(Label::Door, {2.0, 1.0, 0.40}, {2.04, 1.1, 0.44});
 	ASSERT_FALSE(map.reported(map.instance(tiny)));
-	const fs::path dir = officeMap().parent_path() / "map_with_candidate";
+	const fs::path dir = officeMapDir().parent_path() / "map_with_candidate";
 	MapIO::save(map, dir.string());
 	const AppRun r = runPlan(
 	    "--map " + dir.string() + " --from 1.2,1.2 --object " +

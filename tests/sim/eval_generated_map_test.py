@@ -14,8 +14,9 @@ spec = importlib.util.spec_from_loader("eval_generated", loader)
 ev = importlib.util.module_from_spec(spec)
 loader.exec_module(ev)
 
-need = max(ev.map_ini_value("min_observations"),
-           ev.map_ini_value("door_min_observations"))
+INI = ev.DEFAULT_MAP_CONFIG
+need = max(ev.map_ini_value(INI, "min_observations"),
+           ev.map_ini_value(INI, "door_min_observations"))
 SEEN = [ev.SEEN_PIXELS] * need       # seen by `need` sweeps
 UNSEEN = [ev.SEEN_PIXELS - 1] * 5    # never enough pixels
 
@@ -37,38 +38,49 @@ truth = [
     obj(6, "wastebasket", 0, 5),          # seen (recognisable views)
     obj(7, "wastebasket", 3, 5),          # pixels, no recognisable view
     obj(8, "obstacle", 6, 5),
+    obj(9, "door", 25, 0),                # pixels, beside the robot only
+    obj(10, "door", 35, 0, UNSEEN),       # not seen, reported 0.6 m off
 ]
 reported = [
     rep(1, "door", 0.1, 0.1), rep(2, "door", 5.1, 0), rep(3, "door", 4.9, 0),
     rep(4, "door", 10.6, 0), rep(5, "door", 20.2, 0),   # near the unseen one
     dict(rep(6, "door", 30, 0), observations=1),         # spurious, once
     rep(7, "wastebasket", 0.05, 5), rep(8, "wastebasket", 6, 5),  # spurious
+    rep(9, "door", 35.6, 0),             # misplaced, not spurious
 ]
-views = {"6": need, "7": 0}
-s = ev.score_map(truth, reported, views)
+views = {"1": need, "2": need, "3": need, "4": need, "6": need, "7": 0,
+         "9": 0}
+s = ev.score_map(truth, reported, views, INI)
+by_pixels = ev.score_map(truth, reported, views, INI, doors_by_pixels=True)
 
 failed = []
 
 
-def check(cls, **want):
+def check(cls, scores=None, **want):
+    scores = scores or s
     for k, v in want.items():
-        if s[cls][k] != v:
-            failed.append("%s %s: %s, want %s" % (cls, k, s[cls][k], v))
+        if scores[cls][k] != v:
+            failed.append("%s %s: %s, want %s" % (cls, k, scores[cls][k], v))
 
 
 check("door", seen=4, found=1, duplicated=1, far=1, missed=1, spurious=1,
-      reported=6, reported_once=1)
+      far_unseen=1, reported=7, reported_once=1)
+check("door", by_pixels, seen=5, found=1, missed=2, spurious=1)
 check("wastebasket", seen=1, found=1, missed=0, spurious=1, reported=2)
 check("stairs", seen=0, reported=0, spurious=0)
 whats = sorted(f["what"] for f in s["door"]["failures"])
 if whats != ["duplicated", "far", "missed", "spurious"]:
     failed.append("door failures: %s" % whats)
 
-summary = ev.summarize_maps([{"map": s}, {"map": ev.score_map(
-    truth[:1], reported[:1], {})}])
+summary = ev.summarize_maps([
+    {"map": s, "map_pixel_rule": by_pixels},
+    {"map": ev.score_map(truth[:1], reported[:1], {}, INI),
+     "map_pixel_rule": ev.score_map(truth[:1], reported[:1], {}, INI, True)}])
 if summary["buildings"] != 2 or summary["no_spurious_share"] != 0.5 or \
         summary["all_seen_found_once_share"] != 0.5 or \
-        summary["classes"]["door"]["reported_once"] != 1:
+        summary["classes"]["door"]["reported_once"] != 1 or \
+        summary["classes"]["door"]["seen"] != 4 or \
+        summary["pixel_rule"]["classes"]["door"]["seen"] != 6:
     failed.append("summary: %s" % summary)
 
 for f in failed:

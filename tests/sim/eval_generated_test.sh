@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # scripts/eval-generated's bad input (one line each, nothing run): a bad seed
-# list or a mix of tuning and test seeds exits 2, a missing build exits 1.
+# list, a mix of tuning and test seeds, --remap without --map, no --jobs or
+# a missing --map-config exits 2, a missing build exits 1.
 # Usage: eval_generated_test.sh SOURCE_DIR APPS_DIR
 set -uo pipefail
 SRC=$1 BIN=$2
@@ -22,6 +23,9 @@ expect 2 --bin "$BIN" --indoor 9-3
 expect 2 --bin "$BIN" --indoor 1,1
 expect 2 --bin "$BIN" --indoor 999-1000
 expect 2 --bin "$BIN"
+expect 2 --bin "$BIN" --indoor 1 --remap
+expect 2 --bin "$BIN" --indoor 1 --jobs 0
+expect 2 --bin "$BIN" --indoor 1 --map --map-config "$OUT/none.ini"
 expect 1 --bin "$OUT/no-build" --outdoor 1000
 [ ! -e "$OUT/run" ] || fail "a refused run must not create its output"
 echo "eval-generated: ok"

@@ -162,8 +162,7 @@ const OptionTable<O>& optionTable()
 	        .real(
 	            "stairs_cell_margin_m", &O::stairsCellMargin, 0, 5,
 	            "A staircase's cells count up to this far outside its "
-	            "footprint (0: "
-	            "inside it).")
+	            "footprint (0: inside it).")
 	        .real(
 	            "stairs_cell_gap_m", &O::stairsCellGap, 0, 2,
 	            "Cells of a flight this close are connected (at most one "

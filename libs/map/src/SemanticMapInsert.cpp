@@ -111,22 +111,15 @@ octomap::OcTreeKey keyOfCode(std::uint64_t m)
 }
 
 /** World-frame bounding box of the robot-frame box [a, b]. */
-void toWorldBox(
+mrpt::math::TBoundingBox toWorldBox(
     const mrpt::poses::CPose3D& robot, const mrpt::math::TPoint3D& a,
-    const mrpt::math::TPoint3D& b, mrpt::math::TPoint3D& lo,
-    mrpt::math::TPoint3D& hi)
+    const mrpt::math::TPoint3D& b)
 {
-	lo = {1e18, 1e18, 1e18};
-	hi = {-1e18, -1e18, -1e18};
+	auto box = mrpt::math::TBoundingBox::PlusMinusInfinity();
 	for (int k = 0; k < 8; k++)
-	{
-		double x, y, z;
-		robot.composePoint(
-		    (k & 1) ? b.x : a.x, (k & 2) ? b.y : a.y, (k & 4) ? b.z : a.z, x, y,
-		    z);
-		lo = {std::min(lo.x, x), std::min(lo.y, y), std::min(lo.z, z)};
-		hi = {std::max(hi.x, x), std::max(hi.y, y), std::max(hi.z, z)};
-	}
+		box.updateWithPoint(robot.composePoint(
+		    {(k & 1) ? b.x : a.x, (k & 2) ? b.y : a.y, (k & 4) ? b.z : a.z}));
+	return box;
 }
 }  // namespace
 
@@ -137,22 +130,17 @@ struct SemanticMap::WorldPoint
 	int r, c;
 };
 
-std::vector<SemanticMap::WorldBox> SemanticMap::regionPointBoxes(
+std::vector<mrpt::math::TBoundingBox> SemanticMap::regionPointBoxes(
     const LabeledSweep& ls, const std::vector<WorldPoint>& pts)
 {
-	std::vector<WorldBox> boxes(ls.regions.size());
+	std::vector<mrpt::math::TBoundingBox> boxes(
+	    ls.regions.size(), mrpt::math::TBoundingBox::PlusMinusInfinity());
 	if (ls.regionIds.empty()) return boxes;
 	for (const auto& p : pts)
 	{
 		const int id = ls.regionIds.at<int32_t>(p.r, p.c);
 		if (id < 0 || static_cast<std::size_t>(id) >= boxes.size()) continue;
-		WorldBox& b = boxes[static_cast<std::size_t>(id)];
-		b.lo = {
-		    std::min<double>(b.lo.x, p.x), std::min<double>(b.lo.y, p.y),
-		    std::min<double>(b.lo.z, p.z)};
-		b.hi = {
-		    std::max<double>(b.hi.x, p.x), std::max<double>(b.hi.y, p.y),
-		    std::max<double>(b.hi.z, p.z)};
+		boxes[static_cast<std::size_t>(id)].updateWithPoint({p.x, p.y, p.z});
 	}
 	return boxes;
 }
@@ -493,16 +481,17 @@ void SemanticMap::insertDetections(
 	{
 		const mrpt::math::TPoint3D half{
 		    d.extent.x / 2, d.extent.y / 2, d.extent.z / 2};
-		mrpt::math::TPoint3D lo, hi, wc;
-		toWorldBox(robot, d.centroid - half, d.centroid + half, lo, hi);
+		const mrpt::math::TBoundingBox box =
+		    toWorldBox(robot, d.centroid - half, d.centroid + half);
+		mrpt::math::TPoint3D wc;
 		robot.composePoint(d.centroid, wc);
 		int id = 0;
 		// By value: MRPT packs TPoint3D, so a double& to its members is
 		// misaligned (UBSan).
 		const double ex = d.extent.x, ey = d.extent.y;
 		mergeObject(
-		    d.label, wc, {std::max(ex, ey), 0, d.extent.z}, lo, hi,
-		    d.shapeScore, seenThisSweep, id);
+		    d.label, wc, {std::max(ex, ey), 0, d.extent.z}, box, d.shapeScore,
+		    seenThisSweep, id);
 		if (ObjectInstance* o = instanceWithId(id))
 			countDetectedView(*o, viewedThisSweep);
 		paintObject(
@@ -522,9 +511,10 @@ void SemanticMap::insertRegions(
     std::vector<int>& seenThisSweep)
 {
 	const auto& registry = ClassRegistry::instance();
-	const std::vector<WorldBox> pointBoxes = m_options.doorFootprintFromPoints
-	                                             ? regionPointBoxes(ls, pts)
-	                                             : std::vector<WorldBox>();
+	const std::vector<mrpt::math::TBoundingBox> pointBoxes =
+	    m_options.doorFootprintFromPoints
+	        ? regionPointBoxes(ls, pts)
+	        : std::vector<mrpt::math::TBoundingBox>();
 	// Per instance given a sighting in this sweep: that region's pixels.
 	std::map<int, std::size_t> sightingPixels;
 	for (const auto& reg : ls.regions)
@@ -537,16 +527,13 @@ void SemanticMap::insertRegions(
 		if (m_options.doorRegionMaxHeight > 0 &&
 		    reg.height > m_options.doorRegionMaxHeight)
 			continue;
-		mrpt::math::TPoint3D lo, hi, wc;
 		const std::size_t k = static_cast<std::size_t>(reg.id);
-		if (reg.id >= 0 && k < pointBoxes.size() &&
-		    pointBoxes[k].lo.x <= pointBoxes[k].hi.x)
-		{
-			lo = pointBoxes[k].lo;
-			hi = pointBoxes[k].hi;
-		}
-		else
-			toWorldBox(robot, reg.minCorner, reg.maxCorner, lo, hi);
+		const mrpt::math::TBoundingBox box =
+		    reg.id >= 0 && k < pointBoxes.size() &&
+		            pointBoxes[k].min.x <= pointBoxes[k].max.x
+		        ? pointBoxes[k]
+		        : toWorldBox(robot, reg.minCorner, reg.maxCorner);
+		mrpt::math::TPoint3D wc;
 		// A region's box is centred on a flat leaf however it is seen; the
 		// mean of its points leans to its near side.
 		const mrpt::math::TPoint3D at =
@@ -561,7 +548,7 @@ void SemanticMap::insertRegions(
 		const std::size_t before = seenThisSweep.size();
 		int id = 0;
 		const mrpt::math::TPoint3D size{reg.width, 0, reg.height};
-		mergeObject(reg.label, wc, size, lo, hi, 1.0, seenThisSweep, id);
+		mergeObject(reg.label, wc, size, box, 1.0, seenThisSweep, id);
 		if (ObjectInstance* o = instanceWithId(id))
 		{
 			addNormal(robot, reg.meanNormal, *o);
@@ -693,9 +680,8 @@ double SemanticMap::sightingMaxWeightWidth(Label label) const
 
 void SemanticMap::mergeObject(
     Label label, const mrpt::math::TPoint3D& centroid,
-    const mrpt::math::TPoint3D& size, const mrpt::math::TPoint3D& minCorner,
-    const mrpt::math::TPoint3D& maxCorner, double shapeScore,
-    std::vector<int>& seenThisSweep, int& id)
+    const mrpt::math::TPoint3D& size, const mrpt::math::TBoundingBox& box,
+    double shapeScore, std::vector<int>& seenThisSweep, int& id)
 {
 	// The nearest instance of the label within mergeDistance or whose
 	// footprint overlaps the detection's (classes merged by sighting, e.g.
@@ -711,10 +697,9 @@ void SemanticMap::mergeObject(
 		    std::hypot(o.centroid.x - centroid.x, o.centroid.y - centroid.y);
 		bool joins;
 		if (byFootprint)
-			joins =
-			    d < m_options.mergeDistance ||
-			    (o.minCorner.x <= maxCorner.x && minCorner.x <= o.maxCorner.x &&
-			     o.minCorner.y <= maxCorner.y && minCorner.y <= o.maxCorner.y);
+			joins = d < m_options.mergeDistance ||
+			        (o.minCorner.x <= box.max.x && box.min.x <= o.maxCorner.x &&
+			         o.minCorner.y <= box.max.y && box.min.y <= o.maxCorner.y);
 		else
 		{
 			double nearest = d;
@@ -740,8 +725,8 @@ void SemanticMap::mergeObject(
 		o.centroid = centroid;
 		o.sightings.push_back(centroid);
 		o.sightingSizes.push_back(size);
-		o.minCorner = minCorner;
-		o.maxCorner = maxCorner;
+		o.minCorner = box.min;
+		o.maxCorner = box.max;
 		o.observations = 1;
 		o.bestShapeScore = shapeScore;
 		m_instances.push_back(o);
@@ -765,13 +750,13 @@ void SemanticMap::mergeObject(
 	}
 	best->bestShapeScore = std::max(best->bestShapeScore, shapeScore);
 	best->minCorner = {
-	    std::min(best->minCorner.x, minCorner.x),
-	    std::min(best->minCorner.y, minCorner.y),
-	    std::min(best->minCorner.z, minCorner.z)};
+	    std::min(best->minCorner.x, box.min.x),
+	    std::min(best->minCorner.y, box.min.y),
+	    std::min(best->minCorner.z, box.min.z)};
 	best->maxCorner = {
-	    std::max(best->maxCorner.x, maxCorner.x),
-	    std::max(best->maxCorner.y, maxCorner.y),
-	    std::max(best->maxCorner.z, maxCorner.z)};
+	    std::max(best->maxCorner.x, box.max.x),
+	    std::max(best->maxCorner.y, box.max.y),
+	    std::max(best->maxCorner.z, box.max.z)};
 	id = best->id;
 }
 

@@ -1,6 +1,8 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #include <semnav/training/DetectionEvaluation.h>
 
+#include <algorithm>
+
 namespace semnav
 {
 void DetectionEvaluation::OtherCount::add(
@@ -26,6 +28,10 @@ DetectionEvaluation::DetectionEvaluation(
           " occupied 2 cm cells), not pixels")
 {
 	for (const auto& k : m_options.classes) m_labels.push_back(k.label);
+	m_viewLabels = m_labels;
+	if (std::find(m_labels.begin(), m_labels.end(), Label::Door) ==
+	    m_labels.end())
+		m_viewLabels.push_back(Label::Door);
 }
 
 DetectionEvaluation::SweepResult DetectionEvaluation::add(const SimSweep& s)
@@ -59,9 +65,12 @@ DetectionEvaluation::SweepResult DetectionEvaluation::add(const SimSweep& s)
 	const auto unrecognisable = m_recognisable.scorer.unrecognisable(
 	    s.groundTruth, ls.points, ls.groundZ, m_labels);
 	m_recognisable.add(dets, s.groundTruth, m_labels, unrecognisable);
-	for (const auto& g : r.objects)
+	const auto unresolved = m_recognisable.scorer.unrecognisable(
+	    s.groundTruth, ls.points, ls.groundZ, m_viewLabels);
+	for (const auto& g :
+	     GroundTruthObject::fromLabelImage(s.groundTruth, m_viewLabels))
 		if (g.pixels >= kCountedPixels &&
-		    !unrecognisable.count({g.label, g.instance}))
+		    !unresolved.count({g.label, g.instance}))
 			m_recognisableViews[g.instance]++;
 	m_distinct.add(
 	    dets, s.groundTruth, m_labels,

@@ -3,6 +3,7 @@
 
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/maps/COccupancyGridMap2D.h>
+#include <mrpt/math/TBoundingBox.h>
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/system/COutputLogger.h>
@@ -486,13 +487,9 @@ public:
 
 private:
 	struct WorldPoint;
-	/** A world-frame box (empty: lo above hi). */
-	struct WorldBox
-	{
-		mrpt::math::TPoint3D lo{1e18, 1e18, 1e18}, hi{-1e18, -1e18, -1e18};
-	};
-	/** The world box of each region's points (indexed by region id). */
-	static std::vector<WorldBox> regionPointBoxes(
+	/** The world box of each region's points (indexed by region id; a
+	 * region without points: TBoundingBox::PlusMinusInfinity()). */
+	static std::vector<mrpt::math::TBoundingBox> regionPointBoxes(
 	    const LabeledSweep& labeled, const std::vector<WorldPoint>& pts);
 	struct SweepEvidence;
 	/** Layer by name, writable, not counted as a change (internal). */
@@ -630,9 +627,8 @@ private:
 	double sightingMaxWeightWidth(Label label) const;
 	void mergeObject(
 	    Label label, const mrpt::math::TPoint3D& centroid,
-	    const mrpt::math::TPoint3D& size, const mrpt::math::TPoint3D& minCorner,
-	    const mrpt::math::TPoint3D& maxCorner, double shapeScore,
-	    std::vector<int>& seenThisSweep, int& id);
+	    const mrpt::math::TPoint3D& size, const mrpt::math::TBoundingBox& box,
+	    double shapeScore, std::vector<int>& seenThisSweep, int& id);
 
 	TOptions m_options;
 	TravelCostModel m_costModel;

@@ -77,9 +77,11 @@ public:
 	/** Without views beside the robot or seen over less than half their
 	 * height. */
 	const OtherCount& recognisable() const { return m_recognisable; }
-	/** Per ground-truth instance id: the sweeps where it was a recognisable
-	 * view (counted and not left out by recognisable()). Ids are per
-	 * scene: over several datasets the counts of equal ids add up. */
+	/** Per ground-truth instance id of the detector's classes and of
+	 * doors (the map's objects): the sweeps where it was a recognisable
+	 * view (counted and not left out by ObjectScorer::unrecognisable).
+	 * Ids are per scene: over several datasets the counts of equal ids add
+	 * up. */
 	const std::map<int, std::size_t>& recognisableViews() const
 	{
 		return m_recognisableViews;
@@ -102,6 +104,8 @@ private:
 	CascadeDetector::TOptions m_options;
 	CascadeDetector m_detector;
 	std::vector<Label> m_labels;
+	/** m_labels and doors: the labels of recognisableViews(). */
+	std::vector<Label> m_viewLabels;
 	PerceptionPipeline m_pipeline;
 	ObjectScorer m_scorer{kCountedPixels, kMatchIou};
 	OtherCount m_recognisable, m_distinct;
