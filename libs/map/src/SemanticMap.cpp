@@ -126,6 +126,11 @@ const OptionTable<O>& optionTable()
 	            "Wastebaskets not sure never seen narrower are not reported "
 	            "(0: no check).")
 	        .real(
+	            "unsure_wastebasket_wide_min_shape_score",
+	            &O::unsureWastebasketWideMinShapeScore, 0, 1,
+	            "...unless their shape check scored at least this (0: no "
+	            "exception).")
+	        .real(
 	            "unsure_other_label_distance_m", &O::unsureOtherLabelDistance,
 	            0, 10,
 	            "Objects not sure this close to a sure object of another "

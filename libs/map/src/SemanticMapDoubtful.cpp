@@ -20,9 +20,11 @@ bool SemanticMap::doubtfulObjectPlausible(const ObjectInstance& o) const
 	        m_options.unsureStairsMinWidth)
 		return false;
 	// A wastebasket is seen narrow at least once; a plant pot, whose
-	// foliage is wider than its pot, never.
+	// foliage is wider than its pot, never (nor does it score as well).
+	const double wideScore = m_options.unsureWastebasketWideMinShapeScore;
 	if (o.label == Label::Wastebasket &&
 	    m_options.unsureWastebasketMaxWidth > 0 && !sizes.empty() &&
+	    (wideScore <= 0 || o.bestShapeScore < wideScore) &&
 	    std::none_of(
 	        sizes.begin(), sizes.end(),
 	        [&](const mrpt::math::TPoint3D& s)

@@ -153,6 +153,12 @@ public:
 		 * (its foliage) taken for one 0.33 m and more every time (m; 0: no
 		 * check; a map loaded without sighting sizes keeps them). */
 		double unsureWastebasketMaxWidth = 0.3;
+		/** ...unless they scored at least this on their shape check ([0,
+		 * 1]; 0: no exception): on tuning buildings 0-159 the false
+		 * wastebaskets the doubtful-object rules hold back scored at most
+		 * 0.77, while real ones seen only wide (0.36-0.44 m, a bin seen
+		 * from its corner) scored 0.90-0.94 (docs/mapping.md). */
+		double unsureWastebasketWideMinShapeScore = 0.8;
 		/** Cascade objects that are not sure whose centroid lies within
 		 * this distance of a sure reported cascade object of another
 		 * label are not reported: one object is not two (a wastebasket
