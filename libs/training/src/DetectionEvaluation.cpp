@@ -9,7 +9,9 @@ void DetectionEvaluation::OtherCount::add(
     const std::vector<Detection>& dets, const cv::Mat& groundTruth,
     const std::vector<Label>& labels, const ObjectScorer::ObjectKeys& left)
 {
-	for (const auto& k : left) excluded[k.first]++;
+	for (const auto& k : left)
+		if (std::find(labels.begin(), labels.end(), k.first) != labels.end())
+			excluded[k.first]++;
 	scorer.add(dets, groundTruth, labels, left);
 }
 
@@ -62,15 +64,14 @@ DetectionEvaluation::SweepResult DetectionEvaluation::add(const SimSweep& s)
 	m_scorer.add(dets, s.groundTruth, m_labels);
 	r.objects = GroundTruthObject::fromLabelImage(s.groundTruth, m_labels);
 	addToFunnels(r);
+	// Doors too, for recognisableViews(); the scorer reads only m_labels.
 	const auto unrecognisable = m_recognisable.scorer.unrecognisable(
-	    s.groundTruth, ls.points, ls.groundZ, m_labels);
-	m_recognisable.add(dets, s.groundTruth, m_labels, unrecognisable);
-	const auto unresolved = m_recognisable.scorer.unrecognisable(
 	    s.groundTruth, ls.points, ls.groundZ, m_viewLabels);
+	m_recognisable.add(dets, s.groundTruth, m_labels, unrecognisable);
 	for (const auto& g :
 	     GroundTruthObject::fromLabelImage(s.groundTruth, m_viewLabels))
 		if (g.pixels >= kCountedPixels &&
-		    !unresolved.count({g.label, g.instance}))
+		    !unrecognisable.count({g.label, g.instance}))
 			m_recognisableViews[g.instance]++;
 	m_distinct.add(
 	    dets, s.groundTruth, m_labels,

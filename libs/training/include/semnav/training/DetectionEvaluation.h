@@ -46,6 +46,8 @@ public:
 		std::string title;
 		ObjectScorer scorer{kCountedPixels, kMatchIou};
 		std::map<Label, std::size_t> excluded;
+		/** Scores `labels` without the objects in `left` (keys of other
+		 * labels are not counted). */
 		void add(
 		    const std::vector<Detection>& dets, const cv::Mat& groundTruth,
 		    const std::vector<Label>& labels,
