@@ -45,19 +45,32 @@ nlohmann::json summary(
 	j["sweeps_dropped_moving"] = b.sweepsDroppedMoving();
 	j["sweeps_failed"] = b.sweepsFailed();
 	j["objects"] = nlohmann::json::array();
-	for (const auto& o : b.map().instances())
+	j["not_reported"] = nlohmann::json::array();
+	for (const auto& o : b.map().allInstances())
 	{
+		const std::string reason = b.map().unreportedReason(o);
 		// Copies: json's initializer lists bind references, and MRPT packs
 		// TPoint3D (misaligned doubles).
 		const double x = o.centroid.x, y = o.centroid.y, z = o.centroid.z;
-		j["objects"].push_back(
-		    {{"id", o.id},
-		     {"label", semnav::labelName(o.label)},
-		     {"x", x},
-		     {"y", y},
-		     {"z", z},
-		     {"observations", o.observations},
-		     {"views", o.views}});
+		const mrpt::math::TPoint3D e = o.extent();
+		const double ex = e.x, ey = e.y, ez = e.z;
+		nlohmann::json object = {
+		    {"id", o.id},
+		    {"label", semnav::labelName(o.label)},
+		    {"x", x},
+		    {"y", y},
+		    {"z", z},
+		    {"extent", {ex, ey, ez}},
+		    {"observations", o.observations},
+		    {"views", o.views}};
+		auto& sizes = object["sighting_sizes_m"] = nlohmann::json::array();
+		for (const auto& size : o.sightingSizes)
+		{
+			const double w = size.x, h = size.z;
+			sizes.push_back({w, h});
+		}
+		if (!reason.empty()) object["rule"] = reason;
+		j[reason.empty() ? "objects" : "not_reported"].push_back(object);
 	}
 	j["classes"] = semnav::labelScoresJson(b.labelScores());
 	j["ms_per_sweep_median"] = semnav::median(b.msPerSweep());
@@ -106,6 +119,10 @@ void printSummary(const nlohmann::json& j, const std::string& poses)
 		          << " at (" << o["x"].get<double>() << ", "
 		          << o["y"].get<double>() << "), seen " << o["observations"]
 		          << "x\n";
+	if (!j["not_reported"].empty())
+		std::cout << "  not reported: " << j["not_reported"].size()
+		          << " candidates held back by the [SemanticMap] rules "
+		             "(--json names each one's rule)\n";
 	if (j.contains("localization") && j["localization"].contains("rmse_xy_m"))
 	{
 		const auto& l = j["localization"];

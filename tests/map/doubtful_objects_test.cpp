@@ -1,6 +1,6 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 // Cascade objects whose shape check was not sure: the size and place rules
-// of SemanticMap::doubtfulObjectPlausible() (docs/mapping.md, "Objects in
+// of SemanticMap::doubtfulObjectReason() (docs/mapping.md, "Objects in
 // the map").
 #include <gtest/gtest.h>
 #include <semnav/map/SemanticMap.h>
@@ -133,4 +133,36 @@ TEST(SemanticMap, ADoubtfulObjectScoringWellNeedsOneDetection)
 	auto twice = good;
 	twice.views = 2;
 	EXPECT_FALSE(SemanticMap(o).reported(twice));
+}
+
+TEST(SemanticMap, NamesTheRuleThatHoldsACandidateBack)
+{
+	// semnav-map --json lists the candidates not reported with these keys.
+	const SemanticMap m;
+	EXPECT_EQ(
+	    m.unreportedReason(doubtful(Label::Stairs, 2, 0, 0.6, {0.96, 0.98})),
+	    "");
+	EXPECT_EQ(
+	    m.unreportedReason(doubtful(Label::Stairs, 2, 0, 0.6, {0.54, 0.54})),
+	    "unsure_stairs_min_width_m");
+	EXPECT_EQ(
+	    m.unreportedReason(
+	        doubtful(Label::Wastebasket, 2, 0, 0.46, {0.40, 0.38})),
+	    "unsure_wastebasket_max_width_m");
+	EXPECT_EQ(
+	    m.unreportedReason(doubtful(Label::Wastebasket, 2, 0, 0.4, {0.25})),
+	    "unsure_min_observations");
+	auto seldom = doubtful(Label::Wastebasket, 2, 0, 0.4, {0.25, 0.25}, 1);
+	seldom.views = 5;
+	EXPECT_EQ(m.unreportedReason(seldom), "sure_min_detection_ratio");
+	auto door = doubtful(Label::Door, 2, 0, 2.05, {0.9}, 0.6);
+	door.views = 4;  // detected in one of the four sweeps it was in view
+	EXPECT_EQ(m.unreportedReason(door), "door_min_detection_ratio");
+	door.views = 6;  // sure (seen whole, square on) but in six views
+	door.bestShapeScore = 1;
+	EXPECT_EQ(m.unreportedReason(door), "door_sure_min_detection_ratio");
+	door.views = 1;
+	EXPECT_EQ(m.unreportedReason(door), "");
+	door.sightingSizes[0].x = 0.2;
+	EXPECT_EQ(m.unreportedReason(door), "door_min_width_m");
 }

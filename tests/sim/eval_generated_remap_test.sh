@@ -27,4 +27,25 @@ sed 's/^door_min_observations = .*/door_min_observations = 50/' \
 grep -q -- "--scene" "$OUT/run/logs/indoor_0.log" &&
 	fail "--remap simulated again"
 grep -q "semnav-map" "$OUT/run/logs/indoor_0.log" || fail "--remap did not map"
-echo "eval-generated --remap: ok ($first doors seen, then 0)"
+
+# Doors taller than any: each seen door is missed, and its candidate names
+# the rule that held it back (semnav-map --json "not_reported").
+sed 's/^door_min_height_m = .*/door_min_height_m = 2.9/' \
+	"$SRC/config/map.ini" >"$OUT/tall.ini"
+"${EVAL[@]}" --out "$OUT/run" --remap --map-config "$OUT/tall.ini" \
+	>"$OUT/third.json" 2>"$OUT/e" || fail "--remap tall: $(cat "$OUT/e")"
+python3 - "$OUT/run" "$first" <<'PY' || fail "held-back doors"
+import json, sys
+run, first = sys.argv[1], int(sys.argv[2])
+door = json.load(open(run + "/results/indoor_0.json"))["map"]["door"]
+missed = [f for f in door["failures"] if f["what"] == "missed"]
+assert door["seen"] == first and door["found"] == 0, door
+held = [f["held_back"]["rule"] for f in missed]
+assert sum(r.startswith("door_min_height_m") for r in held) >= max(
+    1, first // 2), held
+summary = json.load(open(run + "/maps/indoor_0.json"))
+assert not [o for o in summary["objects"] if o["label"] == "door"]
+rules = {o["rule"] for o in summary["not_reported"] if o["label"] == "door"}
+assert "door_min_height_m" in rules, rules
+PY
+echo "eval-generated --remap: ok ($first doors seen, then 0, then held back)"

@@ -76,6 +76,19 @@ const OptionTable<O>& optionTable()
 	            "Doors detected in a smaller share of the sweeps that had "
 	            "their place in view are not reported (0: no check).")
 	        .real(
+	            "door_sure_min_width_m", &O::doorSureMinWidth, 0, 10,
+	            "A door is sure when a sighting showed a whole leaf this "
+	            "wide...")
+	        .real(
+	            "door_sure_min_height_m", &O::doorSureMinHeight, 0, 10,
+	            "...and this high...")
+	        .real(
+	            "door_sure_max_incidence_deg", &O::doorSureMaxIncidenceDeg, 0,
+	            90, "...seen at most this far from straight on.")
+	        .real(
+	            "door_sure_min_detection_ratio", &O::doorSureMinDetectionRatio,
+	            0, 1, "Sure doors need only this detection ratio.")
+	        .real(
 	            "door_view_min_visible_share", &O::doorViewMinVisibleShare, 0,
 	            1,
 	            "A sweep has a door in view when this share of its face is "
@@ -559,6 +572,11 @@ ClassInfo::Plausibility SemanticMap::plausibility(Label l) const
 
 bool SemanticMap::reported(const ObjectInstance& o) const
 {
+	return unreportedReason(o).empty();
+}
+
+std::string SemanticMap::unreportedReason(const ObjectInstance& o) const
+{
 	// Region classes (doors) are no detections: no shape score; their
 	// views are door views (doorInView()).
 	const bool region =
@@ -566,34 +584,72 @@ bool SemanticMap::reported(const ObjectInstance& o) const
 	const bool sure = sureDetection(o);
 	int minObs =
 	    region ? m_options.doorMinObservations : m_options.minObservations;
+	const char* obsKey = region ? "door_min_observations" : "min_observations";
 	const bool fair = m_options.unsureOnceMinShapeScore > 0 &&
 	                  o.bestShapeScore >= m_options.unsureOnceMinShapeScore;
-	if (!region && !sure && !fair)
-		minObs = std::max(minObs, m_options.unsureMinObservations);
-	if (static_cast<int>(o.observations) < minObs) return false;
+	if (!region && !sure && !fair && m_options.unsureMinObservations > minObs)
+	{
+		minObs = m_options.unsureMinObservations;
+		obsKey = "unsure_min_observations";
+	}
+	if (static_cast<int>(o.observations) < minObs) return obsKey;
 	double ratio = o.label == Label::Stairs ? m_options.stairsMinDetectionRatio
 	                                        : m_options.minDetectionRatio;
-	if (sure) ratio = std::min(ratio, m_options.sureMinDetectionRatio);
-	if (region) ratio = m_options.doorMinDetectionRatio;
+	const char* ratioKey = o.label == Label::Stairs
+	                           ? "stairs_min_detection_ratio"
+	                           : "min_detection_ratio";
+	if (sure && m_options.sureMinDetectionRatio < ratio)
+	{
+		ratio = m_options.sureMinDetectionRatio;
+		ratioKey = "sure_min_detection_ratio";
+	}
+	if (region)
+	{
+		ratio = m_options.doorMinDetectionRatio;
+		ratioKey = "door_min_detection_ratio";
+		if (o.bestShapeScore >= m_options.sureShapeScore &&
+		    m_options.doorSureMinDetectionRatio < ratio)
+		{
+			ratio = m_options.doorSureMinDetectionRatio;
+			ratioKey = "door_sure_min_detection_ratio";
+		}
+	}
 	if (static_cast<double>(o.observations) <
 	    ratio * static_cast<double>(o.views))
-		return false;
-	if (!region && !sure && !doubtfulObjectPlausible(o)) return false;
+		return ratioKey;
+	if (!region && !sure)
+	{
+		const std::string doubtful = doubtfulObjectReason(o);
+		if (!doubtful.empty()) return doubtful;
+	}
 	if (region && m_options.doorMinWidth > 0 && !o.sightingSizes.empty() &&
 	    std::none_of(
 	        o.sightingSizes.begin(), o.sightingSizes.end(),
 	        [&](const mrpt::math::TPoint3D& s)
 	        { return s.x >= m_options.doorMinWidth; }))
-		return false;
+		return "door_min_width_m";
 	const ClassInfo::Plausibility p = plausibility(o.label);
 	double maxBottom = p.maxBottom;
 	if (o.label == Label::Stairs && sure && m_options.sureStairsMaxBottom > 0)
 		maxBottom = std::max(maxBottom, m_options.sureStairsMaxBottom);
-	if (o.extent().z < p.minHeight || o.minCorner.z > maxBottom ||
-	    o.maxCorner.z < p.minInstanceTop)
-		return false;
-	return p.maxWallDistance <= 0 ||
-	       wallWithin(o.centroid.x, o.centroid.y, p.maxWallDistance);
+	// The keys of the plausibility rules plausibility() sets from the
+	// options; the class registry's own bounds otherwise.
+	const bool door = o.label == Label::Door;
+	const bool stairs = o.label == Label::Stairs;
+	const bool basin = o.label == Label::Washbasin;
+	if (o.extent().z < p.minHeight)
+		return door ? "door_min_height_m" : "the class's least height";
+	if (o.minCorner.z > maxBottom)
+		return stairs
+		           ? (sure ? "sure_stairs_max_bottom_m" : "stairs_max_bottom_m")
+		           : "the class's highest bottom";
+	if (o.maxCorner.z < p.minInstanceTop)
+		return basin ? "washbasin_min_top_m" : "the class's lowest top";
+	if (p.maxWallDistance > 0 &&
+	    !wallWithin(o.centroid.x, o.centroid.y, p.maxWallDistance))
+		return basin ? "washbasin_max_wall_distance_m"
+		             : "the class's wall distance";
+	return {};
 }
 
 bool SemanticMap::wallWithin(double x, double y, double radius) const

@@ -548,7 +548,8 @@ void SemanticMap::insertRegions(
 		const std::size_t before = seenThisSweep.size();
 		int id = 0;
 		const mrpt::math::TPoint3D size{reg.width, 0, reg.height};
-		mergeObject(reg.label, wc, size, box, 1.0, seenThisSweep, id);
+		mergeObject(
+		    reg.label, wc, size, box, doorLeafScore(reg), seenThisSweep, id);
 		if (ObjectInstance* o = instanceWithId(id))
 		{
 			addNormal(robot, reg.meanNormal, *o);

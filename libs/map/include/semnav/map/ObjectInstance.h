@@ -45,7 +45,8 @@ struct ObjectInstance
 	 * middle between its leaves' sightings (in memory only). */
 	int leaves = 1;
 	/** The best shape check score of its detections (Detection::shapeScore;
-	 * 1 for doors and classes without a shape model). */
+	 * 1 for classes without a shape model). Doors: the largest share of a
+	 * whole leaf seen nearly straight on (SemanticMap::doorLeafScore()). */
 	double bestShapeScore = 1;
 
 	/** Adds one sweep's detection centroid and recomputes `centroid` as

@@ -32,6 +32,7 @@ namespace semnav
 {
 class Sweep;
 class LabeledSweep;
+struct LabeledRegion;
 
 /** The semantic map: one grid geometry shared by named layers, in the
  * spirit of grid_map's GridMap.
@@ -97,6 +98,18 @@ public:
 		 * the door rules took for a door in one of several looks. 0: no
 		 * check. */
 		double doorMinDetectionRatio = 0.35;
+		/** A door is sure when one sighting showed a whole leaf: at least
+		 * this wide... */
+		double doorSureMinWidth = 0.7;
+		/** ...and this high (m)... */
+		double doorSureMinHeight = 1.8;
+		/** ...seen at most this far from straight on (deg). Its shape score
+		 * (ObjectInstance::bestShapeScore) is the share of such a leaf
+		 * its best sighting within this angle showed. */
+		double doorSureMaxIncidenceDeg = 45;
+		/** Sure doors need only this detection ratio: a door seen whole
+		 * and square once, missed in looks from afar or at a slant. */
+		double doorSureMinDetectionRatio = 0.2;
 		/** A sweep has a door in view when at least this share of the
 		 * points over its face is in the field of view and unhidden. */
 		double doorViewMinVisibleShare = 0.6;
@@ -253,7 +266,9 @@ public:
 		 * tests' hand-made regions) keep the box around their box. */
 		bool doorFootprintFromPoints = true;
 		/** Doors whose merged extent is lower than this are not reported
-		 * (fragments of walls or furniture taken for a door) (m). */
+		 * (fragments of walls or furniture taken for a door, 0.1-0.5 m on
+		 * the tuning buildings; a door seen close shows 0.64-1.07 m below
+		 * the top of the tilt range) (m). */
 		double doorMinHeight = classInfo(Label::Door).plausibility.minHeight;
 		/** Doors none of whose sightings (one region per sweep) is at
 		 * least this wide are not reported: a strip of wall, jamb or leaf
@@ -447,6 +462,9 @@ public:
 	/** True when an instance passes the reporting rules (observations,
 	 * plausible size). */
 	bool reported(const ObjectInstance& o) const;
+	/** The first reporting rule an instance fails, named by its TOptions
+	 * key (e.g. "door_min_detection_ratio"); empty when it is reported. */
+	std::string unreportedReason(const ObjectInstance& o) const;
 	/** Instances that pass the reporting rules. */
 	std::vector<ObjectInstance> instances() const;
 	std::vector<ObjectInstance> instances(Label label) const;
@@ -623,11 +641,16 @@ private:
 	bool wallWithin(double x, double y, double radius) const;
 	/** The reporting rules for cascade objects that are not sure
 	 * (TOptions::unsureStairsMinWidth, unsureWastebasketMaxWidth,
-	 * unsureOtherLabelDistance): true when `o` passes them. */
-	bool doubtfulObjectPlausible(const ObjectInstance& o) const;
+	 * unsureOtherLabelDistance): the key of the first that `o` fails, or
+	 * empty. */
+	std::string doubtfulObjectReason(const ObjectInstance& o) const;
 	/** True for a detected object (not a region such as a door) whose shape
 	 * check was sure (TOptions::sureShapeScore). */
 	bool sureDetection(const ObjectInstance& o) const;
+	/** A door region's shape score: the share of a whole leaf
+	 * (TOptions::doorSureMinWidth x doorSureMinHeight) it shows when seen
+	 * within doorSureMaxIncidenceDeg of straight on, else 0. */
+	double doorLeafScore(const LabeledRegion& reg) const;
 	/** The width cap of a label's sighting weights
 	 * (TOptions::doorCentroidMaxWeightWidth for doors, 0: unweighted). */
 	double sightingMaxWeightWidth(Label label) const;
