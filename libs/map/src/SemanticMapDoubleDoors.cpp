@@ -135,9 +135,7 @@ bool SemanticMap::duplicatesOfOneDoor(
 	    !parallelDoors(a, b, nx, ny) ||
 	    planeOffset(a, b, nx, ny) > m_options.doubleDoorMaxPlaneOffset)
 		return false;
-	// Footprints overlapping.
-	return a.minCorner.x <= b.maxCorner.x && b.minCorner.x <= a.maxCorner.x &&
-	       a.minCorner.y <= b.maxCorner.y && b.minCorner.y <= a.maxCorner.y;
+	return a.footprintOverlaps(b.box());
 }
 
 bool SemanticMap::pieceOfDoor(
@@ -172,14 +170,7 @@ void SemanticMap::absorbDoor(ObjectInstance& a, int bIndex, CellRect& changed)
 	    a.sightings.end(), b.sightings.begin(), b.sightings.end());
 	a.sightingSizes.insert(
 	    a.sightingSizes.end(), b.sightingSizes.begin(), b.sightingSizes.end());
-	a.minCorner = {
-	    std::min(a.minCorner.x, b.minCorner.x),
-	    std::min(a.minCorner.y, b.minCorner.y),
-	    std::min(a.minCorner.z, b.minCorner.z)};
-	a.maxCorner = {
-	    std::max(a.maxCorner.x, b.maxCorner.x),
-	    std::max(a.maxCorner.y, b.maxCorner.y),
-	    std::max(a.maxCorner.z, b.maxCorner.z)};
+	a.takeInBox(b.box());
 	const double sign =
 	    a.normalSum.x * b.normalSum.x + a.normalSum.y * b.normalSum.y < 0 ? -1
 	                                                                      : 1;

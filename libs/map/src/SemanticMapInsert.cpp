@@ -698,9 +698,7 @@ void SemanticMap::mergeObject(
 		    std::hypot(o.centroid.x - centroid.x, o.centroid.y - centroid.y);
 		bool joins;
 		if (byFootprint)
-			joins = d < m_options.mergeDistance ||
-			        (o.minCorner.x <= box.max.x && box.min.x <= o.maxCorner.x &&
-			         o.minCorner.y <= box.max.y && box.min.y <= o.maxCorner.y);
+			joins = d < m_options.mergeDistance || o.footprintOverlaps(box);
 		else
 		{
 			double nearest = d;
@@ -750,14 +748,7 @@ void SemanticMap::mergeObject(
 		seenThisSweep.push_back(best->id);
 	}
 	best->bestShapeScore = std::max(best->bestShapeScore, shapeScore);
-	best->minCorner = {
-	    std::min(best->minCorner.x, box.min.x),
-	    std::min(best->minCorner.y, box.min.y),
-	    std::min(best->minCorner.z, box.min.z)};
-	best->maxCorner = {
-	    std::max(best->maxCorner.x, box.max.x),
-	    std::max(best->maxCorner.y, box.max.y),
-	    std::max(best->maxCorner.z, box.max.z)};
+	best->takeInBox(box);
 	id = best->id;
 }
 

@@ -1,6 +1,7 @@
 /* semnav: semantic navigation from tilting-laser sweeps */
 #pragma once
 
+#include <mrpt/math/TBoundingBox.h>
 #include <mrpt/math/TPoint3D.h>
 #include <semnav/common/Label.h>
 
@@ -148,6 +149,32 @@ struct ObjectInstance
 		return {
 		    median(sightingSizes, &mrpt::math::TPoint3D::x), 0,
 		    median(sightingSizes, &mrpt::math::TPoint3D::z)};
+	}
+
+	/** Its box (minCorner, maxCorner). */
+	mrpt::math::TBoundingBox box() const
+	{
+		return {
+		    minCorner, maxCorner,
+		    mrpt::math::TBoundingBox::CTOR_FLAGS::AllowUnordered};
+	}
+
+	/** Whether its footprint (x, y) and `b`'s overlap, borders included. */
+	bool footprintOverlaps(const mrpt::math::TBoundingBox& b) const
+	{
+		return minCorner.x <= b.max.x && b.min.x <= maxCorner.x &&
+		       minCorner.y <= b.max.y && b.min.y <= maxCorner.y;
+	}
+
+	/** Grows its box to take in `b`. */
+	void takeInBox(const mrpt::math::TBoundingBox& b)
+	{
+		minCorner = {
+		    std::min(minCorner.x, b.min.x), std::min(minCorner.y, b.min.y),
+		    std::min(minCorner.z, b.min.z)};
+		maxCorner = {
+		    std::max(maxCorner.x, b.max.x), std::max(maxCorner.y, b.max.y),
+		    std::max(maxCorner.z, b.max.z)};
 	}
 
 	mrpt::math::TPoint3D extent() const
