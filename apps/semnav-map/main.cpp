@@ -121,8 +121,10 @@ void printSummary(const nlohmann::json& j, const std::string& poses)
 		          << "x\n";
 	if (!j["not_reported"].empty())
 		std::cout << "  not reported: " << j["not_reported"].size()
-		          << " candidates held back by the [SemanticMap] rules "
-		             "(--json names each one's rule)\n";
+		          << (j["not_reported"].size() == 1 ? " candidate"
+		                                            : " candidates")
+		          << " held back by the [SemanticMap] rules (--json names "
+		             "each one's rule)\n";
 	if (j.contains("localization") && j["localization"].contains("rmse_xy_m"))
 	{
 		const auto& l = j["localization"];
