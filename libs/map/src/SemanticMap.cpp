@@ -12,15 +12,11 @@
 
 namespace semnav
 {
-namespace
-{
-const char* kLabels = "labels";
-const char* kCost = "cost";
-const char* kObjects = "objects";
-const char* kRoughness = "roughness";
-const char* kObservations = "observations";
-}  // namespace
-
+const char* const SemanticMap::kLabels = "labels";
+const char* const SemanticMap::kCost = "cost";
+const char* const SemanticMap::kObjects = "objects";
+const char* const SemanticMap::kRoughness = "roughness";
+const char* const SemanticMap::kObservations = "observations";
 const char* const SemanticMap::kStairsSweeps = "stairs_sweeps";
 
 namespace

@@ -70,7 +70,7 @@ void spanAlong(
 double SemanticMap::longestWallBetween(
     const mrpt::math::TPoint3D& a, const mrpt::math::TPoint3D& b) const
 {
-	const auto& labels = get("labels");
+	const auto& labels = get(kLabels);
 	const double len = std::hypot(b.x - a.x, b.y - a.y);
 	const double step = m_geometry.resolution / 2;
 	const int n = std::max(1, static_cast<int>(std::ceil(len / step)));
@@ -180,7 +180,7 @@ void SemanticMap::absorbDoor(ObjectInstance& a, int bIndex, CellRect& changed)
 	a.bestShapeScore = std::max(a.bestShapeScore, b.bestShapeScore);
 	const int from = b.id, to = a.id;
 	m_instances.erase(m_instances.begin() + bIndex);
-	auto& objs = layer("objects");
+	auto& objs = layer(kObjects);
 	for (int cy = 0; cy < m_geometry.rows; cy++)
 		for (int cx = 0; cx < m_geometry.cols; cx++)
 		{

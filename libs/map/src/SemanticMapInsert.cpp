@@ -344,7 +344,7 @@ void SemanticMap::accumulatePoints(
 	    registry.select([](const ClassInfo& c) { return c.ground; });
 	const LabelSet overhead =
 	    registry.select([](const ClassInfo& c) { return c.overhead; });
-	auto& labelLayer = layer("labels");
+	auto& labelLayer = layer(kLabels);
 	auto& stairsLayer = layer(kStairsSweeps);
 	std::vector<uint8_t> stairsHere(e.area(), 0);
 	for (const auto& p : pts)
@@ -430,8 +430,8 @@ void SemanticMap::markSeenFree(
 void SemanticMap::updateCells(SweepEvidence& e)
 {
 	const GridGeometry& g = m_geometry;
-	auto& roughLayer = layer("roughness");
-	auto& obsLayer = layer("observations");
+	auto& roughLayer = layer(kRoughness);
+	auto& obsLayer = layer(kObservations);
 	const float pHit = static_cast<float>(m_options.hitProbability);
 	const float pFree = static_cast<float>(m_options.freeProbability);
 	const CellRect& w = e.window;
@@ -458,7 +458,7 @@ void SemanticMap::paintObject(
     SweepEvidence& e, int id, const cv::Rect& box,
     const std::function<bool(int, int)>& belongs)
 {
-	auto& objLayer = layer("objects");
+	auto& objLayer = layer(kObjects);
 	const cv::Rect clip = box & cv::Rect(0, 0, e.cols, e.rows);
 	for (int r = clip.y; r < clip.y + clip.height; r++)
 		for (int c = clip.x; c < clip.x + clip.width; c++)
@@ -575,7 +575,7 @@ void SemanticMap::insertRegions(
 void SemanticMap::centreOnCells(ObjectInstance& o) const
 {
 	const GridGeometry& g = m_geometry;
-	const auto& labels = get("labels");
+	const auto& labels = get(kLabels);
 	int x0, y0, x1, y1;
 	const double margin = m_options.stairsCellMargin;
 	worldToCell(o.minCorner.x - margin, o.minCorner.y - margin, x0, y0);

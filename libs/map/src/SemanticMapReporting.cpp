@@ -118,7 +118,7 @@ std::string SemanticMap::unreportedReason(const ObjectInstance& o) const
 
 bool SemanticMap::wallWithin(double x, double y, double radius) const
 {
-	const auto& labels = get("labels");
+	const auto& labels = get(kLabels);
 	const GridGeometry& g = m_geometry;
 	const int r = static_cast<int>(std::ceil(radius / g.resolution));
 	int cx, cy;

@@ -635,7 +635,14 @@ private:
 	/** Sets a staircase's centroid (x, y) from its labelled cells (see
 	 * TOptions::stairsCentroidFromCells). */
 	void centreOnCells(ObjectInstance& o) const;
-	/** Layer: per cell, the sweeps that labelled a point in it stairs. */
+	/** Layer names: the labels (a LabelSet mask per cell), travel cost,
+	 * object ids, roughness and observation counts... */
+	static const char* const kLabels;
+	static const char* const kCost;
+	static const char* const kObjects;
+	static const char* const kRoughness;
+	static const char* const kObservations;
+	/** ...and per cell, the sweeps that labelled a point in it stairs. */
 	static const char* const kStairsSweeps;
 	/** True when a cell labelled wall lies within `radius` of (x, y). */
 	bool wallWithin(double x, double y, double radius) const;
