@@ -36,11 +36,8 @@ namespace
 /** The instance of one sweep holding `pts`, detected in a box over x
  * 2.0..2.4, y -0.6..0 (the near right corner of the flight). */
 ObjectInstance cornerDetected(
-    const std::vector<FakePoint>& pts, double margin, double gap)
+    const std::vector<FakePoint>& pts, const SemanticMap::TOptions& o)
 {
-	SemanticMap::TOptions o;
-	o.stairsCellMargin = margin;
-	o.stairsCellGap = gap;
 	SemanticMap m(o);
 	auto f = makeFakeSweep(pts);
 	Detection d;
@@ -53,6 +50,16 @@ ObjectInstance cornerDetected(
 	const auto st = m.instances(Label::Stairs);
 	EXPECT_EQ(st.size(), 1u);
 	return st.empty() ? ObjectInstance() : st[0];
+}
+
+ObjectInstance cornerDetected(
+    const std::vector<FakePoint>& pts, double margin, double gap)
+{
+	SemanticMap::TOptions o;
+	o.stairsCellMargin = margin;
+	o.stairsCellGap = gap;
+	o.stairsRiserGap = 0;
+	return cornerDetected(pts, o);
 }
 
 /** Distance of `o`'s centroid from the flight's centre (2.6, 0). */
@@ -78,6 +85,33 @@ TEST(SemanticMap, AFlightsCentreTakesInCellsBeyondItsBoxes)
 	EXPECT_LT(offCentre(cornerDetected(risers(), 1.0, 0.35)), 0.08);
 	EXPECT_GT(offCentre(cornerDetected(risers(), 1.0, 0)), 0.3)
 	    << "the first riser only";
+}
+
+TEST(SemanticMap, AFlightsRisersConnectAcrossTheirRun)
+{
+	// indoor_78, 109, 153: seen from its foot, a flight's risers are rows
+	// of cells a run apart; a chair in front of it that a false detection
+	// labelled stairs is no riser.
+	SemanticMap::TOptions o;
+	o.stairsCellMargin = 1.0;
+	o.stairsRiserGap = 0.4;
+	o.stairsRiserMinRow = 0.5;
+	EXPECT_LT(offCentre(cornerDetected(risers(), o)), 0.08);
+	auto off = o;
+	off.stairsRiserGap = 0;
+	EXPECT_GT(offCentre(cornerDetected(risers(), off)), 0.3)
+	    << "the first riser only";
+	auto withChair = risers();
+	for (const double x : {1.55, 1.75})
+		for (const double y : {-0.2, 0.2})
+			for (double z = 0.02; z < 0.45; z += 0.05)
+				for (const double d : {0.0, 0.03})
+					withChair.push_back({x + d, y + d, z, Label::Stairs});
+	EXPECT_LT(offCentre(cornerDetected(withChair, o)), 0.08);
+	auto anyRow = o;
+	anyRow.stairsRiserMinRow = 0;
+	EXPECT_GT(offCentre(cornerDetected(withChair, anyRow)), 0.15)
+	    << "the chair's legs taken for risers";
 }
 
 TEST(SemanticMap, SureStairsMayStartAboveTheFloor)

@@ -181,6 +181,14 @@ const OptionTable<O>& optionTable()
 	            "stairs_cell_gap_m", &O::stairsCellGap, 0, 2,
 	            "Cells of a flight this close are connected (at most one "
 	            "cell: 8-connected).")
+	        .real(
+	            "stairs_riser_gap_m", &O::stairsRiserGap, 0, 2,
+	            "Cells of a flight this far apart across its risers are "
+	            "connected (0: off).")
+	        .real(
+	            "stairs_riser_min_row_m", &O::stairsRiserMinRow, 0, 5,
+	            "The riser gap joins only a row of cells this long along the "
+	            "risers.")
 	        .flag(
 	            "door_sighting_largest_region", &O::doorSightingLargestRegion,
 	            "A sweep's sighting of a door is its largest door region "

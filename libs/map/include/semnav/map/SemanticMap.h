@@ -226,6 +226,16 @@ public:
 		 * the upper steps are hidden and only their risers are labelled,
 		 * lines a run apart. */
 		double stairsCellGap = 0;
+		/** Cells of a flight this far apart across its risers are connected
+		 * (m; 0: off): seen from its foot, a flight's upper treads are
+		 * hidden and its risers are rows of cells a run apart. The axis
+		 * across the risers is the one along which the footprint's cells
+		 * pile up most. */
+		double stairsRiserGap = 0.4;
+		/** The riser gap joins only a row of cells at least this long
+		 * along the risers (m; one-cell gaps allowed): a chair's legs or a
+		 * stray cell in front of the flight are no riser. */
+		double stairsRiserMinRow = 0.5;
 		/** A sweep gives a door one sighting (its centroid, see
 		 * ObjectInstance::addSighting()): true: of the sweep's door regions
 		 * merged into it, the one with the most pixels; false: the first
