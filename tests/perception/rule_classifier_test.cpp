@@ -190,6 +190,23 @@ TEST(RuleClassifier, NearlyFlushDoorIsCutAlongItsSeams)
 	    sc, [](auto& o) { o.classifier.doorSeamSplitOffset = 0; });
 }
 
+TEST(RuleClassifier, NearlyFlushDoorFramedAllRoundIsADoor)
+{
+	// indoor_127: a leaf framed on its left, right and top, whose walls'
+	// planes lie under door_min_offset_m from it (here 3 mm behind the wall
+	// face, measured 2.8 mm; the seams are 2 cm gaps).
+	SynthScene sc = corridor();
+	for (auto& b : sc.boxes)
+		if (b.label == Label::Door)
+		{
+			b.lo[1] = 1.203;
+			b.hi[1] = 1.243;
+		}
+	sc.mount[0] = 2.6;
+	expectDoorOnlyWithTheRule(
+	    sc, [](auto& o) { o.classifier.doorFramedMinOffset = 0.003; });
+}
+
 TEST(RuleClassifier, DoorWithALintelAndOneSideWall)
 {
 	// The corridor turns left just after the door: beyond the leaf's far

@@ -148,6 +148,14 @@ const OptionTable<O>& optionTable()
 	        .real(
 	            "door_min_offset_m", &O::doorMinOffset, 0, 10,
 	            "...and it stands off them by this.")
+	        .real(
+	            "door_framed_min_offset_m", &O::doorFramedMinOffset, 0, 10,
+	            "A door framed all round (door_framed_side_fraction) need "
+	            "stand off its walls by this only.")
+	        .real(
+	            "door_framed_side_fraction", &O::doorFramedSideFraction, 0, 1,
+	            "Framed all round: wall along this share of its left, right "
+	            "and top, none cut by the field of view.")
 	        .flag(
 	            "door_allow_truncation", &O::doorAllowTruncation,
 	            "A side cut by the field of view stands in for a wall.")

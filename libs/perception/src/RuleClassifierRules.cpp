@@ -264,8 +264,10 @@ void RuleClassifier::labelDoorsAndWalls(
 			                    (shown && dc.bottomHidden);
 			// Wider than a door: only with its whole frame seen.
 			const bool framed = !framedWidth || dc.wholeFrame(f);
-			door = sides && framed && height && width && bottom &&
-			       dc.maxOffset >= o.doorMinOffset;
+			const bool offset = dc.maxOffset >= o.doorMinOffset ||
+			                    (dc.maxOffset >= o.doorFramedMinOffset &&
+			                     dc.wholeFrame(o.doorFramedSideFraction));
+			door = sides && framed && height && width && bottom && offset;
 			MRPT_LOG_DEBUG_FMT(
 			    "door candidate %zu: %d px, rows %d-%d cols %d-%d, width %.2f "
 			    "height %.2f z %.2f..%.2f; walls left %.2f right %.2f top "
@@ -277,8 +279,7 @@ void RuleClassifier::labelDoorsAndWalls(
 			    dc.rightHidden, dc.bottomHidden, dc.maxOffset,
 			    door ? "door" : "no", sides ? "" : " sides",
 			    height ? "" : " height", width ? "" : " width",
-			    bottom ? "" : " bottom",
-			    dc.maxOffset >= o.doorMinOffset ? "" : " offset");
+			    bottom ? "" : " bottom", offset ? "" : " offset");
 		}
 		else
 			MRPT_LOG_DEBUG_FMT(

@@ -145,6 +145,12 @@ public:
 		double doorMaxOffset = 0.15;
 		double doorMaxAngle = 15.0 * M_PI / 180;
 		double doorMinOffset = 0.003;
+		/** A candidate with wall along at least doorFramedSideFraction of
+		 * its left, right and top, none cut by the field of view, needs to
+		 * stand off them by this only (m): a nearly flush leaf framed all
+		 * round. */
+		double doorFramedMinOffset = 0.002;
+		double doorFramedSideFraction = 0.9;
 		bool doorAllowTruncation = true;
 		int doorSearchPixels = 6;
 		double doorSearchDistance = 0.15;
