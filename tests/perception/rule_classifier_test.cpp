@@ -173,38 +173,41 @@ TEST(RuleClassifier, CorridorWithADoor)
 	for (const auto& reg : ls.regions) EXPECT_EQ(n[reg.id], reg.pixels);
 }
 
-TEST(RuleClassifier, NearlyFlushDoorIsCutAlongItsSeams)
+namespace
 {
-	// The corridor's door 6 mm behind the wall face (below the plain
-	// 1.2 cm plane split), 2 cm gaps on either side of it.
+/** The corridor's door `behind` m behind the wall face, 2 cm gaps on either
+ * side of it, seen from in front of it (the gaps seen in depth). */
+SynthScene corridorWithNearlyFlushDoor(double behind)
+{
 	SynthScene sc = corridor();
 	for (auto& b : sc.boxes)
 		if (b.label == Label::Door)
 		{
-			b.lo[1] = 1.206;
-			b.hi[1] = 1.246;
+			b.lo[1] = 1.2 + behind;
+			b.hi[1] = 1.24 + behind;
 		}
-	sc.mount[0] = 2.6;  // (in front of it: the gaps seen in depth)
-	// Without the seams the leaf is part of its wall.
+	sc.mount[0] = 2.6;
+	return sc;
+}
+}  // namespace
+
+TEST(RuleClassifier, NearlyFlushDoorIsCutAlongItsSeams)
+{
+	// 6 mm behind (below the plain 1.2 cm plane split). Without the seams
+	// the leaf is part of its wall.
 	expectDoorOnlyWithTheRule(
-	    sc, [](auto& o) { o.classifier.doorSeamSplitOffset = 0; });
+	    corridorWithNearlyFlushDoor(0.006),
+	    [](auto& o) { o.classifier.doorSeamSplitOffset = 0; });
 }
 
 TEST(RuleClassifier, NearlyFlushDoorFramedAllRoundIsADoor)
 {
 	// indoor_127: a leaf framed on its left, right and top, whose walls'
-	// planes lie under door_min_offset_m from it (here 3 mm behind the wall
-	// face, measured 2.8 mm; the seams are 2 cm gaps).
-	SynthScene sc = corridor();
-	for (auto& b : sc.boxes)
-		if (b.label == Label::Door)
-		{
-			b.lo[1] = 1.203;
-			b.hi[1] = 1.243;
-		}
-	sc.mount[0] = 2.6;
+	// planes lie under door_min_offset_m from it (3 mm behind the wall
+	// face, measured 2.8 mm).
 	expectDoorOnlyWithTheRule(
-	    sc, [](auto& o) { o.classifier.doorFramedMinOffset = 0.003; });
+	    corridorWithNearlyFlushDoor(0.003),
+	    [](auto& o) { o.classifier.doorFramedMinOffset = 0.003; });
 }
 
 TEST(RuleClassifier, DoorWithALintelAndOneSideWall)

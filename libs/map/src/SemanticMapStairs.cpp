@@ -68,6 +68,23 @@ int rowLength(int cx, int cy, double ax, double ay, const F& flight)
 		}
 	return n;
 }
+
+/** The middle (world x, y) of the bounding box of non-empty `cells`. */
+std::pair<double, double> middleOfCells(
+    const std::vector<Cell>& cells, const GridGeometry& g)
+{
+	int x0 = cells[0].first, x1 = x0, y0 = cells[0].second, y1 = y0;
+	for (const auto& [cx, cy] : cells)
+	{
+		x0 = std::min(x0, cx);
+		x1 = std::max(x1, cx);
+		y0 = std::min(y0, cy);
+		y1 = std::max(y1, cy);
+	}
+	return {
+	    0.5 * (g.centerX(x0) + g.centerX(x1)),
+	    0.5 * (g.centerY(y0) + g.centerY(y1))};
+}
 }  // namespace
 
 void SemanticMap::centreOnCells(ObjectInstance& o) const
@@ -185,16 +202,9 @@ void SemanticMap::centreOnCells(ObjectInstance& o) const
 	// A few cells are no flight (a stray labelled pixel): keep the mean.
 	constexpr std::size_t kMinCells = 20;
 	if (queue.size() < kMinCells) return;
-	int bx0 = x1, by0 = y1, bx1 = x0, by1 = y0;
-	for (const auto& [cx, cy] : queue)
-	{
-		bx0 = std::min(bx0, cx);
-		bx1 = std::max(bx1, cx);
-		by0 = std::min(by0, cy);
-		by1 = std::max(by1, cy);
-	}
-	o.centroid.x = 0.5 * (g.centerX(bx0) + g.centerX(bx1));
-	o.centroid.y = 0.5 * (g.centerY(by0) + g.centerY(by1));
+	const auto [mx, my] = middleOfCells(queue, g);
+	o.centroid.x = mx;
+	o.centroid.y = my;
 }
 
 }  // namespace semnav
