@@ -210,6 +210,14 @@ TEST(RuleClassifier, NearlyFlushDoorFramedAllRoundIsADoor)
 	    [](auto& o) { o.classifier.doorFramedMinOffset = 0.003; });
 }
 
+TEST(RuleClassifier, DoorWhoseLowest17CentimetresAreNotSeenIsADoor)
+{
+	// indoor_19: a leaf in view from 0.17 m up (door_bottom_tolerance_m).
+	expectDoorOnlyWithTheRule(
+	    corridorWithLeaf({3.02, 1.22, 0.17}, {3.98, 1.26, 2.0}),
+	    [](auto& o) { o.classifier.doorBottomTolerance = 0.15; });
+}
+
 TEST(RuleClassifier, DoorWithALintelAndOneSideWall)
 {
 	// The corridor turns left just after the door: beyond the leaf's far

@@ -150,7 +150,7 @@ const OptionTable<O>& optionTable()
 	            "...and it stands off them by this.")
 	        .real(
 	            "door_framed_min_offset_m", &O::doorFramedMinOffset, 0, 10,
-	            "A door framed all round (door_framed_side_fraction) need "
+	            "A door framed all round (door_framed_side_fraction) needs to "
 	            "stand off its walls by this only.")
 	        .real(
 	            "door_framed_side_fraction", &O::doorFramedSideFraction, 0, 1,

@@ -141,7 +141,7 @@ public:
 		 * and top, none cut by the field of view (0 = off). */
 		double doorFramedMaxWidth = 2.3;
 		double doorMinHeight = 1.5, doorMaxHeight = 2.5;
-		double doorBottomTolerance = 0.15;
+		double doorBottomTolerance = 0.2;
 		double doorMaxOffset = 0.15;
 		double doorMaxAngle = 15.0 * M_PI / 180;
 		double doorMinOffset = 0.003;
