@@ -179,13 +179,8 @@ namespace
  * side of it, seen from in front of it (the gaps seen in depth). */
 SynthScene corridorWithNearlyFlushDoor(double behind)
 {
-	SynthScene sc = corridor();
-	for (auto& b : sc.boxes)
-		if (b.label == Label::Door)
-		{
-			b.lo[1] = 1.2 + behind;
-			b.hi[1] = 1.24 + behind;
-		}
+	SynthScene sc =
+	    corridorWithLeaf({3.02, 1.2 + behind, 0}, {3.98, 1.24 + behind, 2.0});
 	sc.mount[0] = 2.6;
 	return sc;
 }

@@ -124,20 +124,23 @@ void SemanticMap::centreOnCells(ObjectInstance& o) const
 	// counts loads them as 0: every labelled cell counts).
 	const auto& sweeps = get(kStairsSweeps);
 	float most = 0;
-	std::vector<Cell> inside;
+	std::vector<Cell> labelledCells;
 	for (int cy = y0; cy <= y1; cy++)
 		for (int cx = x0; cx <= x1; cx++)
 			if (labelled(cx, cy))
+			{
+				labelledCells.emplace_back(cx, cy);
 				most = std::max(most, sweeps[g.index(cy, cx)]);
+			}
 	const float least =
 	    std::max(1.0f, static_cast<float>(m_options.stairsMinCellShare) * most);
-	const auto stairs = [&](int cx, int cy) {
-		return labelled(cx, cy) &&
-		       (most <= 0 || sweeps[g.index(cy, cx)] >= least);
-	};
-	for (int cy = y0; cy <= y1; cy++)
-		for (int cx = x0; cx <= x1; cx++)
-			if (stairs(cx, cy)) inside.emplace_back(cx, cy);
+	const auto enoughSweeps = [&](int cx, int cy)
+	{ return most <= 0 || sweeps[g.index(cy, cx)] >= least; };
+	const auto stairs = [&](int cx, int cy)
+	{ return labelled(cx, cy) && enoughSweeps(cx, cy); };
+	std::vector<Cell> inside;
+	for (const auto& [cx, cy] : labelledCells)
+		if (enoughSweeps(cx, cy)) inside.emplace_back(cx, cy);
 	const auto [ax, ay] = m_options.stairsRiserGap > 0
 	                          ? flightAxis(inside)
 	                          : std::pair<double, double>{0, 0};
